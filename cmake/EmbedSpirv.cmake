@@ -1,0 +1,15 @@
+# Writes the SPIR-V words of ${SPV} as `extern const std::vector<uint32_t> ${NAME}_spv` into ${OUT}.
+file(READ ${SPV} hex HEX)
+string(LENGTH "${hex}" len)
+set(words "")
+math(EXPR last "${len} - 8")
+foreach(i RANGE 0 ${last} 8)
+  # SPIR-V files are little-endian words: reverse the 4 bytes of each word.
+  string(SUBSTRING "${hex}" ${i} 8 w)
+  string(SUBSTRING "${w}" 6 2 b0)
+  string(SUBSTRING "${w}" 4 2 b1)
+  string(SUBSTRING "${w}" 2 2 b2)
+  string(SUBSTRING "${w}" 0 2 b3)
+  string(APPEND words "0x${b0}${b1}${b2}${b3}u,")
+endforeach()
+file(WRITE ${OUT} "#include <cstdint>\n#include <vector>\nextern const std::vector<uint32_t> ${NAME}_spv;\nconst std::vector<uint32_t> ${NAME}_spv = {${words}};\n")

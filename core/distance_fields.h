@@ -1,0 +1,36 @@
+// Distance fields over the regions (ALGORITHMS.md section 4); distances in voxels.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "vec3.h"
+
+namespace vr {
+
+// Every distance is stored in one byte and capped here (a capped value is still conservative: the box shrinks).
+constexpr int kDistanceCap = 255;
+constexpr int kOctants = 8;
+
+// Octant of a direction: bit a set when component a is negative (a zero component counts as positive).
+inline int octantOf(double dx, double dy, double dz) { return (dx < 0) | ((dy < 0) << 1) | ((dz < 0) << 2); }
+// Step sign of axis a in octant oct.
+constexpr int octantSign(int oct, int axis) { return (oct >> axis) & 1 ? -1 : +1; }
+
+enum FieldKind : unsigned { kFieldPC = 1, kFieldACD = 2, kFieldEACD = 4 };
+
+struct DistanceFields {
+    Vec3i dims{0, 0, 0};
+    // PC: Chebyshev radius r >= 0 of the cube centred on v that stays in v's region and inside the volume.
+    std::vector<uint8_t> pc;
+    // ACD: per octant, the edge k >= 1 of the cube {v + s*e : e in [0,k)^3} in v's region and inside the volume.
+    std::array<std::vector<uint8_t>, kOctants> acd;
+    // EACD: per octant, extents (ex, ey, ez) >= acd of the box {v + s*e : 0 <= e_a < ext_a}.
+    std::array<std::vector<std::array<uint8_t, 3>>, kOctants> eacd;
+
+    bool hasPC() const { return !pc.empty(); }
+    bool hasACD() const { return !acd[0].empty(); }
+    bool hasEACD() const { return !eacd[0].empty(); }
+};
+
+}  // namespace vr

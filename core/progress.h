@@ -1,0 +1,26 @@
+// A progress bar on stderr for long stages; silent when stderr is not a terminal (CI logs, tests).
+#pragma once
+#include <atomic>
+#include <cstddef>
+#include <string>
+
+namespace vr {
+
+class ProgressBar {
+public:
+    ProgressBar(std::string label, std::size_t total);
+    ~ProgressBar();
+    void advance(std::size_t n = 1);  // thread-safe
+    void finish();
+
+private:
+    void draw(std::size_t done);
+    std::string label_;
+    std::size_t total_;
+    std::atomic<std::size_t> done_{0};
+    std::atomic<int> lastPercent_{-1};
+    bool enabled_;
+    bool finished_ = false;
+};
+
+}  // namespace vr

@@ -1,0 +1,26 @@
+// A loaded scalar volume: the one type every loader produces.
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "grid.h"
+
+namespace vr {
+
+// The scalar type of the source file; values are held as float (exact for every integer type here).
+enum class ScalarType { UInt8, Int16, UInt16, Float32 };
+
+std::string_view scalarTypeName(ScalarType t);           // "uint8", "int16", "uint16", "float32"
+ScalarType parseScalarType(std::string_view name);       // accepts those names (and "float"); throws InputError
+
+struct Volume {
+    GridGeometry grid;
+    ScalarType sourceType = ScalarType::Float32;
+    std::vector<float> values;  // x fastest, then y, then z; size == grid.voxels()
+    std::string source;         // where it came from (a path), for the prepared file's metadata
+
+    float at(int x, int y, int z) const { return values[linearIndex(grid.dims, x, y, z)]; }
+};
+
+}  // namespace vr
