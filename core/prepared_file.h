@@ -1,0 +1,18 @@
+// The prepared file (format documented in docs/PREPARED_FORMAT.md): written atomically, read with checks.
+#pragma once
+#include <filesystem>
+
+#include "prepared_volume.h"
+
+namespace vr {
+
+constexpr int kPreparedFormatVersion = 1;
+
+void writePrepared(const std::filesystem::path& path, const PreparedVolume& prepared);
+
+// Reads only the distance fields in `fields` (a FieldKind mask) and normals only if `normals`:
+// a render loads what its caster uses. Throws InputError for a foreign, truncated or inconsistent file.
+PreparedVolume readPrepared(const std::filesystem::path& path, unsigned fields = kFieldPC | kFieldACD | kFieldEACD,
+                            bool normals = true);
+
+}  // namespace vr

@@ -1,0 +1,13 @@
+// The CPU reference renderer: the four casters of ALGORITHMS.md section 5 in double precision.
+#pragma once
+#include "camera.h"
+#include "core/prepared_volume.h"
+#include "render_result.h"
+
+namespace vr {
+
+// Throws InputError when the caster needs a field the prepared volume lacks, or when a ray hits the
+// iteration cap (a bug, reported rather than hung).
+RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, const RenderSettings& settings);
+
+}  // namespace vr

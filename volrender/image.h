@@ -1,0 +1,27 @@
+// A float RGBA image (linear, premultiplied over the background) and its writer through OpenImageIO.
+#pragma once
+#include <array>
+#include <filesystem>
+#include <vector>
+
+namespace vr {
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<float> rgba;  // row-major from the top, 4 floats per pixel
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), rgba(std::size_t(w) * h * 4, 0.f) {}
+    float* pixel(int x, int y) { return &rgba[(std::size_t(y) * width + x) * 4]; }
+    const float* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
+};
+
+// Format by extension: .png (8-bit, sRGB-encoded), .exr (linear float RGBA), others as OIIO allows.
+// Written atomically; throws InputError naming the path.
+void writeImage(const std::filesystem::path& path, const Image& image);
+Image readImage(const std::filesystem::path& path);
+
+// Max over pixels and channels of |a - b|.
+double maxAbsDifference(const Image& a, const Image& b);
+
+}  // namespace vr
