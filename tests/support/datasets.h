@@ -1,0 +1,30 @@
+// Where the tests find the shared real datasets, and their manifest rows.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/vec3.h"
+#include "core/volume.h"
+
+namespace vr::test {
+
+std::filesystem::path datasetsDir();
+
+struct DatasetEntry {
+    std::string file;       // e.g. cranium_ct_256x256x108_int16.raw.gz
+    Vec3i dims;
+    ScalarType type;
+    Vec3d spacing;          // 1,1,1 where the manifest says unknown
+    std::string tf;         // transfer function file name beside it
+    bool isRaw() const;     // a headerless .raw.gz (the ones named NAME_DxDxD_TYPE.raw.gz)
+};
+
+// Rows of MANIFEST.tsv.
+std::vector<DatasetEntry> manifest();
+std::vector<DatasetEntry> rawManifest();  // only the .raw.gz rows
+
+// A fresh empty folder under the build tree for one test's outputs.
+std::filesystem::path scratchDir(const std::string& name);
+
+}  // namespace vr::test

@@ -1,1 +1,0 @@
-// Anchors the test-support library when it has no other sources.
