@@ -1,0 +1,181 @@
+// Headerless raw volumes (.raw, .raw.gz): dims and type from flags or from the file name, x fastest.
+#include <unistd.h>
+#include <zlib.h>
+
+#include <bit>
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "preprocess/load/format_loaders.h"
+#include "preprocess/load/voxel_conversion.h"
+
+namespace vr {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string dimsText(const Vec3i& d) {
+    return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+}
+
+// Names like engine_256x256x128_uint8.raw or cranium_ct_256x256x108_int16.raw.gz carry dims and type.
+void fillFromName(const fs::path& path, RawOptions& options) {
+    static const std::regex pattern(R"((?:^|[_.-])(\d+)x(\d+)x(\d+)(?:_([a-z0-9]+))?\.raw(?:\.gz)?$)",
+                                    std::regex::icase);
+    std::smatch m;
+    const std::string name = path.filename().string();
+    if (!std::regex_search(name, m, pattern)) return;
+    if (!options.dims) {
+        Vec3i dims;
+        for (int a = 0; a < 3; ++a) {
+            const std::string digits = m[a + 1].str();
+            if (digits.size() > 10 || std::stoll(digits) > INT_MAX)
+                throw fileError(path.string(), "dimension " + digits + " in the file name is too large");
+            dims[a] = std::stoi(digits);
+        }
+        options.dims = dims;
+    }
+    if (!options.type && m[4].matched) {
+        try {
+            options.type = parseScalarType(m[4].str());
+        } catch (const InputError&) {
+            // Not a type name (e.g. a version suffix): the type must then come from the flag.
+        }
+    }
+}
+
+std::size_t physicalMemoryBytes() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : SIZE_MAX;
+}
+
+// Bytes the file must hold. Checked before anything is allocated: dims whose product overflows 64 bits, or whose
+// voxels (the file's bytes plus the float values) cannot fit in this machine's memory, fail here and fast.
+std::size_t expectedBytes(const fs::path& path, const Vec3i& dims, ScalarType type) {
+    if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
+        throw fileError(path.string(), "dims " + dimsText(dims) + " must all be positive");
+    std::size_t voxels, bytes, floatBytes, total;
+    if (__builtin_mul_overflow(std::size_t(dims.x), std::size_t(dims.y), &voxels) ||
+        __builtin_mul_overflow(voxels, std::size_t(dims.z), &voxels) ||
+        __builtin_mul_overflow(voxels, scalarSize(type), &bytes) ||
+        __builtin_mul_overflow(voxels, sizeof(float), &floatBytes) ||
+        __builtin_add_overflow(bytes, floatBytes, &total))
+        throw fileError(path.string(), "dims " + dimsText(dims) + " of " + std::string(scalarTypeName(type)) +
+                                           " overflow a 64-bit size");
+    if (const std::size_t memory = physicalMemoryBytes(); total > memory)
+        throw fileError(path.string(), "dims " + dimsText(dims) + " of " + std::string(scalarTypeName(type)) +
+                                           " need " + std::to_string(total) + " bytes, more than the " +
+                                           std::to_string(memory) + " bytes of memory of this machine");
+    return bytes;
+}
+
+std::string sizeMismatch(std::size_t expected, std::size_t actual, const Vec3i& dims, ScalarType type) {
+    return "holds " + std::to_string(actual) + " bytes of voxel data but dims " + dimsText(dims) + " of " +
+           std::string(scalarTypeName(type)) + " need " + std::to_string(expected) + " bytes";
+}
+
+std::vector<unsigned char> readPlain(const fs::path& path, std::size_t expected, const Vec3i& dims,
+                                     ScalarType type) {
+    std::error_code ec;
+    const std::uintmax_t actual = fs::file_size(path, ec);
+    if (ec) throw fileError(path.string(), "cannot read: " + ec.message());
+    if (actual != expected) throw fileError(path.string(), sizeMismatch(expected, actual, dims, type));
+    std::vector<unsigned char> bytes(expected);
+    std::ifstream in(path, std::ios::binary);
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(expected)))
+        throw fileError(path.string(), "read failed after " + std::to_string(in.gcount()) + " of " +
+                                           std::to_string(expected) + " bytes");
+    return bytes;
+}
+
+// The decompressed size is only known by decompressing, so read `expected` bytes and then look for more.
+std::vector<unsigned char> readGzip(const fs::path& path, std::size_t expected, const Vec3i& dims,
+                                    ScalarType type) {
+    gzFile file = gzopen(path.c_str(), "rb");
+    if (!file) throw fileError(path.string(), "cannot open");
+    struct Closer {
+        gzFile f;
+        ~Closer() { gzclose(f); }
+    } closer{file};
+    gzbuffer(file, 1 << 20);
+
+    const auto readInto = [&](unsigned char* dst, std::size_t n) {
+        std::size_t done = 0;
+        while (done < n) {
+            const unsigned chunk = unsigned(std::min<std::size_t>(n - done, 1u << 30));
+            const int got = gzread(file, dst + done, chunk);
+            if (got < 0) {
+                int code;
+                const char* message = gzerror(file, &code);
+                throw fileError(path.string(), std::string("corrupt gzip data: ") + message);
+            }
+            if (got == 0) break;
+            done += std::size_t(got);
+        }
+        int code;
+        gzerror(file, &code);
+        if (code == Z_BUF_ERROR)  // the input ended inside a gzip stream
+            throw fileError(path.string(), "truncated gzip data: it ends after " + std::to_string(done) +
+                                               " decompressed bytes; dims " + dimsText(dims) + " of " +
+                                               std::string(scalarTypeName(type)) + " need " +
+                                               std::to_string(expected) + " bytes");
+        return done;
+    };
+
+    std::vector<unsigned char> bytes(expected);
+    const std::size_t got = readInto(bytes.data(), expected);
+    if (got < expected) throw fileError(path.string(), sizeMismatch(expected, got, dims, type));
+    std::size_t extra = 0;
+    for (std::vector<unsigned char> rest(1 << 16);;) {
+        const std::size_t n = readInto(rest.data(), rest.size());
+        if (n == 0) break;
+        extra += n;
+    }
+    if (extra > 0) throw fileError(path.string(), sizeMismatch(expected, expected + extra, dims, type));
+    return bytes;
+}
+
+bool endsWithGz(const fs::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".gz";
+}
+
+}  // namespace
+
+Volume loadRaw(const fs::path& path, const RawOptions& flags) {
+    RawOptions options = flags;
+    fillFromName(path, options);
+    if (!options.dims)
+        throw fileError(path.string(), "raw file without dims: give --dims X Y Z or name it NAME_XxYxZ_TYPE.raw");
+    if (!options.type)
+        throw fileError(path.string(),
+                        "raw file without voxel type: give --type (uint8, int16, uint16, float32) or name it "
+                        "NAME_XxYxZ_TYPE.raw");
+    const Vec3d spacing = options.spacing.value_or(Vec3d{1, 1, 1});
+    for (int a = 0; a < 3; ++a)
+        if (!(std::isfinite(spacing[a]) && spacing[a] > 0))
+            throw fileError(path.string(), "spacing must be positive and finite, got " + std::to_string(spacing[a]));
+
+    const Vec3i dims = *options.dims;
+    const ScalarType type = *options.type;
+    const std::size_t expected = expectedBytes(path, dims, type);
+    const std::vector<unsigned char> bytes =
+        endsWithGz(path) ? readGzip(path, expected, dims, type) : readPlain(path, expected, dims, type);
+
+    Volume v;
+    v.grid.dims = dims;
+    v.grid.spacing = spacing;
+    v.sourceType = type;
+    v.values.resize(v.grid.voxels());
+    const bool swap = options.bigEndian != (std::endian::native == std::endian::big);
+    widenVoxels(type, bytes.data(), v.values.size(), swap, v.values.data());
+    return v;
+}
+
+}  // namespace vr

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The main job: prepare a real head MRI shipped by Debian (Colin27 T1, mricron-data) and render it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh mricron-data
+bash scripts/build.sh
+mkdir -p out
+input=/usr/share/mricron/templates/ch2.nii.gz
+build/preprocess/volprep "$input" --tf datasets/tf/mri_head.tf.json --to 0.01 --ta 3 -o out/ch2.volprep
+build/volrender/volrender out/ch2.volprep --caster eacd --size 512x512 --azimuth 30 --elevation 20 \
+  -o out/ch2.png --stats out/ch2.stats.json --heatmap out/ch2.heat.png
+echo "Wrote out/ch2.volprep, out/ch2.png, out/ch2.heat.png and out/ch2.stats.json"
