@@ -1,45 +1,29 @@
 // Classification (ALGORITHMS.md section 2): scalar volume -> extinction, colour and normals.
 #pragma once
-#include <filesystem>
+#include <array>
 #include <optional>
-#include <string>
 #include <vector>
 
 #include "core/classified_volume.h"
 #include "core/volume.h"
+#include "preprocess/classify/iso_contour.h"
+#include "preprocess/classify/transfer_function.h"
 
 namespace vr {
 
-// A 1D transfer function: piecewise-linear opacity and colour over the scalar value.
-struct TransferFunction {
-    struct OpacityPoint { double x, opacity; };
-    struct ColourPoint { double x, r, g, b; };
-    std::vector<OpacityPoint> opacity;  // sorted by x
-    std::vector<ColourPoint> colour;    // sorted by x; empty -> white
-    std::string name;
-    std::string json;                   // the source text, kept for the prepared file's metadata
-
-    double opacityAt(double f) const;
-    std::array<double, 3> colourAt(double f) const;
-};
-
-// Reads ParaView's preset JSON ("Points": x, opacity, mid, sharp; "RGBPoints": x, r, g, b; a list or one object).
-// Throws InputError naming the file and the problem.
-TransferFunction loadTransferFunction(const std::filesystem::path& path);
-TransferFunction parseTransferFunction(const std::string& jsonText, const std::string& sourceName);
-
-// Levoy (1988) iso-contour classification, one term per iso-value.
-struct IsoContour { double value, width, strength; };
-
 struct ClassifyParams {
-    std::optional<TransferFunction> transferFunction;  // one of these two
+    std::optional<TransferFunction> transferFunction;  // exactly one of these two
     std::vector<IsoContour> isoContours;
     std::array<double, 3> isoColour{1, 1, 1};
     bool normals = true;              // compute gradients / normals (needed for shading and T_a)
     double referenceStep = 0;         // dt0 in world units; 0 = the smallest spacing (one voxel)
-    double flatGradientFloor = 1e-6;  // |grad| below this (relative to the value range per world unit) is flat
+    // |grad| at or below flatGradientFloor * (value range) / (smallest spacing) is flat: the normal is (0,0,0).
+    double flatGradientFloor = 1e-6;
 };
 
+// Opacity from the TF (sampled exactly at every integer value for integer volumes, else at 65536 values over the
+// volume's range with linear interpolation) or from the iso-contours; sigma = -ln(1 - alpha) / dt0.
+// Throws InputError for bad parameters (no or two classifications, bad TF or iso-contours, dt0 <= 0).
 ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params);
 
 }  // namespace vr

@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <bit>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <fstream>
@@ -42,7 +43,9 @@ void fillFromName(const fs::path& path, RawOptions& options) {
     }
     if (!options.type && m[4].matched) {
         try {
-            options.type = parseScalarType(m[4].str());
+            std::string type = m[4].str();
+            for (char& c : type) c = char(std::tolower(static_cast<unsigned char>(c)));
+            options.type = parseScalarType(type);
         } catch (const InputError&) {
             // Not a type name (e.g. a version suffix): the type must then come from the flag.
         }
@@ -141,9 +144,8 @@ std::vector<unsigned char> readGzip(const fs::path& path, std::size_t expected, 
 }
 
 bool endsWithGz(const fs::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".gz";
+    const std::string ext = path.extension().string();
+    return ext.size() == 3 && ext[0] == '.' && std::tolower(ext[1]) == 'g' && std::tolower(ext[2]) == 'z';
 }
 
 }  // namespace

@@ -5,7 +5,12 @@
 
 namespace vr {
 
-// Throws InputError for negative or NaN thresholds.
+// Regions are the 6-connected components of equal RegionKey (region_key.h), so the bound holds between ANY two
+// voxels of a region: both transparent (sigma = 0), or opacity and each colour channel within T_o and normals
+// within T_a (both flat, or both unit). With T_o = T_a = 0 a region is a connected run of bit-identical voxels
+// (transparent voxels are identical whatever their colour and normal). With params.trilinear, voxels whose
+// 26-neighbourhood touches another region are regions of one voxel. Labels 0..count-1 in first-voxel order.
+// Throws InputError for negative or NaN thresholds or an inconsistent classified volume.
 Regions segment(const ClassifiedVolume& classified, const SegmentationParams& params);
 
 }  // namespace vr

@@ -1,0 +1,87 @@
+// Distance-field build times (PC, ACD x 8, EACD x 8) and mean leap lengths, on constant and random-blocky volumes.
+// Usage: fields_bench [size...]   (default sizes 128 256)
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include <chrono>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "preprocess/fields/build_fields.h"
+
+namespace {
+
+using namespace vr;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+Regions constantVolume(int n) {
+    Regions r;
+    r.dims = {n, n, n};
+    r.label.assign(voxelCount(r.dims), 0);
+    r.count = 1;
+    return r;
+}
+
+// Random axis-aligned boxes of edge 1..n/4 painted with 8 labels: regions of every size and shape.
+Regions blockyVolume(int n) {
+    Regions r = constantVolume(n);
+    r.count = 8;
+    std::mt19937 rng(42);
+    std::uniform_int_distribution<int> pos(0, n - 1), edge(1, std::max(1, n / 4)), label(0, 7);
+    for (int b = 0; b < 4 * n; ++b) {
+        const int x0 = pos(rng), y0 = pos(rng), z0 = pos(rng), ex = edge(rng), ey = edge(rng), ez = edge(rng);
+        const uint32_t l = label(rng);
+        for (int z = z0; z < std::min(n, z0 + ez); ++z)
+            for (int y = y0; y < std::min(n, y0 + ey); ++y)
+                for (int x = x0; x < std::min(n, x0 + ex); ++x) r.label[linearIndex(r.dims, x, y, z)] = l;
+    }
+    return r;
+}
+
+void run(const std::string& name, const Regions& r) {
+    auto t = Clock::now();
+    const std::vector<uint8_t> pc = buildPC(r);
+    const double pcSeconds = secondsSince(t);
+
+    t = Clock::now();
+    std::array<std::vector<uint8_t>, kOctants> acd;
+    for (int o = 0; o < kOctants; ++o) acd[o] = buildACD(r, o);
+    const double acdSeconds = secondsSince(t);
+
+    t = Clock::now();
+    const std::array<EACDField, kOctants> eacd = buildEACD(r, acd);
+    const double eacdSeconds = secondsSince(t);
+
+    // Mean leap lengths over all voxels: PC radius, ACD edge, and EACD's box (its longest extent and its volume
+    // relative to the ACD cube's), in octant 0.
+    double pcSum = 0, acdSum = 0, eacdLongest = 0, volumeGain = 0;
+    for (std::size_t v = 0; v < pc.size(); ++v) {
+        pcSum += pc[v];
+        acdSum += acd[0][v];
+        const auto& e = eacd[0][v];
+        eacdLongest += std::max({e[0], e[1], e[2]});
+        volumeGain += double(e[0]) * e[1] * e[2] / (double(acd[0][v]) * acd[0][v] * acd[0][v]);
+    }
+    const double n = double(pc.size());
+    std::printf("%-18s %4dx%dx%d  PC %6.3f s  ACD x8 %6.3f s  EACD x8 %6.3f s | mean PC %6.2f  ACD %6.2f  "
+                "EACD longest %6.2f  EACD/ACD volume %5.2f\n",
+                name.c_str(), r.dims.x, r.dims.y, r.dims.z, pcSeconds, acdSeconds, eacdSeconds, pcSum / n, acdSum / n,
+                eacdLongest / n, volumeGain / n);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<int> sizes;
+    for (int i = 1; i < argc; ++i) sizes.push_back(std::stoi(argv[i]));
+    if (sizes.empty()) sizes = {128, 256};
+    std::printf("threads: %d (TBB)\n", tbb::info::default_concurrency());
+    for (int s : sizes) {
+        run("constant", constantVolume(s));
+        run("random-blocky", blockyVolume(s));
+    }
+    return 0;
+}

@@ -1,0 +1,320 @@
+#include "prepared_file.h"
+
+#include <tbb/parallel_for.h>
+#include <zlib.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <map>
+
+#include "atomic_file.h"
+#include "errors.h"
+
+namespace vr {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// Chunks are stored as the in-memory arrays, so the file is little-endian only where the machine is.
+static_assert(std::endian::native == std::endian::little, "the prepared format is little-endian");
+
+namespace {
+
+constexpr char kMagic[8] = {'V', 'O', 'L', 'P', 'R', 'E', 'P', '\0'};
+constexpr std::size_t kPreambleBytes = sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t);
+// Limits that catch a corrupted header before it turns into a huge allocation.
+constexpr uint64_t kMaxHeaderBytes = uint64_t(1) << 30;
+constexpr int kMaxDim = 1 << 16;
+constexpr std::size_t kMaxVoxels = std::size_t(1) << 36;
+
+// What a chunk of a given name must hold: its element type and components per voxel.
+struct ChunkLayout {
+    const char* type;
+    int components;
+    std::size_t elementBytes;
+};
+
+ChunkLayout layoutOf(const std::string& name) {
+    if (name == "sigma") return {"float32", 1, 4};
+    if (name == "colour" || name == "normal") return {"float32", 3, 4};
+    if (name == "labels") return {"uint32", 1, 4};
+    if (name == "pc") return {"uint8", 1, 1};
+    for (int o = 0; o < kOctants; ++o) {
+        if (name == "acd" + std::to_string(o)) return {"uint8", 1, 1};
+        if (name == "eacd" + std::to_string(o)) return {"uint8", 3, 1};
+    }
+    return {nullptr, 0, 0};
+}
+
+// One array of the PreparedVolume, as bytes, on its way into the file.
+struct ChunkSource {
+    std::string name;
+    const void* data;
+    std::size_t elements;  // voxels present (0: chunk absent)
+};
+
+template <typename T>
+ChunkSource source(std::string name, const std::vector<T>& v) {
+    return {std::move(name), v.data(), v.size()};
+}
+
+std::vector<ChunkSource> chunkSources(const PreparedVolume& p) {
+    std::vector<ChunkSource> all = {source("sigma", p.classified.sigma), source("colour", p.classified.colour),
+                                    source("normal", p.classified.normal), source("labels", p.regions.label),
+                                    source("pc", p.fields.pc)};
+    for (int o = 0; o < kOctants; ++o) all.push_back(source("acd" + std::to_string(o), p.fields.acd[o]));
+    for (int o = 0; o < kOctants; ++o) all.push_back(source("eacd" + std::to_string(o), p.fields.eacd[o]));
+    std::erase_if(all, [](const ChunkSource& c) { return c.elements == 0; });
+    return all;
+}
+
+// CRC-32 (zlib) of a large buffer, computed in 4 MiB blocks in parallel and combined in order.
+uint32_t crc32Of(const void* data, std::size_t bytes) {
+    constexpr std::size_t block = std::size_t(4) << 20;
+    const auto* p = static_cast<const Bytef*>(data);
+    std::size_t blocks = (bytes + block - 1) / block;
+    std::vector<uLong> crcs(blocks);
+    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+        std::size_t n = std::min(block, bytes - b * block);
+        crcs[b] = crc32_z(crc32_z(0L, Z_NULL, 0), p + b * block, n);
+    });
+    uLong crc = crc32_z(0L, Z_NULL, 0);
+    for (std::size_t b = 0; b < blocks; ++b)
+        crc = crc32_combine(crc, crcs[b], z_off_t(std::min(block, bytes - b * block)));
+    return uint32_t(crc);
+}
+
+json vec3Json(const Vec3d& v) { return json::array({v.x, v.y, v.z}); }
+
+json metadataJson(const PreparedMetadata& m) {
+    return {{"source", m.source},
+            {"classification", m.classification},
+            {"opacityThreshold", m.segmentation.opacityThreshold},
+            {"angleThresholdDeg", m.segmentation.angleThresholdDeg},
+            {"useNormals", m.segmentation.useNormals},
+            {"trilinear", m.segmentation.trilinear},
+            {"distanceCap", m.distanceCap},
+            {"statistics", m.statistics.is_null() ? json::object() : m.statistics}};
+}
+
+void checkSizes(const fs::path& path, const PreparedVolume& p) {
+    const GridGeometry& g = p.classified.grid;
+    auto fail = [&](const std::string& what) { return fileError(path.string(), "cannot write: " + what); };
+    if (g.dims.x < 1 || g.dims.y < 1 || g.dims.z < 1) throw fail("empty grid");
+    if (p.regions.dims != g.dims) throw fail("region labels and classified volume have different dims");
+    bool anyField = p.fields.hasPC() || p.fields.hasACD() || p.fields.hasEACD();
+    if (anyField && p.fields.dims != g.dims) throw fail("distance fields and classified volume have different dims");
+    if (p.classified.sigma.size() != g.voxels() || p.classified.colour.size() != g.voxels() ||
+        p.regions.label.size() != g.voxels())
+        throw fail("sigma, colour and labels must hold one value per voxel");
+    for (const ChunkSource& c : chunkSources(p))
+        if (c.elements != g.voxels()) throw fail("chunk '" + c.name + "' does not hold one value per voxel");
+    for (int o = 1; o < kOctants; ++o)
+        if (p.fields.acd[o].empty() != p.fields.acd[0].empty() || p.fields.eacd[o].empty() != p.fields.eacd[0].empty())
+            throw fail("ACD and EACD need all 8 octants or none");
+}
+
+// Reading: every problem becomes an InputError naming the file.
+class Reader {
+public:
+    explicit Reader(const fs::path& path) : path_(path) {
+        std::error_code ec;
+        if (!fs::exists(path, ec)) throw fail("no such file");
+        if (!fs::is_regular_file(path, ec)) throw fail("not a regular file");
+        size_ = fs::file_size(path, ec);
+        if (ec) throw fail("cannot read: " + ec.message());
+        in_.open(path, std::ios::binary);
+        if (!in_) throw fail(std::string("cannot open: ") + std::strerror(errno));
+    }
+
+    InputError fail(const std::string& problem) const { return fileError(path_.string(), problem); }
+    uint64_t size() const { return size_; }
+
+    void read(uint64_t offset, void* to, std::size_t bytes, const std::string& what) {
+        if (offset + bytes > size_) throw fail("truncated " + what + " (file ends at byte " + std::to_string(size_) + ")");
+        in_.seekg(std::streamoff(offset));
+        in_.read(static_cast<char*>(to), std::streamsize(bytes));
+        if (std::size_t(in_.gcount()) != bytes) throw fail("cannot read " + what + " (read error)");
+    }
+
+private:
+    fs::path path_;
+    uint64_t size_ = 0;
+    std::ifstream in_;
+};
+
+struct ChunkEntry {
+    uint64_t offset, bytes;
+    uint32_t crc;
+};
+
+// Pulls a typed value out of the header; a missing key or a wrong type is a bad header, not a crash.
+template <typename T>
+T field(const Reader& r, const json& j, const char* key) {
+    try {
+        return j.at(key).get<T>();
+    } catch (const json::exception&) {
+        throw r.fail(std::string("bad header: missing or invalid '") + key + "'");
+    }
+}
+
+Vec3d vec3Field(const Reader& r, const json& j, const char* key) {
+    auto v = field<std::vector<double>>(r, j, key);
+    if (v.size() != 3) throw r.fail(std::string("bad header: '") + key + "' needs 3 numbers");
+    return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+void writePrepared(const fs::path& path, const PreparedVolume& p) {
+    checkSizes(path, p);
+    const GridGeometry& g = p.classified.grid;
+    std::vector<ChunkSource> chunks = chunkSources(p);
+
+    json table = json::array();
+    uint64_t offset = 0;
+    for (const ChunkSource& c : chunks) {
+        ChunkLayout l = layoutOf(c.name);
+        uint64_t bytes = uint64_t(c.elements) * l.components * l.elementBytes;
+        table.push_back({{"name", c.name},
+                         {"type", l.type},
+                         {"components", l.components},
+                         {"offset", offset},
+                         {"bytes", bytes},
+                         {"crc32", crc32Of(c.data, bytes)}});
+        offset += bytes;
+    }
+    json header = {{"grid",
+                    {{"dims", {g.dims.x, g.dims.y, g.dims.z}}, {"spacing", vec3Json(g.spacing)}, {"origin", vec3Json(g.origin)}}},
+                   {"referenceStep", p.classified.referenceStep},
+                   {"regionCount", p.regions.count},
+                   {"metadata", metadataJson(p.meta)},
+                   {"chunks", table}};
+    std::string text = header.dump(1);
+
+    writeFileAtomically(path, [&](std::ostream& out) {
+        uint32_t version = kPreparedFormatVersion;
+        uint64_t headerBytes = text.size();
+        uint32_t headerCrc = crc32Of(text.data(), text.size());
+        out.write(kMagic, sizeof(kMagic));
+        out.write(reinterpret_cast<const char*>(&version), sizeof(version));
+        out.write(reinterpret_cast<const char*>(&headerBytes), sizeof(headerBytes));
+        out.write(text.data(), std::streamsize(text.size()));
+        out.write(reinterpret_cast<const char*>(&headerCrc), sizeof(headerCrc));
+        for (std::size_t i = 0; i < chunks.size(); ++i)
+            out.write(static_cast<const char*>(chunks[i].data), std::streamsize(table[i]["bytes"].get<uint64_t>()));
+    });
+}
+
+PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals) {
+    Reader r(path);
+
+    char magic[sizeof(kMagic)];
+    if (r.size() < kPreambleBytes)
+        throw r.fail("not a prepared file (only " + std::to_string(r.size()) + " bytes; run volprep to make one)");
+    r.read(0, magic, sizeof(magic), "magic");
+    if (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0)
+        throw r.fail("not a prepared file (no VOLPREP magic; run volprep to make one)");
+    uint32_t version = 0;
+    r.read(8, &version, sizeof(version), "version");
+    if (version != uint32_t(kPreparedFormatVersion))
+        throw r.fail("prepared format version " + std::to_string(version) + ", this build reads version " +
+                     std::to_string(kPreparedFormatVersion) + " (run volprep again)");
+    uint64_t headerBytes = 0;
+    r.read(12, &headerBytes, sizeof(headerBytes), "header length");
+    if (headerBytes > kMaxHeaderBytes) throw r.fail("bad header length " + std::to_string(headerBytes));
+    std::string text(headerBytes, '\0');
+    r.read(kPreambleBytes, text.data(), headerBytes, "header");
+    uint32_t headerCrc = 0;
+    r.read(kPreambleBytes + headerBytes, &headerCrc, sizeof(headerCrc), "header");
+    if (headerCrc != crc32Of(text.data(), text.size())) throw r.fail("header checksum mismatch (file is corrupted)");
+    const uint64_t dataStart = kPreambleBytes + headerBytes + sizeof(headerCrc);
+
+    json header;
+    try {
+        header = json::parse(text);
+    } catch (const json::exception& e) {
+        throw r.fail(std::string("bad header: ") + e.what());
+    }
+
+    PreparedVolume p;
+    json grid = field<json>(r, header, "grid");
+    auto dims = field<std::vector<long long>>(r, grid, "dims");
+    if (dims.size() != 3) throw r.fail("bad header: 'dims' needs 3 numbers");
+    std::string dimsText = std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]);
+    for (long long d : dims)
+        if (d < 1 || d > kMaxDim) throw r.fail("absurd grid dims " + dimsText);
+    Vec3i n{int(dims[0]), int(dims[1]), int(dims[2])};
+    if (voxelCount(n) > kMaxVoxels) throw r.fail("absurd grid dims " + dimsText + " (too many voxels)");
+    GridGeometry& g = p.classified.grid;
+    g.dims = n;
+    g.spacing = vec3Field(r, grid, "spacing");
+    g.origin = vec3Field(r, grid, "origin");
+    p.classified.referenceStep = field<double>(r, header, "referenceStep");
+    p.regions.dims = n;
+    p.regions.count = field<uint32_t>(r, header, "regionCount");
+
+    json meta = field<json>(r, header, "metadata");
+    p.meta.source = field<std::string>(r, meta, "source");
+    p.meta.classification = field<std::string>(r, meta, "classification");
+    p.meta.segmentation.opacityThreshold = field<double>(r, meta, "opacityThreshold");
+    p.meta.segmentation.angleThresholdDeg = field<double>(r, meta, "angleThresholdDeg");
+    p.meta.segmentation.useNormals = field<bool>(r, meta, "useNormals");
+    p.meta.segmentation.trilinear = field<bool>(r, meta, "trilinear");
+    p.meta.distanceCap = field<int>(r, meta, "distanceCap");
+    p.meta.statistics = field<json>(r, meta, "statistics");
+
+    // The chunk table must agree with the dims and lie inside the file before anything is allocated.
+    std::map<std::string, ChunkEntry> table;
+    for (const json& c : field<json>(r, header, "chunks")) {
+        auto name = field<std::string>(r, c, "name");
+        ChunkLayout l = layoutOf(name);
+        if (!l.type) throw r.fail("bad header: unknown chunk '" + name + "'");
+        if (table.count(name)) throw r.fail("bad header: chunk '" + name + "' appears twice");
+        if (field<std::string>(r, c, "type") != l.type || field<int>(r, c, "components") != l.components)
+            throw r.fail("bad header: chunk '" + name + "' should be " + std::to_string(l.components) + " x " + l.type);
+        ChunkEntry e{field<uint64_t>(r, c, "offset"), field<uint64_t>(r, c, "bytes"), field<uint32_t>(r, c, "crc32")};
+        uint64_t expected = uint64_t(voxelCount(n)) * l.components * l.elementBytes;
+        if (e.bytes != expected)
+            throw r.fail("chunk '" + name + "' holds " + std::to_string(e.bytes) + " bytes but grid " + dimsText +
+                         " needs " + std::to_string(expected));
+        if (e.offset > r.size() || dataStart + e.offset + e.bytes > r.size())
+            throw r.fail("truncated: chunk '" + name + "' ends at byte " + std::to_string(dataStart + e.offset + e.bytes) +
+                         " but the file has " + std::to_string(r.size()) + " bytes");
+        table[name] = e;
+    }
+
+    auto has = [&](const std::string& name) { return table.count(name) > 0; };
+    auto readChunk = [&](const std::string& name, auto& vec) {
+        const ChunkEntry& e = table.at(name);
+        vec.resize(voxelCount(n));
+        r.read(dataStart + e.offset, vec.data(), e.bytes, "chunk '" + name + "'");
+        if (crc32Of(vec.data(), e.bytes) != e.crc) throw r.fail("chunk '" + name + "' checksum mismatch (file is corrupted)");
+    };
+    auto readOctants = [&](const std::string& prefix, const char* label, auto& arrays) {
+        for (int o = 0; o < kOctants; ++o) {
+            std::string name = prefix + std::to_string(o);
+            if (!has(name)) throw r.fail(std::string("has no ") + label + " distance field for octant " + std::to_string(o) +
+                                         " (prepare it with volprep --fields)");
+            readChunk(name, arrays[o]);
+        }
+    };
+
+    for (const char* required : {"sigma", "colour", "labels"})
+        if (!has(required)) throw r.fail(std::string("has no '") + required + "' chunk");
+    readChunk("sigma", p.classified.sigma);
+    readChunk("colour", p.classified.colour);
+    if (normals && has("normal")) readChunk("normal", p.classified.normal);
+    readChunk("labels", p.regions.label);
+    if (fields & (kFieldPC | kFieldACD | kFieldEACD)) p.fields.dims = n;
+    if (fields & kFieldPC) {
+        if (!has("pc")) throw r.fail("has no PC distance field (prepare it with volprep --fields)");
+        readChunk("pc", p.fields.pc);
+    }
+    if (fields & kFieldACD) readOctants("acd", "ACD", p.fields.acd);
+    if (fields & kFieldEACD) readOctants("eacd", "EACD", p.fields.eacd);
+    return p;
+}
+
+}  // namespace vr

@@ -1,0 +1,25 @@
+// Scalar gradients for classification and normals (ALGORITHMS.md section 2).
+#pragma once
+#include "core/vec3.h"
+#include "core/volume.h"
+
+namespace vr {
+
+// Central differences in physical units (divided by 2h), one-sided at the border (divided by h);
+// an axis with a single voxel has no derivative (0).
+inline Vec3d centralGradient(const Volume& volume, int x, int y, int z) {
+    const Vec3i& n = volume.grid.dims;
+    const Vec3i v{x, y, z};
+    Vec3d g;
+    for (int a = 0; a < 3; ++a) {
+        if (n[a] < 2) continue;
+        Vec3i lo = v, hi = v;
+        lo[a] = std::max(v[a] - 1, 0);
+        hi[a] = std::min(v[a] + 1, n[a] - 1);
+        const double span = (hi[a] - lo[a]) * volume.grid.spacing[a];
+        g[a] = (double(volume.at(hi.x, hi.y, hi.z)) - double(volume.at(lo.x, lo.y, lo.z))) / span;
+    }
+    return g;
+}
+
+}  // namespace vr

@@ -1,0 +1,84 @@
+// Picks the loader by file name (or folder), then applies the checks every format shares.
+#include "preprocess/load/load_volume.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <string>
+
+#include "core/errors.h"
+#include "preprocess/load/format_loaders.h"
+
+namespace vr {
+namespace fs = std::filesystem;
+
+namespace {
+
+using Loader = Volume (*)(const fs::path&, const RawOptions&);
+
+template <Volume (*load)(const fs::path&)>
+Volume ignoringRawOptions(const fs::path& path, const RawOptions&) { return load(path); }
+
+struct Format {
+    const char* suffix;  // lower case, matched at the end of the file name (so ".nii.gz" before ".gz" matters not)
+    Loader load;
+};
+
+constexpr Format formats[] = {
+    {".raw", loadRaw},
+    {".raw.gz", loadRaw},
+    {".nrrd", ignoringRawOptions<loadNrrd>},
+    {".nhdr", ignoringRawOptions<loadNrrd>},
+    {".mhd", ignoringRawOptions<loadMetaImage>},
+    {".mha", ignoringRawOptions<loadMetaImage>},
+    {".nii", ignoringRawOptions<loadNifti>},
+    {".nii.gz", ignoringRawOptions<loadNifti>},
+    {".vti", ignoringRawOptions<loadVtkXmlImage>},
+    {".vtk", ignoringRawOptions<loadVtkLegacy>},
+    {".vdb", ignoringRawOptions<loadVdb>},
+};
+
+std::string supportedFormats() {
+    std::string list;
+    for (const Format& f : formats) list += std::string(f.suffix) + ", ";
+    return list + "or a folder holding a DICOM series";
+}
+
+Loader loaderFor(const fs::path& path) {
+    std::string name = path.filename().string();
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    for (const Format& f : formats)
+        if (name.ends_with(f.suffix)) return f.load;
+    throw fileError(path.string(), "unknown volume format; supported: " + supportedFormats());
+}
+
+std::string voxelText(const Vec3i& dims, std::size_t index) {
+    const std::size_t row = std::size_t(dims.x), slice = row * std::size_t(dims.y);
+    return "(" + std::to_string(index % row) + ", " + std::to_string(index % slice / row) + ", " +
+           std::to_string(index / slice) + ")";
+}
+
+// NaN or Inf would poison every later stage (gradients, classification, min/max), so they are rejected here.
+void requireFinite(const Volume& v, const fs::path& path) {
+    std::size_t count = 0, first = 0;
+    for (std::size_t i = 0; i < v.values.size(); ++i)
+        if (!std::isfinite(v.values[i]) && count++ == 0) first = i;
+    if (count > 0)
+        throw fileError(path.string(), std::to_string(count) + " voxel" + (count == 1 ? "" : "s") +
+                                           " are not finite (NaN or Inf); the first is voxel " +
+                                           voxelText(v.grid.dims, first) + " = " + std::to_string(v.values[first]));
+}
+
+}  // namespace
+
+Volume loadVolume(const fs::path& path, const RawOptions& raw) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status)) throw fileError(path.string(), "no such file or folder");
+    Volume v = fs::is_directory(status) ? loadDicomSeries(path) : loaderFor(path)(path, raw);
+    requireFinite(v, path);
+    v.source = path.string();
+    return v;
+}
+
+}  // namespace vr

@@ -1,0 +1,54 @@
+// OpenVDB (.vdb): the first FloatGrid of the file, densified over its active voxels' bounding box.
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Dense.h>
+
+#include <mutex>
+
+#include "core/errors.h"
+#include "preprocess/load/format_loaders.h"
+
+namespace vr {
+
+Volume loadVdb(const std::filesystem::path& path) {
+    static std::once_flag initialized;
+    std::call_once(initialized, [] { openvdb::initialize(); });
+    const auto fail = [&](const std::string& problem) { return fileError(path.string(), problem); };
+
+    openvdb::FloatGrid::Ptr grid;
+    try {
+        openvdb::io::File file(path.string());
+        file.open(false);  // no delayed loading: the whole grid is read anyway
+        for (auto it = file.beginName(); it != file.endName() && !grid; ++it) {
+            openvdb::GridBase::Ptr base = file.readGrid(it.gridName());
+            grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+        }
+        file.close();
+    } catch (const openvdb::Exception& e) {
+        throw fail(std::string("not a readable OpenVDB file: ") + e.what());
+    }
+    if (!grid) throw fail("holds no float grid (only FloatGrid volumes are supported)");
+
+    const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
+    if (box.empty() || grid->activeVoxelCount() == 0) throw fail("float grid '" + grid->getName() + "' is empty");
+    const openvdb::Coord size = box.dim();
+
+    Volume v;
+    v.grid.dims = {size.x(), size.y(), size.z()};
+    v.sourceType = ScalarType::Float32;
+    // VDB voxel centres lie at integer index coordinates, so the grid corner is half a voxel before the centre of
+    // the bounding box's first voxel. Only the transform's scale and translation are kept (no rotation).
+    const openvdb::Vec3d voxel = grid->voxelSize();
+    const openvdb::Vec3d first = grid->indexToWorld(box.min());
+    for (int a = 0; a < 3; ++a) {
+        v.grid.spacing[a] = voxel[a];
+        v.grid.origin[a] = first[a] - 0.5 * voxel[a];
+    }
+    v.values.resize(v.grid.voxels());
+    // LayoutXYZ: x fastest, the Volume's order (VDB's own default, LayoutZYX, is z fastest).
+    openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(box, v.values.data());
+    openvdb::tools::copyToDense(*grid, dense);
+    return v;
+}
+
+}  // namespace vr

@@ -1,0 +1,112 @@
+#include "preprocess/load/vtk_read.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCommand.h>
+#include <vtkErrorCode.h>
+#include <vtkExecutive.h>
+#include <vtkImageData.h>
+#include <vtkLogger.h>
+#include <vtkOutputWindow.h>
+
+#include <cctype>
+#include <iostream>
+
+#include "core/errors.h"
+
+namespace vr {
+
+class VtkReadErrors::Observer : public vtkCommand {
+public:
+    static Observer* New() { return new Observer; }
+    void Execute(vtkObject*, unsigned long event, void* text) override {
+        if (event == vtkCommand::ErrorEvent) owner->noteError(static_cast<const char*>(text));
+    }
+    VtkReadErrors* owner = nullptr;
+};
+
+class VtkReadErrors::CapturingWindow : public vtkOutputWindow {
+public:
+    static CapturingWindow* New() { return new CapturingWindow; }
+    void DisplayErrorText(const char* text) override { owner->noteError(text); }
+    void DisplayText(const char*) override {}  // warnings and debug text: silenced
+    VtkReadErrors* owner = nullptr;
+};
+
+namespace {
+
+std::string trimmed(std::string s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+    return s;
+}
+
+// vtkErrorCode::GetStringFromErrorCode lives in CommonMisc, a VTK module this project does not link.
+std::string errorCodeText(unsigned long code) {
+    switch (code) {
+        case vtkErrorCode::FileNotFoundError: return "file not found";
+        case vtkErrorCode::CannotOpenFileError: return "cannot open the file";
+        case vtkErrorCode::PrematureEndOfFileError: return "the file ends before its data does";
+        case vtkErrorCode::UnrecognizedFileTypeError:
+        case vtkErrorCode::FileFormatError: return "not a valid file of this format";
+        default: return "VTK error code " + std::to_string(code);
+    }
+}
+
+}  // namespace
+
+VtkReadErrors::VtkReadErrors()
+    : observer_(vtkSmartPointer<Observer>::New()),
+      window_(vtkSmartPointer<CapturingWindow>::New()),
+      previousWindow_(vtkOutputWindow::GetInstance()),
+      previousCerr_(std::cerr.rdbuf(cerrText_.rdbuf())),
+      previousLogVerbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
+    observer_->owner = this;
+    window_->owner = this;
+    vtkOutputWindow::SetInstance(window_);
+    // Messages without an object (vtkGenericWarningMacro) go to the logger, which prints them on stderr itself.
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+}
+
+VtkReadErrors::~VtkReadErrors() {
+    vtkLogger::SetStderrVerbosity(vtkLogger::Verbosity(previousLogVerbosity_));
+    vtkOutputWindow::SetInstance(previousWindow_);
+    std::cerr.rdbuf(previousCerr_);
+}
+
+void VtkReadErrors::watch(vtkObject* object) {
+    object->AddObserver(vtkCommand::ErrorEvent, observer_);
+    object->AddObserver(vtkCommand::WarningEvent, observer_);
+}
+
+vtkCommand* VtkReadErrors::observer() const { return observer_; }
+
+// The first error is the cause; later ones are its consequences ("returned failure for request ...").
+void VtkReadErrors::noteError(const char* text) {
+    if (!firstError_.empty() || !text) return;
+    std::string message = text;
+    if (auto at = message.find("): "); at != std::string::npos) message = message.substr(at + 3);
+    firstError_ = trimmed(message);
+}
+
+std::string VtkReadErrors::complaint() const {
+    const std::string printed = trimmed(cerrText_.str());
+    if (firstError_.empty() || printed.empty()) return firstError_ + printed;
+    return firstError_ + " (" + printed + ")";
+}
+
+vtkImageData* VtkReadErrors::read(vtkAlgorithm* reader, const std::filesystem::path& path, const std::string& format) {
+    watch(reader);
+    watch(reader->GetExecutive());
+    reader->Update();
+    const auto fail = [&](const std::string& problem) {
+        return fileError(path.string(), "cannot read " + format + ": " + problem);
+    };
+    // Some failures (MetaIO's short data) show only as printed text: any complaint counts.
+    if (const std::string text = complaint(); !text.empty()) throw fail(text);
+    if (const unsigned long code = reader->GetErrorCode(); code != vtkErrorCode::NoError)
+        throw fail(errorCodeText(code));
+    vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+    if (!image || image->GetNumberOfPoints() == 0) throw fail("the reader produced no voxels");
+    return image;
+}
+
+}  // namespace vr

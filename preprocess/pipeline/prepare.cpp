@@ -1,0 +1,151 @@
+#include "preprocess/pipeline/prepare.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <chrono>
+#include <sstream>
+
+#include "core/prepared_file.h"
+#include "core/progress.h"
+#include "preprocess/fields/build_fields.h"
+#include "preprocess/segment/segment.h"
+
+namespace vr {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+// Runs f() under a progress bar of one step and records its wall time.
+template <typename F>
+auto timed(std::vector<StageTime>& stages, const std::string& stage, F f) {
+    ProgressBar bar(stage, 1);
+    auto start = std::chrono::steady_clock::now();
+    auto result = f();
+    stages.push_back({stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+    bar.finish();
+    return result;
+}
+
+// Sum of component c of every element, in parallel (elements are uint8 or arrays of uint8).
+template <typename T, typename Get>
+double meanOf(const std::vector<T>& v, Get get) {
+    if (v.empty()) return 0;
+    double sum = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, v.size()), 0.0,
+        [&](const tbb::blocked_range<std::size_t>& r, double s) {
+            uint64_t local = 0;  // exact: at most 255 per voxel
+            for (std::size_t i = r.begin(); i < r.end(); ++i) local += get(v[i]);
+            return s + double(local);
+        },
+        std::plus<double>());
+    return sum / double(v.size());
+}
+
+template <typename T>
+std::size_t bytesOf(const std::vector<T>& v) {
+    return v.size() * sizeof(T);
+}
+
+DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, std::vector<StageTime>& stages) {
+    DistanceFields f;
+    f.dims = regions.dims;
+    if (kinds & kFieldPC) f.pc = timed(stages, "pc", [&] { return buildPC(regions); });
+    if (kinds & (kFieldACD | kFieldEACD)) {
+        ProgressBar bar("acd", kOctants);
+        auto start = std::chrono::steady_clock::now();
+        for (int o = 0; o < kOctants; ++o) {
+            f.acd[o] = buildACD(regions, o);
+            bar.advance();
+        }
+        stages.push_back({"acd", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+        bar.finish();
+    }
+    if (kinds & kFieldEACD) f.eacd = timed(stages, "eacd", [&] { return buildEACD(regions, f.acd); });
+    if (!(kinds & kFieldACD)) f.acd = {};
+    return f;
+}
+
+}  // namespace
+
+std::string classificationText(const ClassifyParams& params) {
+    if (params.transferFunction) return params.transferFunction->json;
+    std::ostringstream s;
+    s.precision(17);
+    s << "iso";
+    for (std::size_t i = 0; i < params.isoContours.size(); ++i) {
+        const IsoContour& c = params.isoContours[i];
+        s << (i ? "; " : " ") << c.value << "," << c.width << "," << c.strength;
+    }
+    return s.str();
+}
+
+json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& stages) {
+    const std::size_t voxels = p.classified.grid.voxels();
+    json s;
+    s["voxels"] = voxels;
+    s["regions"] = p.regions.count;
+    s["meanRegionSize"] = p.regions.count ? double(voxels) / p.regions.count : 0.0;
+
+    json leaps = json::object();
+    const DistanceFields& f = p.fields;
+    if (f.hasPC()) leaps["pcMeanRadius"] = meanOf(f.pc, [](uint8_t r) { return r; });
+    if (f.hasACD()) {
+        json edges = json::array();
+        for (int o = 0; o < kOctants; ++o) edges.push_back(meanOf(f.acd[o], [](uint8_t k) { return k; }));
+        leaps["acdMeanEdge"] = edges;
+    }
+    if (f.hasEACD()) {
+        json extents = json::array();
+        for (int o = 0; o < kOctants; ++o) {
+            json e = json::array();
+            for (int a = 0; a < 3; ++a) e.push_back(meanOf(f.eacd[o], [a](const std::array<uint8_t, 3>& x) { return x[a]; }));
+            extents.push_back(e);
+        }
+        leaps["eacdMeanExtent"] = extents;
+    }
+    s["leaps"] = leaps;
+
+    std::size_t acd = 0, eacd = 0;
+    for (int o = 0; o < kOctants; ++o) {
+        acd += bytesOf(f.acd[o]);
+        eacd += bytesOf(f.eacd[o]);
+    }
+    s["bytes"] = {{"sigma", bytesOf(p.classified.sigma)}, {"colour", bytesOf(p.classified.colour)},
+                  {"normal", bytesOf(p.classified.normal)}, {"labels", bytesOf(p.regions.label)},
+                  {"pc", bytesOf(f.pc)}, {"acd", acd}, {"eacd", eacd}};
+    json seconds = json::object();
+    for (const StageTime& t : stages) seconds[t.stage] = t.seconds;
+    s["seconds"] = seconds;
+    return s;
+}
+
+PrepareResult prepareVolume(const fs::path& input, const PrepareOptions& options) {
+    PrepareResult r;
+    PreparedVolume& p = r.prepared;
+    Volume volume = timed(r.stages, "load", [&] { return loadVolume(input, options.raw); });
+    p.classified = timed(r.stages, "classify", [&] { return classify(volume, options.classify); });
+    volume = {};  // the scalars are not needed any more: free them before the big stages
+    p.regions = timed(r.stages, "segment", [&] { return segment(p.classified, options.segmentation); });
+    p.fields = buildTimedFields(p.regions, options.fields, r.stages);
+
+    p.meta.source = input.string();
+    p.meta.classification = classificationText(options.classify);
+    p.meta.segmentation = options.segmentation;
+    p.meta.distanceCap = kDistanceCap;
+    p.meta.statistics = preparedStatistics(p, r.stages);
+    return r;
+}
+
+PrepareResult prepareFile(const fs::path& input, const fs::path& output, const PrepareOptions& options) {
+    PrepareResult r = prepareVolume(input, options);
+    timed(r.stages, "write", [&] {
+        writePrepared(output, r.prepared);
+        return 0;
+    });
+    r.fileBytes = fs::file_size(output);
+    return r;
+}
+
+}  // namespace vr

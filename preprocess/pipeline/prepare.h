@@ -1,0 +1,48 @@
+// The preprocessing pipeline shared by volprep and the benchmarks: load -> classify -> segment -> fields -> write,
+// timing every stage and recording what it produced in the prepared file's statistics.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/prepared_volume.h"
+#include "preprocess/classify/classify.h"
+#include "preprocess/load/load_volume.h"
+
+namespace vr {
+
+struct PrepareOptions {
+    RawOptions raw;                    // for headerless raw inputs
+    ClassifyParams classify;           // a transfer function or iso-contours
+    SegmentationParams segmentation;   // T_o, T_a, useNormals, trilinear
+    unsigned fields = kFieldPC | kFieldACD | kFieldEACD;
+};
+
+struct StageTime {
+    std::string stage;  // load, classify, segment, pc, acd, eacd, write
+    double seconds;
+};
+
+struct PrepareResult {
+    PreparedVolume prepared;         // meta.statistics filled (see preparedStatistics)
+    std::vector<StageTime> stages;   // in the order they ran
+    std::uintmax_t fileBytes = 0;    // size of the written file (prepareFile only)
+};
+
+// Runs every stage up to the distance fields, with a progress bar per stage (shown on a terminal only).
+// Each field is timed on its own: PC alone (its own ACD passes), ACD (the 8 octant passes, also built when only
+// EACD is asked for), EACD on top of ACD. Throws InputError for bad input or parameters.
+PrepareResult prepareVolume(const std::filesystem::path& input, const PrepareOptions& options);
+
+// prepareVolume, then writes the prepared file atomically (nothing is left at `output` on failure).
+PrepareResult prepareFile(const std::filesystem::path& input, const std::filesystem::path& output,
+                          const PrepareOptions& options);
+
+// What the stages produced: voxels, regions, mean region size, mean leap per field and octant
+// (PC radius, ACD edge, EACD extents), bytes per chunk group and the stage times given.
+nlohmann::json preparedStatistics(const PreparedVolume& prepared, const std::vector<StageTime>& stages);
+
+// The classification as text for the metadata: the TF's JSON, or "iso value,width,strength; ...".
+std::string classificationText(const ClassifyParams& params);
+
+}  // namespace vr

@@ -1,0 +1,53 @@
+// The quantisation behind the regions (ALGORITHMS.md section 3): voxels with equal keys are similar, with a bound
+// that holds for every pair of them, not only for neighbours.
+#pragma once
+#include <array>
+#include <cstdint>
+
+#include "core/classified_volume.h"
+#include "core/regions.h"
+
+namespace vr {
+
+// Two voxels with equal keys are both transparent (sigma = 0: colour and normal contribute nothing and are
+// ignored), or both opaque with
+//  - opacities per reference step in the same bin [k T_o, (k+1) T_o), so they differ by less than T_o,
+//    and likewise each colour channel;
+//  - normals both flat, or both in one cube-map cell of angular diameter <= T_a (normals ignored when
+//    params.useNormals is false or the volume has none).
+// A threshold of 0 (or one so small that its bins would not fit 32 bits) compares the stored floats bit for bit.
+struct RegionKey {
+    uint32_t opacity = 0;  // 0 = transparent
+    std::array<uint32_t, 3> colour{};
+    std::array<uint32_t, 3> normal{};
+    bool operator==(const RegionKey& o) const {  // field by field: cheaper than the defaulted memcmp here
+        return opacity == o.opacity && colour[0] == o.colour[0] && colour[1] == o.colour[1] &&
+               colour[2] == o.colour[2] && normal[0] == o.normal[0] && normal[1] == o.normal[1] &&
+               normal[2] == o.normal[2];
+    }
+};
+
+// Cells per cube-face edge for normals within `angleDeg` of each other; 0 = one cell for every direction
+// (angleDeg >= 180). The inverse gnomonic projection shrinks lengths, so a cell of side 2/K (diagonal 2 sqrt2 / K)
+// spans at most 2 sqrt2 / K radians: K = ceil(2 sqrt2 / T_a).
+int cubeMapCellsPerEdge(double angleDeg);
+// Cell of a non-zero direction on a cube map with `cellsPerEdge` cells per face edge, in [0, 6 K^2).
+uint32_t cubeMapCell(const std::array<float, 3>& direction, int cellsPerEdge);
+
+class RegionKeyer {
+public:
+    // Throws InputError for a negative or NaN threshold.
+    RegionKeyer(const ClassifiedVolume& classified, const SegmentationParams& params);
+    RegionKey operator()(std::size_t voxel) const;
+
+private:
+    uint32_t bin(double value, double width, float exact) const;
+
+    const ClassifiedVolume& classified_;
+    double opacityWidth_ = 0;  // bin width of opacity and colour; 0 = exact
+    bool useNormals_ = false;
+    bool exactNormals_ = true;
+    int cellsPerEdge_ = 0;
+};
+
+}  // namespace vr

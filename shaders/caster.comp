@@ -1,0 +1,124 @@
+// The four casters of ALGORITHMS.md section 5 in one loop: the GLSL mirror of renderCpu's trace (keep in step).
+// Specialization constants pick the caster, the sampling and the shading, so each variant compiles to a
+// pipeline without the others' branches. One invocation per pixel of one tile.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(constant_id = 0) const int CASTER = 0;  // 0 primitive, 1 PC, 2 ACD, 3 EACD
+layout(constant_id = 1) const bool TRILINEAR = false;
+layout(constant_id = 2) const bool SHADING = true;
+const int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
+
+#include "caster_params.glsl"
+#include "ray_setup.glsl"
+#include "span.glsl"
+
+layout(set = 0, binding = 1) uniform sampler3D classified;  // rgb colour, a: extinction sigma
+layout(set = 0, binding = 2) uniform sampler3D normals;     // xyz: unit normal or 0 (flat); shading only
+layout(set = 0, binding = 3) uniform usampler3D field;      // PC: r; ACD: r per octant slab; EACD: rgb
+layout(set = 0, binding = 4, std430) writeonly buffer OutColour { vec4 outColour[]; };
+layout(set = 0, binding = 5, std430) writeonly buffer OutIterations { uint outIterations[]; };
+layout(set = 0, binding = 6, std430) writeonly buffer OutSamples { uvec2 outSamples[]; };
+
+// Set in an iteration count: the ray hit the cap or needed an octant that was not uploaded (a bug).
+const uint kFailed = 0x80000000u;
+// Shorter interpolated normals than this count as flat (as the CPU reference).
+const float kFlatNormalLength = 1e-6;
+
+struct SampleValue {
+    float sigma;
+    vec3 colour;
+    vec3 normal;
+};
+
+SampleValue nearestSample(ivec3 v) {
+    vec4 c = texelFetch(classified, v, 0);
+    SampleValue s = SampleValue(c.a, c.rgb, vec3(0.0));
+    if (SHADING) s.normal = texelFetch(normals, v, 0).xyz;
+    return s;
+}
+
+// Cell-centred trilinear: voxel v's value sits at v + 0.5; clamped to the edge outside.
+SampleValue trilinearSample(dvec3 p) {
+    precise dvec3 q = p - dvec3(0.5LF);
+    ivec3 base = floorVoxel(q);
+    precise dvec3 fd = q - dvec3(base);
+    vec3 f = vec3(fd);
+    SampleValue s = SampleValue(0.0, vec3(0.0), vec3(0.0));
+    for (int c = 0; c < 8; ++c) {
+        ivec3 bit = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        ivec3 u = clampVoxel(base + bit);
+        vec3 w3 = mix(1.0 - f, f, bvec3(bit));
+        float w = w3.x * w3.y * w3.z;
+        vec4 cs = texelFetch(classified, u, 0);
+        s.sigma += w * cs.a;
+        s.colour += cs.rgb * w;
+        if (SHADING) s.normal += texelFetch(normals, u, 0).xyz * w;
+    }
+    float len = length(s.normal);
+    s.normal = len > kFlatNormalLength ? s.normal / len : vec3(0.0);
+    return s;
+}
+
+void main() {
+    ivec2 local = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(local, T.tileSize))) return;
+    ivec2 pixel = T.tileOrigin + local;
+    uint outIndex = uint(local.y * T.tileSize.x + local.x);
+
+    dvec3 direction;
+    GridRay g = cameraGridRay(double(pixel.x) + 0.5LF, double(pixel.y) + 0.5LF, direction);
+    RayInterval iv = intersectGrid(g);
+    double kCount = latticeCount(iv);
+    int oct = rayOctant(g);
+    int slot = P.octantSlot[oct >> 2][oct & 3];
+    vec3 toEye = -vec3(direction);
+    vec3 toLight = P.light.w != 0.0 ? P.light.xyz : toEye;
+
+    vec3 colour = vec3(0.0);
+    float alpha = 0.0;
+    uint iterations = 0u;
+    double samples = 0.0LF;
+    bool failed = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0.0LF;
+    for (double k = 0.0LF, n = 1.0LF; !failed && k < kCount && alpha < P.ert; k += n) {
+        if (++iterations > P.maxIterations) {
+            failed = true;
+            break;
+        }
+        double t = latticeT(iv, k);
+        ivec3 v = sampleVoxel(g, t);
+        SampleValue s = TRILINEAR ? trilinearSample(rayAt(g, t)) : nearestSample(v);
+
+        double wanted = 1.0LF;
+        VoxelBox box = VoxelBox(v, v);
+        if (CASTER == kPC) {
+            int r = int(texelFetch(field, v, 0).r);
+            wanted = pcLeapSamples(r, g);
+            box = chebyshevBall(v, r);
+        } else if (CASTER == kACD || CASTER == kEACD) {
+            uvec4 f = texelFetch(field, ivec3(v.x, v.y, slot * P.dims.z + v.z), 0);
+            // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
+            ivec3 ext = max(ivec3(1), CASTER == kACD ? ivec3(f.r) : ivec3(f.rgb));
+            box = octantBox(v, oct, ext);
+            wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t);
+        }
+        wanted = min(wanted, samplesToTermination(alpha, s.sigma));
+        n = leapCount(g, iv, k, kCount, wanted, box);
+
+        float spanAlpha = spanOpacity(s.sigma, float(n * P.dt));
+        if (spanAlpha > 0.0) {
+            vec3 shaded = SHADING ? shade(s.colour, s.normal, toEye, toLight) : s.colour;
+            float w = (1.0 - alpha) * spanAlpha;
+            colour += shaded * w;
+            alpha += w;
+        }
+        samples += n;
+    }
+
+    outColour[outIndex] = vec4(colour + P.background.rgb * (1.0 - alpha), alpha);
+    outIterations[outIndex] = failed ? (iterations | kFailed) : iterations;
+    double high = floor(samples / 4294967296.0LF);
+    outSamples[outIndex] = uvec2(uint(samples - high * 4294967296.0LF), uint(high));
+}

@@ -1,0 +1,146 @@
+// Ray setup shared by every caster: the GLSL mirror of volrender/ray_setup.h and Camera::ray() (keep in step).
+// Positions, the lattice and leap counts are computed in double with the same operations in the same order
+// as the CPU reference (`precise` forbids fused multiply-adds), so every sample picks the same voxel even
+// where the lattice lands exactly on voxel faces (axis-aligned views). Integer counts are held in doubles
+// (exact to 2^53).
+#ifndef VR_RAY_SETUP_GLSL
+#define VR_RAY_SETUP_GLSL
+
+const double kInfinity = 1.0LF / 0.0LF;
+
+struct GridRay {
+    dvec3 o, d;
+};
+
+struct RayInterval {
+    double tEntry, tExit;
+};
+
+// Camera::ray() for the pixel centre (px, py), then toGridRay().
+GridRay cameraGridRay(double px, double py, out dvec3 worldDirection) {
+    precise double aspect = double(P.imageSize.x) / double(P.imageSize.y);
+    precise double u = (2.0LF * px / double(P.imageSize.x) - 1.0LF) * P.halfHeight * aspect;
+    precise double v = (1.0LF - 2.0LF * py / double(P.imageSize.y)) * P.halfHeight;
+    precise dvec3 origin, direction;
+    if (P.perspective == 0) {
+        origin = P.eye.xyz + P.right.xyz * u + P.up.xyz * v;
+        direction = P.forward.xyz;
+    } else {
+        precise dvec3 w = P.forward.xyz + P.right.xyz * u + P.up.xyz * v;
+        precise double len = sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
+        origin = P.eye.xyz;
+        direction = w / len;
+    }
+    worldDirection = direction;
+    GridRay r;
+    r.o = (origin - P.gridOrigin.xyz) / P.spacing.xyz;
+    r.d = direction / P.spacing.xyz;
+    return r;
+}
+
+dvec3 rayAt(GridRay r, double t) {
+    precise dvec3 p = r.o + r.d * t;
+    return p;
+}
+
+// Slab test; an axis with d_a == 0 never limits t, and the ray must then lie in 0 <= o_a < N_a.
+RayInterval intersectGrid(GridRay r) {
+    double t0 = 0.0LF, t1 = kInfinity;
+    for (int a = 0; a < 3; ++a) {
+        if (r.d[a] == 0.0LF) {
+            if (!(r.o[a] >= 0.0LF && r.o[a] < double(P.dims[a]))) return RayInterval(0.0LF, 0.0LF);
+            continue;
+        }
+        precise double ta = (0.0LF - r.o[a]) / r.d[a];
+        precise double tb = (double(P.dims[a]) - r.o[a]) / r.d[a];
+        if (ta > tb) {
+            double s = ta;
+            ta = tb;
+            tb = s;
+        }
+        t0 = max(t0, ta);
+        t1 = min(t1, tb);
+    }
+    if (!(t0 < t1)) return RayInterval(0.0LF, 0.0LF);
+    return RayInterval(t0, t1);
+}
+
+bool intervalEmpty(RayInterval iv) { return !(iv.tEntry < iv.tExit); }
+
+double latticeT(RayInterval iv, double k) {
+    precise double t = iv.tEntry + k * P.dt;
+    return t;
+}
+
+// Samples with t_k < tExit, exactly as the comparison decides.
+double latticeCount(RayInterval iv) {
+    if (intervalEmpty(iv)) return 0.0LF;
+    precise double q = (iv.tExit - iv.tEntry) / P.dt;
+    double k = max(1.0LF, ceil(q));
+    while (k > 1.0LF && latticeT(iv, k - 1.0LF) >= iv.tExit) k -= 1.0LF;
+    while (latticeT(iv, k) < iv.tExit) k += 1.0LF;
+    return k;
+}
+
+ivec3 floorVoxel(dvec3 p) { return ivec3(floor(p)); }
+ivec3 clampVoxel(ivec3 v) { return clamp(v, ivec3(0), P.dims.xyz - 1); }
+ivec3 sampleVoxel(GridRay r, double t) { return clampVoxel(floorVoxel(rayAt(r, t))); }
+
+int rayOctant(GridRay r) { return int(r.d.x < 0.0LF) | (int(r.d.y < 0.0LF) << 1) | (int(r.d.z < 0.0LF) << 2); }
+int octantSign(int oct, int axis) { return ((oct >> axis) & 1) != 0 ? -1 : 1; }
+
+struct VoxelBox {
+    ivec3 lo, hi;
+};
+
+bool boxContains(VoxelBox b, ivec3 v) { return all(greaterThanEqual(v, b.lo)) && all(lessThanEqual(v, b.hi)); }
+
+VoxelBox chebyshevBall(ivec3 v, int r) { return VoxelBox(v - r, v + r); }
+
+VoxelBox octantBox(ivec3 v, int oct, ivec3 ext) {
+    VoxelBox b;
+    for (int a = 0; a < 3; ++a) {
+        int far = v[a] + octantSign(oct, a) * (ext[a] - 1);
+        b.lo[a] = min(v[a], far);
+        b.hi[a] = max(v[a], far);
+    }
+    return b;
+}
+
+double pcLeapSamples(int r, GridRay ray) {
+    double speed = max(max(abs(ray.d.x), abs(ray.d.y)), abs(ray.d.z));
+    precise double q = double(r) / (P.dt * speed);
+    return max(1.0LF, 1.0LF + floor(q));
+}
+
+double boxExitT(GridRay ray, ivec3 v, int oct, ivec3 ext) {
+    double t = kInfinity;
+    for (int a = 0; a < 3; ++a) {
+        if (ray.d[a] == 0.0LF) continue;
+        int s = octantSign(oct, a);
+        double far = double(v[a] + s * (ext[a] - 1) + (s > 0 ? 1 : 0));
+        precise double ta = (far - ray.o[a]) / ray.d[a];
+        t = min(t, ta);
+    }
+    return t;
+}
+
+double boxLeapSamples(double tBoxExit, double t) {
+    precise double q = (tBoxExit - t) / P.dt;
+    return max(1.0LF, ceil(q));
+}
+
+// The leap taken from sample k of kCount: never past the volume exit, never to a sample whose floor voxel
+// rounding put outside the box or the volume. Always >= 1.
+double leapCount(GridRay ray, RayInterval iv, double k, double kCount, double wanted, VoxelBox box) {
+    double n = floor(min(wanted, kCount - k));
+    VoxelBox volume = VoxelBox(ivec3(0), P.dims.xyz - 1);
+    while (n > 1.0LF) {
+        ivec3 last = floorVoxel(rayAt(ray, latticeT(iv, k + n - 1.0LF)));
+        if (boxContains(box, last) && boxContains(volume, last)) break;
+        n -= 1.0LF;
+    }
+    return max(n, 1.0LF);
+}
+
+#endif

@@ -1,0 +1,34 @@
+// Span integration and shading: the GLSL mirror of volrender/span.h (keep in step), in float.
+#ifndef VR_SPAN_GLSL
+#define VR_SPAN_GLSL
+
+#include "numerics.glsl"
+
+// 1 - exp(-sigma L) without cancellation for tiny sigma L; exactly 1 for an opaque span.
+float spanOpacity(float sigma, float len) { return -vrExpm1(-sigma * len); }
+
+// Samples until primitive stepping would reach ert inside a span of extinction sigma (+inf: never).
+double samplesToTermination(float alpha, float sigma) {
+    if (alpha >= P.ert) return 1.0LF;
+    if (sigma <= 0.0) return kInfinity;
+    double q = double(log((1.0 - alpha) / (1.0 - P.ert))) / (double(sigma) * P.dt);
+    return max(1.0LF, ceil(q));
+}
+
+// Two-sided Phong with one directional light; a flat voxel (zero normal) gets ambient + diffuse with the view
+// vector as normal and no highlight.
+vec3 shade(vec3 colour, vec3 normal, vec3 toEye, vec3 toLight) {
+    bool isFlat = dot(normal, normal) == 0.0;
+    vec3 n = isFlat ? toEye : normal;
+    if (dot(n, toEye) < 0.0) n = -n;
+    float nl = dot(n, toLight);
+    float diffuse = abs(nl);
+    float highlight = 0.0;
+    if (!isFlat && nl > 0.0) {
+        vec3 reflected = n * (2.0 * nl) - toLight;
+        highlight = pow(max(0.0, dot(reflected, toEye)), P.material.w);
+    }
+    return colour * (P.material.x + P.material.y * diffuse) + vec3(P.material.z * highlight);
+}
+
+#endif

@@ -1,0 +1,233 @@
+// Classification of volumes: Levoy iso-contours, gradients and normals, extinction, TF lookups, bad parameters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/errors.h"
+#include "preprocess/classify/classify.h"
+#include "preprocess/classify/gradient.h"
+#include "preprocess/load/load_volume.h"
+#include "support/datasets.h"
+
+namespace vr {
+namespace {
+
+Volume makeVolume(Vec3i dims, Vec3d spacing, ScalarType type, const std::function<double(int, int, int)>& f) {
+    Volume v;
+    v.grid.dims = dims;
+    v.grid.spacing = spacing;
+    v.sourceType = type;
+    v.values.resize(v.grid.voxels());
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) v.values[linearIndex(dims, x, y, z)] = float(f(x, y, z));
+    return v;
+}
+
+TransferFunction linearTF(double x0, double x1) {
+    TransferFunction tf;
+    tf.opacity = {{x0, 0.0}, {x1, 1.0}};
+    tf.colour = {{x0, 1, 0, 0}, {x1, 0, 0, 1}};
+    return tf;
+}
+
+TEST(Levoy, HandComputedValues) {
+    const IsoContour c{100, 2, 0.8};
+    EXPECT_DOUBLE_EQ(levoyOpacity(c, 100, 1), 0.8);
+    EXPECT_DOUBLE_EQ(levoyOpacity(c, 99, 1), 0.4);       // |100-99| / (2*1) = 0.5
+    EXPECT_DOUBLE_EQ(levoyOpacity(c, 101, 2), 0.6);      // 1 / 4 -> 0.8 * 0.75
+    EXPECT_DOUBLE_EQ(levoyOpacity(c, 102, 1), 0.0);      // exactly at r |grad|
+    EXPECT_DOUBLE_EQ(levoyOpacity(c, 103, 1), 0.0);      // beyond
+    EXPECT_DOUBLE_EQ(levoyOpacity(c, 100, 0), 0.8);      // grad 0 and f = f_v
+    EXPECT_DOUBLE_EQ(levoyOpacity(c, 100.5, 0), 0.0);    // grad 0 and f != f_v
+    const std::vector<IsoContour> two{{100, 2, 0.8}, {101, 4, 0.5}};
+    // 0.4 and 0.5 * (1 - 2/4) = 0.25 combine as 1 - 0.6 * 0.75.
+    EXPECT_DOUBLE_EQ(levoyOpacity(two, 99, 1), 1 - 0.6 * 0.75);
+}
+
+TEST(Classify, GradientOfALinearRampIsInPhysicalUnits) {
+    const Vec3d spacing{0.5, 2.0, 4.0};
+    const Volume v = makeVolume({7, 5, 4}, spacing, ScalarType::Float32,
+                                [](int x, int y, int z) { return 2.0 * x + 3.0 * y + 5.0 * z; });
+    const Vec3d expected{2 / 0.5, 3 / 2.0, 5 / 4.0};
+    for (int z = 0; z < 4; ++z)  // borders included: one-sided differences are exact on a ramp
+        for (int y = 0; y < 5; ++y)
+            for (int x = 0; x < 7; ++x) {
+                const Vec3d g = centralGradient(v, x, y, z);
+                EXPECT_NEAR(g.x, expected.x, 1e-12);
+                EXPECT_NEAR(g.y, expected.y, 1e-12);
+                EXPECT_NEAR(g.z, expected.z, 1e-12);
+            }
+    // Central, not one-sided, in the interior: f = x^2 gives 2x / h exactly.
+    const Volume q = makeVolume({6, 1, 1}, {0.25, 1, 1}, ScalarType::Float32, [](int x, int, int) { return x * x; });
+    EXPECT_DOUBLE_EQ(centralGradient(q, 2, 0, 0).x, (9.0 - 1.0) / 0.5);
+    EXPECT_DOUBLE_EQ(centralGradient(q, 0, 0, 0).x, 1.0 / 0.25);
+    EXPECT_DOUBLE_EQ(centralGradient(q, 5, 0, 0).x, (25.0 - 16.0) / 0.25);
+    EXPECT_DOUBLE_EQ(centralGradient(q, 3, 0, 0).y, 0.0);  // a single-voxel axis has no derivative
+
+    ClassifyParams params;
+    params.transferFunction = linearTF(0, 100);
+    const ClassifiedVolume c = classify(v, params);
+    ASSERT_TRUE(c.hasNormals());
+    const Vec3d n = normalize(expected);
+    for (const auto& normal : c.normal) {
+        EXPECT_NEAR(normal[0], n.x, 1e-6);
+        EXPECT_NEAR(normal[1], n.y, 1e-6);
+        EXPECT_NEAR(normal[2], n.z, 1e-6);
+    }
+}
+
+TEST(Classify, LevoyUsesThePhysicalGradient) {
+    // f = 10 x with spacing 2: |grad| = 5 per world unit. Iso 40, width 1: alpha = 0.9 (1 - |40 - f| / 5).
+    const Volume v = makeVolume({9, 2, 2}, {2, 1, 1}, ScalarType::Float32, [](int x, int, int) { return 10.0 * x; });
+    ClassifyParams params;
+    params.isoContours = {{40, 1, 0.9}};
+    params.isoColour = {0.2, 0.4, 0.6};
+    const ClassifiedVolume c = classify(v, params);
+    EXPECT_DOUBLE_EQ(c.referenceStep, 1.0);
+    for (int x = 0; x < 9; ++x) {
+        const std::size_t i = linearIndex(v.grid.dims, x, 1, 1);
+        const double alpha = std::max(0.0, 0.9 * (1 - std::abs(40.0 - 10 * x) / 5));
+        EXPECT_NEAR(c.opacity(i), alpha, 1e-6) << x;
+        EXPECT_EQ(c.colour[i], (std::array<float, 3>{0.2f, 0.4f, 0.6f}));
+    }
+}
+
+TEST(Classify, FlatRegionsHaveZeroNormals) {
+    // A plateau (x < 4) beside a ramp: zero gradient is flat, never normalize(0).
+    const Volume v = makeVolume({10, 3, 3}, {1, 1, 1}, ScalarType::UInt8,
+                                [](int x, int, int) { return x < 4 ? 7.0 : 7.0 + 10 * (x - 4); });
+    ClassifyParams params;
+    params.transferFunction = linearTF(0, 255);
+    const ClassifiedVolume c = classify(v, params);
+    for (int z = 0; z < 3; ++z)
+        for (int y = 0; y < 3; ++y)
+            for (int x = 0; x < 10; ++x) {
+                const auto& n = c.normal[linearIndex(v.grid.dims, x, y, z)];
+                for (float component : n) EXPECT_TRUE(std::isfinite(component));
+                if (x < 4) {  // x = 3 sees 7 on both sides
+                    EXPECT_EQ(n, (std::array<float, 3>{0, 0, 0})) << x;
+                } else {
+                    EXPECT_NEAR(n[0], 1.0f, 1e-6) << x;
+                }
+            }
+    // A constant volume: every voxel flat; without normals none are stored.
+    const Volume constant = makeVolume({4, 4, 4}, {1, 1, 1}, ScalarType::UInt8, [](int, int, int) { return 9; });
+    for (const auto& n : classify(constant, params).normal) EXPECT_EQ(n, (std::array<float, 3>{0, 0, 0}));
+    params.normals = false;
+    EXPECT_FALSE(classify(constant, params).hasNormals());
+}
+
+TEST(Classify, ExtinctionRoundTrip) {
+    for (double dt0 : {1.0, 0.5, 3.0}) {
+        EXPECT_EQ(extinctionFromOpacity(0.0, dt0), 0.0);
+        EXPECT_EQ(opacityFromExtinction(0.0, dt0), 0.0);
+        for (double alpha : {1e-9, 1e-4, 0.25, 0.5, 0.999}) {
+            const double sigma = extinctionFromOpacity(alpha, dt0);
+            EXPECT_NEAR(opacityFromExtinction(sigma, dt0) / alpha, 1.0, 1e-12) << alpha;
+            // Stored as float: relative precision of a float.
+            EXPECT_NEAR(opacityFromExtinction(float(sigma), dt0) / alpha, 1.0, 1e-6) << alpha;
+            // Any span L: alpha_L = 1 - (1 - alpha)^(L / dt0).
+            EXPECT_NEAR(opacityFromExtinction(sigma, 3 * dt0), 1 - std::pow(1 - alpha, 3), 1e-12);
+        }
+        const double opaque = extinctionFromOpacity(1.0, dt0);
+        EXPECT_TRUE(std::isfinite(opaque));
+        EXPECT_TRUE(std::isfinite(float(opaque)));
+        EXPECT_GT(opacityFromExtinction(opaque, dt0), 1 - 1e-11);
+    }
+}
+
+TEST(Classify, OpacityAndColourFollowTheTransferFunctionPerReferenceStep) {
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> values(-1024, 2986);
+    const Volume ct = makeVolume({11, 9, 7}, {0.7, 0.7, 1.5}, ScalarType::Int16,
+                                 [&](int, int, int) { return values(rng); });
+    ClassifyParams params;
+    params.transferFunction = loadTransferFunction(test::datasetsDir() / "cranium_ct.tf.json");
+    params.transferFunction->opacity.back().opacity = 1.0;  // include opaque voxels
+    for (double referenceStep : {0.0, 2.5}) {
+        params.referenceStep = referenceStep;
+        const ClassifiedVolume c = classify(ct, params);
+        EXPECT_DOUBLE_EQ(c.referenceStep, referenceStep == 0 ? 0.7 : 2.5);
+        EXPECT_EQ(c.grid, ct.grid);
+        for (std::size_t i = 0; i < ct.values.size(); ++i) {
+            const double alpha = params.transferFunction->opacityAt(ct.values[i]);
+            ASSERT_TRUE(std::isfinite(c.sigma[i]));
+            EXPECT_NEAR(c.opacity(i), alpha, 1e-6 * std::max(alpha, 1e-3)) << ct.values[i];
+            if (alpha == 0) {
+                EXPECT_EQ(c.sigma[i], 0.0f);
+            }
+            const auto rgb = params.transferFunction->colourAt(ct.values[i]);
+            for (int k = 0; k < 3; ++k) EXPECT_NEAR(c.colour[i][k], rgb[k], 1e-6);
+        }
+    }
+    // Float volumes use an interpolated table over their range.
+    std::uniform_real_distribution<double> real(0, 1000);
+    const Volume f = makeVolume({8, 8, 8}, {1, 1, 1}, ScalarType::Float32, [&](int, int, int) { return real(rng); });
+    TransferFunction tf;
+    tf.opacity = {{0, 0}, {300, 0.2, 0.3, 0.4}, {800, 0.9}, {1000, 0.1}};
+    params.transferFunction = tf;
+    params.referenceStep = 0;
+    const ClassifiedVolume c = classify(f, params);
+    for (std::size_t i = 0; i < f.values.size(); ++i) EXPECT_NEAR(c.opacity(i), tf.opacityAt(f.values[i]), 1e-4);
+}
+
+TEST(Classify, BadParametersAreInputErrors) {
+    const Volume v = makeVolume({3, 3, 3}, {1, 1, 1}, ScalarType::UInt8, [](int x, int, int) { return x; });
+    ClassifyParams none;
+    EXPECT_THROW(classify(v, none), InputError);
+    ClassifyParams both;
+    both.transferFunction = linearTF(0, 1);
+    both.isoContours = {{1, 1, 1}};
+    EXPECT_THROW(classify(v, both), InputError);
+    for (IsoContour bad : {IsoContour{1, 0, 1}, IsoContour{1, 1, 1.5}, IsoContour{std::nan(""), 1, 1}}) {
+        ClassifyParams p;
+        p.isoContours = {bad};
+        EXPECT_THROW(classify(v, p), InputError);
+    }
+    ClassifyParams negativeStep;
+    negativeStep.transferFunction = linearTF(0, 1);
+    negativeStep.referenceStep = -1;
+    EXPECT_THROW(classify(v, negativeStep), InputError);
+    ClassifyParams good;
+    good.transferFunction = linearTF(0, 1);
+    EXPECT_NO_THROW(classify(v, good));
+    Volume nan = v;
+    nan.values[13] = std::nanf("");
+    EXPECT_THROW(classify(nan, good), InputError);
+    ClassifyParams unsorted;
+    unsorted.transferFunction = linearTF(0, 1);
+    unsorted.transferFunction->opacity[1].x = -1;
+    EXPECT_THROW(classify(v, unsorted), InputError);
+}
+
+TEST(Classify, RealCtDataset) {
+    RawOptions raw;
+    raw.spacing = Vec3d{3.2, 3.2, 1.5};  // MANIFEST.tsv
+    const Volume ct = loadVolume(test::datasetsDir() / "vtk_headsq_ct_64x64x93_uint16.raw.gz", raw);
+    ClassifyParams params;
+    params.transferFunction = loadTransferFunction(test::datasetsDir() / "vtk_headsq_ct.tf.json");
+    const ClassifiedVolume c = classify(ct, params);
+    ASSERT_EQ(c.sigma.size(), ct.values.size());
+    EXPECT_DOUBLE_EQ(c.referenceStep, 1.5);
+    std::size_t transparent = 0, flat = 0;
+    for (std::size_t i = 0; i < c.sigma.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(c.sigma[i]) && c.sigma[i] >= 0);
+        transparent += c.sigma[i] == 0;
+        const auto& n = c.normal[i];
+        const double len = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+        if (len == 0) {
+            ++flat;
+        } else {
+            EXPECT_NEAR(len, 1.0, 1e-6);
+        }
+    }
+    // Air (below 500) is transparent, bone is not.
+    EXPECT_GT(transparent, c.sigma.size() / 10);
+    EXPECT_LT(transparent, c.sigma.size());
+    EXPECT_LT(flat, c.sigma.size());
+}
+
+}  // namespace
+}  // namespace vr

@@ -1,0 +1,182 @@
+// The camera convention (ALGORITHMS.md section 1): default view, azimuth / elevation, fit, anisotropic grids.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.h"
+#include "volrender/camera.h"
+#include "volrender/ray_setup.h"
+
+namespace vr {
+namespace {
+
+GridGeometry boxGrid() {
+    GridGeometry g;
+    g.dims = {10, 20, 30};
+    g.spacing = {1, 1, 1};
+    g.origin = {-3, 4, 7};
+    return g;
+}
+
+ViewParams view(Projection p, int w, int h, double az = 0, double el = 0) {
+    ViewParams v;
+    v.projection = p;
+    v.width = w;
+    v.height = h;
+    v.azimuthDeg = az;
+    v.elevationDeg = el;
+    return v;
+}
+
+double distanceToRay(const Vec3d& p, const Ray& r) { return length(cross(p - r.origin, r.direction)); }
+
+void expectNear(const Vec3d& a, const Vec3d& b, double tol = 1e-12) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+TEST(Camera, DefaultLooksDownMinusZWithYUp) {
+    for (Projection p : {Projection::Orthographic, Projection::Perspective}) {
+        const Camera cam = Camera::fit(boxGrid(), view(p, 64, 48));
+        expectNear(cam.forward, {0, 0, -1});
+        expectNear(cam.up, {0, 1, 0});
+        expectNear(cam.right, {1, 0, 0});
+        EXPECT_GT(cam.eye.z, boxGrid().centre().z + 0.5 * length(boxGrid().extent()));
+        // Exactly axis-aligned: the other components are zero, so the ray setup sees d_a == 0.
+        EXPECT_EQ(cam.forward.x, 0.0);
+        EXPECT_EQ(cam.forward.y, 0.0);
+        // Pixel (0,0) is top-left: its ray is left of and above the centre.
+        const Ray r = cam.ray(0.5, 0.5);
+        const Vec3d towardPixel = (p == Projection::Orthographic) ? r.origin - cam.eye : r.direction;
+        EXPECT_LT(dot(towardPixel, cam.right), 0);
+        EXPECT_GT(dot(towardPixel, cam.up), 0);
+    }
+}
+
+TEST(Camera, AzimuthAndElevationMoveTheEyeLikeVtk) {
+    const GridGeometry g = boxGrid();
+    const Vec3d c = g.centre();
+    // Positive azimuth moves the camera toward +x, positive elevation toward +y.
+    const Camera az = Camera::fit(g, view(Projection::Perspective, 32, 32, 30, 0));
+    EXPECT_GT(az.eye.x, c.x);
+    EXPECT_NEAR(az.eye.y, c.y, 1e-9);
+    const Camera el = Camera::fit(g, view(Projection::Perspective, 32, 32, 0, 30));
+    EXPECT_GT(el.eye.y, c.y);
+    EXPECT_NEAR(el.eye.x, c.x, 1e-9);
+
+    // Multiples of 90 degrees look exactly along an axis.
+    const Camera a90 = Camera::fit(g, view(Projection::Orthographic, 32, 32, 90, 0));
+    EXPECT_EQ(a90.forward.x, -1.0);
+    EXPECT_EQ(a90.forward.y, 0.0);
+    EXPECT_EQ(a90.forward.z, 0.0);
+    expectNear(a90.up, {0, 1, 0}, 0);
+    const Camera e90 = Camera::fit(g, view(Projection::Orthographic, 32, 32, 0, 90));
+    EXPECT_EQ(e90.forward.y, -1.0);
+    EXPECT_EQ(e90.forward.x, 0.0);
+    EXPECT_EQ(e90.forward.z, 0.0);
+    const Camera a270 = Camera::fit(g, view(Projection::Orthographic, 32, 32, -90, 0));
+    EXPECT_EQ(a270.forward.x, 1.0);
+    const Camera a180 = Camera::fit(g, view(Projection::Orthographic, 32, 32, 540, 0));
+    EXPECT_EQ(a180.forward.z, 1.0);
+
+    // Any angles: an orthonormal right-handed frame, the eye on the -forward side.
+    for (double azDeg : {-170.0, -33.3, 12.5, 95.0, 181.0})
+        for (double elDeg : {-80.0, -10.0, 0.0, 45.0, 89.0}) {
+            const Camera cam = Camera::fit(g, view(Projection::Perspective, 16, 16, azDeg, elDeg));
+            EXPECT_NEAR(length(cam.forward), 1, 1e-12);
+            EXPECT_NEAR(length(cam.up), 1, 1e-12);
+            EXPECT_NEAR(dot(cam.forward, cam.up), 0, 1e-12);
+            expectNear(cross(cam.forward, cam.up), cam.right);
+            EXPECT_GT(dot(c - cam.eye, cam.forward), 0);
+        }
+}
+
+TEST(Camera, CentreRayPassesThroughTheVolumeCentre) {
+    const GridGeometry g = boxGrid();
+    for (Projection p : {Projection::Orthographic, Projection::Perspective})
+        for (double azDeg : {0.0, 37.0, 200.0})
+            for (double elDeg : {0.0, -23.0, 61.0}) {
+                // Odd size: the centre pixel's ray; even size: the ray through the image centre.
+                const Camera odd = Camera::fit(g, view(p, 33, 21, azDeg, elDeg));
+                EXPECT_NEAR(distanceToRay(g.centre(), odd.ray(16 + 0.5, 10 + 0.5)), 0, 1e-9);
+                const Camera even = Camera::fit(g, view(p, 32, 20, azDeg, elDeg));
+                EXPECT_NEAR(distanceToRay(g.centre(), even.ray(16, 10)), 0, 1e-9);
+                EXPECT_NEAR(length(even.ray(3.5, 7.5).direction), 1, 1e-12);
+            }
+}
+
+TEST(Camera, OrthographicFitsTheBoundingSphere) {
+    const GridGeometry g = boxGrid();
+    const double radius = 0.5 * length(g.extent());
+    // Wide image: the sphere touches the top and bottom edges, the left/right edges are farther out.
+    Camera wide = Camera::fit(g, view(Projection::Orthographic, 80, 40, 25, 15));
+    EXPECT_NEAR(distanceToRay(g.centre(), wide.ray(40, 0)), radius, 1e-9);
+    EXPECT_NEAR(distanceToRay(g.centre(), wide.ray(40, 40)), radius, 1e-9);
+    EXPECT_NEAR(distanceToRay(g.centre(), wide.ray(0, 20)), 2 * radius, 1e-9);
+    // Corner rays of a square view pass at sqrt(2) radius; every ray is parallel to forward.
+    Camera square = Camera::fit(g, view(Projection::Orthographic, 50, 50, -40, 70));
+    EXPECT_NEAR(distanceToRay(g.centre(), square.ray(0, 0)), std::sqrt(2.0) * radius, 1e-9);
+    EXPECT_NEAR(distanceToRay(g.centre(), square.ray(50, 50)), std::sqrt(2.0) * radius, 1e-9);
+    EXPECT_NEAR(distanceToRay(g.centre(), square.ray(0, 25)), radius, 1e-9);
+    expectNear(square.ray(0, 0).direction, square.forward, 0);
+    // Tall image: the sphere touches the left and right edges.
+    Camera tall = Camera::fit(g, view(Projection::Orthographic, 30, 90));
+    EXPECT_NEAR(distanceToRay(g.centre(), tall.ray(0, 45)), radius, 1e-9);
+    EXPECT_NEAR(distanceToRay(g.centre(), tall.ray(15, 0)), 3 * radius, 1e-9);
+    // The image plane starts outside the sphere, so every ray enters the volume at t > 0.
+    EXPECT_GT(dot(g.centre() - square.eye, square.forward), radius);
+}
+
+TEST(Camera, PerspectiveFitsTheBoundingSphereInTheFieldOfView) {
+    const GridGeometry g = boxGrid();
+    const double radius = 0.5 * length(g.extent());
+    ViewParams v = view(Projection::Perspective, 64, 64, 15, -20);
+    v.fovDeg = 40;
+    const Camera cam = Camera::fit(g, v);
+    EXPECT_NEAR(length(cam.eye - g.centre()), radius / std::sin(20 * std::numbers::pi / 180), 1e-9);
+    EXPECT_NEAR(cam.halfHeight, std::tan(20 * std::numbers::pi / 180), 1e-12);
+    // The rays through the middles of the edges are tangent to the sphere.
+    EXPECT_NEAR(distanceToRay(g.centre(), cam.ray(32, 0)), radius, 1e-9);
+    EXPECT_NEAR(distanceToRay(g.centre(), cam.ray(0, 32)), radius, 1e-9);
+    EXPECT_NEAR(distanceToRay(g.centre(), cam.ray(64, 32)), radius, 1e-9);
+    // The vertical angle between the top and bottom edge rays is the field of view.
+    const double angle = std::acos(dot(cam.ray(32, 0).direction, cam.ray(32, 64).direction));
+    EXPECT_NEAR(angle, 40 * std::numbers::pi / 180, 1e-12);
+    // A tall image: the narrower horizontal angle decides the distance, so the sphere still fits.
+    ViewParams tallView = view(Projection::Perspective, 32, 64);
+    const Camera tall = Camera::fit(g, tallView);
+    EXPECT_NEAR(distanceToRay(g.centre(), tall.ray(0, 32)), radius, 1e-9);
+    EXPECT_GT(distanceToRay(g.centre(), tall.ray(16, 0)), radius);
+}
+
+TEST(Camera, AnisotropicSpacing) {
+    GridGeometry g;
+    g.dims = {64, 64, 20};
+    g.spacing = {0.5, 0.5, 2.5};
+    g.origin = {10, -5, 3};
+    const double radius = 0.5 * length(Vec3d{32, 32, 50});
+    const Camera cam = Camera::fit(g, view(Projection::Orthographic, 41, 41));
+    EXPECT_NEAR(cam.halfHeight, radius, 1e-12);
+    const Ray centre = cam.ray(20.5, 20.5);
+    EXPECT_NEAR(distanceToRay(g.centre(), centre), 0, 1e-9);
+    // In grid space the centre ray runs down the middle of the grid along -z, t still in world units.
+    const GridRay gr = toGridRay(centre, g);
+    EXPECT_NEAR(gr.o.x, 32, 1e-9);
+    EXPECT_NEAR(gr.o.y, 32, 1e-9);
+    EXPECT_EQ(gr.d.z, -1 / 2.5);
+    const RayInterval iv = intersectGrid(gr, g.dims);
+    EXPECT_NEAR(iv.tExit - iv.tEntry, 50, 1e-9);  // the world depth of the volume
+}
+
+TEST(Camera, RejectsBadViews) {
+    EXPECT_THROW(Camera::fit(boxGrid(), view(Projection::Orthographic, 0, 10)), InputError);
+    ViewParams v = view(Projection::Perspective, 10, 10);
+    v.fovDeg = 180;
+    EXPECT_THROW(Camera::fit(boxGrid(), v), InputError);
+    EXPECT_THROW(Camera::fit(boxGrid(), view(Projection::Perspective, 10, 10, std::nan(""), 0)), InputError);
+}
+
+}  // namespace
+}  // namespace vr

@@ -1,0 +1,180 @@
+// The CPU reference renderer on volumes with known answers: stiff opacities, opaque volumes, huge leaps, a camera
+// inside the volume, the background, counters and errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/errors.h"
+#include "preprocess/fields/build_fields.h"
+#include "volrender/cpu_renderer.h"
+
+namespace vr {
+namespace {
+
+constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+
+// A constant classified volume (one region) with every distance field, unit spacing, origin 0.
+PreparedVolume constantVolume(Vec3i dims, double opacityPerVoxel, bool normals = false) {
+    PreparedVolume p;
+    ClassifiedVolume& cv = p.classified;
+    cv.grid.dims = dims;
+    cv.referenceStep = 1.0;
+    cv.sigma.assign(cv.grid.voxels(), float(extinctionFromOpacity(opacityPerVoxel, 1.0)));
+    cv.colour.assign(cv.grid.voxels(), {0.5f, 0.75f, 1.0f});
+    if (normals) cv.normal.assign(cv.grid.voxels(), {0.f, 0.f, 1.f});
+    p.regions.dims = dims;
+    p.regions.label.assign(cv.grid.voxels(), 0);
+    p.regions.count = 1;
+    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
+    return p;
+}
+
+ViewParams axisView(int size) {
+    ViewParams v;
+    v.width = v.height = size;
+    return v;
+}
+
+RenderSettings unshaded(Caster c, double step = 0.5) {
+    RenderSettings s;
+    s.caster = c;
+    s.shading = false;
+    s.stepVoxels = step;
+    return s;
+}
+
+TEST(CpuRenderer, TinyOpacityAccumulatesAlongAnAxis) {
+    // 64 voxels of opacity 1e-9: alpha = 1 - (1 - 1e-9)^64, which float stepping would round away.
+    const PreparedVolume p = constantVolume({64, 64, 64}, 1e-9);
+    const Camera cam = Camera::fit(p.classified.grid, axisView(9));
+    const double want = 1 - std::pow(1 - 1e-9, 64);
+    for (Caster c : kCasters) {
+        const RenderResult r = renderCpu(p, cam, unshaded(c));
+        const float alpha = r.image.pixel(4, 4)[3];
+        EXPECT_NEAR(alpha, want, 0.01 * want) << casterName(c);
+        EXPECT_NEAR(r.image.pixel(4, 4)[2], want, 0.01 * want) << casterName(c);  // blue 1.0, premultiplied
+        EXPECT_EQ(r.samples[4 * 9 + 4], 128u) << casterName(c);                   // 64 voxels at step 0.5
+    }
+}
+
+TEST(CpuRenderer, MillionsOfSamplesInOneLeap) {
+    // dt = 1e-5 voxels: 6.4 million samples per ray; leaping casters cover them in a handful of fetches.
+    const PreparedVolume p = constantVolume({64, 64, 64}, 1e-6);
+    const Camera cam = Camera::fit(p.classified.grid, axisView(1));
+    const double want = 1 - std::pow(1 - 1e-6, 64);
+    for (Caster c : kCasters) {
+        const RenderResult r = renderCpu(p, cam, unshaded(c, 1e-5));
+        EXPECT_NEAR(r.image.pixel(0, 0)[3], want, 1e-4 * want) << casterName(c);
+        EXPECT_NEAR(double(r.samples[0]), 6.4e6, 1) << casterName(c);
+        if (c == Caster::Primitive) {
+            EXPECT_EQ(uint64_t(r.iterations[0]), r.samples[0]);
+        } else if (c != Caster::PC) {
+            EXPECT_LE(r.iterations[0], 3u) << casterName(c);
+        }
+    }
+}
+
+TEST(CpuRenderer, OpaqueVolumeTerminatesAtTheFirstSample) {
+    const PreparedVolume p = constantVolume({16, 16, 16}, 1.0, true);
+    const Camera cam = Camera::fit(p.classified.grid, axisView(5));
+    for (Caster c : kCasters) {
+        RenderSettings s;
+        s.caster = c;
+        s.stepVoxels = 1.0;  // one reference step: alpha 1 - 1e-12, which is 1 in the float image
+        const RenderResult r = renderCpu(p, cam, s);
+        EXPECT_EQ(r.image.pixel(2, 2)[3], 1.0f) << casterName(c);
+        EXPECT_EQ(r.iterations[2 * 5 + 2], 1u) << casterName(c);
+        EXPECT_EQ(r.samples[2 * 5 + 2], 1u) << casterName(c);  // the span stops where primitive stepping would
+        for (int a = 0; a < 3; ++a) EXPECT_TRUE(std::isfinite(r.image.pixel(2, 2)[a]));
+    }
+}
+
+TEST(CpuRenderer, BackgroundAndMissingRays) {
+    const PreparedVolume p = constantVolume({8, 8, 8}, 0.1);
+    const Camera cam = Camera::fit(p.classified.grid, axisView(32));
+    RenderSettings s = unshaded(Caster::EACD, 1.0);
+    s.background = {0.25, 0.5, 1.0};
+    const RenderResult r = renderCpu(p, cam, s);
+    // The corner ray misses the cube (it lies inside the bounding sphere's square only).
+    const float* corner = r.image.pixel(0, 0);
+    EXPECT_EQ(corner[3], 0.f);
+    EXPECT_EQ(corner[0], 0.25f);
+    EXPECT_EQ(corner[2], 1.0f);
+    EXPECT_EQ(r.iterations[0], 0u);
+    // The centre: 8 samples of alpha 0.1 over the background.
+    const double a = 1 - std::pow(0.9, 8);
+    const float* c = r.image.pixel(16, 16);
+    EXPECT_NEAR(c[3], a, 1e-6);
+    EXPECT_NEAR(c[0], 0.5 * a + 0.25 * (1 - a), 1e-6);
+    EXPECT_NEAR(c[2], 1.0 * a + 1.0 * (1 - a), 1e-6);
+}
+
+TEST(CpuRenderer, CameraInsideTheVolume) {
+    const PreparedVolume p = constantVolume({32, 32, 32}, 0.01);
+    Camera cam = Camera::fit(p.classified.grid, axisView(11));
+    cam.projection = Projection::Perspective;
+    cam.halfHeight = std::tan(0.3);
+    cam.eye = {16, 16, 10};  // 10 voxels from the z = 0 face it looks at
+    const double want = 1 - std::pow(0.99, 10);
+    RenderResult first;
+    for (Caster c : kCasters) {
+        const RenderResult r = renderCpu(p, cam, unshaded(c, 0.5));
+        EXPECT_NEAR(r.image.pixel(5, 5)[3], want, 1e-6) << casterName(c);
+        if (c == Caster::Primitive) {
+            first = r;
+        } else {
+            EXPECT_LT(maxAbsDifference(first.image, r.image), 1e-6) << casterName(c);
+        }
+    }
+}
+
+TEST(CpuRenderer, CountsAndShadedConstant) {
+    const PreparedVolume p = constantVolume({20, 20, 20}, 0.001, true);
+    const Camera cam = Camera::fit(p.classified.grid, axisView(3));
+    RenderSettings s;
+    s.caster = Caster::Primitive;
+    s.stepVoxels = 0.25;
+    const RenderResult prim = renderCpu(p, cam, s);
+    EXPECT_EQ(prim.samples[4], 80u);
+    EXPECT_EQ(prim.iterations[4], 80u);
+    s.caster = Caster::EACD;
+    const RenderResult eacd = renderCpu(p, cam, s);
+    EXPECT_EQ(eacd.samples[4], 80u);
+    EXPECT_LT(eacd.iterations[4], 10u);
+    EXPECT_LT(maxAbsDifference(prim.image, eacd.image), 1e-7);
+    EXPECT_GT(prim.wallMilliseconds, 0);
+    EXPECT_EQ(prim.iterations.size(), 9u);
+}
+
+TEST(CpuRenderer, ErrorsAreReported) {
+    PreparedVolume p = constantVolume({16, 16, 16}, 0.01);
+    const Camera cam = Camera::fit(p.classified.grid, axisView(4));
+    // A runaway ray is reported, not hung.
+    RenderSettings capped = unshaded(Caster::Primitive, 0.5);
+    capped.maxIterationsPerRay = 5;
+    EXPECT_THROW(renderCpu(p, cam, capped), std::runtime_error);
+    // Shading without normals, a bad step, a bad ert.
+    RenderSettings s;
+    EXPECT_THROW(renderCpu(p, cam, s), InputError);
+    s = unshaded(Caster::Primitive, 0);
+    EXPECT_THROW(renderCpu(p, cam, s), InputError);
+    s = unshaded(Caster::Primitive);
+    s.ert = 1.5;
+    EXPECT_THROW(renderCpu(p, cam, s), InputError);
+    // A caster whose field is missing.
+    p.fields.pc.clear();
+    EXPECT_THROW(renderCpu(p, cam, unshaded(Caster::PC)), InputError);
+    EXPECT_NO_THROW(renderCpu(p, cam, unshaded(Caster::ACD)));
+    p.fields.eacd = {};
+    EXPECT_THROW(renderCpu(p, cam, unshaded(Caster::EACD)), InputError);
+    // Trilinear leaping needs a volume segmented for it.
+    RenderSettings tri = unshaded(Caster::ACD);
+    tri.trilinear = true;
+    EXPECT_THROW(renderCpu(p, cam, tri), InputError);
+    p.meta.segmentation.trilinear = true;
+    EXPECT_NO_THROW(renderCpu(p, cam, tri));
+}
+
+}  // namespace
+}  // namespace vr

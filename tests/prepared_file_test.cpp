@@ -1,0 +1,354 @@
+// The prepared file: exact round trip, selective reading, and a clear InputError for every kind of damage.
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cstring>
+#include <fstream>
+
+#include "core/errors.h"
+#include "core/prepared_file.h"
+#include "datasets/phantoms.h"
+#include "support/datasets.h"
+
+namespace vr {
+namespace {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// A prepared volume with every chunk present and distinct, reproducible contents (not a real segmentation:
+// the format must carry any bytes).
+PreparedVolume samplePrepared(Vec3i dims) {
+    Volume noise = noisePhantom(dims, 7, 0, 255, {0.5, 0.75, 2.0});
+    PreparedVolume p;
+    p.classified.grid = noise.grid;
+    p.classified.grid.origin = {-1.5, 2.25, 3};
+    p.classified.referenceStep = 0.5;
+    std::size_t n = noise.grid.voxels();
+    for (std::size_t i = 0; i < n; ++i) {
+        float f = noise.values[i];
+        p.classified.sigma.push_back(f * 0.01f);
+        p.classified.colour.push_back({f / 255, 1 - f / 255, 0.25f});
+        p.classified.normal.push_back({0.6f, -0.8f, f > 128 ? 0.0f : 1e-7f});
+        p.regions.label.push_back(uint32_t(f) / 16);
+    }
+    p.regions.dims = dims;
+    p.regions.count = 16;
+    p.fields.dims = dims;
+    for (std::size_t i = 0; i < n; ++i) p.fields.pc.push_back(uint8_t(noise.values[i]) % 7);
+    for (int o = 0; o < kOctants; ++o)
+        for (std::size_t i = 0; i < n; ++i) {
+            uint8_t a = uint8_t(1 + (uint8_t(noise.values[i]) + o) % 9);
+            p.fields.acd[o].push_back(a);
+            p.fields.eacd[o].push_back({a, uint8_t(a + o), uint8_t(a + 2 * o)});
+        }
+    p.meta.source = "phantom:noise";
+    p.meta.classification = R"([{"Points": [0, 0, 0.5, 0, 255, 1, 0.5, 0]}])";
+    p.meta.segmentation = {0.01, 3.0, true, true};
+    p.meta.statistics = {{"voxels", n}, {"regions", 16}};
+    return p;
+}
+
+std::vector<char> readBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const fs::path& p, const std::vector<char>& bytes) {
+    std::ofstream out(p, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+// The parts of a prepared file, to damage one of them precisely.
+struct Parts {
+    std::vector<char> preamble;  // magic, version, header length
+    json header;
+    std::vector<char> data;      // everything after the header checksum
+};
+
+Parts split(const fs::path& p) {
+    std::vector<char> b = readBytes(p);
+    uint64_t len;
+    std::memcpy(&len, b.data() + 12, 8);
+    Parts parts;
+    parts.preamble.assign(b.begin(), b.begin() + 20);
+    parts.header = json::parse(std::string(b.begin() + 20, b.begin() + 20 + std::ptrdiff_t(len)));
+    parts.data.assign(b.begin() + 20 + std::ptrdiff_t(len) + 4, b.end());
+    return parts;
+}
+
+// Reassembles a file with a consistent header length and header checksum, so that only the edit is wrong.
+void join(const fs::path& p, const Parts& parts) {
+    std::string text = parts.header.dump();
+    uint64_t len = text.size();
+    uint32_t crc = uint32_t(crc32_z(0, reinterpret_cast<const Bytef*>(text.data()), text.size()));
+    std::vector<char> b(parts.preamble);
+    std::memcpy(b.data() + 12, &len, 8);
+    b.insert(b.end(), text.begin(), text.end());
+    b.insert(b.end(), reinterpret_cast<const char*>(&crc), reinterpret_cast<const char*>(&crc) + 4);
+    b.insert(b.end(), parts.data.begin(), parts.data.end());
+    writeBytes(p, b);
+}
+
+uint64_t dataStart(const fs::path& p) {
+    std::vector<char> b = readBytes(p);
+    uint64_t len;
+    std::memcpy(&len, b.data() + 12, 8);
+    return 20 + len + 4;
+}
+
+json chunkEntry(const json& header, const std::string& name) {
+    for (const json& c : header["chunks"])
+        if (c["name"] == name) return c;
+    ADD_FAILURE() << "no chunk " << name;
+    return {};
+}
+
+// readPrepared must throw an InputError naming the file and containing `problem`.
+void expectRejected(const fs::path& p, const std::string& problem, unsigned fields = kFieldPC | kFieldACD | kFieldEACD) {
+    try {
+        readPrepared(p, fields, true);
+        ADD_FAILURE() << "read of " << p << " succeeded; expected: " << problem;
+    } catch (const InputError& e) {
+        std::string m = e.what();
+        EXPECT_NE(m.find(p.string()), std::string::npos) << m;
+        EXPECT_NE(m.find(problem), std::string::npos) << "message: " << m << "\nexpected: " << problem;
+    }
+}
+
+class PreparedFile : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = test::scratchDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+        good = dir / "good.vprep";
+        prepared = samplePrepared({13, 7, 5});
+        writePrepared(good, prepared);
+        bad = dir / "bad.vprep";
+    }
+    fs::path dir, good, bad;
+    PreparedVolume prepared;
+};
+
+TEST_F(PreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
+    PreparedVolume r = readPrepared(good);
+    const PreparedVolume& p = prepared;
+    EXPECT_EQ(r.classified.grid, p.classified.grid);
+    EXPECT_EQ(r.classified.referenceStep, p.classified.referenceStep);
+    EXPECT_EQ(r.classified.sigma, p.classified.sigma);
+    EXPECT_EQ(r.classified.colour, p.classified.colour);
+    EXPECT_EQ(r.classified.normal, p.classified.normal);
+    EXPECT_EQ(r.regions.dims, p.regions.dims);
+    EXPECT_EQ(r.regions.count, p.regions.count);
+    EXPECT_EQ(r.regions.label, p.regions.label);
+    EXPECT_EQ(r.fields.dims, p.fields.dims);
+    EXPECT_EQ(r.fields.pc, p.fields.pc);
+    EXPECT_EQ(r.fields.acd, p.fields.acd);
+    EXPECT_EQ(r.fields.eacd, p.fields.eacd);
+    EXPECT_EQ(r.meta.source, p.meta.source);
+    EXPECT_EQ(r.meta.classification, p.meta.classification);
+    EXPECT_EQ(r.meta.segmentation.opacityThreshold, 0.01);
+    EXPECT_EQ(r.meta.segmentation.angleThresholdDeg, 3.0);
+    EXPECT_TRUE(r.meta.segmentation.useNormals);
+    EXPECT_TRUE(r.meta.segmentation.trilinear);
+    EXPECT_EQ(r.meta.distanceCap, kDistanceCap);
+    EXPECT_EQ(r.meta.statistics, p.meta.statistics);
+}
+
+TEST_F(PreparedFile, ReadsOnlyWhatIsAskedFor) {
+    PreparedVolume pc = readPrepared(good, kFieldPC, false);
+    EXPECT_EQ(pc.fields.pc, prepared.fields.pc);
+    EXPECT_FALSE(pc.fields.hasACD());
+    EXPECT_FALSE(pc.fields.hasEACD());
+    EXPECT_FALSE(pc.classified.hasNormals());
+    EXPECT_EQ(pc.classified.sigma, prepared.classified.sigma);
+
+    PreparedVolume eacd = readPrepared(good, kFieldEACD, true);
+    EXPECT_FALSE(eacd.fields.hasPC());
+    EXPECT_FALSE(eacd.fields.hasACD());
+    EXPECT_EQ(eacd.fields.eacd, prepared.fields.eacd);
+    EXPECT_EQ(eacd.classified.normal, prepared.classified.normal);
+
+    PreparedVolume none = readPrepared(good, 0, false);
+    EXPECT_FALSE(none.fields.hasPC() || none.fields.hasACD() || none.fields.hasEACD());
+    EXPECT_EQ(none.regions.label, prepared.regions.label);
+}
+
+TEST_F(PreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
+    // Proof that a field not asked for is seeked past, not read: damage only the ACD chunks.
+    std::vector<char> b = readBytes(good);
+    uint64_t at = dataStart(good) + chunkEntry(split(good).header, "acd3")["offset"].get<uint64_t>();
+    b[at] ^= 0x5a;
+    writeBytes(bad, b);
+    EXPECT_EQ(readPrepared(bad, kFieldPC | kFieldEACD).fields.eacd, prepared.fields.eacd);
+    expectRejected(bad, "chunk 'acd3' checksum mismatch");
+}
+
+TEST_F(PreparedFile, OptionalChunksMayBeAbsentButNotWhenRequested) {
+    PreparedVolume p = prepared;
+    p.classified.normal.clear();
+    p.fields = {};
+    p.fields.dims = p.classified.grid.dims;
+    p.fields.pc = prepared.fields.pc;
+    writePrepared(bad, p);
+    PreparedVolume r = readPrepared(bad, kFieldPC, true);
+    EXPECT_FALSE(r.classified.hasNormals());  // normals are optional (volprep --no-normals)
+    EXPECT_EQ(r.fields.pc, p.fields.pc);
+    expectRejected(bad, "has no ACD distance field", kFieldACD);
+    expectRejected(bad, "has no EACD distance field", kFieldEACD);
+
+    p.fields.pc.clear();
+    writePrepared(bad, p);
+    expectRejected(bad, "has no PC distance field", kFieldPC);
+}
+
+TEST_F(PreparedFile, RejectsAMissingFile) { expectRejected(dir / "absent.vprep", "no such file"); }
+
+TEST_F(PreparedFile, RejectsAForeignFile) {
+    std::vector<char> b = readBytes(good);
+    b[0] = 'W';
+    writeBytes(bad, b);
+    expectRejected(bad, "not a prepared file");
+    writeBytes(bad, {'h', 'i', '\n'});
+    expectRejected(bad, "not a prepared file");
+}
+
+TEST_F(PreparedFile, RejectsAnotherVersion) {
+    std::vector<char> b = readBytes(good);
+    uint32_t v = kPreparedFormatVersion + 1;
+    std::memcpy(b.data() + 8, &v, 4);
+    writeBytes(bad, b);
+    expectRejected(bad, "prepared format version " + std::to_string(v) + ", this build reads version " +
+                            std::to_string(kPreparedFormatVersion));
+}
+
+TEST_F(PreparedFile, RejectsATruncatedFileAtEveryPart) {
+    std::vector<char> b = readBytes(good);
+    uint64_t data = dataStart(good);
+    json header = split(good).header;
+    uint64_t labels = data + chunkEntry(header, "labels")["offset"].get<uint64_t>();
+    struct Cut {
+        std::size_t size;
+        std::string problem;
+    };
+    for (const Cut& cut : std::vector<Cut>{{0, "not a prepared file (only 0 bytes"},
+                                           {7, "not a prepared file (only 7 bytes"},
+                                           {19, "not a prepared file (only 19 bytes"},
+                                           {20, "truncated header"},
+                                           {20 + 10, "truncated header"},
+                                           {data - 2, "truncated header"},
+                                           {data, "truncated: chunk 'sigma'"},
+                                           {labels + 3, "truncated: chunk 'labels'"},
+                                           {b.size() - 1, "truncated: chunk 'eacd7'"}}) {
+        SCOPED_TRACE(cut.size);
+        writeBytes(bad, std::vector<char>(b.begin(), b.begin() + std::ptrdiff_t(cut.size)));
+        expectRejected(bad, cut.problem);
+    }
+}
+
+TEST_F(PreparedFile, RejectsAFlippedByteInAChunk) {
+    json header = split(good).header;
+    for (const char* name : {"sigma", "colour", "normal", "labels", "pc", "acd0", "eacd7"}) {
+        SCOPED_TRACE(name);
+        std::vector<char> b = readBytes(good);
+        json c = chunkEntry(header, name);
+        b[dataStart(good) + c["offset"].get<uint64_t>() + c["bytes"].get<uint64_t>() / 2] ^= 0x01;
+        writeBytes(bad, b);
+        expectRejected(bad, std::string("chunk '") + name + "' checksum mismatch");
+    }
+}
+
+TEST_F(PreparedFile, RejectsAnEditedHeader) {
+    std::vector<char> b = readBytes(good);
+    std::string text(b.begin() + 20, b.begin() + std::ptrdiff_t(dataStart(good) - 4));
+    std::size_t at = text.find("\"referenceStep\": 0.5");
+    ASSERT_NE(at, std::string::npos) << text;
+    b[20 + at + std::strlen("\"referenceStep\": 0.")] = '7';  // same length, checksum not updated
+    writeBytes(bad, b);
+    expectRejected(bad, "header checksum mismatch");
+}
+
+TEST_F(PreparedFile, RejectsDimsInconsistentWithTheChunks) {
+    Parts parts = split(good);
+    parts.header["grid"]["dims"] = {13, 7, 6};
+    join(bad, parts);
+    expectRejected(bad, "chunk 'sigma' holds 1820 bytes but grid 13x7x6 needs 2184");
+}
+
+TEST_F(PreparedFile, RejectsAbsurdDims) {
+    Parts parts = split(good);
+    for (json dims : {json{100000, 100000, 100000}, json{60000, 60000, 60000}, json{0, 7, 5}, json{13, -7, 5}}) {
+        SCOPED_TRACE(dims.dump());
+        parts.header["grid"]["dims"] = dims;
+        join(bad, parts);
+        expectRejected(bad, "absurd grid dims");
+    }
+}
+
+TEST_F(PreparedFile, RejectsABadChunkTable) {
+    Parts parts = split(good);
+    json& chunks = parts.header["chunks"];
+    chunks[0]["type"] = "float64";
+    join(bad, parts);
+    expectRejected(bad, "chunk 'sigma' should be 1 x float32");
+
+    parts = split(good);
+    parts.header["chunks"][1]["name"] = "sigma";
+    join(bad, parts);
+    expectRejected(bad, "chunk 'sigma' appears twice");
+
+    parts = split(good);
+    parts.header["chunks"][0]["name"] = "opacity";
+    join(bad, parts);
+    expectRejected(bad, "unknown chunk 'opacity'");
+
+    parts = split(good);
+    parts.header.erase("grid");
+    join(bad, parts);
+    expectRejected(bad, "bad header: missing or invalid 'grid'");
+
+    parts = split(good);
+    parts.header["chunks"][0]["offset"] = uint64_t(1) << 40;
+    join(bad, parts);
+    expectRejected(bad, "truncated: chunk 'sigma'");
+}
+
+TEST_F(PreparedFile, RejectsHeaderThatIsNotJson) {
+    std::vector<char> b = readBytes(good);
+    uint64_t len;
+    std::memcpy(&len, b.data() + 12, 8);
+    b[20] = '#';
+    uint32_t crc = uint32_t(crc32_z(0, reinterpret_cast<const Bytef*>(b.data() + 20), len));
+    std::memcpy(b.data() + 20 + len, &crc, 4);
+    writeBytes(bad, b);
+    expectRejected(bad, "bad header: ");
+}
+
+TEST_F(PreparedFile, WritingIsAtomic) {
+    // A folder that does not exist: nothing written, a clear error.
+    fs::path missing = dir / "no-such-folder" / "out.vprep";
+    try {
+        writePrepared(missing, prepared);
+        ADD_FAILURE() << "write into a missing folder succeeded";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(missing.string()), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(missing));
+
+    // An inconsistent volume is refused and the existing file is left as it was, with no temporary beside it.
+    std::vector<char> before = readBytes(good);
+    PreparedVolume broken = prepared;
+    broken.classified.sigma.pop_back();
+    EXPECT_THROW(writePrepared(good, broken), InputError);
+    EXPECT_EQ(readBytes(good), before);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST_F(PreparedFile, RefusesPartialOctants) {
+    PreparedVolume p = prepared;
+    p.fields.acd[5].clear();
+    EXPECT_THROW(writePrepared(bad, p), InputError);
+    EXPECT_FALSE(fs::exists(bad));
+}
+
+}  // namespace
+}  // namespace vr

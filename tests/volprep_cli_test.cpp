@@ -1,0 +1,228 @@
+// volprep end to end: the built executable prepares real and synthetic volumes that read back consistently,
+// and every bad input exits non-zero with "volprep: <message>" on stderr and leaves no output behind.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.h"
+#include "core/prepared_file.h"
+#include "datasets/phantoms.h"
+#include "support/datasets.h"
+
+namespace vr {
+namespace {
+namespace fs = std::filesystem;
+
+const fs::path kVolprep = fs::path(VR_BINARY_DIR) / "preprocess" / "volprep";
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+struct Outcome {
+    int status;
+    std::string out, err;
+};
+
+// Runs volprep with `args` (already quoted where needed), capturing both streams.
+Outcome volprep(const fs::path& dir, const std::string& args) {
+    EXPECT_TRUE(fs::exists(kVolprep)) << "build the volprep target first: " << kVolprep;
+    fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+    std::string cmd = kVolprep.string() + " " + args + " >" + out.string() + " 2>" + err.string();
+    int raw = std::system(cmd.c_str());
+    Outcome r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+}
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+test::DatasetEntry headsq() {
+    for (const auto& e : test::rawManifest())
+        if (e.file == "vtk_headsq_ct_64x64x93_uint16.raw.gz") return e;
+    throw std::runtime_error("vtk_headsq_ct_64x64x93_uint16.raw.gz is not in the manifest");
+}
+
+std::string spacingFlag(const Vec3d& s) {
+    std::ostringstream o;
+    o.precision(17);
+    o << "--spacing " << s.x << "," << s.y << "," << s.z;
+    return o.str();
+}
+
+// The head CT with its transfer function and manifest spacing, written to `output`.
+std::string headsqArgs(const fs::path& output) {
+    test::DatasetEntry e = headsq();
+    return q(test::datasetsDir() / e.file) + " --tf " + q(test::datasetsDir() / e.tf) + " " + spacingFlag(e.spacing) +
+           " -o " + q(output);
+}
+
+template <typename T, typename Get>
+double mean(const std::vector<T>& v, Get get) {
+    double s = 0;
+    for (const T& x : v) s += get(x);
+    return s / double(v.size());
+}
+
+TEST(Volprep, PreparesTheHeadCtAndItReadsBackConsistently) {
+    fs::path dir = test::scratchDir("volprep_headsq");
+    fs::path out = dir / "headsq.vprep";
+    Outcome r = volprep(dir, headsqArgs(out));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;  // no progress bars when stderr is not a terminal
+    for (const char* word : {"voxels", "regions", "mean PC radius", "mean ACD edge", "mean EACD extents", "load",
+                             "classify", "segment", "eacd", "write"})
+        EXPECT_NE(r.out.find(word), std::string::npos) << word << " missing from\n" << r.out;
+
+    PreparedVolume p = readPrepared(out);
+    test::DatasetEntry e = headsq();
+    EXPECT_EQ(p.classified.grid.dims, e.dims);
+    EXPECT_EQ(p.classified.grid.spacing, e.spacing);
+    EXPECT_EQ(p.meta.classification, slurp(test::datasetsDir() / e.tf));
+    EXPECT_EQ(p.meta.source, (test::datasetsDir() / e.file).string());
+    EXPECT_EQ(p.meta.segmentation.opacityThreshold, 0.01);
+    EXPECT_EQ(p.meta.segmentation.angleThresholdDeg, 3.0);
+    EXPECT_TRUE(p.meta.segmentation.useNormals);
+    EXPECT_FALSE(p.meta.segmentation.trilinear);
+    EXPECT_TRUE(p.classified.hasNormals());
+    ASSERT_TRUE(p.fields.hasPC() && p.fields.hasACD() && p.fields.hasEACD());
+
+    // The statistics stored in the file describe the arrays in it.
+    const nlohmann::json& s = p.meta.statistics;
+    std::size_t n = p.classified.grid.voxels();
+    EXPECT_EQ(s["voxels"].get<std::size_t>(), n);
+    EXPECT_EQ(s["regions"].get<uint32_t>(), p.regions.count);
+    EXPECT_EQ(*std::max_element(p.regions.label.begin(), p.regions.label.end()) + 1, p.regions.count);
+    EXPECT_DOUBLE_EQ(s["meanRegionSize"].get<double>(), double(n) / p.regions.count);
+    EXPECT_NEAR(s["leaps"]["pcMeanRadius"].get<double>(), mean(p.fields.pc, [](uint8_t r) { return r; }), 1e-9);
+    for (int o = 0; o < kOctants; ++o) {
+        double acd = mean(p.fields.acd[o], [](uint8_t k) { return k; });
+        EXPECT_NEAR(s["leaps"]["acdMeanEdge"][o].get<double>(), acd, 1e-9);
+        // Every homogeneous cube has one corner per octant, so the mean ACD edge is the same in all octants.
+        EXPECT_NEAR(acd, s["leaps"]["acdMeanEdge"][0].get<double>(), 1e-9) << "octant " << o;
+        for (int a = 0; a < 3; ++a)
+            EXPECT_NEAR(s["leaps"]["eacdMeanExtent"][o][a].get<double>(),
+                        mean(p.fields.eacd[o], [a](const std::array<uint8_t, 3>& x) { return x[a]; }), 1e-9);
+    }
+    EXPECT_EQ(s["bytes"]["eacd"].get<std::size_t>(), 24 * n);
+    EXPECT_EQ(s["bytes"]["sigma"].get<std::size_t>(), 4 * n);
+    for (const char* stage : {"load", "classify", "segment", "pc", "acd", "eacd"})
+        EXPECT_GE(s["seconds"][stage].get<double>(), 0.0) << stage;
+}
+
+TEST(Volprep, BuildsOnlyTheRequestedFieldsAndNormals) {
+    fs::path dir = test::scratchDir("volprep_fields");
+    fs::path out = dir / "pc.vprep";
+    Outcome r = volprep(dir, headsqArgs(out) + " --fields pc --no-normals --to 0.05 --ta 10 --trilinear");
+    ASSERT_EQ(r.status, 0) << r.err;
+    PreparedVolume p = readPrepared(out, kFieldPC, true);
+    EXPECT_TRUE(p.fields.hasPC());
+    EXPECT_FALSE(p.classified.hasNormals());
+    EXPECT_FALSE(p.meta.segmentation.useNormals);
+    EXPECT_TRUE(p.meta.segmentation.trilinear);
+    EXPECT_EQ(p.meta.segmentation.opacityThreshold, 0.05);
+    EXPECT_FALSE(p.meta.statistics["leaps"].contains("acdMeanEdge"));
+    EXPECT_THROW(readPrepared(out, kFieldACD), InputError);
+    EXPECT_THROW(readPrepared(out, kFieldEACD), InputError);
+}
+
+// A raw file whose name says nothing: dims, type, spacing and byte order come from the flags.
+TEST(Volprep, ReadsHeaderlessRawWithFlagsInEitherByteOrder) {
+    fs::path dir = test::scratchDir("volprep_raw");
+    Volume shells = shellsPhantom({24, 20, 16});
+    for (bool big : {false, true}) {
+        std::vector<int16_t> v(shells.values.begin(), shells.values.end());
+        if (big)
+            for (int16_t& x : v) x = int16_t(uint16_t(x) << 8 | uint16_t(x) >> 8);
+        std::ofstream(dir / (big ? "be.bin.raw" : "le.bin.raw"), std::ios::binary)
+            .write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * 2));
+    }
+    std::string common = " --dims 24x20x16 --type int16 --spacing 1,1,2 --iso 1000,2,0.8 --iso 40,1,0.1";
+    ASSERT_EQ(volprep(dir, q(dir / "le.bin.raw") + common + " -o " + q(dir / "le.vprep")).status, 0);
+    Outcome r = volprep(dir, q(dir / "be.bin.raw") + common + " --big-endian -o " + q(dir / "be.vprep"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    PreparedVolume le = readPrepared(dir / "le.vprep"), be = readPrepared(dir / "be.vprep");
+    EXPECT_EQ(le.classified.grid.dims, Vec3i(24, 20, 16));
+    EXPECT_EQ(le.classified.grid.spacing, Vec3d(1, 1, 2));
+    EXPECT_EQ(le.meta.classification.rfind("iso 1000,2,0.8", 0), 0u) << le.meta.classification;
+    EXPECT_EQ(le.classified.sigma, be.classified.sigma);
+    EXPECT_EQ(le.regions.label, be.regions.label);
+    EXPECT_EQ(le.fields.eacd, be.fields.eacd);
+    // The bone shell is opaque somewhere, air is not.
+    EXPECT_GT(*std::max_element(le.classified.sigma.begin(), le.classified.sigma.end()), 0.0f);
+    EXPECT_EQ(le.classified.sigma[0], 0.0f);
+}
+
+TEST(Volprep, HelpDescribesEveryFlag) {
+    fs::path dir = test::scratchDir("volprep_help");
+    Outcome r = volprep(dir, "--help");
+    EXPECT_EQ(r.status, 0);
+    for (const char* flag : {"--output", "--tf", "--iso", "--to", "--ta", "--fields", "--trilinear", "--no-normals",
+                             "--dims", "--type", "--spacing", "--big-endian"})
+        EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+}
+
+// Each bad run: non-zero exit, "volprep: " and the problem on stderr, and no file at the output path.
+TEST(Volprep, BadInputFailsClearlyAndWritesNothing) {
+    fs::path dir = test::scratchDir("volprep_bad");
+    test::DatasetEntry e = headsq();
+    std::string in = q(test::datasetsDir() / e.file), tf = " --tf " + q(test::datasetsDir() / e.tf);
+    fs::path out = dir / "out.vprep";
+    fs::path garbage = dir / "garbage_8x8x8_uint8.raw";
+    std::ofstream(garbage) << "too short";
+    struct Case {
+        std::string args, message;
+    };
+    for (const Case& c : std::vector<Case>{
+             {in + " -o " + q(out), "a classification is needed"},
+             {in + tf + " --to -1 -o " + q(out), "--to must be a finite number >= 0"},
+             {in + tf + " --ta nan -o " + q(out), "--ta must be a finite number >= 0"},
+             {in + tf + " --fields pc,octree -o " + q(out), "octree not in {pc,acd,eacd}"},
+             {in + tf + " --iso 1,2,3 -o " + q(out), "--tf excludes --iso"},
+             {in + " --iso 500,2 -o " + q(out), "--iso takes value,width,strength"},
+             {in + " --tf " + q(dir / "none.json") + " -o " + q(out), "none.json"},
+             {q(dir / "absent.raw") + tf + " -o " + q(out), "absent.raw"},
+             {q(garbage) + tf + " -o " + q(out), garbage.string()},
+             {in + tf + " -o " + q(dir / "missing" / "out.vprep"), "folder " + (dir / "missing").string() + " does not exist"},
+             {in + tf + " -o " + q(dir), "it is a folder"},
+             {in + tf, "--output is required"},
+         }) {
+        SCOPED_TRACE(c.args);
+        Outcome r = volprep(dir, c.args);
+        EXPECT_NE(r.status, 0);
+        EXPECT_EQ(r.err.rfind("volprep: ", 0), 0u) << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(out));
+        EXPECT_FALSE(fs::exists(dir / "missing"));
+    }
+}
+
+TEST(Volprep, AFailedRunLeavesTheExistingOutputUntouched) {
+    fs::path dir = test::scratchDir("volprep_keep");
+    fs::path out = dir / "keep.vprep";
+    ASSERT_EQ(volprep(dir, headsqArgs(out) + " --fields pc").status, 0);
+    std::string before = slurp(out);
+    // Fails late, in the loader, after the flags were accepted.
+    fs::path truncated = dir / "cut_64x64x93_uint16.raw.gz";
+    std::string gz = slurp(test::datasetsDir() / headsq().file);
+    std::ofstream(truncated, std::ios::binary).write(gz.data(), std::streamsize(gz.size() / 2));
+    Outcome r = volprep(dir, q(truncated) + " --tf " + q(test::datasetsDir() / headsq().tf) + " -o " + q(out));
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find(truncated.string()), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(out), before);
+    // Nothing else was left in the folder (no temporary file).
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"cut_64x64x93_uint16.raw.gz", "keep.vprep"}));
+}
+
+}  // namespace
+}  // namespace vr

@@ -1,0 +1,292 @@
+// The Vulkan casters against the CPU reference, against each other at thresholds 0, and their stiff cases.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <set>
+
+#include "datasets/phantoms.h"
+#include "preprocess/classify/classify.h"
+#include "preprocess/fields/build_fields.h"
+#include "preprocess/load/load_volume.h"
+#include "preprocess/segment/segment.h"
+#include "support/datasets.h"
+#include "volrender/cpu_renderer.h"
+#include "volrender/vulkan/view_octants.h"
+#include "volrender/vulkan/vulkan_renderer.h"
+
+namespace vr {
+namespace {
+
+constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+
+VulkanContext& context() {
+    static VulkanContext ctx(VulkanOptions{-1, true});  // validation on in every test
+    return ctx;
+}
+// 40-pixel tiles on 64x48 images: full and partial tiles in both directions.
+VulkanRenderer& renderer() {
+    static VulkanRenderer r(context(), 40);
+    return r;
+}
+
+void expectNoValidationErrors() {
+    const auto errors = context().validationErrors();
+    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
+}
+
+// Covers HU phantoms and datasets (-1000..3000) and 8-bit ones (0..255); opacity 1 at the top (the stiff case).
+const TransferFunction& phantomTf() {
+    static const TransferFunction tf = parseTransferFunction(R"({
+        "Points": [-1000, 0, 0.5, 0, -100, 0, 0.5, 0, 0, 0.02, 0.5, 0, 40, 0.1, 0.5, 0, 100, 0.05, 0.5, 0,
+                   200, 0.3, 0.5, 0, 255, 0.6, 0.5, 0, 1000, 0.9, 0.5, 0, 3000, 1, 0.5, 0],
+        "RGBPoints": [-1000, 0.2, 0.1, 0.1, 0, 0.9, 0.5, 0.4, 128, 0.3, 0.8, 0.2, 255, 1, 1, 0.9, 3000, 1, 1, 1]
+    })", "phantom TF");
+    return tf;
+}
+
+PreparedVolume prepare(const Volume& volume, const TransferFunction& tf, double to, double ta, bool trilinear = false) {
+    PreparedVolume p;
+    ClassifyParams cp;
+    cp.transferFunction = tf;
+    p.classified = classify(volume, cp);
+    p.meta.segmentation = {to, ta, true, trilinear};
+    p.regions = segment(p.classified, p.meta.segmentation);
+    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
+    return p;
+}
+
+// The centred block of at most `edge` voxels per axis: the large real volumes are sampled, not rendered whole.
+Volume cropCentre(const Volume& v, int edge) {
+    Volume out = v;
+    Vec3i lo;
+    for (int a = 0; a < 3; ++a) {
+        out.grid.dims[a] = std::min(edge, v.grid.dims[a]);
+        lo[a] = (v.grid.dims[a] - out.grid.dims[a]) / 2;
+    }
+    out.grid.origin = v.grid.origin + Vec3d(lo) * v.grid.spacing;
+    out.values.assign(out.grid.voxels(), 0);
+    for (int z = 0; z < out.grid.dims.z; ++z)
+        for (int y = 0; y < out.grid.dims.y; ++y)
+            for (int x = 0; x < out.grid.dims.x; ++x)
+                out.values[linearIndex(out.grid.dims, x, y, z)] = v.at(lo.x + x, lo.y + y, lo.z + z);
+    return out;
+}
+
+struct Dataset {
+    std::string name;
+    Volume volume;
+    TransferFunction tf;
+};
+
+Dataset loadDataset(const test::DatasetEntry& e, int edge) {
+    RawOptions raw;
+    raw.dims = e.dims;
+    raw.type = e.type;
+    raw.spacing = e.spacing;
+    return {e.file, cropCentre(loadVolume(test::datasetsDir() / e.file, raw), edge),
+            loadTransferFunction(test::datasetsDir() / e.tf)};
+}
+
+Dataset loadDataset(const std::string& prefix, int edge) {
+    for (const auto& e : test::rawManifest())
+        if (e.file.rfind(prefix, 0) == 0) return loadDataset(e, edge);
+    throw std::runtime_error("no dataset " + prefix + " in the manifest");
+}
+
+std::vector<Dataset> phantoms() {
+    return {{"constant", constantPhantom({24, 20, 28}, 150), phantomTf()},
+            {"ramp", rampPhantom({32, 24, 20}, 0, 0, 255, {1, 1, 2}), phantomTf()},
+            {"shells", shellsPhantom({36, 36, 30}, {1, 1, 1.5}), phantomTf()},
+            {"checkerboard", checkerboardPhantom({16, 16, 16}), phantomTf()},
+            {"noise", noisePhantom({24, 24, 24}, 7), phantomTf()},
+            {"engine", enginePhantom({40, 32, 24}), phantomTf()}};
+}
+
+ViewParams view(double az, double el, Projection projection = Projection::Orthographic) {
+    ViewParams v;
+    v.projection = projection;
+    v.azimuthDeg = az;
+    v.elevationDeg = el;
+    v.width = 64;
+    v.height = 48;
+    return v;
+}
+
+RenderSettings settings(Caster caster, bool shading = true, bool trilinear = false) {
+    RenderSettings s;
+    s.caster = caster;
+    s.shading = shading;
+    s.trilinear = trilinear;
+    return s;
+}
+
+double meanIterations(const RenderResult& r) {
+    return std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0) / double(r.iterations.size());
+}
+
+// Every caster on the device matches the double-precision CPU reference, leaping with thresholds > 0.
+void expectMatchesCpu(const std::string& name, const PreparedVolume& p, bool trilinear) {
+    const std::vector<ViewParams> views{view(0, 0), view(37, 23), view(-120, -35),
+                                        view(30, -20, Projection::Perspective)};
+    for (const ViewParams& vp : views) {
+        const Camera cam = Camera::fit(p.classified.grid, vp);
+        for (Caster c : kCasters) {
+            const RenderSettings s = settings(c, true, trilinear);
+            const RenderResult gpu = renderer().render(p, cam, s);
+            const RenderResult cpu = renderCpu(p, cam, s);
+            SCOPED_TRACE(name + " " + std::string(casterName(c)) + " az " + std::to_string(vp.azimuthDeg) +
+                         (vp.projection == Projection::Perspective ? " perspective" : " ortho"));
+            EXPECT_LT(maxAbsDifference(gpu.image, cpu.image), 1e-3);
+            EXPECT_NEAR(meanIterations(gpu), meanIterations(cpu), 0.01 * meanIterations(cpu) + 1e-9);
+        }
+    }
+}
+
+TEST(VulkanCasters, MatchCpuReferenceOnPhantoms) {
+    for (const Dataset& d : phantoms()) expectMatchesCpu(d.name, prepare(d.volume, d.tf, 0.02, 10), false);
+    expectNoValidationErrors();
+}
+
+TEST(VulkanCasters, MatchCpuReferenceOnRealDatasets) {
+    for (const char* prefix : {"vtk_headsq_ct", "cranium_ct", "neghip", "boston_teapot"}) {
+        const Dataset d = loadDataset(prefix, 48);
+        expectMatchesCpu(d.name, prepare(d.volume, d.tf, 0.02, 10), false);
+    }
+    expectNoValidationErrors();
+}
+
+TEST(VulkanCasters, MatchCpuReferenceWithTrilinearSampling) {
+    const Dataset d = loadDataset("vtk_headsq_ct", 40);
+    expectMatchesCpu(d.name, prepare(d.volume, d.tf, 0.02, 10, true), true);
+    const Volume shells = shellsPhantom({28, 28, 24});
+    expectMatchesCpu("shells", prepare(shells, phantomTf(), 0.02, 10, true), true);
+    expectNoValidationErrors();
+}
+
+// ALGORITHMS.md section 5: with T_o = T_a = 0, nearest sampling and an orthographic view, every caster's image
+// equals the primitive one (up to float rounding), on every dataset and phantom.
+void expectCastersEqualPrimitive(const std::string& name, const PreparedVolume& p) {
+    const std::vector<ViewParams> views{view(0, 0), view(90, 0), view(0, 90), view(180, 0),
+                                        view(45, 35.264389682754654), view(-30, 20)};
+    for (const ViewParams& vp : views) {
+        const Camera cam = Camera::fit(p.classified.grid, vp);
+        const RenderResult primitive = renderer().render(p, cam, settings(Caster::Primitive));
+        for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
+            SCOPED_TRACE(name + " " + std::string(casterName(c)) + " az " + std::to_string(vp.azimuthDeg) +
+                         " el " + std::to_string(vp.elevationDeg));
+            const RenderResult r = renderer().render(p, cam, settings(c));
+            EXPECT_LT(maxAbsDifference(r.image, primitive.image), 1e-4);
+            EXPECT_LE(meanIterations(r), meanIterations(primitive));
+        }
+    }
+}
+
+TEST(VulkanCasters, EqualPrimitiveAtZeroThresholdsOnPhantoms) {
+    for (const Dataset& d : phantoms()) expectCastersEqualPrimitive(d.name, prepare(d.volume, d.tf, 0, 0));
+    expectNoValidationErrors();
+}
+
+TEST(VulkanCasters, EqualPrimitiveAtZeroThresholdsOnEveryDataset) {
+    const auto entries = test::rawManifest();
+    ASSERT_FALSE(entries.empty());
+    for (const auto& e : entries) {
+        const Dataset d = loadDataset(e, 40);
+        expectCastersEqualPrimitive(d.name, prepare(d.volume, d.tf, 0, 0));
+    }
+    expectNoValidationErrors();
+}
+
+TEST(VulkanCasters, LeapingCutsIterationsOnCtDatasets) {
+    for (const char* prefix : {"cranium_ct", "vtk_headsq_ct"}) {
+        const Dataset d = loadDataset(prefix, 96);
+        const PreparedVolume p = prepare(d.volume, d.tf, 0.05, 20);
+        const Camera cam = Camera::fit(p.classified.grid, view(30, 20));
+        double it[4];
+        for (Caster c : kCasters) it[int(c)] = meanIterations(renderer().render(p, cam, settings(c)));
+        SCOPED_TRACE(d.name);
+        EXPECT_GT(it[0], it[1]);
+        EXPECT_GT(it[1], it[2]);
+        EXPECT_LE(it[3], it[2]);
+    }
+    expectNoValidationErrors();
+}
+
+// 64^3 voxels of opacity 1e-9 each (per voxel step), seen along an axis: alpha = 1 - (1 - 1e-9)^64 at the
+// centre, which float arithmetic of 1 - (1 - alpha)^n would lose entirely.
+TEST(VulkanCasters, TinyOpacityAccumulatesOverConstantVolume) {
+    PreparedVolume p;
+    ClassifiedVolume& cv = p.classified;
+    cv.grid.dims = {64, 64, 64};
+    cv.sigma.assign(cv.grid.voxels(), float(extinctionFromOpacity(1e-9, 1.0)));
+    cv.colour.assign(cv.grid.voxels(), {1.f, 1.f, 1.f});
+    p.regions = segment(cv, p.meta.segmentation);
+    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
+    const double expected = 1 - std::pow(1 - 1e-9, 64);
+    ViewParams vp = view(0, 0);
+    vp.width = vp.height = 33;  // an odd size: the centre pixel's ray is the volume's axis
+    const Camera cam = Camera::fit(cv.grid, vp);
+    for (Caster c : kCasters) {
+        const RenderResult r = renderer().render(p, cam, settings(c, false));
+        EXPECT_NEAR(r.image.pixel(16, 16)[3], expected, 0.01 * expected) << casterName(c);
+    }
+    expectNoValidationErrors();
+}
+
+std::set<std::string> uploadedNames() {
+    std::set<std::string> names;
+    for (const auto& u : renderer().lastUploads()) names.insert(u.name);
+    return names;
+}
+
+std::size_t uploadedBytes(const std::string& name) {
+    for (const auto& u : renderer().lastUploads())
+        if (u.name == name) return u.bytes;
+    return 0;
+}
+
+TEST(VulkanCasters, UploadOnlyWhatTheCasterAndViewUse) {
+    const Volume v = shellsPhantom({20, 18, 16});
+    const PreparedVolume p = prepare(v, phantomTf(), 0.02, 10);
+    const std::size_t voxels = v.grid.voxels();
+    const Camera ortho = Camera::fit(v.grid, view(30, 20));
+    const Camera persp = Camera::fit(v.grid, view(0, 0, Projection::Perspective));
+
+    renderer().render(p, ortho, settings(Caster::Primitive));
+    EXPECT_EQ(uploadedNames(), (std::set<std::string>{"classified", "normals"}));
+    renderer().render(p, ortho, settings(Caster::Primitive, false));
+    EXPECT_EQ(uploadedNames(), (std::set<std::string>{"classified"}));
+    EXPECT_EQ(uploadedBytes("classified"), voxels * 16);
+    renderer().render(p, ortho, settings(Caster::PC, false));
+    EXPECT_EQ(uploadedBytes("pc"), voxels);
+    renderer().render(p, ortho, settings(Caster::ACD, false));
+    EXPECT_EQ(uploadedBytes("acd"), voxels);  // one octant
+    renderer().render(p, ortho, settings(Caster::EACD));
+    EXPECT_EQ(uploadedBytes("eacd"), voxels * 4);
+    // Looking down -z from the centre line: the rays spread over x and y, never toward +z.
+    EXPECT_EQ(viewOctants(persp), 0b11110000u);
+    renderer().render(p, persp, settings(Caster::ACD));
+    EXPECT_EQ(uploadedBytes("acd"), voxels * 4);
+    expectNoValidationErrors();
+}
+
+TEST(VulkanCasters, PerspectiveOctantsCoverEveryPixelsRay) {
+    const GridGeometry grid{{30, 20, 10}, {1, 1, 2}, {0, 0, 0}};
+    for (double az : {0.0, 10.0, 45.0, 90.0, 133.0})
+        for (double el : {0.0, 12.0, 60.0, -89.0}) {
+            ViewParams vp = view(az, el, Projection::Perspective);
+            vp.fovDeg = 100;
+            const Camera cam = Camera::fit(grid, vp);
+            unsigned seen = 0;
+            for (int y = 0; y < vp.height; ++y)
+                for (int x = 0; x < vp.width; ++x) {
+                    const Vec3d d = cam.ray(x + 0.5, y + 0.5).direction;
+                    seen |= 1u << octantOf(d.x, d.y, d.z);
+                }
+            const unsigned mask = viewOctants(cam);
+            EXPECT_EQ(seen & ~mask, 0u) << "az " << az << " el " << el;
+        }
+}
+
+}  // namespace
+}  // namespace vr

@@ -1,0 +1,110 @@
+// shaders/numerics.glsl (expm1, log1p in float) against double precision, evaluated on the Vulkan device.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "shaders/embedded_shaders.h"
+#include "volrender/vulkan/gpu_buffer.h"
+
+namespace vr {
+namespace {
+
+struct Evaluated {
+    std::vector<float> expm1, log1p;
+};
+
+// Runs numerics_test.comp over `x`.
+Evaluated evaluateOnDevice(const VulkanContext& ctx, const std::vector<float>& x) {
+    const vk::raii::Device& device = ctx.device();
+    const vk::DeviceSize bytes = x.size() * sizeof(float);
+    const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
+    HostBuffer in(ctx, bytes, usage), outExp(ctx, bytes, usage), outLog(ctx, bytes, usage);
+    std::memcpy(in.data(), x.data(), bytes);
+
+    const auto compute = vk::ShaderStageFlagBits::eCompute;
+    std::vector<vk::DescriptorSetLayoutBinding> bindings;
+    for (uint32_t b = 0; b < 3; ++b) bindings.emplace_back(b, vk::DescriptorType::eStorageBuffer, 1, compute);
+    vk::raii::DescriptorSetLayout setLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
+    vk::PushConstantRange push(compute, 0, sizeof(uint32_t));
+    vk::DescriptorSetLayout layoutHandle = *setLayout;
+    vk::raii::PipelineLayout layout(device, vk::PipelineLayoutCreateInfo({}, layoutHandle, push));
+    vk::raii::ShaderModule shader(device, vk::ShaderModuleCreateInfo({}, numerics_test_spv));
+    vk::raii::Pipeline pipeline(device, nullptr,
+                                vk::ComputePipelineCreateInfo({}, {{}, compute, *shader, "main"}, *layout));
+    vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 3);
+    vk::raii::DescriptorPool pool(device,
+                                  vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, size));
+    vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo(*pool, layoutHandle));
+    const vk::DescriptorBufferInfo infos[3] = {
+        {*in.buffer(), 0, VK_WHOLE_SIZE}, {*outExp.buffer(), 0, VK_WHOLE_SIZE}, {*outLog.buffer(), 0, VK_WHOLE_SIZE}};
+    std::vector<vk::WriteDescriptorSet> writes;
+    for (uint32_t b = 0; b < 3; ++b)
+        writes.emplace_back(*sets[0], b, 0, 1, vk::DescriptorType::eStorageBuffer, nullptr, &infos[b]);
+    device.updateDescriptorSets(writes, {});
+
+    vk::raii::CommandPool commandPool(device, vk::CommandPoolCreateInfo({}, ctx.queueFamily()));
+    const uint32_t count = uint32_t(x.size());
+    submitAndWait(ctx, commandPool, [&](const vk::raii::CommandBuffer& cmd) {
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
+        cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, *sets[0], {});
+        cmd.pushConstants<uint32_t>(*layout, compute, 0, count);
+        cmd.dispatch((count + 63) / 64, 1, 1);
+        vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
+        cmd.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, toHost,
+                            {}, {});
+    });
+    Evaluated e{std::vector<float>(x.size()), std::vector<float>(x.size())};
+    std::memcpy(e.expm1.data(), outExp.data(), bytes);
+    std::memcpy(e.log1p.data(), outLog.data(), bytes);
+    return e;
+}
+
+double relativeError(double got, double want) {
+    if (std::isinf(want)) return got == want ? 0 : 1;
+    return std::abs(got - want) / std::abs(want);
+}
+
+TEST(VulkanNumerics, Expm1AndLog1pMatchDoubleFrom1eMinus12To1e3) {
+    VulkanContext ctx(VulkanOptions{-1, true});
+    // |x| from 1e-12 to 1e3, 200 points per decade, both signs (log1p only where 1 + x > 0).
+    std::vector<float> x;
+    for (int i = 0; i <= 15 * 200; ++i) {
+        const float m = float(std::pow(10.0, -12 + i / 200.0));
+        x.push_back(m);
+        x.push_back(-m);
+    }
+    for (float special : {0.5f, -0.5f, 1.0f, -0.4999f, 0.9999f, 1e-3f, -1e-3f}) x.push_back(special);
+    const Evaluated e = evaluateOnDevice(ctx, x);
+
+    double worstExp = 0, worstLog = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const double xd = x[i];
+        const double wantExp = std::expm1(xd);
+        if (wantExp < double(std::numeric_limits<float>::max())) {
+            worstExp = std::max(worstExp, relativeError(e.expm1[i], wantExp));
+            EXPECT_LT(relativeError(e.expm1[i], wantExp), 1e-5) << "expm1(" << xd << ")";
+        } else {
+            EXPECT_TRUE(std::isinf(e.expm1[i])) << "expm1(" << xd << ") overflows float";
+        }
+        if (xd > -1) {
+            worstLog = std::max(worstLog, relativeError(e.log1p[i], std::log1p(xd)));
+            EXPECT_LT(relativeError(e.log1p[i], std::log1p(xd)), 1e-5) << "log1p(" << xd << ")";
+        }
+    }
+    RecordProperty("worstExpm1RelativeError", std::to_string(worstExp));
+    RecordProperty("worstLog1pRelativeError", std::to_string(worstLog));
+    EXPECT_TRUE(ctx.validationErrors().empty()) << ctx.validationErrors().front();
+}
+
+TEST(VulkanNumerics, SpanOpacityOfTinyExtinctionKeepsItsValue) {
+    // The stiff case of ALGORITHMS.md section 6: 1 - (1 - 1e-8)^10000 in float is 0; expm1 keeps ~1e-4.
+    VulkanContext ctx;
+    const double sigmaL = -std::log1p(-1e-8) * 10000;
+    const Evaluated e = evaluateOnDevice(ctx, {float(-sigmaL)});
+    EXPECT_NEAR(-e.expm1[0], -std::expm1(-sigmaL), 1e-5 * std::expm1(sigmaL));
+}
+
+}  // namespace
+}  // namespace vr

@@ -1,0 +1,15 @@
+// The --stats JSON of one rendered view: timings, work per ray, uploaded bytes.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "volrender/render_result.h"
+#include "volrender/vulkan/gpu_volume.h"
+
+namespace vr {
+
+// Iterations per ray (mean, p95, max) over all pixels, samples represented (total, mean per ray), device and
+// wall milliseconds, and the bytes of every uploaded resource (empty for the CPU renderer).
+nlohmann::json viewStatistics(const RenderResult& result, const std::vector<UploadedResource>& uploads);
+
+}  // namespace vr

@@ -1,0 +1,212 @@
+// volrender: renders a prepared volume (volprep's output) with one of the four casters, on a Vulkan device or
+// with the CPU reference; writes the image, optionally an iteration heat map and statistics.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "core/errors.h"
+#include "core/prepared_file.h"
+#include "volrender/cmd/heatmap.h"
+#include "volrender/cmd/render_stats.h"
+#include "volrender/cpu_renderer.h"
+#include "volrender/vulkan/vulkan_renderer.h"
+
+namespace {
+namespace fs = std::filesystem;
+
+struct Flags {
+    std::string prepared, output, caster = "primitive", size = "512x512", projection = "ortho";
+    double fov = 30, azimuth = 0, elevation = 0, step = 0.5, ert = 0.99;
+    std::vector<double> light, background{0, 0, 0};
+    bool noShading = false, trilinear = false, listDevices = false, cpu = false;
+    std::string stats, heatmap;
+    int views = 1, device = -1;
+};
+
+void addFlags(CLI::App& app, Flags& f) {
+    app.add_option("prepared", f.prepared, "prepared volume written by volprep");
+    app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...");
+    app.add_option("--caster", f.caster, "primitive, pc, acd or eacd")->capture_default_str();
+    app.add_option("--size", f.size, "image size WIDTHxHEIGHT (1..16384 each)")->capture_default_str();
+    app.add_option("--projection", f.projection, "ortho or persp")->capture_default_str();
+    app.add_option("--fov", f.fov, "vertical field of view of persp, degrees")->capture_default_str();
+    app.add_option("--azimuth", f.azimuth, "camera turn about the up axis, degrees")->capture_default_str();
+    app.add_option("--elevation", f.elevation, "camera turn about the right axis, degrees")->capture_default_str();
+    app.add_option("--step", f.step, "sampling step in voxels of the smallest spacing")->capture_default_str();
+    app.add_option("--ert", f.ert, "early ray termination opacity, (0, 1]")->capture_default_str();
+    app.add_option("--light", f.light, "direction toward a directional light x,y,z (default: headlight)")
+        ->delimiter(',')->expected(3);
+    app.add_flag("--no-shading", f.noShading, "emission-absorption only (no normals are read)");
+    app.add_flag("--trilinear", f.trilinear, "trilinear sampling (leaping casters need volprep --trilinear)");
+    app.add_option("--background", f.background, "background colour r,g,b")->delimiter(',')->expected(3);
+    app.add_option("--stats", f.stats, "write timings, iterations per ray and uploaded bytes as JSON");
+    app.add_option("--heatmap", f.heatmap, "write the iterations per pixel as a colour-mapped PNG");
+    app.add_option("--views", f.views, "render an orbit of N views 360/N degrees apart into NAME_000.EXT ...")
+        ->capture_default_str();
+    app.add_flag("--list-devices", f.listDevices, "list the Vulkan devices and exit");
+    app.add_option("--device", f.device, "Vulkan device index (see --list-devices; default: first discrete GPU)");
+    app.add_flag("--cpu", f.cpu, "render with the CPU reference instead of Vulkan");
+}
+
+void checkWritable(const std::string& path, const char* flag) {
+    const fs::path out(path);
+    const fs::path folder = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+    if (!fs::is_directory(folder))
+        throw vr::fileError(path, std::string("cannot write ") + flag + ": folder " + folder.string() +
+                                      " does not exist");
+    if (::access(folder.c_str(), W_OK) != 0)
+        throw vr::fileError(path, std::string("cannot write ") + flag + ": folder " + folder.string() +
+                                      " is not writable");
+    if (fs::is_directory(out)) throw vr::fileError(path, std::string("cannot write ") + flag + ": it is a folder");
+}
+
+vr::Vec3d vec(const std::vector<double>& v, const char* flag) {
+    for (double x : v)
+        if (!std::isfinite(x)) throw vr::InputError(std::string(flag) + ": components must be finite numbers");
+    return {v[0], v[1], v[2]};
+}
+
+// Checks that need no data, so that a bad run fails before the prepared file is read.
+void checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
+    if (f.prepared.empty()) throw vr::InputError("no prepared volume given (see --help)");
+    if (f.output.empty()) throw vr::InputError("no output image given: -o IMAGE");
+    if (!fs::is_regular_file(f.prepared)) throw vr::fileError(f.prepared, "no such file");
+    int w = 0, h = 0;
+    char extra = 0;
+    if (std::sscanf(f.size.c_str(), "%dx%d%c", &w, &h, &extra) != 2)
+        throw vr::InputError("--size '" + f.size + "': expected WIDTHxHEIGHT, e.g. 512x512");
+    if (w < 1 || h < 1 || w > 16384 || h > 16384)
+        throw vr::InputError("--size " + f.size + ": width and height must be in 1..16384");
+    if (!(f.step > 0) || !std::isfinite(f.step))
+        throw vr::InputError("--step " + std::to_string(f.step) + ": the step must be a positive finite number");
+    if (!(f.ert > 0 && f.ert <= 1)) throw vr::InputError("--ert " + std::to_string(f.ert) + ": must be in (0, 1]");
+    if (f.views < 1 || f.views > 3600) throw vr::InputError("--views must be in 1..3600");
+    if (f.projection != "ortho" && f.projection != "persp")
+        throw vr::InputError("--projection '" + f.projection + "': expected ortho or persp");
+    if (!std::isfinite(f.azimuth) || !std::isfinite(f.elevation))
+        throw vr::InputError("--azimuth and --elevation must be finite");
+    checkWritable(f.output, "the image");
+    if (!f.heatmap.empty()) checkWritable(f.heatmap, "--heatmap");
+    if (!f.stats.empty()) checkWritable(f.stats, "--stats");
+
+    view.projection = f.projection == "ortho" ? vr::Projection::Orthographic : vr::Projection::Perspective;
+    view.fovDeg = f.fov;
+    view.width = w;
+    view.height = h;
+    s.caster = vr::parseCaster(f.caster);
+    s.stepVoxels = f.step;
+    s.ert = f.ert;
+    s.shading = !f.noShading;
+    s.trilinear = f.trilinear;
+    s.background = vec(f.background, "--background");
+    if (!f.light.empty()) {
+        s.lightDirection = vec(f.light, "--light");
+        if (vr::length(*s.lightDirection) == 0) throw vr::InputError("--light: the direction must not be zero");
+    }
+}
+
+// NAME.EXT -> NAME_007.EXT for view 7 of an orbit; unchanged for a single view.
+std::string numbered(const std::string& path, int index, int views) {
+    if (views == 1) return path;
+    const fs::path p(path);
+    char suffix[16];
+    std::snprintf(suffix, sizeof suffix, "_%03d", index);
+    return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+unsigned fieldsFor(vr::Caster c) {
+    switch (c) {
+        case vr::Caster::Primitive: return 0;
+        case vr::Caster::PC: return vr::kFieldPC;
+        case vr::Caster::ACD: return vr::kFieldACD;
+        case vr::Caster::EACD: return vr::kFieldEACD;
+    }
+    return 0;
+}
+
+int run(const Flags& f) {
+    if (f.listDevices) {
+        for (const auto& d : vr::VulkanContext::listDevices())
+            std::printf("%d: %s (%s, Vulkan %s)\n", d.index, d.name.c_str(), d.type.c_str(), d.apiVersion.c_str());
+        return 0;
+    }
+    vr::ViewParams view;
+    vr::RenderSettings settings;
+    checkFlags(f, view, settings);
+    const vr::PreparedVolume prepared = vr::readPrepared(f.prepared, fieldsFor(settings.caster), settings.shading);
+
+    std::unique_ptr<vr::VulkanContext> context;
+    std::unique_ptr<vr::VulkanRenderer> renderer;
+    if (!f.cpu) {
+        context = std::make_unique<vr::VulkanContext>(vr::VulkanOptions{f.device, false});
+        renderer = std::make_unique<vr::VulkanRenderer>(*context);
+    }
+    nlohmann::json viewStats = nlohmann::json::array();
+    for (int i = 0; i < f.views; ++i) {
+        view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
+        view.elevationDeg = f.elevation;
+        const vr::Camera camera = vr::Camera::fit(prepared.classified.grid, view);
+        const vr::RenderResult result =
+            renderer ? renderer->render(prepared, camera, settings) : vr::renderCpu(prepared, camera, settings);
+        const std::string image = numbered(f.output, i, f.views);
+        vr::writeImage(image, result.image);
+        if (!f.heatmap.empty())
+            vr::writeImage(numbered(f.heatmap, i, f.views),
+                           vr::iterationHeatmap(result.iterations, view.width, view.height));
+        nlohmann::json s = vr::viewStatistics(result, renderer ? renderer->lastUploads()
+                                                               : std::vector<vr::UploadedResource>{});
+        s["image"] = image;
+        s["azimuth"] = view.azimuthDeg;
+        viewStats.push_back(s);
+        std::printf("%s: %s caster, %.2f ms device, %.2f ms wall, %.1f iterations per ray\n", image.c_str(),
+                    f.caster.c_str(), result.deviceMilliseconds, result.wallMilliseconds,
+                    s["iterationsPerRay"]["mean"].get<double>());
+    }
+    if (!f.stats.empty()) {
+        nlohmann::json stats{
+            {"prepared", f.prepared},
+            {"renderer", context ? context->info().name : std::string("cpu reference")},
+            {"settings",
+             {{"caster", f.caster}, {"size", f.size}, {"projection", f.projection}, {"fov", f.fov},
+              {"azimuth", f.azimuth}, {"elevation", f.elevation}, {"step", f.step}, {"ert", f.ert},
+              {"shading", settings.shading}, {"trilinear", settings.trilinear}, {"light", f.light},
+              {"background", f.background}, {"views", f.views}}},
+            {"views", viewStats}};
+        std::ofstream(f.stats) << stats.dump(2) << "\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Renders a prepared volume (see volprep) by ray casting with homogeneous-region leaping: the "
+                 "primitive caster samples every step; pc, acd and eacd leap through regions with their distance "
+                 "fields and give the same image at thresholds 0. Runs on a Vulkan device (or --cpu)."};
+    app.footer("Exit status: 0 done, 1 bad input or device failure, 2 bad command line.");
+    Flags flags;
+    addFlags(app, flags);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "volrender: %s\nRun volrender --help for the options.\n", e.what());
+        return 2;
+    }
+    try {
+        return run(flags);
+    } catch (const vr::InputError& e) {
+        std::fprintf(stderr, "volrender: %s\n", e.what());
+    } catch (const vk::SystemError& e) {
+        std::fprintf(stderr, "volrender: Vulkan error: %s\n", e.what());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "volrender: %s\n", e.what());
+    }
+    return 1;
+}

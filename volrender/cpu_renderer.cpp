@@ -1,0 +1,194 @@
+// The CPU reference: one loop for the four casters (ALGORITHMS.md section 5), double precision throughout.
+// The caster only decides n, the number of lattice samples one fetch stands for. Each span is shaded once, at
+// its first sample (as the thesis does); with a headlight or any directional light the shade is constant along
+// a ray, so with thresholds 0 this equals shading every sample.
+#include "cpu_renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "core/errors.h"
+#include "ray_setup.h"
+#include "span.h"
+
+namespace vr {
+namespace {
+
+struct SampleValue {
+    double sigma = 0;
+    Vec3d colour{0, 0, 0};
+    Vec3d normal{0, 0, 0};  // unit, or zero where flat
+};
+
+Vec3d toVec(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// Shorter interpolated normals than this count as flat (the classification's floor is on the gradient; here it
+// guards the renormalisation of a blend of opposite normals).
+constexpr double kFlatNormalLength = 1e-6;
+
+class Sampler {
+public:
+    Sampler(const ClassifiedVolume& cv, bool normals) : cv_(cv), normals_(normals) {}
+
+    SampleValue nearest(std::size_t i) const {
+        SampleValue s{cv_.sigma[i], toVec(cv_.colour[i]), {0, 0, 0}};
+        if (normals_) s.normal = toVec(cv_.normal[i]);
+        return s;
+    }
+
+    // Cell-centred trilinear: voxel v's value sits at v + 0.5; clamp to the edge outside.
+    SampleValue trilinear(const Vec3d& p) const {
+        const Vec3i& dims = cv_.grid.dims;
+        const Vec3d q = p - Vec3d{0.5, 0.5, 0.5};
+        const Vec3i base = floorVoxel(q);
+        const Vec3d f = q - Vec3d(base);
+        SampleValue s;
+        for (int c = 0; c < 8; ++c) {
+            const Vec3i corner{base.x + (c & 1), base.y + ((c >> 1) & 1), base.z + ((c >> 2) & 1)};
+            const Vec3i u = clampVoxel(corner, dims);
+            const double w = ((c & 1) ? f.x : 1 - f.x) * (((c >> 1) & 1) ? f.y : 1 - f.y) *
+                             (((c >> 2) & 1) ? f.z : 1 - f.z);
+            const std::size_t i = linearIndex(dims, u.x, u.y, u.z);
+            s.sigma += w * cv_.sigma[i];
+            s.colour += toVec(cv_.colour[i]) * w;
+            if (normals_) s.normal += toVec(cv_.normal[i]) * w;
+        }
+        const double len = length(s.normal);
+        s.normal = len > kFlatNormalLength ? s.normal / len : Vec3d{0, 0, 0};
+        return s;
+    }
+
+private:
+    const ClassifiedVolume& cv_;
+    bool normals_;
+};
+
+void checkInputs(const PreparedVolume& prepared, const RenderSettings& s) {
+    const ClassifiedVolume& cv = prepared.classified;
+    const std::size_t voxels = cv.grid.voxels();
+    if (voxels == 0 || cv.sigma.size() != voxels || cv.colour.size() != voxels)
+        throw InputError("prepared volume: classified data does not match its grid");
+    if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
+        throw InputError("--step " + std::to_string(s.stepVoxels) + ": the step must be a positive number of voxels");
+    if (!(s.ert > 0 && s.ert <= 1))
+        throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
+    if (s.shading && cv.normal.size() != voxels)
+        throw InputError("prepared volume has no normals: shading needs them (prepare with normals or render "
+                         "without shading)");
+    const std::string caster(casterName(s.caster));
+    auto need = [&](bool present, std::size_t size, const char* field) {
+        if (!present || size != voxels)
+            throw InputError("prepared volume has no " + std::string(field) + " field: the " + caster +
+                             " caster needs it");
+    };
+    if (s.caster == Caster::PC) need(prepared.fields.hasPC(), prepared.fields.pc.size(), "PC");
+    if (s.caster == Caster::ACD)
+        for (const auto& f : prepared.fields.acd) need(prepared.fields.hasACD(), f.size(), "ACD");
+    if (s.caster == Caster::EACD)
+        for (const auto& f : prepared.fields.eacd) need(prepared.fields.hasEACD(), f.size(), "EACD");
+    if (s.trilinear && s.caster != Caster::Primitive && !prepared.meta.segmentation.trilinear)
+        throw InputError("trilinear sampling with the " + caster +
+                         " caster needs a volume segmented for trilinear sampling (border voxels)");
+}
+
+}  // namespace
+
+RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, const RenderSettings& settings) {
+    checkInputs(prepared, settings);
+    const auto start = std::chrono::steady_clock::now();
+
+    const ClassifiedVolume& cv = prepared.classified;
+    const DistanceFields& fields = prepared.fields;
+    const Vec3i dims = cv.grid.dims;
+    const double dt = settings.stepVoxels * cv.grid.smallestSpacing();
+    const Sampler sampler(cv, settings.shading);
+    const std::optional<Vec3d> light =
+        settings.lightDirection ? std::optional<Vec3d>(normalize(*settings.lightDirection)) : std::nullopt;
+
+    RenderResult result;
+    result.image = Image(camera.width, camera.height);
+    const std::size_t pixels = std::size_t(camera.width) * camera.height;
+    result.iterations.assign(pixels, 0);
+    result.samples.assign(pixels, 0);
+
+    auto trace = [&](int px, int py) {
+        const Ray ray = camera.ray(px + 0.5, py + 0.5);
+        const GridRay g = toGridRay(ray, cv.grid);
+        const RayInterval iv = intersectGrid(g, dims);
+        const int64_t kCount = latticeCount(iv, dt);
+        const int oct = rayOctant(g);
+        const Vec3d toEye = -ray.direction;
+        const Vec3d toLight = light ? *light : toEye;
+
+        Accumulator acc;
+        long long iterations = 0;
+        uint64_t samples = 0;
+        for (int64_t k = 0, n = 1; k < kCount && acc.alpha < settings.ert; k += n) {
+            if (++iterations > settings.maxIterationsPerRay)
+                throw std::runtime_error("CPU renderer: a ray at pixel (" + std::to_string(px) + ", " +
+                                         std::to_string(py) + ") passed the iteration cap of " +
+                                         std::to_string(settings.maxIterationsPerRay) + " (a bug)");
+            const double t = latticeT(iv, dt, k);
+            const Vec3i v = sampleVoxel(g, t, dims);
+            const std::size_t i = linearIndex(dims, v.x, v.y, v.z);
+            const SampleValue s = settings.trilinear ? sampler.trilinear(g.at(t)) : sampler.nearest(i);
+
+            double wanted = 1;
+            VoxelBox box{v, v};
+            switch (settings.caster) {
+                case Caster::Primitive: break;
+                case Caster::PC:
+                    wanted = pcLeapSamples(fields.pc[i], dt, g);
+                    box = chebyshevBall(v, fields.pc[i]);
+                    break;
+                case Caster::ACD: {
+                    // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
+                    const int e = std::max<int>(1, fields.acd[oct][i]);
+                    box = octantBox(v, oct, {e, e, e});
+                    wanted = boxLeapSamples(boxExitT(g, v, oct, {e, e, e}), t, dt);
+                    break;
+                }
+                case Caster::EACD: {
+                    const auto& x = fields.eacd[oct][i];
+                    const Vec3i ext{std::max<int>(1, x[0]), std::max<int>(1, x[1]), std::max<int>(1, x[2])};
+                    box = octantBox(v, oct, ext);
+                    wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t, dt);
+                    break;
+                }
+            }
+            if (settings.trilinear) wanted = trilinearLeapSamples(wanted, box);
+            wanted = std::min(wanted, samplesToTermination(acc.alpha, s.sigma, dt, settings.ert));
+            n = leapCount(g, iv, dt, k, kCount, wanted, box, dims);
+
+            const double spanAlpha = spanOpacity(s.sigma, double(n) * dt);
+            if (spanAlpha > 0)
+                acc.composite(settings.shading ? shade(s.colour, s.normal, toEye, toLight) : s.colour, spanAlpha);
+            samples += uint64_t(n);
+        }
+
+        const std::size_t p = std::size_t(py) * camera.width + px;
+        float* out = result.image.pixel(px, py);
+        const Vec3d c = acc.colour + settings.background * (1 - acc.alpha);
+        out[0] = float(c.x);
+        out[1] = float(c.y);
+        out[2] = float(c.z);
+        out[3] = float(acc.alpha);
+        result.iterations[p] = uint32_t(iterations);
+        result.samples[p] = samples;
+    };
+
+    tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const tbb::blocked_range<int>& rows) {
+        for (int py = rows.begin(); py < rows.end(); ++py)
+            for (int px = 0; px < camera.width; ++px) trace(px, py);
+    });
+
+    result.wallMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace vr

@@ -1,0 +1,147 @@
+// Ray setup shared by every caster (ALGORITHMS.md sections 1 and 5): world ray -> grid ray, the volume
+// interval, the sampling lattice, the voxel of a sample and the leap count n of each caster.
+// GLSL counterpart: shaders/ray_setup.glsl mirrors every function here (in float there, double here);
+// keep the two in step.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "camera.h"
+#include "core/distance_fields.h"
+#include "core/grid.h"
+
+namespace vr {
+
+// A ray in grid coordinates: o_g = (o_w - origin) / h, d_g = d_w / h, NOT renormalised, so that the
+// parameter t is the world distance along the (unit) world ray in both spaces.
+struct GridRay {
+    Vec3d o, d;
+    Vec3d at(double t) const { return o + d * t; }
+};
+
+inline GridRay toGridRay(const Ray& ray, const GridGeometry& grid) {
+    return {(ray.origin - grid.origin) / grid.spacing, ray.direction / grid.spacing};
+}
+
+// The part of a ray inside the grid box [0, N]: samples live in [tEntry, tExit).
+struct RayInterval {
+    double tEntry = 0, tExit = 0;
+    bool empty() const { return !(tEntry < tExit); }
+};
+
+// Slab test. An axis with d_a == 0 never limits t (its exit is +inf); the ray is inside that slab when
+// 0 <= o_a < N_a (half-open like the voxels: a ray lying on the far face samples no voxel). tEntry is clamped
+// to >= 0 so that a camera inside the volume starts at its eye.
+inline RayInterval intersectGrid(const GridRay& r, const Vec3i& dims) {
+    double t0 = 0, t1 = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (r.d[a] == 0) {
+            if (!(r.o[a] >= 0 && r.o[a] < dims[a])) return {0, 0};
+            continue;
+        }
+        double ta = (0 - r.o[a]) / r.d[a], tb = (dims[a] - r.o[a]) / r.d[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    if (!(t0 < t1)) return {0, 0};
+    return {t0, t1};
+}
+
+// The lattice t_k = tEntry + k dt, shared by every caster. Positions are recomputed from k, never accumulated.
+inline double latticeT(const RayInterval& iv, double dt, int64_t k) { return iv.tEntry + double(k) * dt; }
+
+// Number of lattice samples with t_k < tExit (exactly as the comparison decides it, not as the division rounds).
+inline int64_t latticeCount(const RayInterval& iv, double dt) {
+    if (iv.empty()) return 0;
+    int64_t k = std::max<int64_t>(1, int64_t(std::ceil((iv.tExit - iv.tEntry) / dt)));
+    while (k > 1 && latticeT(iv, dt, k - 1) >= iv.tExit) --k;
+    while (latticeT(iv, dt, k) < iv.tExit) ++k;
+    return k;
+}
+
+// The voxel holding a grid position, before clamping (may be outside [0, N) by rounding at the box faces).
+inline Vec3i floorVoxel(const Vec3d& p) {
+    return {int(std::floor(p.x)), int(std::floor(p.y)), int(std::floor(p.z))};
+}
+inline Vec3i clampVoxel(const Vec3i& v, const Vec3i& dims) {
+    return {std::clamp(v.x, 0, dims.x - 1), std::clamp(v.y, 0, dims.y - 1), std::clamp(v.z, 0, dims.z - 1)};
+}
+// The voxel of the sample at t: floor(o_g + t d_g) clamped into [0, N).
+inline Vec3i sampleVoxel(const GridRay& r, double t, const Vec3i& dims) {
+    return clampVoxel(floorVoxel(r.at(t)), dims);
+}
+
+inline int rayOctant(const GridRay& r) { return octantOf(r.d.x, r.d.y, r.d.z); }
+
+// An inclusive range of voxels: the region a leap may cover.
+struct VoxelBox {
+    Vec3i lo, hi;
+    bool contains(const Vec3i& v) const {
+        return v.x >= lo.x && v.y >= lo.y && v.z >= lo.z && v.x <= hi.x && v.y <= hi.y && v.z <= hi.z;
+    }
+};
+
+// PC: the Chebyshev ball of radius r about v.
+inline VoxelBox chebyshevBall(const Vec3i& v, int r) {
+    return {{v.x - r, v.y - r, v.z - r}, {v.x + r, v.y + r, v.z + r}};
+}
+
+// ACD / EACD: the box {v + s*e : 0 <= e_a < ext_a} of octant oct (ACD: ext = (k, k, k)).
+inline VoxelBox octantBox(const Vec3i& v, int oct, const Vec3i& ext) {
+    VoxelBox b;
+    for (int a = 0; a < 3; ++a) {
+        const int far = v[a] + octantSign(oct, a) * (ext[a] - 1);
+        b.lo[a] = std::min(v[a], far);
+        b.hi[a] = std::max(v[a], far);
+    }
+    return b;
+}
+
+// PC: samples t, t + dt, ... t + (n-1) dt stay in the ball while (n-1) dt max|d_g| <= r.
+// Returned as a double: it may exceed any integer when dt is tiny; leapCount() bounds it.
+inline double pcLeapSamples(int r, double dt, const GridRay& ray) {
+    const double speed = maxComponent(abs(ray.d));
+    return std::max(1.0, 1.0 + std::floor(double(r) / (dt * speed)));
+}
+
+// ACD / EACD: the t at which the ray leaves the box through its far faces, far_a = v_a + s_a (ext_a - 1) + (s_a > 0).
+// An axis with d_a == 0 never limits the box (+inf, never 0/0).
+inline double boxExitT(const GridRay& ray, const Vec3i& v, int oct, const Vec3i& ext) {
+    double t = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (ray.d[a] == 0) continue;
+        const int s = octantSign(oct, a);
+        const double far = v[a] + s * (ext[a] - 1) + (s > 0 ? 1 : 0);
+        t = std::min(t, (far - ray.o[a]) / ray.d[a]);
+    }
+    return t;
+}
+
+// ACD / EACD: the samples strictly before the box exit, at least one.
+inline double boxLeapSamples(double tBoxExit, double t, double dt) {
+    return std::max(1.0, std::ceil((tBoxExit - t) / dt));
+}
+
+// Trilinear sampling: a leap whose box is the voxel alone may start in a border voxel (a region of its own, thesis
+// 4.3.2), inside which the interpolated value changes; such a voxel is stepped sample by sample.
+inline double trilinearLeapSamples(double wanted, const VoxelBox& box) { return box.lo == box.hi ? 1.0 : wanted; }
+
+// The leap actually taken from sample k (of kCount), wanting `wanted` samples inside `box`: never past the
+// volume exit, and never a sample whose floor voxel rounding put outside the box or the volume. Positions are
+// monotone in t per axis, so checking the last sample of the span checks all of them. Always >= 1.
+inline int64_t leapCount(const GridRay& ray, const RayInterval& iv, double dt, int64_t k, int64_t kCount,
+                         double wanted, const VoxelBox& box, const Vec3i& dims) {
+    int64_t n = int64_t(std::min(wanted, double(kCount - k)));
+    const VoxelBox volume{{0, 0, 0}, {dims.x - 1, dims.y - 1, dims.z - 1}};
+    while (n > 1) {
+        const Vec3i last = floorVoxel(ray.at(latticeT(iv, dt, k + n - 1)));
+        if (box.contains(last) && volume.contains(last)) break;
+        --n;
+    }
+    return std::max<int64_t>(n, 1);
+}
+
+}  // namespace vr

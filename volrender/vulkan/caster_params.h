@@ -1,0 +1,35 @@
+// Host mirror of the caster's uniform block (shaders/caster_params.glsl, std140) and push constants.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+namespace vr {
+
+struct CasterParams {
+    double eye[4], forward[4], right[4], up[4];
+    double gridOrigin[4], spacing[4];
+    double halfHeight, dt;
+    int32_t dims[4];
+    int32_t imageSize[2];
+    int32_t perspective;
+    uint32_t maxIterations;
+    int32_t octantSlot[8];
+    float light[4];
+    float material[4];
+    float background[4];
+    float ert;
+    float pad[3];
+};
+static_assert(offsetof(CasterParams, halfHeight) == 192);
+static_assert(offsetof(CasterParams, dims) == 208);
+static_assert(offsetof(CasterParams, octantSlot) == 240);
+static_assert(offsetof(CasterParams, light) == 272);
+static_assert(offsetof(CasterParams, ert) == 320);
+static_assert(sizeof(CasterParams) == 336);
+
+struct TilePush {
+    int32_t origin[2];
+    int32_t size[2];
+};
+
+}  // namespace vr

@@ -1,0 +1,245 @@
+#include "volrender/vulkan/vulkan_renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "core/errors.h"
+#include "shaders/embedded_shaders.h"
+#include "volrender/span.h"
+#include "volrender/vulkan/caster_params.h"
+#include "volrender/vulkan/view_octants.h"
+
+namespace vr {
+namespace {
+
+enum Binding : uint32_t { kParams, kClassified, kNormals, kField, kOutColour, kOutIterations, kOutSamples, kBindings };
+constexpr uint32_t kFailed = 0x80000000u;  // set in an iteration count by the shader (shaders/caster.comp)
+constexpr uint32_t kGroup = 8;             // local_size of shaders/caster.comp
+
+void checkInputs(const PreparedVolume& prepared, const RenderSettings& s) {
+    const ClassifiedVolume& cv = prepared.classified;
+    const std::size_t voxels = cv.grid.voxels();
+    if (voxels == 0 || cv.sigma.size() != voxels || cv.colour.size() != voxels)
+        throw InputError("prepared volume: classified data does not match its grid");
+    if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
+        throw InputError("--step " + std::to_string(s.stepVoxels) + ": the step must be a positive number of voxels");
+    if (!(s.ert > 0 && s.ert <= 1))
+        throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
+    if (s.shading && cv.normal.size() != voxels)
+        throw InputError("prepared volume has no normals: shading needs them");
+    const DistanceFields& f = prepared.fields;
+    const bool present = s.caster == Caster::Primitive || (s.caster == Caster::PC && f.pc.size() == voxels) ||
+                         (s.caster == Caster::ACD && f.acd[0].size() == voxels) ||
+                         (s.caster == Caster::EACD && f.eacd[0].size() == voxels);
+    if (!present)
+        throw InputError("prepared volume has no " + std::string(casterName(s.caster)) + " field: the caster needs it");
+    if (s.trilinear && s.caster != Caster::Primitive && !prepared.meta.segmentation.trilinear)
+        throw InputError("trilinear sampling with the " + std::string(casterName(s.caster)) +
+                         " caster needs a volume segmented for trilinear sampling (border voxels)");
+}
+
+void put(double out[4], const Vec3d& v) {
+    out[0] = v.x, out[1] = v.y, out[2] = v.z, out[3] = 0;
+}
+
+CasterParams makeParams(const ClassifiedVolume& cv, const Camera& camera, const RenderSettings& s,
+                        const std::array<int, kOctants>& slots) {
+    CasterParams p{};
+    put(p.eye, camera.eye);
+    put(p.forward, camera.forward);
+    put(p.right, camera.right);
+    put(p.up, camera.up);
+    put(p.gridOrigin, cv.grid.origin);
+    put(p.spacing, cv.grid.spacing);
+    p.halfHeight = camera.halfHeight;
+    p.dt = s.stepVoxels * cv.grid.smallestSpacing();
+    for (int a = 0; a < 3; ++a) p.dims[a] = cv.grid.dims[a];
+    p.imageSize[0] = camera.width;
+    p.imageSize[1] = camera.height;
+    p.perspective = camera.projection == Projection::Perspective;
+    p.maxIterations = uint32_t(std::clamp<long long>(s.maxIterationsPerRay, 1, kFailed - 1));
+    std::copy(slots.begin(), slots.end(), p.octantSlot);
+    if (s.lightDirection) {
+        const Vec3d l = normalize(*s.lightDirection);
+        p.light[0] = float(l.x), p.light[1] = float(l.y), p.light[2] = float(l.z), p.light[3] = 1;
+    }
+    const ShadingModel m;
+    p.material[0] = float(m.ambient), p.material[1] = float(m.diffuse);
+    p.material[2] = float(m.specular), p.material[3] = float(m.shininess);
+    p.background[0] = float(s.background.x), p.background[1] = float(s.background.y);
+    p.background[2] = float(s.background.z);
+    p.ert = float(s.ert);
+    return p;
+}
+
+}  // namespace
+
+VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize) : ctx_(ctx), tileSize_(tileSize) {
+    const vk::raii::Device& device = ctx.device();
+    pool_ = vk::raii::CommandPool(device, vk::CommandPoolCreateInfo({}, ctx.queueFamily()));
+
+    using T = vk::DescriptorType;
+    const auto compute = vk::ShaderStageFlagBits::eCompute;
+    std::vector<vk::DescriptorSetLayoutBinding> bindings{
+        {kParams, T::eUniformBuffer, 1, compute},          {kClassified, T::eCombinedImageSampler, 1, compute},
+        {kNormals, T::eCombinedImageSampler, 1, compute},  {kField, T::eCombinedImageSampler, 1, compute},
+        {kOutColour, T::eStorageBuffer, 1, compute},       {kOutIterations, T::eStorageBuffer, 1, compute},
+        {kOutSamples, T::eStorageBuffer, 1, compute}};
+    setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
+    vk::PushConstantRange push(compute, 0, sizeof(TilePush));
+    vk::DescriptorSetLayout layout = *setLayout_;
+    pipelineLayout_ = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, layout, push));
+    shader_ = vk::raii::ShaderModule(device, vk::ShaderModuleCreateInfo({}, caster_spv));
+    // texelFetch ignores filtering; nearest keeps the sampler trivially valid for integer formats.
+    sampler_ = vk::raii::Sampler(
+        device, vk::SamplerCreateInfo({}, vk::Filter::eNearest, vk::Filter::eNearest, vk::SamplerMipmapMode::eNearest,
+                                      vk::SamplerAddressMode::eClampToEdge, vk::SamplerAddressMode::eClampToEdge,
+                                      vk::SamplerAddressMode::eClampToEdge));
+    queries_ = vk::raii::QueryPool(device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
+    const uint32_t validBits = ctx.physicalDevice().getQueueFamilyProperties()[ctx.queueFamily()].timestampValidBits;
+    if (validBits > 0) {
+        timestampPeriodNs_ = ctx.physicalDevice().getProperties().limits.timestampPeriod;
+        timestampMask_ = validBits >= 64 ? ~uint64_t(0) : (uint64_t(1) << validBits) - 1;
+    }
+    const int16_t zeroNormal[4] = {0, 0, 0, 0};
+    const uint8_t zeroField = 0;
+    unusedNormals_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, vk::Format::eR16G16B16A16Snorm,
+                                                   zeroNormal, sizeof(zeroNormal));
+    unusedField_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, vk::Format::eR8Uint, &zeroField, 1);
+}
+
+const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear, bool shading) {
+    const auto key = std::make_tuple(caster, trilinear, shading);
+    auto it = pipelines_.find(key);
+    if (it != pipelines_.end()) return it->second;
+    // Booleans are 32-bit VkBool32 in specialization data.
+    const uint32_t values[3] = {uint32_t(caster), trilinear ? 1u : 0u, shading ? 1u : 0u};
+    const std::array<vk::SpecializationMapEntry, 3> entries{vk::SpecializationMapEntry(0, 0, 4),
+                                                            vk::SpecializationMapEntry(1, 4, 4),
+                                                            vk::SpecializationMapEntry(2, 8, 4)};
+    vk::SpecializationInfo spec(entries, vk::ArrayProxyNoTemporaries<const uint32_t>(values));
+    vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *shader_, "main", &spec);
+    vk::raii::Pipeline p(ctx_.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *pipelineLayout_));
+    return pipelines_.emplace(key, std::move(p)).first->second;
+}
+
+RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera& camera,
+                                    const RenderSettings& settings) {
+    checkInputs(prepared, settings);
+    try {
+        return renderOnDevice(prepared, camera, settings);
+    } catch (const vk::OutOfDeviceMemoryError&) {
+        throw std::runtime_error("the Vulkan device " + ctx_.info().name +
+                                 " ran out of memory (try a smaller volume, --caster primitive or --no-shading)");
+    } catch (const vk::OutOfHostMemoryError&) {
+        throw std::runtime_error("the Vulkan driver ran out of host memory");
+    } catch (const vk::DeviceLostError&) {
+        throw std::runtime_error("the Vulkan device " + ctx_.info().name +
+                                 " was lost (a driver crash or a watchdog reset; try a smaller --size)");
+    }
+}
+
+RenderResult VulkanRenderer::renderOnDevice(const PreparedVolume& prepared, const Camera& camera,
+                                            const RenderSettings& settings) {
+    const auto start = std::chrono::steady_clock::now();
+    const vk::raii::Device& device = ctx_.device();
+    const unsigned octants = viewOctants(camera);
+    const GpuVolume volume(ctx_, pool_, prepared, settings.caster, settings.shading, octants);
+    uploads_ = volume.uploads();
+    const vk::raii::Pipeline& pipe = pipeline(settings.caster, settings.trilinear, settings.shading);
+
+    using B = vk::BufferUsageFlagBits;
+    HostBuffer params(ctx_, sizeof(CasterParams), B::eUniformBuffer);
+    const CasterParams p = makeParams(prepared.classified, camera, settings, volume.octantSlot());
+    std::memcpy(params.data(), &p, sizeof(p));
+    const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
+    HostBuffer colour(ctx_, tilePixels * 16, B::eStorageBuffer);
+    HostBuffer iterations(ctx_, tilePixels * 4, B::eStorageBuffer);
+    HostBuffer samples(ctx_, tilePixels * 8, B::eStorageBuffer);
+
+    std::array<vk::DescriptorPoolSize, 3> sizes{vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1),
+                                                vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 3),
+                                                vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3)};
+    vk::raii::DescriptorPool descriptorPool(
+        device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, sizes));
+    vk::DescriptorSetLayout layout = *setLayout_;
+    vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo(*descriptorPool, layout));
+    const vk::DescriptorSet set = *sets[0];
+    auto imageInfo = [&](const VolumeImage& image) {
+        return vk::DescriptorImageInfo(*sampler_, *image.view(), vk::ImageLayout::eShaderReadOnlyOptimal);
+    };
+    const vk::DescriptorImageInfo images[3] = {
+        imageInfo(volume.classified()), imageInfo(volume.normals() ? *volume.normals() : *unusedNormals_),
+        imageInfo(volume.field() ? *volume.field() : *unusedField_)};
+    const vk::DescriptorBufferInfo buffers[4] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*colour.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*iterations.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*samples.buffer(), 0, VK_WHOLE_SIZE}};
+    using T = vk::DescriptorType;
+    std::vector<vk::WriteDescriptorSet> writes{
+        {set, kParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
+        {set, kClassified, 0, 1, T::eCombinedImageSampler, &images[0]},
+        {set, kNormals, 0, 1, T::eCombinedImageSampler, &images[1]},
+        {set, kField, 0, 1, T::eCombinedImageSampler, &images[2]},
+        {set, kOutColour, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
+        {set, kOutIterations, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
+        {set, kOutSamples, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]}};
+    device.updateDescriptorSets(writes, {});
+
+    RenderResult result;
+    result.image = Image(camera.width, camera.height);
+    const std::size_t pixels = std::size_t(camera.width) * camera.height;
+    result.iterations.assign(pixels, 0);
+    result.samples.assign(pixels, 0);
+
+    for (int y0 = 0; y0 < camera.height; y0 += tileSize_) {
+        for (int x0 = 0; x0 < camera.width; x0 += tileSize_) {
+            const TilePush tile{{x0, y0}, {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)}};
+            submitAndWait(ctx_, pool_, [&](const vk::raii::CommandBuffer& cmd) {
+                using S = vk::PipelineStageFlagBits;
+                cmd.resetQueryPool(*queries_, 0, 2);
+                cmd.writeTimestamp(S::eTopOfPipe, *queries_, 0);
+                cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipe);
+                cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout_, 0, set, {});
+                cmd.pushConstants<TilePush>(*pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0, tile);
+                cmd.dispatch((tile.size[0] + kGroup - 1) / kGroup, (tile.size[1] + kGroup - 1) / kGroup, 1);
+                cmd.writeTimestamp(S::eBottomOfPipe, *queries_, 1);
+                vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
+                cmd.pipelineBarrier(S::eComputeShader, S::eHost, {}, toHost, {}, {});
+            });
+            if (timestampPeriodNs_ > 0) {
+                auto [status, stamps] = queries_.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
+                                                                      vk::QueryResultFlagBits::e64 |
+                                                                          vk::QueryResultFlagBits::eWait);
+                (void)status;
+                result.deviceMilliseconds +=
+                    double((stamps[1] - stamps[0]) & timestampMask_) * timestampPeriodNs_ * 1e-6;
+            }
+            const auto* c = static_cast<const float*>(colour.data());
+            const auto* it = static_cast<const uint32_t*>(iterations.data());
+            const auto* sm = static_cast<const uint32_t*>(samples.data());
+            for (int ly = 0; ly < tile.size[1]; ++ly) {
+                for (int lx = 0; lx < tile.size[0]; ++lx) {
+                    const std::size_t local = std::size_t(ly) * tile.size[0] + lx;
+                    const int px = x0 + lx, py = y0 + ly;
+                    const std::size_t out = std::size_t(py) * camera.width + px;
+                    if (it[local] & kFailed)
+                        throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) +
+                                                 " caster: the ray at pixel (" + std::to_string(px) + ", " +
+                                                 std::to_string(py) + ") hit the iteration cap or a missing octant (a bug)");
+                    std::memcpy(result.image.pixel(px, py), c + local * 4, 4 * sizeof(float));
+                    result.iterations[out] = it[local];
+                    result.samples[out] = uint64_t(sm[local * 2]) | (uint64_t(sm[local * 2 + 1]) << 32);
+                }
+            }
+        }
+    }
+    result.wallMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace vr
