@@ -28,14 +28,14 @@ const uint kFailed = 0x80000000u;
 const float kFlatNormalLength = 1e-6;
 
 struct SampleValue {
-    float sigma;
+    double sigma;  // double as the CPU reference's, so that opacity sums agree to rounding
     vec3 colour;
     vec3 normal;
 };
 
 SampleValue nearestSample(ivec3 v) {
     vec4 c = texelFetch(classified, v, 0);
-    SampleValue s = SampleValue(c.a, c.rgb, vec3(0.0));
+    SampleValue s = SampleValue(double(c.a), c.rgb, vec3(0.0));
     if (SHADING) s.normal = texelFetch(normals, v, 0).xyz;
     return s;
 }
@@ -44,18 +44,17 @@ SampleValue nearestSample(ivec3 v) {
 SampleValue trilinearSample(dvec3 p) {
     precise dvec3 q = p - dvec3(0.5LF);
     ivec3 base = floorVoxel(q);
-    precise dvec3 fd = q - dvec3(base);
-    vec3 f = vec3(fd);
-    SampleValue s = SampleValue(0.0, vec3(0.0), vec3(0.0));
+    precise dvec3 f = q - dvec3(base);
+    SampleValue s = SampleValue(0.0LF, vec3(0.0), vec3(0.0));
     for (int c = 0; c < 8; ++c) {
         ivec3 bit = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
         ivec3 u = clampVoxel(base + bit);
-        vec3 w3 = mix(1.0 - f, f, bvec3(bit));
-        float w = w3.x * w3.y * w3.z;
+        dvec3 w3 = mix(1.0LF - f, f, bvec3(bit));
+        precise double w = w3.x * w3.y * w3.z;
         vec4 cs = texelFetch(classified, u, 0);
-        s.sigma += w * cs.a;
-        s.colour += cs.rgb * w;
-        if (SHADING) s.normal += texelFetch(normals, u, 0).xyz * w;
+        s.sigma += w * double(cs.a);
+        s.colour += cs.rgb * float(w);
+        if (SHADING) s.normal += texelFetch(normals, u, 0).xyz * float(w);
     }
     float len = length(s.normal);
     s.normal = len > kFlatNormalLength ? s.normal / len : vec3(0.0);
@@ -77,8 +76,8 @@ void main() {
     vec3 toEye = -vec3(direction);
     vec3 toLight = P.light.w != 0.0 ? P.light.xyz : toEye;
 
-    vec3 colour = vec3(0.0);
-    float alpha = 0.0;
+    dvec3 colour = dvec3(0.0LF);
+    double alpha = 0.0LF;
     uint iterations = 0u;
     double samples = 0.0LF;
     bool failed = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0.0LF;
@@ -107,17 +106,17 @@ void main() {
         wanted = min(wanted, samplesToTermination(alpha, s.sigma));
         n = leapCount(g, iv, k, kCount, wanted, box);
 
-        float spanAlpha = spanOpacity(s.sigma, float(n * P.dt));
-        if (spanAlpha > 0.0) {
+        double spanAlpha = spanOpacity(s.sigma, n * P.dt);
+        if (spanAlpha > 0.0LF) {
             vec3 shaded = SHADING ? shade(s.colour, s.normal, toEye, toLight) : s.colour;
-            float w = (1.0 - alpha) * spanAlpha;
-            colour += shaded * w;
+            precise double w = (1.0LF - alpha) * spanAlpha;
+            colour += dvec3(shaded) * w;
             alpha += w;
         }
         samples += n;
     }
 
-    outColour[outIndex] = vec4(colour + P.background.rgb * (1.0 - alpha), alpha);
+    outColour[outIndex] = vec4(vec3(colour + dvec3(P.background.rgb) * (1.0LF - alpha)), float(alpha));
     outIterations[outIndex] = failed ? (iterations | kFailed) : iterations;
     double high = floor(samples / 4294967296.0LF);
     outSamples[outIndex] = uvec2(uint(samples - high * 4294967296.0LF), uint(high));

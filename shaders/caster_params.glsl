@@ -12,6 +12,7 @@ layout(set = 0, binding = 0, std140) uniform Params {
     dvec4 spacing;     // GridGeometry::spacing
     double halfHeight; // Camera::halfHeight
     double dt;         // step in world units
+    double ert;        // early ray termination threshold
     ivec4 dims;        // voxels per axis
     ivec2 imageSize;   // width, height
     int perspective;   // 1: perspective camera
@@ -20,7 +21,6 @@ layout(set = 0, binding = 0, std140) uniform Params {
     vec4 light;        // xyz: unit direction toward the light; w = 1 when set, 0 for a headlight
     vec4 material;     // ambient, diffuse, specular, shininess
     vec4 background;   // rgb
-    float ert;         // early ray termination threshold
 } P;
 
 layout(push_constant) uniform Tile {

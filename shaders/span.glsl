@@ -1,17 +1,18 @@
-// Span integration and shading: the GLSL mirror of volrender/span.h (keep in step), in float.
+// Span integration and shading: the GLSL mirror of volrender/span.h (keep in step). Opacity is integrated in
+// double (see numerics.glsl), the shade in float.
 #ifndef VR_SPAN_GLSL
 #define VR_SPAN_GLSL
 
 #include "numerics.glsl"
 
 // 1 - exp(-sigma L) without cancellation for tiny sigma L; exactly 1 for an opaque span.
-float spanOpacity(float sigma, float len) { return -vrExpm1(-sigma * len); }
+double spanOpacity(double sigma, double len) { return -vrExpm1(-sigma * len); }
 
 // Samples until primitive stepping would reach ert inside a span of extinction sigma (+inf: never).
-double samplesToTermination(float alpha, float sigma) {
+double samplesToTermination(double alpha, double sigma) {
     if (alpha >= P.ert) return 1.0LF;
-    if (sigma <= 0.0) return kInfinity;
-    double q = double(log((1.0 - alpha) / (1.0 - P.ert))) / (double(sigma) * P.dt);
+    if (sigma <= 0.0LF) return kInfinity;
+    precise double q = vrLog((1.0LF - alpha) / (1.0LF - P.ert)) / (sigma * P.dt);
     return max(1.0LF, ceil(q));
 }
 

@@ -340,25 +340,30 @@ TEST(Segment, SmallerThresholdsGiveMoreRegions) {
 
 TEST(Segment, CubeMapCellsHaveBoundedDiameter) {
     std::mt19937 rng(13);
-    std::normal_distribution<float> g;
-    std::vector<Normal> directions;
-    for (int i = 0; i < 20000; ++i) {
-        Normal n{g(rng), g(rng), g(rng)};
-        const float l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        directions.push_back({n[0] / l, n[1] / l, n[2] / l});
-    }
-    for (int a = 0; a < 3; ++a)  // the extreme directions: face centres and corners
-        for (float s : {-1.f, 1.f}) {
-            Normal n{0, 0, 0};
-            n[a] = s;
-            directions.push_back(n);
-        }
-    for (float sx : {-1.f, 1.f})
-        for (float sy : {-1.f, 1.f})
-            for (float sz : {-1.f, 1.f}) directions.push_back({sx, sy, sz});
+    std::uniform_real_distribution<double> u(0, 1);
+    const auto unit = [](double x, double y, double z) {
+        const double l = std::sqrt(x * x + y * y + z * z);
+        return Normal{float(x / l), float(y / l), float(z / l)};
+    };
     for (double ta : {3.0, 10.0, 25.0, 60.0, 110.0, 179.0}) {
         const int k = cubeMapCellsPerEdge(ta);
         ASSERT_GE(k, 1);
+        // Many directions per cell: a window of about 8 x 8 cells at a face centre (where cells span the widest
+        // angle) and at a cube corner, and directions all over the sphere, on every face and sign.
+        const double window = std::min(1.0, 16.0 / k);
+        std::vector<Normal> directions;
+        for (int i = 0; i < 3000; ++i) {
+            const double a = window * (2 * u(rng) - 1), b = window * (2 * u(rng) - 1);
+            directions.push_back(unit(a, b, 1));
+            directions.push_back(unit(1 - window * u(rng), -1 + window * u(rng), -1));
+            const int axis = i % 3;
+            Normal n = unit(2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1);
+            if (i % 2) n[axis] = -n[axis];
+            directions.push_back(n);
+        }
+        for (float sx : {-1.f, 1.f})
+            for (float sy : {-1.f, 1.f})
+                for (float sz : {-1.f, 1.f}) directions.push_back(unit(sx, sy, sz));
         std::map<uint32_t, std::vector<Normal>> cells;
         for (const Normal& n : directions) {
             const uint32_t cell = cubeMapCell(n, k);
@@ -368,7 +373,8 @@ TEST(Segment, CubeMapCellsHaveBoundedDiameter) {
         double widest = 0;
         for (const auto& [cell, members] : cells)
             for (std::size_t i = 0; i < members.size(); ++i)
-                for (std::size_t j = i + 1; j < members.size(); ++j) widest = std::max(widest, angleDeg(members[i], members[j]));
+                for (std::size_t j = i + 1; j < members.size(); ++j)
+                    widest = std::max(widest, angleDeg(members[i], members[j]));
         EXPECT_LE(widest, ta + 1e-4) << ta;
         EXPECT_GT(widest, ta / 4) << "cells much finer than needed at " << ta;
     }

@@ -1,7 +1,8 @@
-// shaders/numerics.glsl (expm1, log1p in float) against double precision, evaluated on the Vulkan device.
+// shaders/numerics.glsl (expm1, log1p written in GLSL double) against the C library, evaluated on the device.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -12,13 +13,13 @@ namespace vr {
 namespace {
 
 struct Evaluated {
-    std::vector<float> expm1, log1p;
+    std::vector<double> expm1, log1p;
 };
 
 // Runs numerics_test.comp over `x`.
-Evaluated evaluateOnDevice(const VulkanContext& ctx, const std::vector<float>& x) {
+Evaluated evaluateOnDevice(const VulkanContext& ctx, const std::vector<double>& x) {
     const vk::raii::Device& device = ctx.device();
-    const vk::DeviceSize bytes = x.size() * sizeof(float);
+    const vk::DeviceSize bytes = x.size() * sizeof(double);
     const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
     HostBuffer in(ctx, bytes, usage), outExp(ctx, bytes, usage), outLog(ctx, bytes, usage);
     std::memcpy(in.data(), x.data(), bytes);
@@ -55,7 +56,7 @@ Evaluated evaluateOnDevice(const VulkanContext& ctx, const std::vector<float>& x
         cmd.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, toHost,
                             {}, {});
     });
-    Evaluated e{std::vector<float>(x.size()), std::vector<float>(x.size())};
+    Evaluated e{std::vector<double>(x.size()), std::vector<double>(x.size())};
     std::memcpy(e.expm1.data(), outExp.data(), bytes);
     std::memcpy(e.log1p.data(), outLog.data(), bytes);
     return e;
@@ -66,35 +67,34 @@ double relativeError(double got, double want) {
     return std::abs(got - want) / std::abs(want);
 }
 
-TEST(VulkanNumerics, Expm1AndLog1pMatchDoubleFrom1eMinus12To1e3) {
+// The requirement is a relative error below 1e-5 (what a float implementation could reach); the double
+// series reach close to double rounding, checked at 1e-12.
+TEST(VulkanNumerics, Expm1AndLog1pMatchTheCLibraryFrom1eMinus12To1e3) {
     VulkanContext ctx(VulkanOptions{-1, true});
-    // |x| from 1e-12 to 1e3, 200 points per decade, both signs (log1p only where 1 + x > 0).
-    std::vector<float> x;
+    // |x| from 1e-12 to 1e3, 200 points per decade, both signs (log1p where 1 + x > 0), and the branch ends.
+    std::vector<double> x;
     for (int i = 0; i <= 15 * 200; ++i) {
-        const float m = float(std::pow(10.0, -12 + i / 200.0));
+        const double m = std::pow(10.0, -12 + i / 200.0);
         x.push_back(m);
         x.push_back(-m);
     }
-    for (float special : {0.5f, -0.5f, 1.0f, -0.4999f, 0.9999f, 1e-3f, -1e-3f}) x.push_back(special);
+    for (double special : {0.5, -0.5, 1.0, -0.4999, 0.9999, 1e-3, -1e-3, 709.0, -745.0, 1e-300, -1e-300})
+        x.push_back(special);
     const Evaluated e = evaluateOnDevice(ctx, x);
 
     double worstExp = 0, worstLog = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
-        const double xd = x[i];
-        const double wantExp = std::expm1(xd);
-        if (wantExp < double(std::numeric_limits<float>::max())) {
-            worstExp = std::max(worstExp, relativeError(e.expm1[i], wantExp));
-            EXPECT_LT(relativeError(e.expm1[i], wantExp), 1e-5) << "expm1(" << xd << ")";
-        } else {
-            EXPECT_TRUE(std::isinf(e.expm1[i])) << "expm1(" << xd << ") overflows float";
-        }
-        if (xd > -1) {
-            worstLog = std::max(worstLog, relativeError(e.log1p[i], std::log1p(xd)));
-            EXPECT_LT(relativeError(e.log1p[i], std::log1p(xd)), 1e-5) << "log1p(" << xd << ")";
+        const double wantExp = std::expm1(x[i]);
+        const double errExp = relativeError(e.expm1[i], wantExp);
+        worstExp = std::max(worstExp, errExp);
+        EXPECT_LT(errExp, 1e-12) << "expm1(" << x[i] << ") = " << e.expm1[i] << ", want " << wantExp;
+        if (x[i] > -1) {
+            const double errLog = relativeError(e.log1p[i], std::log1p(x[i]));
+            worstLog = std::max(worstLog, errLog);
+            EXPECT_LT(errLog, 1e-12) << "log1p(" << x[i] << ") = " << e.log1p[i];
         }
     }
-    RecordProperty("worstExpm1RelativeError", std::to_string(worstExp));
-    RecordProperty("worstLog1pRelativeError", std::to_string(worstLog));
+    std::printf("worst relative error: expm1 %.3g, log1p %.3g\n", worstExp, worstLog);
     EXPECT_TRUE(ctx.validationErrors().empty()) << ctx.validationErrors().front();
 }
 
@@ -102,8 +102,9 @@ TEST(VulkanNumerics, SpanOpacityOfTinyExtinctionKeepsItsValue) {
     // The stiff case of ALGORITHMS.md section 6: 1 - (1 - 1e-8)^10000 in float is 0; expm1 keeps ~1e-4.
     VulkanContext ctx;
     const double sigmaL = -std::log1p(-1e-8) * 10000;
-    const Evaluated e = evaluateOnDevice(ctx, {float(-sigmaL)});
-    EXPECT_NEAR(-e.expm1[0], -std::expm1(-sigmaL), 1e-5 * std::expm1(sigmaL));
+    const Evaluated e = evaluateOnDevice(ctx, {-sigmaL});
+    EXPECT_NEAR(-e.expm1[0], -std::expm1(-sigmaL), 1e-12 * std::expm1(sigmaL));
+    EXPECT_EQ(1.0f - std::pow(1.0f - 1e-8f, 10000.0f), 0.0f);  // what the naive float formula gives
 }
 
 }  // namespace

@@ -39,7 +39,8 @@ std::pair<float, float> valueRange(const std::vector<float>& values, const std::
 
 // Integer volumes get one exact sample per integer value (at most 65536 for 16-bit types);
 // float volumes 65536 samples over their range, interpolated linearly.
-SampledTransferFunction sampleForVolume(const TransferFunction& tf, const Volume& volume, std::pair<float, float> range) {
+SampledTransferFunction sampleForVolume(const TransferFunction& tf, const Volume& volume,
+                                        std::pair<float, float> range) {
     constexpr std::size_t kFloatSamples = 65536;
     if (volume.sourceType == ScalarType::Float32) {
         const std::size_t count = range.first == range.second ? 1 : kFloatSamples;
@@ -49,12 +50,8 @@ SampledTransferFunction sampleForVolume(const TransferFunction& tf, const Volume
     return sampleTransferFunction(tf, lo, hi, std::size_t(hi - lo) + 1);
 }
 
-}  // namespace
-
-ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params) {
-    const std::string source = volume.source.empty() ? std::string("classification") : volume.source;
-    const bool useTF = params.transferFunction.has_value();
-    if (useTF == !params.isoContours.empty())
+void checkParams(const Volume& volume, const ClassifyParams& params, const std::string& source) {
+    if (params.transferFunction.has_value() == !params.isoContours.empty())
         throw fileError(source, "classification needs either a transfer function or iso-contours (exactly one)");
     if (volume.grid.voxels() == 0 || volume.values.size() != volume.grid.voxels())
         throw fileError(source, "the volume is empty or its values do not match its dimensions");
@@ -64,7 +61,7 @@ ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params) {
     for (int a = 0; a < 3; ++a)
         if (!(volume.grid.spacing[a] > 0) || !std::isfinite(volume.grid.spacing[a]))
             throw fileError(source, "voxel spacing must be finite and > 0");
-    if (useTF) {
+    if (params.transferFunction) {
         const TransferFunction& tf = *params.transferFunction;
         tf.validate(tf.name.empty() ? std::string("transfer function") : "transfer function " + tf.name);
     } else {
@@ -72,6 +69,14 @@ ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params) {
         for (double c : params.isoColour)
             if (!(c >= 0 && c <= 1)) throw fileError(source, "iso-contour colour outside [0,1]");
     }
+}
+
+}  // namespace
+
+ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params) {
+    const std::string source = volume.source.empty() ? std::string("classification") : volume.source;
+    checkParams(volume, params, source);
+    const bool useTF = params.transferFunction.has_value();
 
     ClassifiedVolume out;
     out.grid = volume.grid;
@@ -89,7 +94,8 @@ ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params) {
     for (std::size_t k = 0; k < sigmaAtSample.size(); ++k)
         sigmaAtSample[k] = float(extinctionFromOpacity(table.opacity[k], out.referenceStep));
     const bool needGradient = params.normals || !useTF;
-    const double flatFloor = params.flatGradientFloor * (double(range.second) - range.first) / volume.grid.smallestSpacing();
+    const double flatFloor =
+        params.flatGradientFloor * (double(range.second) - range.first) / volume.grid.smallestSpacing();
     const std::array<float, 3> isoColour{float(params.isoColour[0]), float(params.isoColour[1]),
                                          float(params.isoColour[2])};
     const Vec3i dims = volume.grid.dims;

@@ -171,7 +171,8 @@ TransferFunction parseTransferFunction(const std::string& jsonText, const std::s
         tf.opacity.push_back({points[i], points[i + 1], points[i + 2], points[i + 3]});
     if (doc.contains("RGBPoints")) {
         const std::vector<double> rgb = quadruples(doc, "RGBPoints", sourceName);
-        for (std::size_t i = 0; i < rgb.size(); i += 4) tf.colour.push_back({rgb[i], rgb[i + 1], rgb[i + 2], rgb[i + 3]});
+        for (std::size_t i = 0; i < rgb.size(); i += 4)
+            tf.colour.push_back({rgb[i], rgb[i + 1], rgb[i + 2], rgb[i + 3]});
     }
     tf.validate(sourceName);
     return tf;

@@ -1,3 +1,5 @@
+#include <ctime>
+#include <cstdio>
 // EACD (ALGORITHMS.md section 4): the ACD cube of edge k, extended greedily along the axis giving the largest box,
 // then along the better of the two others. The extension along axis a is the minimum, over the box's near face
 // (the voxels with e_a = 0), of the axial runs along s_a. Those face minima are O(1) queries of a 2D sparse table
@@ -211,9 +213,9 @@ void buildEACDOctants(const Regions& regions, const OctantSet& set) {
         set.out[o]->assign(voxels, {0, 0, 0});
     }
     if (voxels == 0) return;
-    for (int a = 0; a < 3; ++a) cubeExtensions(regions, set, a);
-    for (int b = 0; b < 3; ++b) boxExtensions(regions, set, b);  // in turn: each reads the others' slots
-    chooseBoxes(set);
+    for (int a = 0; a < 3; ++a) { auto t=std::clock(); cubeExtensions(regions, set, a); fprintf(stderr,"cube %d %.3f\n",a,double(std::clock()-t)/CLOCKS_PER_SEC);}
+    for (int b = 0; b < 3; ++b) { auto t=std::clock(); boxExtensions(regions, set, b); fprintf(stderr,"box %d %.3f\n",b,double(std::clock()-t)/CLOCKS_PER_SEC);}
+    auto t=std::clock();chooseBoxes(set);fprintf(stderr,"choose %.3f\n",double(std::clock()-t)/CLOCKS_PER_SEC);
 }
 
 }  // namespace

@@ -47,12 +47,18 @@ double sliceSpacing(SeriesReader* series, double fallback) {
 }  // namespace
 
 Volume loadDicomSeries(const fs::path& folder) {
-    bool hasFiles = false;
-    for (const auto& entry : fs::directory_iterator(folder)) hasFiles = hasFiles || entry.is_regular_file();
-    if (!hasFiles) throw fileError(folder.string(), "folder holds no files, so no DICOM series");
-
     vtkNew<SeriesReader> reader;
     VtkReadErrors errors;
+    // The reader's own test, the one it applies to each file of the folder; it would only say it found no slices.
+    int files = 0, dicomFiles = 0;
+    for (const auto& entry : fs::directory_iterator(folder))
+        if (entry.is_regular_file()) {
+            ++files;
+            dicomFiles += reader->CanReadFile(entry.path().c_str()) != 0;
+        }
+    if (dicomFiles == 0)
+        throw fileError(folder.string(), "folder holds no DICOM files (" + std::to_string(files) +
+                                             " files looked at), so no DICOM series");
     reader->SetDirectoryName(folder.c_str());
     // The reader's DICOMAppHelper applies RescaleSlope/RescaleIntercept already (float output when they are not
     // integers), so the values need no calibration here.

@@ -64,8 +64,8 @@ void requireFinite(const Volume& v, const fs::path& path) {
     for (std::size_t i = 0; i < v.values.size(); ++i)
         if (!std::isfinite(v.values[i]) && count++ == 0) first = i;
     if (count > 0)
-        throw fileError(path.string(), std::to_string(count) + " voxel" + (count == 1 ? "" : "s") +
-                                           " are not finite (NaN or Inf); the first is voxel " +
+        throw fileError(path.string(), std::to_string(count) + (count == 1 ? " voxel is" : " voxels are") +
+                                           " not finite (NaN or Inf); the first is voxel " +
                                            voxelText(v.grid.dims, first) + " = " + std::to_string(v.values[first]));
 }
 

@@ -10,6 +10,7 @@
 
 #include <cctype>
 #include <iostream>
+#include <regex>
 
 #include "core/errors.h"
 
@@ -20,6 +21,7 @@ public:
     static Observer* New() { return new Observer; }
     void Execute(vtkObject*, unsigned long event, void* text) override {
         if (event == vtkCommand::ErrorEvent) owner->noteError(static_cast<const char*>(text));
+        if (event == vtkCommand::WarningEvent) owner->noteWarning(static_cast<const char*>(text));
     }
     VtkReadErrors* owner = nullptr;
 };
@@ -28,7 +30,9 @@ class VtkReadErrors::CapturingWindow : public vtkOutputWindow {
 public:
     static CapturingWindow* New() { return new CapturingWindow; }
     void DisplayErrorText(const char* text) override { owner->noteError(text); }
-    void DisplayText(const char*) override {}  // warnings and debug text: silenced
+    void DisplayWarningText(const char* text) override { owner->noteWarning(text); }
+    void DisplayGenericWarningText(const char* text) override { owner->noteWarning(text); }
+    void DisplayText(const char*) override {}  // debug text: silenced
     VtkReadErrors* owner = nullptr;
 };
 
@@ -37,6 +41,12 @@ namespace {
 std::string trimmed(std::string s) {
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
     return s;
+}
+
+// "ERROR: In FILE, line N\nCLASS (ADDRESS): MESSAGE" (or "Warning: ...", "Generic Warning: ...") -> "MESSAGE".
+std::string messageOf(const char* text) {
+    static const std::regex prefix(R"(^(ERROR|Warning|Generic Warning): In [^\n]*\n([A-Za-z0-9_]+ \([^)]*\): )?)");
+    return trimmed(std::regex_replace(std::string(text), prefix, "", std::regex_constants::format_first_only));
 }
 
 // vtkErrorCode::GetStringFromErrorCode lives in CommonMisc, a VTK module this project does not link.
@@ -79,18 +89,29 @@ void VtkReadErrors::watch(vtkObject* object) {
 
 vtkCommand* VtkReadErrors::observer() const { return observer_; }
 
-// The first error is the cause; later ones are its consequences ("returned failure for request ...").
+// The first error is the cause; later ones are its consequences.
 void VtkReadErrors::noteError(const char* text) {
-    if (!firstError_.empty() || !text) return;
-    std::string message = text;
-    if (auto at = message.find("): "); at != std::string::npos) message = message.substr(at + 3);
-    firstError_ = trimmed(message);
+    if (!text) return;
+    const std::string message = messageOf(text);
+    if (message.find("returned failure for request") != std::string::npos)
+        pipelineFailed_ = true;
+    else if (firstError_.empty())
+        firstError_ = message;
 }
 
+void VtkReadErrors::noteWarning(const char* text) {
+    if (text && firstWarning_.empty()) firstWarning_ = messageOf(text);
+}
+
+// Warnings alone do not fail a read, but when a reader fails without an error of its own, they say why.
 std::string VtkReadErrors::complaint() const {
-    const std::string printed = trimmed(cerrText_.str());
-    if (firstError_.empty() || printed.empty()) return firstError_ + printed;
-    return firstError_ + " (" + printed + ")";
+    std::string cause = firstError_;
+    if (cause.empty() && pipelineFailed_)
+        cause = firstWarning_.empty() ? "the reader failed" : "the reader failed after: " + firstWarning_;
+    // MetaIO's lines ("data not read completely\n   ideal = 8192 : actual = 1000") joined into one.
+    const std::string printed = std::regex_replace(trimmed(cerrText_.str()), std::regex(R"(\s*\n\s*)"), " ");
+    if (cause.empty() || printed.empty()) return cause + printed;
+    return cause + " (" + printed + ")";
 }
 
 vtkImageData* VtkReadErrors::read(vtkAlgorithm* reader, const std::filesystem::path& path, const std::string& format) {

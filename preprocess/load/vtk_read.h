@@ -39,9 +39,12 @@ private:
     class Observer;
     class CapturingWindow;
     void noteError(const char* text);
+    void noteWarning(const char* text);
     std::string complaint() const;
 
-    std::string firstError_;  // without VTK's "ERROR: In FILE, line N / CLASS (ADDRESS):" prefix
+    // Messages without VTK's "ERROR: In FILE, line N / CLASS (ADDRESS):" prefix.
+    std::string firstError_, firstWarning_;
+    bool pipelineFailed_ = false;  // the executive's "returned failure", which says nothing of the cause
     vtkSmartPointer<Observer> observer_;
     vtkSmartPointer<CapturingWindow> window_;
     vtkSmartPointer<vtkOutputWindow> previousWindow_;

@@ -8,7 +8,7 @@ namespace vr {
 struct CasterParams {
     double eye[4], forward[4], right[4], up[4];
     double gridOrigin[4], spacing[4];
-    double halfHeight, dt;
+    double halfHeight, dt, ert, pad0;
     int32_t dims[4];
     int32_t imageSize[2];
     int32_t perspective;
@@ -17,14 +17,11 @@ struct CasterParams {
     float light[4];
     float material[4];
     float background[4];
-    float ert;
-    float pad[3];
 };
 static_assert(offsetof(CasterParams, halfHeight) == 192);
-static_assert(offsetof(CasterParams, dims) == 208);
-static_assert(offsetof(CasterParams, octantSlot) == 240);
-static_assert(offsetof(CasterParams, light) == 272);
-static_assert(offsetof(CasterParams, ert) == 320);
+static_assert(offsetof(CasterParams, dims) == 224);
+static_assert(offsetof(CasterParams, octantSlot) == 256);
+static_assert(offsetof(CasterParams, light) == 288);
 static_assert(sizeof(CasterParams) == 336);
 
 struct TilePush {

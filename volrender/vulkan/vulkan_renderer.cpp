@@ -71,7 +71,7 @@ CasterParams makeParams(const ClassifiedVolume& cv, const Camera& camera, const 
     p.material[2] = float(m.specular), p.material[3] = float(m.shininess);
     p.background[0] = float(s.background.x), p.background[1] = float(s.background.y);
     p.background[2] = float(s.background.z);
-    p.ert = float(s.ert);
+    p.ert = s.ert;
     return p;
 }
 
