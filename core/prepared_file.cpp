@@ -1,12 +1,14 @@
 #include "prepared_file.h"
 
+#include <fcntl.h>
 #include <tbb/parallel_for.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
 #include <bit>
 #include <cstring>
-#include <fstream>
+#include <functional>
 #include <map>
 
 #include "atomic_file.h"
@@ -69,19 +71,24 @@ std::vector<ChunkSource> chunkSources(const PreparedVolume& p) {
     return all;
 }
 
-// CRC-32 (zlib) of a large buffer, computed in 4 MiB blocks in parallel and combined in order.
+// Chunks are checksummed in blocks on many threads; zlib combines the blocks' CRCs into the chunk's CRC-32.
+constexpr std::size_t kCrcBlock = std::size_t(8) << 20;
+
+uLong blockCrc(const void* data, std::size_t bytes) {
+    return crc32_z(crc32_z(0L, Z_NULL, 0), static_cast<const Bytef*>(data), bytes);
+}
+
+// CRC-32 (zlib) of a large buffer.
 uint32_t crc32Of(const void* data, std::size_t bytes) {
-    constexpr std::size_t block = std::size_t(4) << 20;
-    const auto* p = static_cast<const Bytef*>(data);
-    std::size_t blocks = (bytes + block - 1) / block;
+    const auto* p = static_cast<const char*>(data);
+    std::size_t blocks = (bytes + kCrcBlock - 1) / kCrcBlock;
     std::vector<uLong> crcs(blocks);
     tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-        std::size_t n = std::min(block, bytes - b * block);
-        crcs[b] = crc32_z(crc32_z(0L, Z_NULL, 0), p + b * block, n);
+        crcs[b] = blockCrc(p + b * kCrcBlock, std::min(kCrcBlock, bytes - b * kCrcBlock));
     });
-    uLong crc = crc32_z(0L, Z_NULL, 0);
+    uLong crc = blockCrc(nullptr, 0);
     for (std::size_t b = 0; b < blocks; ++b)
-        crc = crc32_combine(crc, crcs[b], z_off_t(std::min(block, bytes - b * block)));
+        crc = crc32_combine(crc, crcs[b], z_off_t(std::min(kCrcBlock, bytes - b * kCrcBlock)));
     return uint32_t(crc);
 }
 
@@ -115,7 +122,7 @@ void checkSizes(const fs::path& path, const PreparedVolume& p) {
             throw fail("ACD and EACD need all 8 octants or none");
 }
 
-// Reading: every problem becomes an InputError naming the file.
+// Reading: every problem becomes an InputError naming the file. pread() lets chunks be read from many threads.
 class Reader {
 public:
     explicit Reader(const fs::path& path) : path_(path) {
@@ -124,24 +131,33 @@ public:
         if (!fs::is_regular_file(path, ec)) throw fail("not a regular file");
         size_ = fs::file_size(path, ec);
         if (ec) throw fail("cannot read: " + ec.message());
-        in_.open(path, std::ios::binary);
-        if (!in_) throw fail(std::string("cannot open: ") + std::strerror(errno));
+        fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd_ < 0) throw fail(std::string("cannot open: ") + std::strerror(errno));
     }
+    ~Reader() { ::close(fd_); }
+    Reader(const Reader&) = delete;
+    Reader& operator=(const Reader&) = delete;
 
     InputError fail(const std::string& problem) const { return fileError(path_.string(), problem); }
     uint64_t size() const { return size_; }
 
-    void read(uint64_t offset, void* to, std::size_t bytes, const std::string& what) {
+    void read(uint64_t offset, void* to, std::size_t bytes, const std::string& what) const {
         if (offset + bytes > size_) throw fail("truncated " + what + " (file ends at byte " + std::to_string(size_) + ")");
-        in_.seekg(std::streamoff(offset));
-        in_.read(static_cast<char*>(to), std::streamsize(bytes));
-        if (std::size_t(in_.gcount()) != bytes) throw fail("cannot read " + what + " (read error)");
+        auto* p = static_cast<char*>(to);
+        while (bytes > 0) {
+            ssize_t got = ::pread(fd_, p, bytes, off_t(offset));
+            if (got < 0 && errno == EINTR) continue;
+            if (got <= 0) throw fail("cannot read " + what + (got < 0 ? std::string(": ") + std::strerror(errno) : ""));
+            p += got;
+            offset += uint64_t(got);
+            bytes -= std::size_t(got);
+        }
     }
 
 private:
     fs::path path_;
     uint64_t size_ = 0;
-    std::ifstream in_;
+    int fd_ = -1;
 };
 
 struct ChunkEntry {
@@ -163,6 +179,53 @@ Vec3d vec3Field(const Reader& r, const json& j, const char* key) {
     auto v = field<std::vector<double>>(r, j, key);
     if (v.size() != 3) throw r.fail(std::string("bad header: '") + key + "' needs 3 numbers");
     return {v[0], v[1], v[2]};
+}
+
+// One chunk to read: where it is, and how to size its destination array and get at its bytes.
+struct ChunkRead {
+    std::string name;
+    ChunkEntry entry;
+    std::function<char*()> allocate;
+};
+
+template <typename T>
+std::function<char*()> destination(std::vector<T>& vec, Vec3i dims) {
+    return [&vec, dims] {
+        vec.resize(voxelCount(dims));
+        return reinterpret_cast<char*>(vec.data());
+    };
+}
+
+// Allocates every destination (in parallel: the page faults are a large part of the cost), then reads and
+// checksums the blocks of all chunks in parallel (each block while it is still in cache), and compares each
+// chunk's combined CRC-32.
+void readChunks(const Reader& r, uint64_t dataStart, const std::vector<ChunkRead>& reads) {
+    std::vector<char*> data(reads.size());
+    tbb::parallel_for(std::size_t(0), reads.size(), [&](std::size_t i) { data[i] = reads[i].allocate(); });
+
+    struct Block {
+        std::size_t chunk;
+        uint64_t begin, bytes;
+    };
+    std::vector<Block> blocks;
+    for (std::size_t i = 0; i < reads.size(); ++i)
+        for (uint64_t b = 0; b < reads[i].entry.bytes; b += kCrcBlock)
+            blocks.push_back({i, b, std::min<uint64_t>(kCrcBlock, reads[i].entry.bytes - b)});
+    std::vector<uLong> crcs(blocks.size());
+    tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t k) {
+        const Block& b = blocks[k];
+        const ChunkRead& c = reads[b.chunk];
+        char* to = data[b.chunk] + b.begin;
+        r.read(dataStart + c.entry.offset + b.begin, to, b.bytes, "chunk '" + c.name + "'");
+        crcs[k] = blockCrc(to, b.bytes);
+    });
+
+    std::vector<uLong> chunkCrc(reads.size(), blockCrc(nullptr, 0));
+    for (std::size_t k = 0; k < blocks.size(); ++k)
+        chunkCrc[blocks[k].chunk] = crc32_combine(chunkCrc[blocks[k].chunk], crcs[k], z_off_t(blocks[k].bytes));
+    for (std::size_t i = 0; i < reads.size(); ++i)
+        if (uint32_t(chunkCrc[i]) != reads[i].entry.crc)
+            throw r.fail("chunk '" + reads[i].name + "' checksum mismatch (file is corrupted)");
 }
 
 }  // namespace
@@ -285,35 +348,32 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
         table[name] = e;
     }
 
+    // Gather the chunks to read, then read them all at once (see readChunks).
     auto has = [&](const std::string& name) { return table.count(name) > 0; };
-    auto readChunk = [&](const std::string& name, auto& vec) {
-        const ChunkEntry& e = table.at(name);
-        vec.resize(voxelCount(n));
-        r.read(dataStart + e.offset, vec.data(), e.bytes, "chunk '" + name + "'");
-        if (crc32Of(vec.data(), e.bytes) != e.crc) throw r.fail("chunk '" + name + "' checksum mismatch (file is corrupted)");
-    };
-    auto readOctants = [&](const std::string& prefix, const char* label, auto& arrays) {
+    std::vector<ChunkRead> reads;
+    auto want = [&](const std::string& name, auto& vec) { reads.push_back({name, table.at(name), destination(vec, n)}); };
+    auto wantOctants = [&](const std::string& prefix, const char* label, auto& arrays) {
         for (int o = 0; o < kOctants; ++o) {
             std::string name = prefix + std::to_string(o);
             if (!has(name)) throw r.fail(std::string("has no ") + label + " distance field for octant " + std::to_string(o) +
                                          " (prepare it with volprep --fields)");
-            readChunk(name, arrays[o]);
+            want(name, arrays[o]);
         }
     };
-
     for (const char* required : {"sigma", "colour", "labels"})
         if (!has(required)) throw r.fail(std::string("has no '") + required + "' chunk");
-    readChunk("sigma", p.classified.sigma);
-    readChunk("colour", p.classified.colour);
-    if (normals && has("normal")) readChunk("normal", p.classified.normal);
-    readChunk("labels", p.regions.label);
+    want("sigma", p.classified.sigma);
+    want("colour", p.classified.colour);
+    if (normals && has("normal")) want("normal", p.classified.normal);
+    want("labels", p.regions.label);
     if (fields & (kFieldPC | kFieldACD | kFieldEACD)) p.fields.dims = n;
     if (fields & kFieldPC) {
         if (!has("pc")) throw r.fail("has no PC distance field (prepare it with volprep --fields)");
-        readChunk("pc", p.fields.pc);
+        want("pc", p.fields.pc);
     }
-    if (fields & kFieldACD) readOctants("acd", "ACD", p.fields.acd);
-    if (fields & kFieldEACD) readOctants("eacd", "EACD", p.fields.eacd);
+    if (fields & kFieldACD) wantOctants("acd", "ACD", p.fields.acd);
+    if (fields & kFieldEACD) wantOctants("eacd", "EACD", p.fields.eacd);
+    readChunks(r, dataStart, reads);
     return p;
 }
 

@@ -103,6 +103,7 @@ void main() {
             box = octantBox(v, oct, ext);
             wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t);
         }
+        if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
         wanted = min(wanted, samplesToTermination(alpha, s.sigma));
         n = leapCount(g, iv, k, kCount, wanted, box);
 

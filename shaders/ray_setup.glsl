@@ -130,6 +130,10 @@ double boxLeapSamples(double tBoxExit, double t) {
     return max(1.0LF, ceil(q));
 }
 
+// Trilinear sampling: a leap whose box is the voxel alone may start in a border voxel, inside which the
+// interpolated value changes; such a voxel is stepped sample by sample.
+double trilinearLeapSamples(double wanted, VoxelBox box) { return box.lo == box.hi ? 1.0LF : wanted; }
+
 // The leap taken from sample k of kCount: never past the volume exit, never to a sample whose floor voxel
 // rounding put outside the box or the volume. Always >= 1.
 double leapCount(GridRay ray, RayInterval iv, double k, double kCount, double wanted, VoxelBox box) {

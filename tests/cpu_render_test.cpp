@@ -162,6 +162,9 @@ TEST(CpuRenderer, ErrorsAreReported) {
     s = unshaded(Caster::Primitive);
     s.ert = 1.5;
     EXPECT_THROW(renderCpu(p, cam, s), InputError);
+    s = unshaded(Caster::Primitive);
+    s.lightDirection = Vec3d{0, 0, 0};
+    EXPECT_THROW(renderCpu(p, cam, s), InputError);
     // A caster whose field is missing.
     p.fields.pc.clear();
     EXPECT_THROW(renderCpu(p, cam, unshaded(Caster::PC)), InputError);

@@ -160,6 +160,27 @@ TEST(Volprep, ReadsHeaderlessRawWithFlagsInEitherByteOrder) {
     EXPECT_EQ(le.classified.sigma[0], 0.0f);
 }
 
+// volphantom writes NAME_DxDxD_TYPE.raw, which volprep reads with no raw flags.
+TEST(Volprep, PreparesAPhantomWrittenByVolphantom) {
+    fs::path dir = test::scratchDir("volprep_phantom");
+    fs::path volphantom = fs::path(VR_BINARY_DIR) / "datasets" / "volphantom";
+    std::string cmd = volphantom.string() + " engine --dims 32x24x16 -o " + q(dir) + " >/dev/null";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    fs::path raw = dir / "engine_32x24x16_uint8.raw";
+    std::string bytes = slurp(raw);
+    Volume engine = enginePhantom({32, 24, 16});
+    ASSERT_EQ(bytes.size(), engine.values.size());
+    for (std::size_t i = 0; i < bytes.size(); ++i) ASSERT_EQ(uint8_t(bytes[i]), engine.values[i]) << i;
+
+    Outcome r = volprep(dir, q(raw) + " --iso 200,1,0.5 --iso 255,1,1 --to 0 --ta 0 -o " + q(dir / "engine.vprep"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    PreparedVolume p = readPrepared(dir / "engine.vprep");
+    EXPECT_EQ(p.classified.grid.dims, Vec3i(32, 24, 16));
+    // Blocky: a few hundred regions for 12288 voxels, and the air around the part is one region.
+    EXPECT_LT(p.regions.count, 1000u);
+    EXPECT_EQ(p.regions.label[0], p.regions.label[voxelCount(p.regions.dims) - 1]);
+}
+
 TEST(Volprep, HelpDescribesEveryFlag) {
     fs::path dir = test::scratchDir("volprep_help");
     Outcome r = volprep(dir, "--help");

@@ -8,6 +8,8 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <climits>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -79,6 +81,8 @@ void checkInputs(const PreparedVolume& prepared, const RenderSettings& s) {
     if (s.shading && cv.normal.size() != voxels)
         throw InputError("prepared volume has no normals: shading needs them (prepare with normals or render "
                          "without shading)");
+    if (s.lightDirection && !(length(*s.lightDirection) > 0 && std::isfinite(length(*s.lightDirection))))
+        throw InputError("--light: the light direction must be a finite non-zero vector");
     const std::string caster(casterName(s.caster));
     auto need = [&](bool present, std::size_t size, const char* field) {
         if (!present || size != voxels)
@@ -177,7 +181,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         out[1] = float(c.y);
         out[2] = float(c.z);
         out[3] = float(acc.alpha);
-        result.iterations[p] = uint32_t(iterations);
+        result.iterations[p] = uint32_t(std::min<long long>(iterations, UINT32_MAX));
         result.samples[p] = samples;
     };
 

@@ -6,8 +6,8 @@
 
 namespace vr {
 
-// Throws InputError when the caster needs a field the prepared volume lacks, or when a ray hits the
-// iteration cap (a bug, reported rather than hung).
+// Throws InputError when the caster needs a field (or shading needs normals) the prepared volume lacks, and
+// std::runtime_error when a ray hits the iteration cap (a bug, reported rather than hung).
 RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, const RenderSettings& settings);
 
 }  // namespace vr

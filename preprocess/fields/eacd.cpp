@@ -1,10 +1,8 @@
-#include <ctime>
-#include <cstdio>
 // EACD (ALGORITHMS.md section 4): the ACD cube of edge k, extended greedily along the axis giving the largest box,
 // then along the better of the two others. The extension along axis a is the minimum, over the box's near face
 // (the voxels with e_a = 0), of the axial runs along s_a. Those face minima are O(1) queries of a 2D sparse table
-// over each slice of the run field (instead of the thesis' quadratic face walk); one table serves the four
-// octants that share the slice's run direction.
+// over each slice of the run field (instead of the thesis' quadratic face walk); one table serves every octant of
+// the batch that shares the slice's run direction.
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -18,22 +16,27 @@ namespace vr {
 
 namespace {
 
-// The octants being built: acd[o] and out[o] are null for the octants left out.
-struct OctantSet {
+// The octants built together. Their extents live in planar byte arrays while being built (ext[o][a][v]: each
+// step reads and writes whole slots, so one byte per voxel moves instead of three) and are interleaved at the end.
+struct OctantBatch {
+    std::vector<int> octants;
     std::array<const std::vector<uint8_t>*, kOctants> acd{};
-    std::array<EACDField*, kOctants> out{};
-    bool uses(int axis, int sign) const {
-        for (int o = 0; o < kOctants; ++o)
-            if (out[o] && octantSign(o, axis) == sign) return true;
-        return false;
+    std::array<std::array<std::vector<uint8_t>, 3>, kOctants> ext;
+
+    std::vector<int> withSign(int axis, int sign) const {
+        std::vector<int> out;
+        for (int o : octants)
+            if (octantSign(o, axis) == sign) out.push_back(o);
+        return out;
     }
 };
 
-// The first axis with the largest value (ties go to x, then y, then z).
-inline int widestAxis(const std::array<uint8_t, 3>& e) {
+// The first axis with the largest extent (ties go to x, then y, then z).
+inline int widestAxis(uint8_t ex, uint8_t ey, uint8_t ez) {
     int a = 0;
-    if (e[1] > e[a]) a = 1;
-    if (e[2] > e[a]) a = 2;
+    uint8_t best = ex;
+    if (ey > best) a = 1, best = ey;
+    if (ez > best) a = 2;
     return a;
 }
 
@@ -47,8 +50,10 @@ struct Slab {
         : a(axis), u(axis == 0 ? 1 : 0), w(axis == 2 ? 1 : 2), nu(n[u]), nw(n[w]), t0(first), t1(last),
           plane(std::size_t(nu) * nw), stride{1, std::size_t(n.x), std::size_t(n.x) * n.y} {}
 
+    std::size_t size() const { return plane * std::size_t(t1 - t0); }
+
     // f(local, voxel) for every voxel, in an order that reads the volume by whole cache lines: across x,
-    // consecutive slices are neighbours in memory (hence slabs of several slices); across y or z, u is x.
+    // consecutive slices are neighbours in memory (hence slabs of many slices); across y or z, u is x.
     template <typename F>
     void forEachVoxel(F f) const {
         if (a == 0) {
@@ -67,62 +72,61 @@ struct Slab {
     }
 };
 
-// Per-thread working memory of one slab: its run planes and, per octant of the slab's run direction,
-// the face of each voxel (lenU x lenW, 0 for none) and the minimum over it.
+// Per-thread working memory of one slab: its run planes and, per octant of the slab's run direction, each
+// voxel's face (lenU x lenW; lenU = 0 for none), lenU being overwritten by the minimum over the face.
 struct SlabScratch {
     RectMin table;
     std::vector<uint8_t> runs;
-    std::array<std::vector<uint8_t>, 4> lenU, lenW, result;
+    std::array<std::vector<uint8_t>, 4> lenU, lenW;
 };
 
 // Corner of a box's face along one in-plane axis: the face starts at p and goes toward `sign` for `len` voxels.
 inline int faceStart(int p, int sign, int len) { return sign > 0 ? p : p - len + 1; }
 
-// For every slice of the slab: result = minimum of the runs over each voxel's face (lenU x lenW, skipped where 0),
-// for the octants `octs` (those whose sign along the slab's axis is the runs' direction). Square faces need only
-// the square tables.
-void faceMinima(const Slab& slab, const std::vector<int>& octs, SlabScratch& sc, bool squares) {
+// For every slice of the slab: lenU = minimum of the runs over each voxel's face (skipped where lenU is 0), for
+// the octants `octs`. Square faces (kSquares: lenU == lenW, lenW unused) need only the square tables.
+template <bool kSquares>
+void faceMinima(const Slab& slab, const std::vector<int>& octs, SlabScratch& sc) {
+    const int nu = slab.nu, nw = slab.nw;
     for (int t = 0; t < slab.t1 - slab.t0; ++t) {
         const std::size_t off = t * slab.plane;
         uint8_t maxU = 0, maxW = 0;
         for (std::size_t j = 0; j < octs.size(); ++j) {
             maxU = std::max(maxU, maxOfRow(sc.lenU[j].data() + off, slab.plane));
-            maxW = std::max(maxW, maxOfRow(sc.lenW[j].data() + off, slab.plane));
+            if (!kSquares) maxW = std::max(maxW, maxOfRow(sc.lenW[j].data() + off, slab.plane));
         }
         if (maxU == 0) continue;  // no face in this slice
-        std::copy_n(sc.runs.data() + off, slab.plane, sc.table.resize(slab.nu, slab.nw));
-        if (squares)
+        std::copy_n(sc.runs.data() + off, slab.plane, sc.table.resize(nu, nw));
+        if (kSquares)
             sc.table.buildSquares(maxU);
         else
             sc.table.build(maxU, maxW);
         const RectMin::Query faceMin = sc.table.query();
         for (std::size_t j = 0; j < octs.size(); ++j) {
             const int su = octantSign(octs[j], slab.u), sw = octantSign(octs[j], slab.w);
-            const uint8_t *lenU = sc.lenU[j].data() + off, *lenW = sc.lenW[j].data() + off;
-            uint8_t* result = sc.result[j].data() + off;
-            for (int pw = 0; pw < slab.nw; ++pw)
-                for (int pu = 0; pu < slab.nu; ++pu) {
-                    const std::size_t l = std::size_t(pw) * slab.nu + pu;
-                    if (lenU[l] == 0) continue;
-                    result[l] = faceMin(faceStart(pu, su, lenU[l]), faceStart(pw, sw, lenW[l]), lenU[l], lenW[l]);
+            uint8_t* lenU = sc.lenU[j].data() + off;
+            const uint8_t* lenW = (kSquares ? sc.lenU[j] : sc.lenW[j]).data() + off;
+            for (int pw = 0; pw < nw; ++pw, lenU += nu, lenW += nu)
+                for (int pu = 0; pu < nu; ++pu) {
+                    const int lu = lenU[pu], lw = kSquares ? lu : lenW[pu];
+                    if (lu != 0) lenU[pu] = faceMin(faceStart(pu, su, lu), faceStart(pw, sw, lw), lu, lw);
                 }
         }
     }
 }
 
 // Runs body(slab, octs, scratch) on every slab across `axis`, for both run directions, with the slab's runs
-// loaded; octs are the octants of the set whose sign along the axis is the direction.
+// loaded; octs are the batch's octants whose sign along the axis is the direction.
 template <typename Body>
-void forEachSlab(const Regions& regions, const OctantSet& set, int axis, Body body) {
+void forEachSlab(const Regions& regions, const OctantBatch& batch, int axis, Body body) {
     const Vec3i& n = regions.dims;
     std::array<std::vector<uint8_t>, 2> runs;  // index 0: sign +1, 1: sign -1
     std::array<std::vector<int>, 2> octs;
     for (int d = 0; d < 2; ++d) {
-        for (int o = 0; o < kOctants; ++o)
-            if (set.out[o] && octantSign(o, axis) == (d ? -1 : 1)) octs[d].push_back(o);
+        octs[d] = batch.withSign(axis, d ? -1 : 1);
         if (!octs[d].empty()) runs[d] = axialRuns(regions, axis, d ? -1 : 1);
     }
-    const int width = axis == 0 ? 8 : 1;  // slices per slab
+    const int width = axis == 0 ? 32 : 1;  // slices per slab
     const int slabs = (n[axis] + width - 1) / width;
     tbb::enumerable_thread_specific<SlabScratch> scratch;
     tbb::parallel_for(0, 2 * slabs, [&](int job) {
@@ -130,12 +134,10 @@ void forEachSlab(const Regions& regions, const OctantSet& set, int axis, Body bo
         if (octs[d].empty()) return;
         const Slab slab(n, axis, first, std::min(n[axis], first + width));
         SlabScratch& sc = scratch.local();
-        const std::size_t size = slab.plane * (slab.t1 - slab.t0);
-        sc.runs.resize(size);
+        sc.runs.resize(slab.size());
         for (std::size_t j = 0; j < octs[d].size(); ++j) {
-            sc.lenU[j].resize(size);
-            sc.lenW[j].resize(size);
-            sc.result[j].resize(size);
+            sc.lenU[j].resize(slab.size());
+            sc.lenW[j].resize(slab.size());
         }
         const uint8_t* r = runs[d].data();
         slab.forEachVoxel([&](std::size_t l, std::size_t v) { sc.runs[l] = r[v]; });
@@ -143,101 +145,115 @@ void forEachSlab(const Regions& regions, const OctantSet& set, int axis, Body bo
     });
 }
 
-// Step 1: out[o][v][a] = extension along a of the ACD cube (minimum of runs over its k x k near face).
-void cubeExtensions(const Regions& regions, const OctantSet& set, int a) {
-    forEachSlab(regions, set, a, [&](const Slab& slab, const std::vector<int>& octs, SlabScratch& sc) {
+// Step 1: ext[o][a] = extension along a of the ACD cube (minimum of runs over its k x k near face).
+void cubeExtensions(const Regions& regions, OctantBatch& batch, int a) {
+    forEachSlab(regions, batch, a, [&](const Slab& slab, const std::vector<int>& octs, SlabScratch& sc) {
         for (std::size_t j = 0; j < octs.size(); ++j) {
-            const uint8_t* acd = set.acd[octs[j]]->data();
-            slab.forEachVoxel([&](std::size_t l, std::size_t v) { sc.lenU[j][l] = sc.lenW[j][l] = acd[v]; });
+            const uint8_t* acd = batch.acd[octs[j]]->data();
+            uint8_t* k = sc.lenU[j].data();
+            slab.forEachVoxel([&](std::size_t l, std::size_t v) { k[l] = acd[v]; });
         }
-        faceMinima(slab, octs, sc, true);
+        faceMinima<true>(slab, octs, sc);
         for (std::size_t j = 0; j < octs.size(); ++j) {
-            EACDField& out = *set.out[octs[j]];
-            slab.forEachVoxel([&](std::size_t l, std::size_t v) { out[v][a] = sc.result[j][l]; });
+            uint8_t* ext = batch.ext[octs[j]][a].data();
+            const uint8_t* minimum = sc.lenU[j].data();
+            slab.forEachVoxel([&](std::size_t l, std::size_t v) { ext[v] = minimum[l]; });
         }
     });
 }
 
-// Step 2, for axis b: out[o][v][b] = extension along b of the box extended along its widest axis a (a != b),
-// whose near face is e[a] along a by k along the third axis. Slot a keeps the largest value (the new value is a
-// minimum over a larger face, so never above the old one), so widestAxis still finds a afterwards.
-void boxExtensions(const Regions& regions, const OctantSet& set, int b) {
-    forEachSlab(regions, set, b, [&](const Slab& slab, const std::vector<int>& octs, SlabScratch& sc) {
+// Step 2, for axis b: ext[o][b] = extension along b of the box extended along its widest axis a (a != b), whose
+// near face is ext[a] along a by k along the third axis. Slot a keeps the largest value (a new value is a minimum
+// over a larger face, so never above the old one), so widestAxis still finds a afterwards.
+void boxExtensions(const Regions& regions, OctantBatch& batch, int b) {
+    forEachSlab(regions, batch, b, [&](const Slab& slab, const std::vector<int>& octs, SlabScratch& sc) {
         for (std::size_t j = 0; j < octs.size(); ++j) {
-            const uint8_t* acd = set.acd[octs[j]]->data();
-            const EACDField& out = *set.out[octs[j]];
+            const uint8_t* acd = batch.acd[octs[j]]->data();
+            const auto& ext = batch.ext[octs[j]];
+            const uint8_t *ex = ext[0].data(), *ey = ext[1].data(), *ez = ext[2].data();
+            uint8_t *lenU = sc.lenU[j].data(), *lenW = sc.lenW[j].data();
             slab.forEachVoxel([&](std::size_t l, std::size_t v) {
-                const std::array<uint8_t, 3> e = out[v];
-                const int a = widestAxis(e);
-                sc.lenU[j][l] = a == b ? 0 : slab.u == a ? e[a] : acd[v];
-                sc.lenW[j][l] = a == b ? 0 : slab.w == a ? e[a] : acd[v];
+                const int a = widestAxis(ex[v], ey[v], ez[v]);
+                const uint8_t widest = ext[a][v], k = acd[v];
+                lenU[l] = a == b ? 0 : slab.u == a ? widest : k;
+                lenW[l] = slab.w == a ? widest : k;
             });
         }
-        faceMinima(slab, octs, sc, false);
+        faceMinima<false>(slab, octs, sc);
         for (std::size_t j = 0; j < octs.size(); ++j) {
-            EACDField& out = *set.out[octs[j]];
+            uint8_t* ext = batch.ext[octs[j]][b].data();
+            const uint8_t* minimum = sc.lenU[j].data();
             slab.forEachVoxel([&](std::size_t l, std::size_t v) {
-                if (sc.lenU[j][l]) out[v][b] = sc.result[j][l];
+                if (minimum[l]) ext[v] = minimum[l];
             });
         }
     });
 }
 
 // Step 3: the box is k on every axis but the widest a (step 1's extension) and the better of the two others.
-void chooseBoxes(const OctantSet& set) {
-    for (int o = 0; o < kOctants; ++o) {
-        if (!set.out[o]) continue;
-        EACDField& out = *set.out[o];
-        const std::vector<uint8_t>& acd = *set.acd[o];
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 16), [&](const auto& range) {
-            for (std::size_t v = range.begin(); v != range.end(); ++v) {
-                const std::array<uint8_t, 3> e = out[v];
-                const int a = widestAxis(e), b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
-                const int second = e[b] >= e[c] ? b : c;
-                std::array<uint8_t, 3> box{acd[v], acd[v], acd[v]};
-                box[a] = e[a];
-                box[second] = e[second];
-                out[v] = box;
-            }
-        });
-    }
+void chooseBoxes(const OctantBatch& batch, int o, EACDField& out) {
+    const uint8_t* acd = batch.acd[o]->data();
+    const uint8_t *ex = batch.ext[o][0].data(), *ey = batch.ext[o][1].data(), *ez = batch.ext[o][2].data();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 16), [&](const auto& range) {
+        for (std::size_t v = range.begin(); v != range.end(); ++v) {
+            const std::array<uint8_t, 3> e{ex[v], ey[v], ez[v]};
+            const int a = widestAxis(e[0], e[1], e[2]), b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
+            const int second = e[b] >= e[c] ? b : c;
+            std::array<uint8_t, 3> box{acd[v], acd[v], acd[v]};
+            box[a] = e[a];
+            box[second] = e[second];
+            out[v] = box;
+        }
+    });
 }
 
-void buildEACDOctants(const Regions& regions, const OctantSet& set) {
+// EACD of `octants` (at most 4 at a time: the planar extents take 3 bytes per voxel and octant).
+void buildBatch(const Regions& regions, const std::vector<int>& octants,
+                const std::array<const std::vector<uint8_t>*, kOctants>& acd,
+                const std::array<EACDField*, kOctants>& out) {
     requireLabelPerVoxel(regions, "buildEACD");
     const std::size_t voxels = voxelCount(regions.dims);
-    for (int o = 0; o < kOctants; ++o) {
-        if (!set.out[o]) continue;
-        if (set.acd[o]->size() != voxels)
+    OctantBatch batch;
+    batch.octants = octants;
+    for (int o : octants) {
+        if (acd[o]->size() != voxels)
             throw std::invalid_argument("buildEACD: ACD of octant " + std::to_string(o) + " does not match the regions");
-        set.out[o]->assign(voxels, {0, 0, 0});
+        batch.acd[o] = acd[o];
+        for (auto& slot : batch.ext[o]) slot.resize(voxels);
     }
-    if (voxels == 0) return;
-    for (int a = 0; a < 3; ++a) { auto t=std::clock(); cubeExtensions(regions, set, a); fprintf(stderr,"cube %d %.3f\n",a,double(std::clock()-t)/CLOCKS_PER_SEC);}
-    for (int b = 0; b < 3; ++b) { auto t=std::clock(); boxExtensions(regions, set, b); fprintf(stderr,"box %d %.3f\n",b,double(std::clock()-t)/CLOCKS_PER_SEC);}
-    auto t=std::clock();chooseBoxes(set);fprintf(stderr,"choose %.3f\n",double(std::clock()-t)/CLOCKS_PER_SEC);
+    for (int a = 0; a < 3; ++a) cubeExtensions(regions, batch, a);
+    for (int b = 0; b < 3; ++b) boxExtensions(regions, batch, b);  // in turn: each reads the others' slots
+    for (int o : octants) {
+        out[o]->resize(voxels);
+        chooseBoxes(batch, o, *out[o]);
+        batch.ext[o] = {};
+    }
 }
 
 }  // namespace
 
 EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant) {
     EACDField out;
-    OctantSet set;
-    set.acd[octant] = &acd;
-    set.out[octant] = &out;
-    buildEACDOctants(regions, set);
+    std::array<const std::vector<uint8_t>*, kOctants> acds{};
+    std::array<EACDField*, kOctants> outs{};
+    acds[octant] = &acd;
+    outs[octant] = &out;
+    buildBatch(regions, {octant}, acds, outs);
     return out;
 }
 
 std::array<EACDField, kOctants> buildEACD(const Regions& regions,
                                           const std::array<std::vector<uint8_t>, kOctants>& acd) {
     std::array<EACDField, kOctants> out;
-    OctantSet set;
+    std::array<const std::vector<uint8_t>*, kOctants> acds{};
+    std::array<EACDField*, kOctants> outs{};
     for (int o = 0; o < kOctants; ++o) {
-        set.acd[o] = &acd[o];
-        set.out[o] = &out[o];
+        acds[o] = &acd[o];
+        outs[o] = &out[o];
     }
-    buildEACDOctants(regions, set);
+    // Two batches, +z and -z: each still shares every table between two (across x, y) or four (across z) octants.
+    buildBatch(regions, {0, 1, 2, 3}, acds, outs);
+    buildBatch(regions, {4, 5, 6, 7}, acds, outs);
     return out;
 }
 

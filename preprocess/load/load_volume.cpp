@@ -20,7 +20,7 @@ template <Volume (*load)(const fs::path&)>
 Volume ignoringRawOptions(const fs::path& path, const RawOptions&) { return load(path); }
 
 struct Format {
-    const char* suffix;  // lower case, matched at the end of the file name (so ".nii.gz" before ".gz" matters not)
+    const char* suffix;  // lower case, matched against the end of the lower-cased file name
     Loader load;
 };
 

@@ -7,7 +7,8 @@
 
 namespace vr {
 
-// Flags for headerless raw files; dims/type may also be parsed from names like engine_256x256x128_uint8.raw[.gz].
+// Flags for headerless raw files; dims/type may also be parsed from names like engine_256x256x128_uint8.raw[.gz]
+// (flags win over the name). Spacing defaults to 1 1 1.
 struct RawOptions {
     std::optional<Vec3i> dims;
     std::optional<ScalarType> type;
@@ -15,9 +16,15 @@ struct RawOptions {
     bool bigEndian = false;
 };
 
-// Raw (.raw, .raw.gz), NRRD, MetaImage (.mhd/.mha), NIfTI (.nii/.nii.gz), DICOM series (a folder),
-// VTK image data (.vti, legacy .vtk), OpenVDB (.vdb, first float grid, densified).
-// Throws InputError naming the file and the problem. Non-finite voxels are rejected (InputError).
+// Raw (.raw, .raw.gz), NRRD (.nrrd/.nhdr), MetaImage (.mhd/.mha), NIfTI (.nii/.nii.gz), DICOM series (a folder),
+// VTK image data (.vti, legacy .vtk structured points), OpenVDB (.vdb, first float grid, densified over its
+// active bounding box), chosen by the (case-insensitive) file name. `raw` applies to raw files only.
+// Voxels are x fastest as stored (DICOM rows top first, slices by increasing position along the slice normal);
+// spacing comes from the file, and grid.origin is the corner of voxel (0,0,0), half a voxel before the first
+// sample's position in the file. Sets sourceType (Float32 for types other than the four, and for rescaled
+// NIfTI) and source (= path). Throws InputError naming the file and the problem: unknown format, missing file,
+// sizes that do not match, corrupt files, non-finite voxels (with their count and the first one's index).
+// Not for concurrent use from several threads (VTK's readers report through process-wide channels).
 Volume loadVolume(const std::filesystem::path& path, const RawOptions& raw = {});
 
 }  // namespace vr

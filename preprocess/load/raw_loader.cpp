@@ -20,6 +20,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+std::string lowerCase(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
 std::string dimsText(const Vec3i& d) {
     return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
 }
@@ -43,9 +48,7 @@ void fillFromName(const fs::path& path, RawOptions& options) {
     }
     if (!options.type && m[4].matched) {
         try {
-            std::string type = m[4].str();
-            for (char& c : type) c = char(std::tolower(static_cast<unsigned char>(c)));
-            options.type = parseScalarType(type);
+            options.type = parseScalarType(lowerCase(m[4].str()));
         } catch (const InputError&) {
             // Not a type name (e.g. a version suffix): the type must then come from the flag.
         }
@@ -143,11 +146,6 @@ std::vector<unsigned char> readGzip(const fs::path& path, std::size_t expected, 
     return bytes;
 }
 
-bool endsWithGz(const fs::path& path) {
-    const std::string ext = path.extension().string();
-    return ext.size() == 3 && ext[0] == '.' && std::tolower(ext[1]) == 'g' && std::tolower(ext[2]) == 'z';
-}
-
 }  // namespace
 
 Volume loadRaw(const fs::path& path, const RawOptions& flags) {
@@ -168,7 +166,7 @@ Volume loadRaw(const fs::path& path, const RawOptions& flags) {
     const ScalarType type = *options.type;
     const std::size_t expected = expectedBytes(path, dims, type);
     const std::vector<unsigned char> bytes =
-        endsWithGz(path) ? readGzip(path, expected, dims, type) : readPlain(path, expected, dims, type);
+        lowerCase(path.extension().string()) == ".gz" ? readGzip(path, expected, dims, type) : readPlain(path, expected, dims, type);
 
     Volume v;
     v.grid.dims = dims;

@@ -11,7 +11,8 @@ namespace vr {
 // One-component scalars only. unsigned char/short/unsigned short/float keep their ScalarType; any other VTK type
 // (int, double, ...) is converted to float and recorded as Float32. Rows stay as VTK holds them (x fastest).
 // VTK's origin is the position of the first sample (a voxel centre); Volume::grid.origin is the corner of voxel
-// (0,0,0), half a voxel before it. Throws InputError naming `path` for images that cannot be a Volume.
+// (0,0,0), half a voxel before it. A direction matrix (VTK 9 images may carry one) is not applied: the volume
+// stays axis-aligned. Throws InputError naming `path` for images that cannot be a Volume.
 Volume volumeFromVtkImage(vtkImageData* image, const std::filesystem::path& path);
 
 // Calibrates stored values as value * slope + intercept (NIfTI scl_slope/scl_inter, DICOM rescale). A slope of 0

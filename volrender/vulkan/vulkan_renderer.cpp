@@ -30,6 +30,8 @@ void checkInputs(const PreparedVolume& prepared, const RenderSettings& s) {
         throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
     if (s.shading && cv.normal.size() != voxels)
         throw InputError("prepared volume has no normals: shading needs them");
+    if (s.lightDirection && !(length(*s.lightDirection) > 0 && std::isfinite(length(*s.lightDirection))))
+        throw InputError("--light: the light direction must be a finite non-zero vector");
     const DistanceFields& f = prepared.fields;
     const bool present = s.caster == Caster::Primitive || (s.caster == Caster::PC && f.pc.size() == voxels) ||
                          (s.caster == Caster::ACD && f.acd[0].size() == voxels) ||

@@ -1,0 +1,7 @@
+// NIfTI-1/2 (.nii) through loadVolume.
+#include "fuzz/support.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    vr::fuzz::loadExpectingInputError(vr::fuzz::writeInput("input.nii", {reinterpret_cast<const char*>(data), size}));
+    return 0;
+}

@@ -1,0 +1,7 @@
+// NRRD (.nrrd, header and data in one file) through loadVolume.
+#include "fuzz/support.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    vr::fuzz::loadExpectingInputError(vr::fuzz::writeInput("input.nrrd", {reinterpret_cast<const char*>(data), size}));
+    return 0;
+}

@@ -1,0 +1,237 @@
+#!/usr/bin/env python3
+"""Writes the seed corpus fuzz/corpus/<target>/: tiny valid files of every format and a few slightly broken ones.
+
+Run it again after a format change (python3 fuzz/make_corpus.py). The .vdb seeds are not made here (writing VDB
+needs OpenVDB's C++ library): they were written once with openvdb::io::File (see fuzz/README.md).
+"""
+import base64
+import gzip
+import json
+import os
+import struct
+import zlib
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
+DIMS = (4, 3, 2)
+VOXELS = DIMS[0] * DIMS[1] * DIMS[2]
+
+
+def put(target, name, data):
+    folder = os.path.join(ROOT, target)
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, name), "wb") as f:
+        f.write(data.encode() if isinstance(data, str) else data)
+
+
+def gz(data):
+    return gzip.compress(data, mtime=0)
+
+
+UINT8 = bytes(range(VOXELS))
+INT16 = struct.pack("<%dh" % VOXELS, *[(i * 37) - 300 for i in range(VOXELS)])
+UINT16 = struct.pack("<%dH" % VOXELS, *[i * 1000 for i in range(VOXELS)])
+FLOAT32 = struct.pack("<%df" % VOXELS, *[i * 0.25 - 1 for i in range(VOXELS)])
+
+
+def raw():
+    # fuzz_raw: first line = file name (dims and type), the rest = the file.
+    put("raw", "uint8", b"vol_4x3x2_uint8.raw\n" + UINT8)
+    put("raw", "int16", b"ct_4x3x2_int16.raw\n" + INT16)
+    put("raw", "uint16_gz", b"mr_4x3x2_uint16.raw.gz\n" + gz(UINT16))
+    put("raw", "float32", b"sim.4x3x2_float32.raw\n" + FLOAT32)
+    put("raw", "nan_float32", b"nan_1x1x2_float32.raw\n" + struct.pack("<2f", 1.0, float("nan")))
+    put("raw", "short_file", b"vol_4x4x4_uint8.raw\n" + UINT8)
+    put("raw", "truncated_gz", b"vol_4x3x2_uint8.raw.gz\n" + gz(UINT8)[:-9])
+    put("raw", "no_type", b"vol_4x3x2.raw\n" + UINT8)
+    put("raw", "zero_dim", b"vol_0x3x2_uint8.raw\n")
+    put("raw", "huge_dims", b"vol_99999999999x99999x2_uint8.raw\n" + UINT8)
+
+
+def nrrd_header(type_, encoding, endian="little", extra=""):
+    return ("NRRD0004\n# tiny\ntype: %s\ndimension: 3\nsizes: 4 3 2\nspacings: 1 0.5 2\nencoding: %s\n"
+            "endian: %s\n%s\n" % (type_, encoding, endian, extra))
+
+
+def nrrd():
+    put("nrrd", "uint8_raw", nrrd_header("uint8", "raw").encode() + UINT8)
+    put("nrrd", "int16_big", nrrd_header("short", "raw", "big").encode() + struct.pack(">%dh" % VOXELS, *range(VOXELS)))
+    put("nrrd", "float_gzip", nrrd_header("float", "gzip").encode() + gz(FLOAT32))
+    put("nrrd", "ascii", nrrd_header("ushort", "ascii") + " ".join(str(i) for i in range(VOXELS)) + "\n")
+    put("nrrd", "origin", nrrd_header("uint8", "raw", extra="space: left-posterior-superior\n"
+                                      "space directions: (1,0,0) (0,1,0) (0,0,1)\nspace origin: (10,20,30)\n")
+        .replace("spacings: 1 0.5 2\n", "").encode() + UINT8)
+    put("nrrd", "short_data", nrrd_header("uint8", "raw").encode() + UINT8[:7])
+
+
+def metaimage_header(element, extra=""):
+    return ("ObjectType = Image\nNDims = 3\nDimSize = 4 3 2\nElementType = %s\nElementSpacing = 1 1 1.5\n"
+            "Offset = 0 0 0\nElementByteOrderMSB = False\n%sElementDataFile = LOCAL\n" % (element, extra))
+
+
+def metaimage():
+    put("metaimage", "uchar", metaimage_header("MET_UCHAR").encode() + UINT8)
+    put("metaimage", "short", metaimage_header("MET_SHORT").encode() + INT16)
+    put("metaimage", "float", metaimage_header("MET_FLOAT").encode() + FLOAT32)
+    packed = zlib.compress(UINT16)
+    put("metaimage", "ushort_compressed",
+        metaimage_header("MET_USHORT", "CompressedData = True\nCompressedDataSize = %d\n" % len(packed)).encode()
+        + packed)
+    put("metaimage", "short_data", metaimage_header("MET_UCHAR").encode() + UINT8[:5])
+
+
+def nifti1(datatype, bitpix, data, slope=1.0, inter=0.0):
+    h = bytearray(348)
+    struct.pack_into("<i", h, 0, 348)
+    struct.pack_into("<8h", h, 40, 3, *DIMS, 1, 1, 1, 1)
+    struct.pack_into("<hh", h, 70, datatype, bitpix)
+    struct.pack_into("<8f", h, 76, 1, 1.0, 0.5, 2.0, 1, 1, 1, 1)
+    struct.pack_into("<fff", h, 108, 352.0, slope, inter)
+    struct.pack_into("<hh", h, 252, 1, 0)  # qform_code 1: scanner frame from the quaternion
+    struct.pack_into("<6f", h, 256, 0, 0, 0, 5.0, -3.0, 1.0)
+    h[344:348] = b"n+1\0"
+    return bytes(h) + b"\0\0\0\0" + data
+
+
+def nifti():
+    for target, wrap in (("nifti", lambda d: d), ("nifti_gz", gz)):
+        put(target, "uint8", wrap(nifti1(2, 8, UINT8)))
+        put(target, "int16_scaled", wrap(nifti1(4, 16, INT16, slope=0.5, inter=10)))
+        put(target, "float32", wrap(nifti1(16, 32, FLOAT32)))
+        put(target, "short_data", wrap(nifti1(2, 8, UINT8[:10])))
+    put("nifti_gz", "truncated_gzip", gz(nifti1(2, 8, UINT8))[:-20])
+
+
+def vtk_header(mode):
+    return ("# vtk DataFile Version 3.0\ntiny\n%s\nDATASET STRUCTURED_POINTS\nDIMENSIONS 4 3 2\n"
+            "SPACING 1 1 2\nORIGIN 0 0 0\nPOINT_DATA 24\n" % mode)
+
+
+def vtk_legacy():
+    put("vtk_legacy", "ascii", vtk_header("ASCII") + "SCALARS s unsigned_char 1\nLOOKUP_TABLE default\n"
+        + " ".join(str(i) for i in range(VOXELS)) + "\n")
+    put("vtk_legacy", "binary_short", vtk_header("BINARY").encode() + b"SCALARS s short 1\nLOOKUP_TABLE default\n"
+        + struct.pack(">%dh" % VOXELS, *range(VOXELS)) + b"\n")
+    put("vtk_legacy", "binary_float", vtk_header("BINARY").encode() + b"SCALARS s float\nLOOKUP_TABLE default\n"
+        + struct.pack(">%df" % VOXELS, *[i * 0.5 for i in range(VOXELS)]) + b"\n")
+    put("vtk_legacy", "short_data", vtk_header("ASCII") + "SCALARS s unsigned_char 1\nLOOKUP_TABLE default\n1 2 3\n")
+    put("vtk_legacy", "vectors", vtk_header("ASCII") + "VECTORS v float\n" + " ".join("1" for _ in range(3 * VOXELS)))
+
+
+def vti_file(array, appended=b""):
+    return (b'<?xml version="1.0"?>\n<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian" '
+            b'header_type="UInt32">\n <ImageData WholeExtent="0 3 0 2 0 1" Origin="0 0 0" Spacing="1 1 2">\n'
+            b'  <Piece Extent="0 3 0 2 0 1">\n   <PointData Scalars="s">\n    ' + array +
+            b'\n   </PointData>\n   <CellData/>\n  </Piece>\n </ImageData>\n' + appended + b'</VTKFile>\n')
+
+
+def vti():
+    ascii_ = " ".join(str(i) for i in range(VOXELS)).encode()
+    put("vti", "ascii", vti_file(b'<DataArray type="UInt8" Name="s" format="ascii">' + ascii_ + b'</DataArray>'))
+    inline = base64.b64encode(struct.pack("<I", len(INT16)) + INT16)
+    put("vti", "binary_int16", vti_file(b'<DataArray type="Int16" Name="s" format="binary">' + inline +
+                                        b'</DataArray>'))
+    put("vti", "appended_float", vti_file(b'<DataArray type="Float32" Name="s" format="appended" offset="0"/>',
+                                          b' <AppendedData encoding="raw">\n  _' +
+                                          struct.pack("<I", len(FLOAT32)) + FLOAT32 + b'\n </AppendedData>\n'))
+    put("vti", "short_data", vti_file(b'<DataArray type="UInt8" Name="s" format="ascii">1 2 3</DataArray>'))
+
+
+def dicom_element(group, element, vr, value):
+    if isinstance(value, str):
+        value = value.encode()
+        value += (b"\0" if vr == b"UI" else b" ") * (len(value) % 2)
+    if vr in (b"OB", b"OW", b"OF", b"SQ", b"UT", b"UN"):
+        return struct.pack("<HH2sHI", group, element, vr, 0, len(value)) + value
+    return struct.pack("<HH2sH", group, element, vr, len(value)) + value
+
+
+def dicom_slice(z, number, pixels):
+    us = lambda v: struct.pack("<H", v)
+    meta = b"".join([
+        dicom_element(0x0002, 0x0001, b"OB", b"\0\1"),
+        dicom_element(0x0002, 0x0002, b"UI", "1.2.840.10008.5.1.4.1.1.4"),
+        dicom_element(0x0002, 0x0003, b"UI", "1.2.3.4.%d" % number),
+        dicom_element(0x0002, 0x0010, b"UI", "1.2.840.10008.1.2.1"),
+    ])
+    data = b"".join([
+        dicom_element(0x0008, 0x0016, b"UI", "1.2.840.10008.5.1.4.1.1.4"),
+        dicom_element(0x0008, 0x0060, b"CS", "MR"),
+        dicom_element(0x0018, 0x0050, b"DS", "2"),
+        dicom_element(0x0020, 0x0013, b"IS", str(number)),
+        dicom_element(0x0020, 0x0032, b"DS", "0\\0\\%g" % z),
+        dicom_element(0x0020, 0x0037, b"DS", "1\\0\\0\\0\\1\\0"),
+        dicom_element(0x0028, 0x0002, b"US", us(1)),
+        dicom_element(0x0028, 0x0004, b"CS", "MONOCHROME2"),
+        dicom_element(0x0028, 0x0010, b"US", us(3)),  # rows
+        dicom_element(0x0028, 0x0011, b"US", us(4)),  # columns
+        dicom_element(0x0028, 0x0030, b"DS", "0.5\\0.5"),
+        dicom_element(0x0028, 0x0100, b"US", us(16)),
+        dicom_element(0x0028, 0x0101, b"US", us(16)),
+        dicom_element(0x0028, 0x0102, b"US", us(15)),
+        dicom_element(0x0028, 0x0103, b"US", us(1)),
+        dicom_element(0x0028, 0x1052, b"DS", "0"),
+        dicom_element(0x0028, 0x1053, b"DS", "1"),
+        dicom_element(0x7FE0, 0x0010, b"OW", pixels),
+    ])
+    return (b"\0" * 128 + b"DICM" + dicom_element(0x0002, 0x0000, b"UL", struct.pack("<I", len(meta))) + meta
+            + data)
+
+
+def dicom():
+    # fuzz_dicom: slices separated by "\n--SLICE--\n".
+    sep = b"\n--SLICE--\n"
+    put("dicom", "one_slice", dicom_slice(0, 1, INT16[:24]))
+    put("dicom", "two_slices", dicom_slice(0, 1, INT16[:24]) + sep + dicom_slice(2, 2, INT16[24:]))
+    put("dicom", "three_slices_unsorted", sep.join(dicom_slice(z, n, INT16[:24]) for n, z in ((1, 4), (2, 0), (3, 2))))
+    put("dicom", "short_pixels", dicom_slice(0, 1, INT16[:10]))
+
+
+def transfer_function():
+    preset = {"Name": "tiny", "ColorSpace": "RGB",
+              "Points": [0, 0, 0.5, 0, 100, 0.2, 0.5, 0, 200, 1, 0.3, 0.8],
+              "RGBPoints": [0, 0, 0, 0, 100, 1, 0.5, 0, 200, 1, 1, 1]}
+    put("transfer_function", "object", json.dumps(preset))
+    put("transfer_function", "list", json.dumps([preset, {"Points": [0, 1, 0.5, 0]}]))
+    for space in ("HSV", "Lab", "Lab/CIEDE2000", "Diverging", "Step"):
+        put("transfer_function", space.replace("/", "_"), json.dumps(dict(preset, ColorSpace=space)))
+    put("transfer_function", "opacity_only", '{"Points": [-1000, 0, 0.5, 0, 3000, 1, 0.5, 1]}')
+    put("transfer_function", "unsorted", '{"Points": [5, 0, 0.5, 0, 1, 1, 0.5, 0]}')
+    put("transfer_function", "not_multiple_of_4", '{"Points": [0, 0, 0.5]}')
+    put("transfer_function", "malformed", '[{"Points": [0, 0, 0.5, 0}')
+
+
+def prepared_file(dims, chunks, version=1):
+    voxels = dims[0] * dims[1] * dims[2]
+    table, blobs, offset = [], [], 0
+    for name, type_, components, size in chunks:
+        blob = bytes((i * 7 + len(name)) % 251 for i in range(voxels * components * size))
+        if name == "labels":
+            blob = struct.pack("<%dI" % voxels, *[i % 2 for i in range(voxels)])
+        table.append({"name": name, "type": type_, "components": components, "offset": offset, "bytes": len(blob),
+                      "crc32": zlib.crc32(blob)})
+        blobs.append(blob)
+        offset += len(blob)
+    header = json.dumps({
+        "grid": {"dims": list(dims), "spacing": [1.0, 1.0, 2.0], "origin": [0.0, 0.0, 0.0]},
+        "referenceStep": 1.0, "regionCount": 2,
+        "metadata": {"source": "tiny.raw", "classification": "{}", "opacityThreshold": 0.01,
+                     "angleThresholdDeg": 3.0, "useNormals": True, "trilinear": False, "distanceCap": 255,
+                     "statistics": {}},
+        "chunks": table}, indent=1).encode()
+    return (b"VOLPREP\0" + struct.pack("<IQ", version, len(header)) + header + struct.pack("<I", zlib.crc32(header))
+            + b"".join(blobs))
+
+
+def prepared():
+    base = [("sigma", "float32", 1, 4), ("colour", "float32", 3, 4), ("labels", "uint32", 1, 4)]
+    fields = ([("normal", "float32", 3, 4), ("pc", "uint8", 1, 1)] + [("acd%d" % o, "uint8", 1, 1) for o in range(8)]
+              + [("eacd%d" % o, "uint8", 3, 1) for o in range(8)])
+    put("prepared", "all_chunks", prepared_file((2, 2, 1), base + fields))
+    put("prepared", "no_fields", prepared_file((3, 1, 2), base))
+    put("prepared", "wrong_version", prepared_file((2, 2, 1), base, version=7))
+    put("prepared", "truncated", prepared_file((2, 2, 1), base + fields)[:-30])
+
+
+if __name__ == "__main__":
+    for make in (raw, nrrd, metaimage, nifti, vtk_legacy, vti, dicom, transfer_function, prepared):
+        make()
