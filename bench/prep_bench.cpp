@@ -1,12 +1,10 @@
-// Preprocessing benchmark: per dataset, the median over several runs of each stage's time (load, classify,
-// segment, each distance field, write, and reading the prepared file back), the bytes of every field, and
-// what the segmentation produced. Prints Markdown tables.
-#include <sys/resource.h>
+// Preprocessing benchmark: per dataset, the median over several runs of each stage's wall and CPU time (load,
+// classify, segment, each distance field, write, and reading the prepared file back), the bytes of every field,
+// and what the segmentation produced. Prints Markdown tables.
 #include <tbb/info.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <map>
 
@@ -18,8 +16,7 @@
 namespace {
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kStages = {"load",  "classify", "segment", "pc",      "acd",
-                                          "eacd",  "write",    "read",    "read cpu"};
+const std::vector<std::string> kStages = {"load", "classify", "segment", "pc", "acd", "eacd", "write", "read"};
 const std::vector<std::string> kChunks = {"sigma", "colour", "normal", "labels", "pc", "acd", "eacd"};
 
 double median(std::vector<double> v) {
@@ -30,18 +27,10 @@ double median(std::vector<double> v) {
 
 double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 
-// CPU seconds of this process, all threads: on a shared machine it says what a read costs when wall time cannot.
-double cpuSeconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
-    return seconds(u.ru_utime) + seconds(u.ru_stime);
-}
-
 struct DatasetResult {
     std::string name;
-    std::map<std::string, std::vector<double>> seconds;  // per stage, one entry per run
-    nlohmann::json statistics;                          // from the last run (identical every run)
+    std::map<std::string, std::vector<double>> wall, cpu;  // per stage, one entry per run
+    nlohmann::json statistics;                           // from the last run (the same every run)
     std::uintmax_t fileBytes = 0;
 };
 
@@ -57,16 +46,18 @@ DatasetResult benchDataset(const std::string& file, const vr::PrepareOptions& ba
     options.raw.spacing = e.spacing;
     options.classify.transferFunction = vr::loadTransferFunction(vr::test::datasetsDir() / e.tf);
     fs::path out = scratch / (file + ".vprep");
-    DatasetResult result{file, {}, {}, 0};
+    DatasetResult result{file, {}, {}, {}, 0};
     for (int run = 0; run < runs; ++run) {
         vr::PrepareResult r = vr::prepareFile(vr::test::datasetsDir() / file, out, options);
-        for (const vr::StageTime& t : r.stages) result.seconds[t.stage].push_back(t.seconds);
-        double cpu = cpuSeconds();
-        auto start = std::chrono::steady_clock::now();
+        r.prepared = {};  // free it before reading the file back
+        vr::StageClock clock;
         vr::PreparedVolume back = vr::readPrepared(out, options.fields, options.classify.normals);
-        result.seconds["read"].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        result.seconds["read cpu"].push_back(cpuSeconds() - cpu);
-        result.statistics = r.prepared.meta.statistics;
+        r.stages.push_back(clock.stop("read"));
+        for (const vr::StageTime& t : r.stages) {
+            result.wall[t.stage].push_back(t.seconds);
+            result.cpu[t.stage].push_back(t.cpuSeconds);
+        }
+        result.statistics = back.meta.statistics;
         result.fileBytes = r.fileBytes;
         std::fprintf(stderr, "%s: run %d of %d done\n", file.c_str(), run + 1, runs);
     }
@@ -74,12 +65,9 @@ DatasetResult benchDataset(const std::string& file, const vr::PrepareOptions& ba
     return result;
 }
 
-void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOptions& o, int runs) {
-    std::printf("Preprocessing, T_o = %g, T_a = %g deg, normals %s, %s sampling, %zu threads; median of %d runs.\n\n",
-                o.segmentation.opacityThreshold, o.segmentation.angleThresholdDeg, o.classify.normals ? "on" : "off",
-                o.segmentation.trilinear ? "trilinear" : "nearest", std::size_t(tbb::info::default_concurrency()), runs);
-    std::printf("Seconds per stage (pc: on its own, with its own ACD passes; eacd: on top of acd; read: readPrepared "
-                "of every field written, wall and CPU time of all threads):\n\n| dataset | voxels |");
+void printTimes(const char* title, const std::vector<DatasetResult>& results,
+                std::map<std::string, std::vector<double>> DatasetResult::*times) {
+    std::printf("%s\n\n| dataset | voxels |", title);
     for (const auto& s : kStages) std::printf(" %s |", s.c_str());
     std::printf(" total (no read) |\n|---|---:|");
     for (std::size_t i = 0; i <= kStages.size(); ++i) std::printf("---:|");
@@ -88,18 +76,30 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
         std::printf("| %s | %zu |", r.name.c_str(), r.statistics["voxels"].get<std::size_t>());
         double total = 0;
         for (const auto& s : kStages) {
-            if (!r.seconds.count(s)) {
+            if (!(r.*times).count(s)) {
                 std::printf(" - |");
                 continue;
             }
-            double m = median(r.seconds.at(s));
-            if (!s.starts_with("read")) total += m;
+            double m = median((r.*times).at(s));
+            if (s != "read") total += m;
             std::printf(" %.3f |", m);
         }
         std::printf(" %.3f |\n", total);
     }
+    std::printf("\n");
+}
 
-    std::printf("\nMiB per chunk:\n\n| dataset |");
+void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOptions& o, int runs) {
+    std::printf("Preprocessing, T_o = %g, T_a = %g deg, normals %s, %s sampling, %d threads; median of %d runs.\n"
+                "pc is timed on its own (with its own 8 ACD passes); eacd on top of acd; read is readPrepared of every "
+                "chunk written.\n\n",
+                o.segmentation.opacityThreshold, o.segmentation.angleThresholdDeg, o.classify.normals ? "on" : "off",
+                o.segmentation.trilinear ? "trilinear" : "nearest", tbb::info::default_concurrency(), runs);
+    printTimes("Wall seconds per stage:", results, &DatasetResult::wall);
+    printTimes("CPU seconds per stage (all threads; steadier than wall time on a shared machine):", results,
+               &DatasetResult::cpu);
+
+    std::printf("MiB per chunk:\n\n| dataset |");
     for (const auto& c : kChunks) std::printf(" %s |", c.c_str());
     std::printf(" file |\n|---|");
     for (std::size_t i = 0; i <= kChunks.size(); ++i) std::printf("---:|");
@@ -110,16 +110,30 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
         std::printf(" %.1f |\n", mib(double(r.fileBytes)));
     }
 
-    std::printf("\nRegions and mean leaps (voxels; ACD edge and EACD extents of octant 0):\n\n"
-                "| dataset | regions | mean region size | PC radius | ACD edge | EACD extents |\n|---|---:|---:|---:|---:|---|\n");
+    std::printf("\nRegions and mean leaps in voxels (ACD edge: the same in every octant; EACD extents x,y,z of octant 0):\n\n"
+                "| dataset | regions | mean region size | PC radius | ACD edge | EACD extents |\n"
+                "|---|---:|---:|---:|---:|---|\n");
     for (const auto& r : results) {
         const nlohmann::json& s = r.statistics;
         const nlohmann::json& l = s["leaps"];
+        auto number = [&](const char* key, auto get) {
+            if (!l.contains(key)) return std::string("-");
+            char text[32];
+            std::snprintf(text, sizeof(text), "%.2f", get(l[key]));
+            return std::string(text);
+        };
+        std::string extents = "-";
+        if (l.contains("eacdMeanExtent")) {
+            const nlohmann::json& e = l["eacdMeanExtent"][0];
+            char text[64];
+            std::snprintf(text, sizeof(text), "%.2f, %.2f, %.2f", e[0].get<double>(), e[1].get<double>(), e[2].get<double>());
+            extents = text;
+        }
         std::printf("| %s | %u | %.1f | %s | %s | %s |\n", r.name.c_str(), s["regions"].get<uint32_t>(),
                     s["meanRegionSize"].get<double>(),
-                    l.contains("pcMeanRadius") ? std::to_string(l["pcMeanRadius"].get<double>()).c_str() : "-",
-                    l.contains("acdMeanEdge") ? std::to_string(l["acdMeanEdge"][0].get<double>()).c_str() : "-",
-                    l.contains("eacdMeanExtent") ? l["eacdMeanExtent"][0].dump().c_str() : "-");
+                    number("pcMeanRadius", [](const nlohmann::json& j) { return j.get<double>(); }).c_str(),
+                    number("acdMeanEdge", [](const nlohmann::json& j) { return j[0].get<double>(); }).c_str(),
+                    extents.c_str());
     }
 }
 

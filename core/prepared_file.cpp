@@ -1,7 +1,9 @@
 #include "prepared_file.h"
 
 #include <fcntl.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -175,6 +177,14 @@ T field(const Reader& r, const json& j, const char* key) {
     }
 }
 
+// A non-negative integer no larger than `max` (a float or an out-of-range number would not convert safely).
+uint64_t countField(const Reader& r, const json& j, const char* key, uint64_t max) {
+    json v = field<json>(r, j, key);
+    if (!v.is_number_unsigned() || v.get<uint64_t>() > max)
+        throw r.fail(std::string("bad header: '") + key + "' must be an integer from 0 to " + std::to_string(max));
+    return v.get<uint64_t>();
+}
+
 Vec3d vec3Field(const Reader& r, const json& j, const char* key) {
     auto v = field<std::vector<double>>(r, j, key);
     if (v.size() != 3) throw r.fail(std::string("bad header: '") + key + "' needs 3 numbers");
@@ -254,7 +264,8 @@ void writePrepared(const fs::path& path, const PreparedVolume& p) {
                    {"regionCount", p.regions.count},
                    {"metadata", metadataJson(p.meta)},
                    {"chunks", table}};
-    std::string text = header.dump(1);
+    // Paths need not be UTF-8: replace what JSON cannot hold rather than fail the write.
+    std::string text = header.dump(1, ' ', false, json::error_handler_t::replace);
 
     writeFileAtomically(path, [&](std::ostream& out) {
         uint32_t version = kPreparedFormatVersion;
@@ -303,12 +314,13 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
 
     PreparedVolume p;
     json grid = field<json>(r, header, "grid");
-    auto dims = field<std::vector<long long>>(r, grid, "dims");
-    if (dims.size() != 3) throw r.fail("bad header: 'dims' needs 3 numbers");
-    std::string dimsText = std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]);
-    for (long long d : dims)
-        if (d < 1 || d > kMaxDim) throw r.fail("absurd grid dims " + dimsText);
-    Vec3i n{int(dims[0]), int(dims[1]), int(dims[2])};
+    json dims = field<json>(r, grid, "dims");
+    if (!dims.is_array() || dims.size() != 3) throw r.fail("bad header: 'dims' needs 3 numbers");
+    std::string dimsText = dims[0].dump() + "x" + dims[1].dump() + "x" + dims[2].dump();
+    for (const json& d : dims)
+        if (!d.is_number_unsigned() || d.get<uint64_t>() < 1 || d.get<uint64_t>() > kMaxDim)
+            throw r.fail("absurd grid dims " + dimsText);
+    Vec3i n{dims[0].get<int>(), dims[1].get<int>(), dims[2].get<int>()};
     if (voxelCount(n) > kMaxVoxels) throw r.fail("absurd grid dims " + dimsText + " (too many voxels)");
     GridGeometry& g = p.classified.grid;
     g.dims = n;
@@ -316,7 +328,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     g.origin = vec3Field(r, grid, "origin");
     p.classified.referenceStep = field<double>(r, header, "referenceStep");
     p.regions.dims = n;
-    p.regions.count = field<uint32_t>(r, header, "regionCount");
+    p.regions.count = uint32_t(countField(r, header, "regionCount", UINT32_MAX));
 
     json meta = field<json>(r, header, "metadata");
     p.meta.source = field<std::string>(r, meta, "source");
@@ -325,7 +337,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     p.meta.segmentation.angleThresholdDeg = field<double>(r, meta, "angleThresholdDeg");
     p.meta.segmentation.useNormals = field<bool>(r, meta, "useNormals");
     p.meta.segmentation.trilinear = field<bool>(r, meta, "trilinear");
-    p.meta.distanceCap = field<int>(r, meta, "distanceCap");
+    p.meta.distanceCap = int(countField(r, meta, "distanceCap", kDistanceCap));
     p.meta.statistics = field<json>(r, meta, "statistics");
 
     // The chunk table must agree with the dims and lie inside the file before anything is allocated.
@@ -335,9 +347,10 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
         ChunkLayout l = layoutOf(name);
         if (!l.type) throw r.fail("bad header: unknown chunk '" + name + "'");
         if (table.count(name)) throw r.fail("bad header: chunk '" + name + "' appears twice");
-        if (field<std::string>(r, c, "type") != l.type || field<int>(r, c, "components") != l.components)
+        if (field<std::string>(r, c, "type") != l.type || countField(r, c, "components", 3) != uint64_t(l.components))
             throw r.fail("bad header: chunk '" + name + "' should be " + std::to_string(l.components) + " x " + l.type);
-        ChunkEntry e{field<uint64_t>(r, c, "offset"), field<uint64_t>(r, c, "bytes"), field<uint32_t>(r, c, "crc32")};
+        ChunkEntry e{countField(r, c, "offset", UINT64_MAX), countField(r, c, "bytes", UINT64_MAX),
+                     uint32_t(countField(r, c, "crc32", UINT32_MAX))};
         uint64_t expected = uint64_t(voxelCount(n)) * l.components * l.elementBytes;
         if (e.bytes != expected)
             throw r.fail("chunk '" + name + "' holds " + std::to_string(e.bytes) + " bytes but grid " + dimsText +
@@ -374,6 +387,18 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     if (fields & kFieldACD) wantOctants("acd", "ACD", p.fields.acd);
     if (fields & kFieldEACD) wantOctants("eacd", "EACD", p.fields.eacd);
     readChunks(r, dataStart, reads);
+
+    // The labels must name regions that exist: whatever indexes per-region data by label relies on it.
+    const std::vector<uint32_t>& label = p.regions.label;
+    uint32_t maxLabel = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, label.size()), uint32_t(0),
+        [&](const tbb::blocked_range<std::size_t>& b, uint32_t m) {
+            return std::max(m, *std::max_element(label.begin() + std::ptrdiff_t(b.begin()), label.begin() + std::ptrdiff_t(b.end())));
+        },
+        [](uint32_t a, uint32_t b) { return std::max(a, b); });
+    if (maxLabel >= p.regions.count)
+        throw r.fail("labels hold region id " + std::to_string(maxLabel) + " but regionCount is " +
+                     std::to_string(p.regions.count));
     return p;
 }
 

@@ -48,19 +48,22 @@ def raw():
 
 
 def nrrd_header(type_, encoding, endian="little", extra=""):
-    return ("NRRD0004\n# tiny\ntype: %s\ndimension: 3\nsizes: 4 3 2\nspacings: 1 0.5 2\nencoding: %s\n"
+    # 10 samples along x: VTK reads a first axis of 9 or fewer as vector components.
+    return ("NRRD0004\n# tiny\ntype: %s\ndimension: 3\nsizes: 10 3 2\nspacings: 1 0.5 2\nencoding: %s\n"
             "endian: %s\n%s\n" % (type_, encoding, endian, extra))
 
 
 def nrrd():
-    put("nrrd", "uint8_raw", nrrd_header("uint8", "raw").encode() + UINT8)
-    put("nrrd", "int16_big", nrrd_header("short", "raw", "big").encode() + struct.pack(">%dh" % VOXELS, *range(VOXELS)))
-    put("nrrd", "float_gzip", nrrd_header("float", "gzip").encode() + gz(FLOAT32))
-    put("nrrd", "ascii", nrrd_header("ushort", "ascii") + " ".join(str(i) for i in range(VOXELS)) + "\n")
+    n = 60
+    put("nrrd", "uint8_raw", nrrd_header("uint8", "raw").encode() + bytes(range(n)))
+    put("nrrd", "int16_big", nrrd_header("short", "raw", "big").encode() + struct.pack(">%dh" % n, *range(-9, n - 9)))
+    put("nrrd", "float_gzip", nrrd_header("float", "gzip").encode() + gz(struct.pack("<%df" % n, *range(n))))
+    put("nrrd", "ascii", nrrd_header("ushort", "ascii") + " ".join(str(i * 999) for i in range(n)) + "\n")
     put("nrrd", "origin", nrrd_header("uint8", "raw", extra="space: left-posterior-superior\n"
                                       "space directions: (1,0,0) (0,1,0) (0,0,1)\nspace origin: (10,20,30)\n")
-        .replace("spacings: 1 0.5 2\n", "").encode() + UINT8)
+        .replace("spacings: 1 0.5 2\n", "").encode() + bytes(range(n)))
     put("nrrd", "short_data", nrrd_header("uint8", "raw").encode() + UINT8[:7])
+    put("nrrd", "vector_axis", nrrd_header("uint8", "raw").replace("sizes: 10", "sizes: 4").encode() + UINT8)
 
 
 def metaimage_header(element, extra=""):
@@ -157,9 +160,13 @@ def dicom_slice(z, number, pixels):
         dicom_element(0x0008, 0x0016, b"UI", "1.2.840.10008.5.1.4.1.1.4"),
         dicom_element(0x0008, 0x0060, b"CS", "MR"),
         dicom_element(0x0018, 0x0050, b"DS", "2"),
+        dicom_element(0x0020, 0x000D, b"UI", "1.2.3.4.100"),
+        dicom_element(0x0020, 0x000E, b"UI", "1.2.3.4.101"),
+        dicom_element(0x0020, 0x0011, b"IS", "1"),
         dicom_element(0x0020, 0x0013, b"IS", str(number)),
         dicom_element(0x0020, 0x0032, b"DS", "0\\0\\%g" % z),
         dicom_element(0x0020, 0x0037, b"DS", "1\\0\\0\\0\\1\\0"),
+        dicom_element(0x0020, 0x1041, b"DS", "%g" % z),
         dicom_element(0x0028, 0x0002, b"US", us(1)),
         dicom_element(0x0028, 0x0004, b"CS", "MONOCHROME2"),
         dicom_element(0x0028, 0x0010, b"US", us(3)),  # rows

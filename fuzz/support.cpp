@@ -53,7 +53,8 @@ void loadExpectingInputError(const fs::path& path) {
     Volume v;
     try {
         v = loadVolume(path);
-    } catch (const InputError&) {
+    } catch (const InputError& e) {
+        if (std::getenv("VR_FUZZ_VERBOSE")) std::fprintf(stderr, "InputError: %s\n", e.what());
         return;
     }
     const Vec3i d = v.grid.dims;
@@ -64,6 +65,7 @@ void loadExpectingInputError(const fs::path& path) {
             finding("loadVolume returned a non-positive or non-finite spacing or origin");
     for (float f : v.values)
         if (!std::isfinite(f)) finding("loadVolume returned a non-finite voxel");
+    if (std::getenv("VR_FUZZ_VERBOSE")) std::fprintf(stderr, "loaded %dx%dx%d\n", d.x, d.y, d.z);
 }
 
 void finding(const std::string& what) {

@@ -24,7 +24,8 @@ struct NamedInput {
 NamedInput splitNamedInput(const uint8_t* data, std::size_t size, std::initializer_list<std::string_view> suffixes);
 
 // loadVolume() on path: InputError is fine; any other exception escapes (libFuzzer reports it), and a volume that
-// breaks Volume's invariants (dims, spacing, one finite value per voxel) aborts.
+// breaks Volume's invariants (dims, spacing, one finite value per voxel) aborts. With VR_FUZZ_VERBOSE set it prints
+// each outcome (to check that the seeds reach the loaders' success paths).
 void loadExpectingInputError(const std::filesystem::path& path);
 
 // Aborts with a message: a finding that is not a crash by itself.

@@ -6,6 +6,7 @@
 #include <vtkMetaImageWriter.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
+#include <vtkXMLImageDataWriter.h>
 #include <zlib.h>
 
 #include <chrono>
@@ -118,7 +119,7 @@ TEST(LoadBadInput, NonPositiveDimsAndSpacing) {
     expectInputError(path, {"positive"}, o);
     o.dims = Vec3i{4, 4, 4};
     o.spacing = Vec3d{1, -1, 1};
-    expectInputError(path, {"spacing"}, o);
+    expectInputError(path, {"spacing along y", "positive"}, o);
 }
 
 void writeFloats(const fs::path& path, const std::vector<float>& values) {
@@ -150,6 +151,41 @@ TEST(LoadBadInput, MalformedNrrdHeader) {
     writeText(dir / "vector.nrrd", "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 3 40 30\nencoding: raw\n\n" +
                                        std::string(3600, 'x'));
     expectInputError(dir / "vector.nrrd", {"components"});
+}
+
+// Headers are checked before the reader allocates: a size no machine holds fails at once.
+TEST(LoadBadInput, HeadersClaimingTooManyVoxels) {
+    const fs::path dir = test::scratchDir("bad_header_size");
+    writeText(dir / "huge.nrrd", "NRRD0004\ntype: float\ndimension: 3\nsizes: 100000 100000 100000\n"
+                                 "encoding: raw\nendian: little\n\n" + std::string(64, 'x'));
+    expectInputError(dir / "huge.nrrd", {"100000x100000x100000", "memory"});
+    writeText(dir / "huge.vtk", "# vtk DataFile Version 3.0\nhuge\nBINARY\nDATASET STRUCTURED_POINTS\n"
+                                "DIMENSIONS 2000000000 2000000000 2000000000\nSPACING 1 1 1\nORIGIN 0 0 0\n"
+                                "POINT_DATA 8\nSCALARS s unsigned_char\nLOOKUP_TABLE default\n" + std::string(8, 'x'));
+    expectInputError(dir / "huge.vtk", {"2000000000x2000000000x2000000000"});
+
+    openvdb::initialize();
+    auto sparse = openvdb::FloatGrid::create(0.0f);  // two voxels whose bounding box is 2^30 wide on every axis
+    sparse->tree().setValue(openvdb::Coord(0, 0, 0), 1.0f);
+    sparse->tree().setValue(openvdb::Coord(1 << 30, 1 << 30, 1 << 30), 1.0f);
+    {
+        openvdb::io::File file((dir / "sparse.vdb").string());
+        file.write({sparse});
+    }
+    expectInputError(dir / "sparse.vdb", {"1073741825x1073741825x1073741825"});
+}
+
+TEST(LoadBadInput, ZeroSpacingInAHeader) {
+    const fs::path path = test::scratchDir("bad_spacing") / "flat.vti";
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(4, 4, 4);
+    image->SetSpacing(1, 0, 1);
+    image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+    vtkNew<vtkXMLImageDataWriter> writer;
+    writer->SetFileName(path.c_str());
+    writer->SetInputData(image);
+    writer->Write();
+    expectInputError(path, {"spacing along y", "positive"});
 }
 
 TEST(LoadBadInput, TruncatedMetaImageData) {

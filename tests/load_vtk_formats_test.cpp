@@ -87,7 +87,7 @@ TEST(LoadVtkFormats, MetaImageRoundTripsEveryType) {
 
 TEST(LoadVtkFormats, NiftiRoundTripsPlainAndGzip) {
     const fs::path dir = test::scratchDir("load_nii");
-    for (const char* name : {"v.nii", "v.nii.gz"}) {
+    for (const char* name : {"v.nii", "v.nii.gz", "UPPER.NII.GZ"}) {
         SCOPED_TRACE(name);
         auto image = smallImage(VTK_SHORT, -300, 11);
         const Volume v = writeAndLoad<vtkNIFTIImageWriter>(image, dir / name);
@@ -155,6 +155,25 @@ TEST(LoadVtkFormats, NrrdWithAttachedHeader) {
     const Volume v = loadVolume(path);
     ASSERT_EQ(v.grid.dims, Vec3i(12, 4, 3));
     EXPECT_EQ(v.sourceType, ScalarType::Int16);
+    expectSpacing(v);
+    for (std::size_t i = 0; i < values.size(); ++i) ASSERT_EQ(v.values[i], float(values[i])) << i;
+}
+
+// A detached header (.nhdr) naming its data file, with big-endian data.
+TEST(LoadVtkFormats, NrrdWithDetachedHeader) {
+    const fs::path dir = test::scratchDir("load_nhdr");
+    std::vector<std::uint16_t> values(12 * 4 * 3);
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::uint16_t(i * 1009);
+    {
+        std::ofstream out(dir / "v.nhdr");
+        out << "NRRD0004\ntype: unsigned short\ndimension: 3\nsizes: 12 4 3\nspacings: 0.5 0.75 2\n"
+               "encoding: raw\nendian: big\ndata file: v.data\n";
+        std::ofstream data(dir / "v.data", std::ios::binary);
+        for (std::uint16_t x : values) data.put(char(x >> 8)).put(char(x & 0xff));
+    }
+    const Volume v = loadVolume(dir / "v.nhdr");
+    ASSERT_EQ(v.grid.dims, Vec3i(12, 4, 3));
+    EXPECT_EQ(v.sourceType, ScalarType::UInt16);
     expectSpacing(v);
     for (std::size_t i = 0; i < values.size(); ++i) ASSERT_EQ(v.values[i], float(values[i])) << i;
 }

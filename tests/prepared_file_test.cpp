@@ -311,6 +311,28 @@ TEST_F(PreparedFile, RejectsABadChunkTable) {
     expectRejected(bad, "truncated: chunk 'sigma'");
 }
 
+TEST_F(PreparedFile, RejectsNumbersThatDoNotFit) {
+    for (auto [key, value] : std::vector<std::pair<std::string, json>>{
+             {"offset", -5}, {"offset", 1e30}, {"bytes", 12.5}, {"crc32", uint64_t(1) << 40}, {"components", "3"}}) {
+        SCOPED_TRACE(key + " = " + value.dump());
+        Parts parts = split(good);
+        parts.header["chunks"][2][key] = value;
+        join(bad, parts);
+        expectRejected(bad, "bad header: '" + key + "' must be an integer");
+    }
+    Parts parts = split(good);
+    parts.header["grid"]["dims"] = {13, 7.5, 5};
+    join(bad, parts);
+    expectRejected(bad, "absurd grid dims 13x7.5x5");
+}
+
+TEST_F(PreparedFile, RejectsLabelsBeyondTheRegionCount) {
+    Parts parts = split(good);
+    parts.header["regionCount"] = 15;  // the labels go up to 15
+    join(bad, parts);
+    expectRejected(bad, "labels hold region id 15 but regionCount is 15");
+}
+
 TEST_F(PreparedFile, RejectsHeaderThatIsNotJson) {
     std::vector<char> b = readBytes(good);
     uint64_t len;

@@ -138,7 +138,9 @@ void expectMatchesCpu(const std::string& name, const PreparedVolume& p, bool tri
             SCOPED_TRACE(name + " " + std::string(casterName(c)) + " az " + std::to_string(vp.azimuthDeg) +
                          (vp.projection == Projection::Perspective ? " perspective" : " ortho"));
             EXPECT_LT(maxAbsDifference(gpu.image, cpu.image), 1e-3);
-            EXPECT_NEAR(meanIterations(gpu), meanIterations(cpu), 0.01 * meanIterations(cpu) + 1e-9);
+            // Positions, leaps and opacity are computed in double as on the CPU: the same work, ray by ray.
+            EXPECT_EQ(gpu.iterations, cpu.iterations);
+            EXPECT_EQ(gpu.samples, cpu.samples);
         }
     }
 }

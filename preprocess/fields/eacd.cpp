@@ -16,12 +16,30 @@ namespace vr {
 
 namespace {
 
+// The six axial run fields, each computed when first needed and kept for every batch.
+class RunFields {
+public:
+    explicit RunFields(const Regions& regions) : regions_(regions) {}
+    const Regions& regions() const { return regions_; }
+    const std::vector<uint8_t>& get(int axis, int sign) {
+        std::vector<uint8_t>& run = runs_[2 * axis + (sign < 0)];
+        if (run.empty()) run = axialRuns(regions_, axis, sign);
+        return run;
+    }
+
+private:
+    const Regions& regions_;
+    std::array<std::vector<uint8_t>, 6> runs_;
+};
+
 // The octants built together. Their extents live in planar byte arrays while being built (ext[o][a][v]: each
 // step reads and writes whole slots, so one byte per voxel moves instead of three) and are interleaved at the end.
+// widest[o][v] is the axis step 1 extends (see widestAxis).
 struct OctantBatch {
     std::vector<int> octants;
     std::array<const std::vector<uint8_t>*, kOctants> acd{};
     std::array<std::array<std::vector<uint8_t>, 3>, kOctants> ext;
+    std::array<std::vector<uint8_t>, kOctants> widest;
 
     std::vector<int> withSign(int axis, int sign) const {
         std::vector<int> out;
@@ -118,13 +136,13 @@ void faceMinima(const Slab& slab, const std::vector<int>& octs, SlabScratch& sc)
 // Runs body(slab, octs, scratch) on every slab across `axis`, for both run directions, with the slab's runs
 // loaded; octs are the batch's octants whose sign along the axis is the direction.
 template <typename Body>
-void forEachSlab(const Regions& regions, const OctantBatch& batch, int axis, Body body) {
-    const Vec3i& n = regions.dims;
-    std::array<std::vector<uint8_t>, 2> runs;  // index 0: sign +1, 1: sign -1
+void forEachSlab(RunFields& runFields, const OctantBatch& batch, int axis, Body body) {
+    const Vec3i& n = runFields.regions().dims;
+    std::array<const uint8_t*, 2> runs{};  // index 0: sign +1, 1: sign -1
     std::array<std::vector<int>, 2> octs;
     for (int d = 0; d < 2; ++d) {
         octs[d] = batch.withSign(axis, d ? -1 : 1);
-        if (!octs[d].empty()) runs[d] = axialRuns(regions, axis, d ? -1 : 1);
+        if (!octs[d].empty()) runs[d] = runFields.get(axis, d ? -1 : 1).data();
     }
     const int width = axis == 0 ? 32 : 1;  // slices per slab
     const int slabs = (n[axis] + width - 1) / width;
@@ -139,15 +157,15 @@ void forEachSlab(const Regions& regions, const OctantBatch& batch, int axis, Bod
             sc.lenU[j].resize(slab.size());
             sc.lenW[j].resize(slab.size());
         }
-        const uint8_t* r = runs[d].data();
+        const uint8_t* r = runs[d];
         slab.forEachVoxel([&](std::size_t l, std::size_t v) { sc.runs[l] = r[v]; });
         body(slab, octs[d], sc);
     });
 }
 
 // Step 1: ext[o][a] = extension along a of the ACD cube (minimum of runs over its k x k near face).
-void cubeExtensions(const Regions& regions, OctantBatch& batch, int a) {
-    forEachSlab(regions, batch, a, [&](const Slab& slab, const std::vector<int>& octs, SlabScratch& sc) {
+void cubeExtensions(RunFields& runs, OctantBatch& batch, int a) {
+    forEachSlab(runs, batch, a, [&](const Slab& slab, const std::vector<int>& octs, SlabScratch& sc) {
         for (std::size_t j = 0; j < octs.size(); ++j) {
             const uint8_t* acd = batch.acd[octs[j]]->data();
             uint8_t* k = sc.lenU[j].data();
@@ -162,20 +180,33 @@ void cubeExtensions(const Regions& regions, OctantBatch& batch, int a) {
     });
 }
 
+// Between steps 1 and 2: the axis that step 1 extends, per voxel.
+void findWidestAxes(OctantBatch& batch) {
+    for (int o : batch.octants) {
+        const uint8_t *ex = batch.ext[o][0].data(), *ey = batch.ext[o][1].data(), *ez = batch.ext[o][2].data();
+        std::vector<uint8_t>& widest = batch.widest[o];
+        widest.resize(batch.acd[o]->size());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, widest.size(), 1 << 16), [&](const auto& range) {
+            for (std::size_t v = range.begin(); v != range.end(); ++v) widest[v] = uint8_t(widestAxis(ex[v], ey[v], ez[v]));
+        });
+    }
+}
+
 // Step 2, for axis b: ext[o][b] = extension along b of the box extended along its widest axis a (a != b), whose
-// near face is ext[a] along a by k along the third axis. Slot a keeps the largest value (a new value is a minimum
-// over a larger face, so never above the old one), so widestAxis still finds a afterwards.
-void boxExtensions(const Regions& regions, OctantBatch& batch, int b) {
-    forEachSlab(regions, batch, b, [&](const Slab& slab, const std::vector<int>& octs, SlabScratch& sc) {
+// near face is ext[a] along a by k along the third axis. Step 2 never writes slot a of a voxel (b == a is skipped),
+// so the three axes could even run at once.
+void boxExtensions(RunFields& runs, OctantBatch& batch, int b) {
+    forEachSlab(runs, batch, b, [&](const Slab& slab, const std::vector<int>& octs, SlabScratch& sc) {
         for (std::size_t j = 0; j < octs.size(); ++j) {
             const uint8_t* acd = batch.acd[octs[j]]->data();
             const auto& ext = batch.ext[octs[j]];
-            const uint8_t *ex = ext[0].data(), *ey = ext[1].data(), *ez = ext[2].data();
+            const uint8_t* widestAxes = batch.widest[octs[j]].data();
             uint8_t *lenU = sc.lenU[j].data(), *lenW = sc.lenW[j].data();
             slab.forEachVoxel([&](std::size_t l, std::size_t v) {
-                const int a = widestAxis(ex[v], ey[v], ez[v]);
+                const int a = widestAxes[v];
                 const uint8_t widest = ext[a][v], k = acd[v];
-                lenU[l] = a == b ? 0 : slab.u == a ? widest : k;
+                // Nothing to do when b is the widest axis, or when nothing extended (then every slot is k).
+                lenU[l] = a == b || widest == k ? 0 : slab.u == a ? widest : k;
                 lenW[l] = slab.w == a ? widest : k;
             });
         }
@@ -194,10 +225,11 @@ void boxExtensions(const Regions& regions, OctantBatch& batch, int b) {
 void chooseBoxes(const OctantBatch& batch, int o, EACDField& out) {
     const uint8_t* acd = batch.acd[o]->data();
     const uint8_t *ex = batch.ext[o][0].data(), *ey = batch.ext[o][1].data(), *ez = batch.ext[o][2].data();
+    const uint8_t* widest = batch.widest[o].data();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 1 << 16), [&](const auto& range) {
         for (std::size_t v = range.begin(); v != range.end(); ++v) {
             const std::array<uint8_t, 3> e{ex[v], ey[v], ez[v]};
-            const int a = widestAxis(e[0], e[1], e[2]), b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
+            const int a = widest[v], b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
             const int second = e[b] >= e[c] ? b : c;
             std::array<uint8_t, 3> box{acd[v], acd[v], acd[v]};
             box[a] = e[a];
@@ -208,11 +240,10 @@ void chooseBoxes(const OctantBatch& batch, int o, EACDField& out) {
 }
 
 // EACD of `octants` (at most 4 at a time: the planar extents take 3 bytes per voxel and octant).
-void buildBatch(const Regions& regions, const std::vector<int>& octants,
+void buildBatch(RunFields& runs, const std::vector<int>& octants,
                 const std::array<const std::vector<uint8_t>*, kOctants>& acd,
                 const std::array<EACDField*, kOctants>& out) {
-    requireLabelPerVoxel(regions, "buildEACD");
-    const std::size_t voxels = voxelCount(regions.dims);
+    const std::size_t voxels = runs.regions().label.size();
     OctantBatch batch;
     batch.octants = octants;
     for (int o : octants) {
@@ -221,12 +252,14 @@ void buildBatch(const Regions& regions, const std::vector<int>& octants,
         batch.acd[o] = acd[o];
         for (auto& slot : batch.ext[o]) slot.resize(voxels);
     }
-    for (int a = 0; a < 3; ++a) cubeExtensions(regions, batch, a);
-    for (int b = 0; b < 3; ++b) boxExtensions(regions, batch, b);  // in turn: each reads the others' slots
+    for (int a = 0; a < 3; ++a) cubeExtensions(runs, batch, a);
+    findWidestAxes(batch);
+    for (int b = 0; b < 3; ++b) boxExtensions(runs, batch, b);
     for (int o : octants) {
         out[o]->resize(voxels);
         chooseBoxes(batch, o, *out[o]);
         batch.ext[o] = {};
+        batch.widest[o] = {};
     }
 }
 
@@ -238,7 +271,9 @@ EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int
     std::array<EACDField*, kOctants> outs{};
     acds[octant] = &acd;
     outs[octant] = &out;
-    buildBatch(regions, {octant}, acds, outs);
+    requireLabelPerVoxel(regions, "buildEACD");
+    RunFields runs(regions);
+    buildBatch(runs, {octant}, acds, outs);
     return out;
 }
 
@@ -252,8 +287,10 @@ std::array<EACDField, kOctants> buildEACD(const Regions& regions,
         outs[o] = &out[o];
     }
     // Two batches, +z and -z: each still shares every table between two (across x, y) or four (across z) octants.
-    buildBatch(regions, {0, 1, 2, 3}, acds, outs);
-    buildBatch(regions, {4, 5, 6, 7}, acds, outs);
+    requireLabelPerVoxel(regions, "buildEACD");
+    RunFields runs(regions);
+    buildBatch(runs, {0, 1, 2, 3}, acds, outs);
+    buildBatch(runs, {4, 5, 6, 7}, acds, outs);
     return out;
 }
 

@@ -69,6 +69,17 @@ void requireFinite(const Volume& v, const fs::path& path) {
                                            voxelText(v.grid.dims, first) + " = " + std::to_string(v.values[first]));
 }
 
+// Spacing and origin come from headers (or flags), so they are as untrusted as the voxels.
+void requireValidGeometry(const GridGeometry& g, const fs::path& path) {
+    for (int a = 0; a < 3; ++a) {
+        if (!(std::isfinite(g.spacing[a]) && g.spacing[a] > 0))
+            throw fileError(path.string(), std::string("spacing along ") + "xyz"[a] + " is " +
+                                               std::to_string(g.spacing[a]) + "; it must be positive and finite");
+        if (!std::isfinite(g.origin[a]))
+            throw fileError(path.string(), std::string("origin along ") + "xyz"[a] + " is not finite");
+    }
+}
+
 }  // namespace
 
 Volume loadVolume(const fs::path& path, const RawOptions& raw) {
@@ -76,6 +87,7 @@ Volume loadVolume(const fs::path& path, const RawOptions& raw) {
     const fs::file_status status = fs::status(path, ec);
     if (!fs::exists(status)) throw fileError(path.string(), "no such file or folder");
     Volume v = fs::is_directory(status) ? loadDicomSeries(path) : loaderFor(path)(path, raw);
+    requireValidGeometry(v.grid, path);
     requireFinite(v, path);
     v.source = path.string();
     return v;

@@ -8,9 +8,9 @@
 
 namespace vr {
 
-// Voxels come in the file's storage order (x fastest), which is what the converted raws of the same data hold
-// (colin27: equal voxel for voxel). VTK would reverse the slices only for qfac = -1, as NIfTI's left-handed
-// index frame demands of a right-handed VTK image; the file's index order is kept as VTK gives it.
+// Voxels come in the file's storage order (x fastest), as the raws converted from the same NIfTI files hold them
+// (colin27: equal voxel for voxel). The one change is VTK's own and is kept: for qfac = -1 (a left-handed index
+// frame) it reverses the slices, so that the volume does not render mirrored.
 Volume loadNifti(const std::filesystem::path& path) {
     vtkNew<vtkNIFTIImageReader> reader;
     VtkReadErrors errors;

@@ -1,11 +1,9 @@
 // Headerless raw volumes (.raw, .raw.gz): dims and type from flags or from the file name, x fastest.
-#include <unistd.h>
 #include <zlib.h>
 
 #include <bit>
 #include <cctype>
 #include <climits>
-#include <cmath>
 #include <fstream>
 #include <regex>
 #include <string>
@@ -13,6 +11,7 @@
 
 #include "core/errors.h"
 #include "preprocess/load/format_loaders.h"
+#include "preprocess/load/voxel_budget.h"
 #include "preprocess/load/voxel_conversion.h"
 
 namespace vr {
@@ -53,31 +52,6 @@ void fillFromName(const fs::path& path, RawOptions& options) {
             // Not a type name (e.g. a version suffix): the type must then come from the flag.
         }
     }
-}
-
-std::size_t physicalMemoryBytes() {
-    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : SIZE_MAX;
-}
-
-// Bytes the file must hold. Checked before anything is allocated: dims whose product overflows 64 bits, or whose
-// voxels (the file's bytes plus the float values) cannot fit in this machine's memory, fail here and fast.
-std::size_t expectedBytes(const fs::path& path, const Vec3i& dims, ScalarType type) {
-    if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0)
-        throw fileError(path.string(), "dims " + dimsText(dims) + " must all be positive");
-    std::size_t voxels, bytes, floatBytes, total;
-    if (__builtin_mul_overflow(std::size_t(dims.x), std::size_t(dims.y), &voxels) ||
-        __builtin_mul_overflow(voxels, std::size_t(dims.z), &voxels) ||
-        __builtin_mul_overflow(voxels, scalarSize(type), &bytes) ||
-        __builtin_mul_overflow(voxels, sizeof(float), &floatBytes) ||
-        __builtin_add_overflow(bytes, floatBytes, &total))
-        throw fileError(path.string(), "dims " + dimsText(dims) + " of " + std::string(scalarTypeName(type)) +
-                                           " overflow a 64-bit size");
-    if (const std::size_t memory = physicalMemoryBytes(); total > memory)
-        throw fileError(path.string(), "dims " + dimsText(dims) + " of " + std::string(scalarTypeName(type)) +
-                                           " need " + std::to_string(total) + " bytes, more than the " +
-                                           std::to_string(memory) + " bytes of memory of this machine");
-    return bytes;
 }
 
 std::string sizeMismatch(std::size_t expected, std::size_t actual, const Vec3i& dims, ScalarType type) {
@@ -157,20 +131,17 @@ Volume loadRaw(const fs::path& path, const RawOptions& flags) {
         throw fileError(path.string(),
                         "raw file without voxel type: give --type (uint8, int16, uint16, float32) or name it "
                         "NAME_XxYxZ_TYPE.raw");
-    const Vec3d spacing = options.spacing.value_or(Vec3d{1, 1, 1});
-    for (int a = 0; a < 3; ++a)
-        if (!(std::isfinite(spacing[a]) && spacing[a] > 0))
-            throw fileError(path.string(), "spacing must be positive and finite, got " + std::to_string(spacing[a]));
-
     const Vec3i dims = *options.dims;
     const ScalarType type = *options.type;
-    const std::size_t expected = expectedBytes(path, dims, type);
+    // The file's bytes and the float values are held together while converting.
+    checkVoxelBudget(path, dims.x, dims.y, dims.z, scalarSize(type) + sizeof(float));
+    const std::size_t expected = voxelCount(dims) * scalarSize(type);
     const std::vector<unsigned char> bytes =
         lowerCase(path.extension().string()) == ".gz" ? readGzip(path, expected, dims, type) : readPlain(path, expected, dims, type);
 
     Volume v;
     v.grid.dims = dims;
-    v.grid.spacing = spacing;
+    v.grid.spacing = options.spacing.value_or(Vec3d{1, 1, 1});
     v.sourceType = type;
     v.values.resize(v.grid.voxels());
     const bool swap = options.bigEndian != (std::endian::native == std::endian::big);

@@ -3,10 +3,12 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 
+#include <cstdint>
 #include <mutex>
 
 #include "core/errors.h"
 #include "preprocess/load/format_loaders.h"
+#include "preprocess/load/voxel_budget.h"
 
 namespace vr {
 
@@ -24,17 +26,17 @@ Volume loadVdb(const std::filesystem::path& path) {
             grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
         }
         file.close();
-    } catch (const openvdb::Exception& e) {
+    } catch (const std::exception& e) {  // openvdb::Exception, and what corrupt streams throw (bad_alloc, ...)
         throw fail(std::string("not a readable OpenVDB file: ") + e.what());
     }
     if (!grid) throw fail("holds no float grid (only FloatGrid volumes are supported)");
 
     const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
     if (box.empty() || grid->activeVoxelCount() == 0) throw fail("float grid '" + grid->getName() + "' is empty");
-    const openvdb::Coord size = box.dim();
+    const auto extent = [&](int a) { return std::int64_t(box.max()[a]) - box.min()[a] + 1; };  // no int overflow
 
     Volume v;
-    v.grid.dims = {size.x(), size.y(), size.z()};
+    v.grid.dims = checkVoxelBudget(path, extent(0), extent(1), extent(2), sizeof(float));
     v.sourceType = ScalarType::Float32;
     // VDB voxel centres lie at integer index coordinates, so the grid corner is half a voxel before the centre of
     // the bounding box's first voxel. Only the transform's scale and translation are kept (no rotation).

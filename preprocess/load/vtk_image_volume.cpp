@@ -38,9 +38,6 @@ Volume volumeFromVtkImage(vtkImageData* image, const std::filesystem::path& path
     image->GetOrigin(origin);
     image->GetExtent(extent);
     for (int a = 0; a < 3; ++a) {
-        if (!(std::isfinite(spacing[a]) && spacing[a] > 0))
-            throw fail("spacing " + std::to_string(spacing[a]) + " along axis " + "xyz"[a] +
-                       " is not positive and finite");
         v.grid.spacing[a] = spacing[a];
         // The first voxel's centre is at origin + extent_min * spacing (extents need not start at 0).
         v.grid.origin[a] = origin[a] + (extent[2 * a] - 0.5) * spacing[a];

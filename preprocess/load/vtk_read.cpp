@@ -1,18 +1,23 @@
 #include "preprocess/load/vtk_read.h"
 
+#include <vtkAbstractArray.h>
 #include <vtkAlgorithm.h>
 #include <vtkCommand.h>
 #include <vtkErrorCode.h>
 #include <vtkExecutive.h>
 #include <vtkImageData.h>
 #include <vtkLogger.h>
+#include <vtkInformation.h>
 #include <vtkOutputWindow.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 
+#include <algorithm>
 #include <cctype>
 #include <iostream>
 #include <regex>
 
 #include "core/errors.h"
+#include "preprocess/load/voxel_budget.h"
 
 namespace vr {
 
@@ -117,12 +122,28 @@ std::string VtkReadErrors::complaint() const {
 vtkImageData* VtkReadErrors::read(vtkAlgorithm* reader, const std::filesystem::path& path, const std::string& format) {
     watch(reader);
     watch(reader->GetExecutive());
-    reader->Update();
     const auto fail = [&](const std::string& problem) {
         return fileError(path.string(), "cannot read " + format + ": " + problem);
     };
     // Some failures (MetaIO's short data) show only as printed text: any complaint counts.
-    if (const std::string text = complaint(); !text.empty()) throw fail(text);
+    const auto failOnComplaint = [&] {
+        if (const std::string text = complaint(); !text.empty()) throw fail(text);
+    };
+
+    // The header first: a size no machine can hold fails here instead of in the reader's allocation.
+    reader->UpdateInformation();
+    failOnComplaint();
+    vtkInformation* info = reader->GetOutputInformation(0);
+    if (int e[6]; info && info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())) {
+        info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+        const int components = std::max(1, vtkImageData::GetNumberOfScalarComponents(info));
+        const int typeSize = std::max(1, vtkAbstractArray::GetDataTypeSize(vtkImageData::GetScalarType(info)));
+        const std::size_t stored = std::size_t(components) * std::size_t(typeSize);
+        checkVoxelBudget(path, std::int64_t(e[1]) - e[0] + 1, std::int64_t(e[3]) - e[2] + 1,
+                         std::int64_t(e[5]) - e[4] + 1, stored + sizeof(float));
+    }
+    reader->Update();
+    failOnComplaint();
     if (const unsigned long code = reader->GetErrorCode(); code != vtkErrorCode::NoError)
         throw fail(errorCodeText(code));
     vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));

@@ -1,5 +1,6 @@
 #include "preprocess/pipeline/prepare.h"
 
+#include <sys/resource.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
@@ -17,18 +18,32 @@ using json = nlohmann::json;
 
 namespace {
 
-// Runs f() under a progress bar of one step and records its wall time.
-template <typename F>
-auto timed(std::vector<StageTime>& stages, const std::string& stage, F f) {
-    ProgressBar bar(stage, 1);
-    auto start = std::chrono::steady_clock::now();
-    auto result = f();
-    stages.push_back({stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
-    bar.finish();
-    return result;
+double processCpuSeconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+    return seconds(u.ru_utime) + seconds(u.ru_stime);
 }
 
-// Sum of component c of every element, in parallel (elements are uint8 or arrays of uint8).
+// One stage of the pipeline: a progress bar (one step unless told), timed until done().
+class Stage {
+public:
+    Stage(std::vector<StageTime>& stages, std::string name, std::size_t steps = 1)
+        : stages_(stages), name_(std::move(name)), bar_(name_, steps) {}
+    void advance() { bar_.advance(); }
+    void done() {
+        stages_.push_back(clock_.stop(name_));
+        bar_.finish();
+    }
+
+private:
+    std::vector<StageTime>& stages_;
+    std::string name_;
+    ProgressBar bar_;
+    StageClock clock_;
+};
+
+// Mean of get(element) over a field, in parallel (get returns one uint8 distance).
 template <typename T, typename Get>
 double meanOf(const std::vector<T>& v, Get get) {
     if (v.empty()) return 0;
@@ -51,23 +66,36 @@ std::size_t bytesOf(const std::vector<T>& v) {
 DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, std::vector<StageTime>& stages) {
     DistanceFields f;
     f.dims = regions.dims;
-    if (kinds & kFieldPC) f.pc = timed(stages, "pc", [&] { return buildPC(regions); });
+    if (kinds & kFieldPC) {
+        Stage pc(stages, "pc");
+        f.pc = buildPC(regions);
+        pc.done();
+    }
     if (kinds & (kFieldACD | kFieldEACD)) {
-        ProgressBar bar("acd", kOctants);
-        auto start = std::chrono::steady_clock::now();
+        Stage acd(stages, "acd", kOctants);
         for (int o = 0; o < kOctants; ++o) {
             f.acd[o] = buildACD(regions, o);
-            bar.advance();
+            acd.advance();
         }
-        stages.push_back({"acd", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
-        bar.finish();
+        acd.done();
     }
-    if (kinds & kFieldEACD) f.eacd = timed(stages, "eacd", [&] { return buildEACD(regions, f.acd); });
-    if (!(kinds & kFieldACD)) f.acd = {};
+    if (kinds & kFieldEACD) {
+        Stage eacd(stages, "eacd");
+        f.eacd = buildEACD(regions, f.acd);
+        eacd.done();
+    }
+    if (!(kinds & kFieldACD)) f.acd = {};  // built only for EACD
     return f;
 }
 
 }  // namespace
+
+StageClock::StageClock() : wall_(std::chrono::steady_clock::now()), cpu_(processCpuSeconds()) {}
+
+StageTime StageClock::stop(std::string stage) const {
+    return {std::move(stage), std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_).count(),
+            processCpuSeconds() - cpu_};
+}
 
 std::string classificationText(const ClassifyParams& params) {
     if (params.transferFunction) return params.transferFunction->json;
@@ -115,19 +143,29 @@ json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& s
     s["bytes"] = {{"sigma", bytesOf(p.classified.sigma)}, {"colour", bytesOf(p.classified.colour)},
                   {"normal", bytesOf(p.classified.normal)}, {"labels", bytesOf(p.regions.label)},
                   {"pc", bytesOf(f.pc)}, {"acd", acd}, {"eacd", eacd}};
-    json seconds = json::object();
-    for (const StageTime& t : stages) seconds[t.stage] = t.seconds;
+    json seconds = json::object(), cpuSeconds = json::object();
+    for (const StageTime& t : stages) {
+        seconds[t.stage] = t.seconds;
+        cpuSeconds[t.stage] = t.cpuSeconds;
+    }
     s["seconds"] = seconds;
+    s["cpuSeconds"] = cpuSeconds;
     return s;
 }
 
 PrepareResult prepareVolume(const fs::path& input, const PrepareOptions& options) {
     PrepareResult r;
     PreparedVolume& p = r.prepared;
-    Volume volume = timed(r.stages, "load", [&] { return loadVolume(input, options.raw); });
-    p.classified = timed(r.stages, "classify", [&] { return classify(volume, options.classify); });
+    Stage load(r.stages, "load");
+    Volume volume = loadVolume(input, options.raw);
+    load.done();
+    Stage classifying(r.stages, "classify");
+    p.classified = classify(volume, options.classify);
+    classifying.done();
     volume = {};  // the scalars are not needed any more: free them before the big stages
-    p.regions = timed(r.stages, "segment", [&] { return segment(p.classified, options.segmentation); });
+    Stage segmenting(r.stages, "segment");
+    p.regions = segment(p.classified, options.segmentation);
+    segmenting.done();
     p.fields = buildTimedFields(p.regions, options.fields, r.stages);
 
     p.meta.source = input.string();
@@ -140,10 +178,9 @@ PrepareResult prepareVolume(const fs::path& input, const PrepareOptions& options
 
 PrepareResult prepareFile(const fs::path& input, const fs::path& output, const PrepareOptions& options) {
     PrepareResult r = prepareVolume(input, options);
-    timed(r.stages, "write", [&] {
-        writePrepared(output, r.prepared);
-        return 0;
-    });
+    Stage write(r.stages, "write");
+    writePrepared(output, r.prepared);
+    write.done();
     r.fileBytes = fs::file_size(output);
     return r;
 }

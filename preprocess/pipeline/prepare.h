@@ -1,6 +1,7 @@
 // The preprocessing pipeline shared by volprep and the benchmarks: load -> classify -> segment -> fields -> write,
 // timing every stage and recording what it produced in the prepared file's statistics.
 #pragma once
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -19,8 +20,20 @@ struct PrepareOptions {
 };
 
 struct StageTime {
-    std::string stage;  // load, classify, segment, pc, acd, eacd, write
-    double seconds;
+    std::string stage;   // load, classify, segment, pc, acd, eacd, write
+    double seconds;      // wall time
+    double cpuSeconds;   // CPU time of the whole process (all threads) meanwhile: steadier on a shared machine
+};
+
+// Measures a stage from construction to stop(): wall time and this process's CPU time.
+class StageClock {
+public:
+    StageClock();
+    StageTime stop(std::string stage) const;
+
+private:
+    std::chrono::steady_clock::time_point wall_;
+    double cpu_;
 };
 
 struct PrepareResult {

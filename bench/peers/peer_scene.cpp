@@ -1,0 +1,38 @@
+#include "bench/peers/peer_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.h"
+
+namespace vr {
+
+std::size_t PeerScene::tableIndex(float value) const {
+    const double i = std::round((value - table.lo) / table.step);
+    return std::size_t(std::clamp(i, 0.0, double(table.opacity.size() - 1)));
+}
+
+PeerScene loadPeerScene(const PeerSceneOptions& options) {
+    if (options.views < 1) throw InputError("--views must be at least 1");
+    if (!(options.stepVoxels > 0)) throw InputError("--step must be positive");
+    PeerScene scene;
+    scene.options = options;
+    scene.volume = loadVolume(options.volume, options.raw);
+    scene.tf = loadTransferFunction(options.transferFunction);
+
+    const auto [lo, hi] = std::minmax_element(scene.volume.values.begin(), scene.volume.values.end());
+    const bool integer = scene.volume.sourceType != ScalarType::Float32;
+    const std::size_t count = integer ? std::size_t(*hi - *lo) + 1 : 4096;
+    scene.table = sampleTransferFunction(scene.tf, *lo, std::max(*hi, *lo + 1.0f), std::max<std::size_t>(count, 2));
+
+    ViewParams view;
+    view.width = options.width;
+    view.height = options.height;
+    for (int i = 0; i < options.views; ++i) {
+        view.azimuthDeg = 360.0 * i / options.views;
+        scene.views.push_back(Camera::fit(scene.volume.grid, view));
+    }
+    return scene;
+}
+
+}  // namespace vr

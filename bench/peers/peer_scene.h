@@ -1,0 +1,38 @@
+// What every peer renders: one volume, its transfer function tabulated per scalar value, and our orbit of views.
+#pragma once
+#include <filesystem>
+#include <vector>
+
+#include "core/volume.h"
+#include "preprocess/classify/transfer_function.h"
+#include "preprocess/load/load_volume.h"
+#include "volrender/camera.h"
+
+namespace vr {
+
+struct PeerSceneOptions {
+    std::filesystem::path volume, transferFunction;
+    RawOptions raw;
+    int views = 8, width = 512, height = 512;
+    double stepVoxels = 0.5;  // our --step: voxels of the smallest spacing
+    double ert = 0.99;        // our early ray termination
+    int threads = 2;
+};
+
+struct PeerScene {
+    PeerSceneOptions options;
+    Volume volume;
+    TransferFunction tf;
+    // The TF at every integer value from the volume's minimum to its maximum for integer volumes (exact there, as
+    // our classification samples it), else at 4096 values over the range: every peer gets its tables from here.
+    SampledTransferFunction table;
+    std::vector<Camera> views;  // azimuth 360 i / N, elevation 0, orthographic: Camera::fit as our casters use it
+
+    double referenceStep() const { return volume.grid.smallestSpacing(); }  // the TF's opacity is per this length
+    double sampleDistance() const { return options.stepVoxels * referenceStep(); }
+    std::size_t tableIndex(float value) const;  // nearest table entry of a scalar value
+};
+
+PeerScene loadPeerScene(const PeerSceneOptions& options);
+
+}  // namespace vr

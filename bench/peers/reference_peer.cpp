@@ -1,0 +1,36 @@
+#include "bench/peers/reference_peer.h"
+
+#include <chrono>
+
+#include "preprocess/pipeline/prepare.h"
+#include "volrender/cpu_renderer.h"
+
+namespace vr {
+
+PeerRun runReferencePeer(const PeerScene& scene, const std::filesystem::path& outDir) {
+    const auto setup = std::chrono::steady_clock::now();
+    PrepareOptions options;
+    options.raw = scene.options.raw;
+    options.classify.transferFunction = scene.tf;
+    options.classify.normals = false;
+    options.fields = 0;  // the primitive caster leaps nowhere
+    const PreparedVolume prepared = prepareVolume(scene.options.volume, options).prepared;
+    const double setupMs = millisecondsSince(setup);
+
+    RenderSettings settings;
+    settings.caster = Caster::Primitive;
+    settings.stepVoxels = scene.options.stepVoxels;
+    settings.ert = scene.options.ert;
+    settings.shading = false;
+    PeerRun run = runViews("ours-cpu-primitive", scene, outDir, [&](std::size_t i, Image& out) {
+        const auto start = std::chrono::steady_clock::now();
+        out = renderCpu(prepared, scene.views[i], settings).image;
+        return millisecondsSince(start);
+    });
+    run.setupMs = setupMs;
+    run.notes = "our CPU reference (volrender --cpu --caster primitive --no-shading): the image to compare with; "
+                "double precision, not a speed contender; setup = load + classify + segment";
+    return run;
+}
+
+}  // namespace vr

@@ -1,0 +1,105 @@
+// vr_peers: renders one volume with the peer renderers (VTK's CPU and GPU ray casters, VolPack, OpenVDB's
+// vdb_render) and our CPU reference on the same views, image size, sample distance and thread count; writes
+// every image, OUT/peers.json (per peer, per view: milliseconds and image) and prints a Markdown table.
+// scripts/peers.sh installs the peers, builds this and runs it under xvfb-run (VTK needs an X display).
+#include <tbb/global_control.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "bench/peers/reference_peer.h"
+#include "bench/peers/vdb_peer.h"
+#include "bench/peers/volpack_peer.h"
+#include "bench/peers/vtk_peer.h"
+#include "core/atomic_file.h"
+#include "core/errors.h"
+
+namespace {
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kPeers = {"ours-cpu-primitive", "vtk-fixed-point", "vtk-gpu-llvmpipe", "volpack",
+                                         "vdb_render"};
+
+vr::PeerRun runPeer(const std::string& name, const vr::PeerScene& scene, const fs::path& out) {
+    if (name == "ours-cpu-primitive") return vr::runReferencePeer(scene, out);
+    if (name == "vtk-fixed-point") return vr::runVtkPeer(scene, vr::VtkMapper::FixedPoint, out);
+    if (name == "vtk-gpu-llvmpipe") return vr::runVtkPeer(scene, vr::VtkMapper::Gpu, out);
+    if (name == "volpack") return vr::runVolPackPeer(scene, out);
+    return vr::runVdbRenderPeer(scene, out);
+}
+
+nlohmann::json runJson(const vr::PeerRun& run, const vr::PeerScene& scene) {
+    nlohmann::json views = nlohmann::json::array();
+    for (std::size_t i = 0; i < run.ms.size(); ++i)
+        views.push_back({{"view", i}, {"azimuth_deg", 360.0 * double(i) / double(scene.views.size())},
+                         {"ms", run.ms[i]}, {"image", run.images[i].string()}});
+    return {{"peer", run.peer}, {"notes", run.notes}, {"setup_ms", run.setupMs}, {"median_ms", run.medianMs()},
+            {"p95_ms", run.p95Ms()}, {"views", views}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Renders one volume with VTK (fixed-point CPU and GPU ray casters), VolPack and vdb_render on our "
+                 "views, timing each; see BENCH.md \"Peers\""};
+    vr::PeerSceneOptions o;
+    std::string volume, tf, size = "512x512", out = "peers_out";
+    std::vector<double> spacing;
+    std::vector<std::string> peers = kPeers;
+    app.add_option("volume", volume, "volume file (e.g. a .raw.gz named NAME_XxYxZ_TYPE.raw.gz)")->required();
+    app.add_option("--tf", tf, "ParaView transfer function preset (JSON)")->required();
+    app.add_option("--spacing", spacing, "voxel size x,y,z for raw volumes")->delimiter(',')->expected(3);
+    app.add_option("--views", o.views, "orbit of N views 360/N degrees apart at elevation 0")->capture_default_str();
+    app.add_option("--size", size, "image size WIDTHxHEIGHT")->capture_default_str();
+    app.add_option("--step", o.stepVoxels, "sample distance in voxels of the smallest spacing")->capture_default_str();
+    app.add_option("--threads", o.threads, "threads for every peer that can use them")->capture_default_str();
+    app.add_option("--peers", peers, "peers to run")->delimiter(',')->check(CLI::IsMember(kPeers));
+    app.add_option("-o,--out", out, "output folder")->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
+
+    try {
+        if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 || o.height < 1)
+            throw vr::InputError("--size " + size + ": expected WIDTHxHEIGHT");
+        if (o.threads < 1) throw vr::InputError("--threads must be at least 1");
+        o.volume = volume;
+        o.transferFunction = tf;
+        if (!spacing.empty()) o.raw.spacing = vr::Vec3d{spacing[0], spacing[1], spacing[2]};
+        // llvmpipe reads its thread count when the first OpenGL context is made; TBB serves our reference.
+        setenv("LP_NUM_THREADS", std::to_string(o.threads).c_str(), 1);
+        tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(o.threads));
+
+        const vr::PeerScene scene = vr::loadPeerScene(o);
+        fs::create_directories(out);
+        nlohmann::json runs = nlohmann::json::array();
+        std::ostringstream table;
+        table << "| peer | median ms | p95 ms | image size | views | notes |\n|---|---:|---:|---|---:|---|\n";
+        for (const std::string& name : peers) {
+            std::fprintf(stderr, "%s ...\n", name.c_str());
+            char row[256];
+            try {
+                const vr::PeerRun run = runPeer(name, scene, out);
+                runs.push_back(runJson(run, scene));
+                std::snprintf(row, sizeof row, "| %s | %.1f | %.1f | %dx%d | %zu | ", name.c_str(), run.medianMs(),
+                              run.p95Ms(), o.width, o.height, run.ms.size());
+                table << row << run.notes << " (setup " << std::lround(run.setupMs) << " ms) |\n";
+            } catch (const std::exception& e) {  // one peer failing must not lose the others' figures
+                runs.push_back({{"peer", name}, {"error", e.what()}});
+                table << "| " << name << " | - | - | - | - | failed: " << e.what() << " |\n";
+            }
+        }
+        const nlohmann::json doc = {
+            {"volume", volume}, {"transfer_function", tf}, {"spacing", {scene.volume.grid.spacing.x,
+             scene.volume.grid.spacing.y, scene.volume.grid.spacing.z}}, {"views", o.views},
+            {"width", o.width}, {"height", o.height}, {"step_voxels", o.stepVoxels},
+            {"sample_distance", scene.sampleDistance()}, {"threads", o.threads}, {"peers", runs}};
+        vr::writeFileAtomically(fs::path(out) / "peers.json", [&](std::ostream& s) { s << doc.dump(2) << '\n'; });
+        std::fputs(table.str().c_str(), stdout);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "vr_peers: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

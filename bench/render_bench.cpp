@@ -1,0 +1,148 @@
+// Render benchmark (prints a Markdown table): per dataset, threshold setting and caster, the median device time
+// over an orbit after one warm-up frame, the mean iterations per ray, both as ratios to the primitive caster,
+// and the PSNR of the images against the primitive caster's at thresholds 0.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+#include "preprocess/classify/classify.h"
+#include "preprocess/fields/build_fields.h"
+#include "preprocess/load/load_volume.h"
+#include "preprocess/segment/segment.h"
+#include "volrender/vulkan/vulkan_renderer.h"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace vr;
+
+struct ManifestRow {
+    std::string file, tf;
+    RawOptions raw;
+};
+
+// The row of MANIFEST.tsv whose file name starts with `prefix` (dims, type and spacing parsed from it).
+ManifestRow manifestRow(const fs::path& dir, const std::string& prefix) {
+    std::ifstream in(dir / "MANIFEST.tsv");
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+        std::vector<std::string> col;
+        std::stringstream ss(line);
+        for (std::string c; std::getline(ss, c, '\t');) col.push_back(c);
+        if (col.size() < 9 || col[0].rfind(prefix, 0) != 0 || col[0].find(".raw.gz") == std::string::npos) continue;
+        ManifestRow row{col[0], col[8], {}};
+        Vec3i dims;
+        std::istringstream(col[1]) >> dims.x >> dims.y >> dims.z;
+        row.raw.dims = dims;
+        row.raw.type = parseScalarType(col[2].substr(0, col[2].find(' ')));
+        Vec3d spacing{1, 1, 1};
+        std::istringstream sp(col[3]);
+        if (!(sp >> spacing.x >> spacing.y >> spacing.z)) spacing = {1, 1, 1};  // "unknown (approx. 1 1 1)"
+        row.raw.spacing = spacing;
+        return row;
+    }
+    throw std::runtime_error("no raw dataset starting with '" + prefix + "' in " + (dir / "MANIFEST.tsv").string());
+}
+
+PreparedVolume prepare(const ClassifiedVolume& classified, double to, double ta) {
+    PreparedVolume p;
+    p.classified = classified;
+    p.meta.segmentation = {to, ta, true, false};
+    p.regions = segment(p.classified, p.meta.segmentation);
+    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
+    return p;
+}
+
+// PSNR of the displayed RGB (clamped to [0,1]) of b against a; +inf when equal.
+double psnr(const Image& a, const Image& b) {
+    double sum = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+        if (i % 4 == 3) continue;
+        const double d = std::clamp(a.rgba[i], 0.f, 1.f) - std::clamp(b.rgba[i], 0.f, 1.f);
+        sum += d * d;
+        ++n;
+    }
+    return sum == 0 ? INFINITY : 10 * std::log10(double(n) / sum);
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Vulkan caster benchmark: device time and iterations per ray of primitive, PC, ACD and EACD"};
+    std::vector<std::string> datasets{"boston_teapot", "cranium_ct"};
+    int size = 512, views = 8, device = -1;
+    double to = 0.02, ta = 10, step = 0.5;
+    std::string dir = VR_DATASETS_DIR;
+    app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->capture_default_str();
+    app.add_option("--size", size, "image width = height")->capture_default_str();
+    app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 20)")->capture_default_str();
+    app.add_option("--to", to, "T_o of the threshold setting")->capture_default_str();
+    app.add_option("--ta", ta, "T_a of the threshold setting, degrees")->capture_default_str();
+    app.add_option("--step", step, "step in voxels")->capture_default_str();
+    app.add_option("--device", device, "Vulkan device index");
+    app.add_option("--data", dir, "datasets folder")->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
+
+    try {
+        VulkanContext ctx(VulkanOptions{device, false});
+        VulkanRenderer renderer(ctx);
+        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, nearest, Phong headlight, "
+                    "ERT 0.99.\n\n",
+                    ctx.info().name.c_str(), size, size, views, step);
+        std::printf("| dataset | T_o, T_a | caster | median device ms | x primitive (time) | iterations/ray | "
+                    "x primitive (iterations) | PSNR vs primitive T=0, worst view (dB) |\n");
+        std::printf("|---|---|---|---|---|---|---|---|\n");
+        for (const std::string& name : datasets) {
+            const ManifestRow row = manifestRow(dir, name);
+            ClassifyParams cp;
+            cp.transferFunction = loadTransferFunction(fs::path(dir) / row.tf);
+            const ClassifiedVolume classified = classify(loadVolume(fs::path(dir) / row.file, row.raw), cp);
+            std::vector<Image> reference;  // primitive at thresholds 0, per view
+            for (auto [settingTo, settingTa] : {std::pair{0.0, 0.0}, std::pair{to, ta}}) {
+                const PreparedVolume p = prepare(classified, settingTo, settingTa);
+                double primitiveMs = 0, primitiveIterations = 0;
+                for (Caster c : {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD}) {
+                    RenderSettings s;
+                    s.caster = c;
+                    s.stepVoxels = step;
+                    std::vector<double> ms, psnrs;
+                    double iterations = 0;
+                    for (int v = -1; v < views; ++v) {  // v = -1: the warm-up frame
+                        ViewParams vp;
+                        vp.width = vp.height = size;
+                        vp.azimuthDeg = 360.0 * std::max(v, 0) / views;
+                        vp.elevationDeg = 20;
+                        const RenderResult r = renderer.render(p, Camera::fit(classified.grid, vp), s);
+                        if (v < 0) continue;
+                        ms.push_back(r.deviceMilliseconds);
+                        iterations += std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0) /
+                                      double(r.iterations.size()) / views;
+                        if (reference.size() < std::size_t(views)) reference.push_back(r.image);
+                        psnrs.push_back(psnr(reference[v], r.image));
+                    }
+                    const double t = median(ms);
+                    if (c == Caster::Primitive) primitiveMs = t, primitiveIterations = iterations;
+                    std::printf("| %s | %g, %g | %s | %.1f | %.2f | %.1f | %.2f | %.1f |\n", row.file.c_str(), settingTo,
+                                settingTa, std::string(casterName(c)).c_str(), t, primitiveMs / t, iterations,
+                                primitiveIterations / iterations, *std::min_element(psnrs.begin(), psnrs.end()));
+                    std::fflush(stdout);
+                }
+            }
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "render_bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

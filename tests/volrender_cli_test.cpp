@@ -1,0 +1,155 @@
+// volrender end to end on a prepared head CT: images, heat maps, statistics, orbits, the CPU path, and every
+// bad input exiting non-zero with "volrender: <message>" on stderr.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/prepared_file.h"
+#include "preprocess/classify/classify.h"
+#include "preprocess/fields/build_fields.h"
+#include "preprocess/load/load_volume.h"
+#include "preprocess/segment/segment.h"
+#include "support/datasets.h"
+#include "volrender/image.h"
+
+namespace vr {
+namespace {
+namespace fs = std::filesystem;
+
+const fs::path kVolrender = fs::path(VR_BINARY_DIR) / "volrender" / "volrender";
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+struct Outcome {
+    int status;
+    std::string out, err;
+};
+
+Outcome volrender(const std::string& args) {
+    EXPECT_TRUE(fs::exists(kVolrender)) << "build the volrender target first: " << kVolrender;
+    const fs::path dir = test::scratchDir("volrender_cli_streams");
+    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+    const std::string cmd = kVolrender.string() + " " + args + " >" + out.string() + " 2>" + err.string();
+    const int raw = std::system(cmd.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// vtk_headsq_ct with its transfer function and spacing, thresholds (0.02, 10 deg), every field: prepared once.
+const fs::path& preparedHead() {
+    static const fs::path path = [] {
+        for (const auto& e : test::rawManifest()) {
+            if (e.file != "vtk_headsq_ct_64x64x93_uint16.raw.gz") continue;
+            RawOptions raw;
+            raw.dims = e.dims;
+            raw.type = e.type;
+            raw.spacing = e.spacing;
+            PreparedVolume p;
+            ClassifyParams cp;
+            cp.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
+            p.classified = classify(loadVolume(test::datasetsDir() / e.file, raw), cp);
+            p.meta.source = e.file;
+            p.meta.segmentation = {0.02, 10, true, false};
+            p.regions = segment(p.classified, p.meta.segmentation);
+            p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
+            const fs::path out = test::scratchDir("volrender_cli_prepared") / "headsq.vrp";
+            writePrepared(out, p);
+            return out;
+        }
+        throw std::runtime_error("vtk_headsq_ct is not in the manifest");
+    }();
+    return path;
+}
+
+TEST(VolrenderCli, RendersImageHeatmapAndStatistics) {
+    const fs::path dir = test::scratchDir("volrender_cli_render");
+    const Outcome r = volrender(q(preparedHead()) + " -o " + q(dir / "head.png") + " --caster eacd --size 64x48" +
+                                " --azimuth 30 --elevation 10 --stats " + q(dir / "stats.json") + " --heatmap " +
+                                q(dir / "heat.png"));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const Image image = readImage(dir / "head.png");
+    EXPECT_EQ(image.width, 64);
+    EXPECT_EQ(image.height, 48);
+    EXPECT_EQ(readImage(dir / "heat.png").width, 64);
+
+    const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "stats.json"));
+    EXPECT_EQ(stats["settings"]["caster"], "eacd");
+    const auto& view = stats["views"][0];
+    EXPECT_GT(view["iterationsPerRay"]["mean"].get<double>(), 0);
+    EXPECT_GE(view["iterationsPerRay"]["max"].get<double>(), view["iterationsPerRay"]["p95"].get<double>());
+    EXPECT_GT(view["samplesRepresented"]["total"].get<double>(), 0);
+    EXPECT_GE(view["deviceMs"].get<double>(), 0);
+    EXPECT_GT(view["wallMs"].get<double>(), 0);
+    // One octant of EACD (4 bytes a voxel), the classified volume and the normals: nothing else.
+    const std::size_t voxels = 64 * 64 * 93;
+    EXPECT_EQ(view["uploadedBytes"]["eacd"].get<std::size_t>(), voxels * 4);
+    EXPECT_EQ(view["uploadedBytes"]["classified"].get<std::size_t>(), voxels * 16);
+    EXPECT_EQ(view["uploadedBytes"].size(), 3u);
+}
+
+TEST(VolrenderCli, VulkanAndCpuImagesAgree) {
+    const fs::path dir = test::scratchDir("volrender_cli_cpu");
+    const std::string common = " --caster acd --size 40x32 --projection persp --azimuth -50 --no-shading";
+    ASSERT_EQ(volrender(q(preparedHead()) + " -o " + q(dir / "gpu.exr") + common).status, 0);
+    ASSERT_EQ(volrender(q(preparedHead()) + " -o " + q(dir / "cpu.exr") + common + " --cpu").status, 0);
+    EXPECT_LT(maxAbsDifference(readImage(dir / "gpu.exr"), readImage(dir / "cpu.exr")), 1e-3);
+}
+
+TEST(VolrenderCli, OrbitWritesNumberedViews) {
+    const fs::path dir = test::scratchDir("volrender_cli_orbit");
+    const Outcome r =
+        volrender(q(preparedHead()) + " -o " + q(dir / "orbit.png") + " --caster pc --size 24x24 --views 3");
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* name : {"orbit_000.png", "orbit_001.png", "orbit_002.png"})
+        EXPECT_TRUE(fs::exists(dir / name)) << name;
+    EXPECT_FALSE(fs::exists(dir / "orbit.png"));
+}
+
+TEST(VolrenderCli, HelpAndDeviceList) {
+    const Outcome help = volrender("--help");
+    EXPECT_EQ(help.status, 0);
+    for (const char* flag : {"--caster", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear"})
+        EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
+    const Outcome list = volrender("--list-devices");
+    EXPECT_EQ(list.status, 0);
+    EXPECT_EQ(list.out.rfind("0: ", 0), 0u) << list.out;
+}
+
+void expectRejected(const std::string& args, const std::string& mentions) {
+    const Outcome r = volrender(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(r.err.rfind("volrender: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(mentions), std::string::npos) << "expected '" << mentions << "' in: " << r.err;
+}
+
+TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
+    const fs::path dir = test::scratchDir("volrender_cli_bad");
+    const std::string in = q(preparedHead()), out = " -o " + q(dir / "x.png");
+    expectRejected(in + out + " --step 0", "--step");
+    expectRejected(in + out + " --step nan", "--step");
+    expectRejected(in + out + " --size 0x0", "--size");
+    expectRejected(in + out + " --size 100000x100000", "--size");
+    expectRejected(in + out + " --size banana", "--size");
+    expectRejected(in + out + " --caster fast", "unknown caster");
+    expectRejected(in + out + " --ert 0", "--ert");
+    expectRejected(in + out + " --projection fisheye", "--projection");
+    expectRejected(in + out + " --light 0,0,0", "--light");
+    expectRejected(in + " -o " + q(dir / "missing" / "x.png"), "does not exist");
+    expectRejected(q(dir / "nothing.vrp") + out, "nothing.vrp");
+    std::ofstream(dir / "garbage.vrp") << "not a prepared volume";
+    expectRejected(q(dir / "garbage.vrp") + out, "garbage.vrp");
+    expectRejected(in + out + " --device 99", "device 99");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+}  // namespace
+}  // namespace vr
