@@ -22,8 +22,8 @@ struct Timer {
     std::clock_t cpu = std::clock();
     std::string done() const {
         char text[64];
-        std::snprintf(text, sizeof text, "%6.3f s (cpu %6.3f s)", std::chrono::duration<double>(Clock::now() - wall).count(),
-                      double(std::clock() - cpu) / CLOCKS_PER_SEC);
+        const double seconds = std::chrono::duration<double>(Clock::now() - wall).count();
+        std::snprintf(text, sizeof text, "%6.3f s (cpu %6.3f s)", seconds, double(std::clock() - cpu) / CLOCKS_PER_SEC);
         return text;
     }
 };

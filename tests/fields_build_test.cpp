@@ -54,10 +54,11 @@ Regions blockyRegions(Vec3i dims, int boxes, uint32_t labels, std::mt19937& rng)
     return regionsOf(dims, std::move(l));
 }
 
-// A named family of random volumes over many shapes, including degenerate 1-voxel-thick ones.
+// A named family of random volumes over many shapes, including degenerate 1-voxel-thick ones and ones longer
+// than the builder's slabs of 32 slices across x.
 std::vector<std::pair<std::string, Regions>> smallVolumes() {
-    const Vec3i shapes[] = {{1, 1, 1}, {1, 1, 7}, {5, 1, 1}, {1, 6, 1}, {2, 2, 2}, {3, 1, 4},
-                            {7, 5, 3}, {4, 11, 6}, {9, 9, 9}, {12, 3, 10}, {6, 13, 2}};
+    const Vec3i shapes[] = {{1, 1, 1}, {1, 1, 7}, {5, 1, 1}, {1, 6, 1}, {2, 2, 2}, {3, 1, 4}, {7, 5, 3},
+                            {4, 11, 6}, {9, 9, 9}, {12, 3, 10}, {6, 13, 2}, {70, 5, 4}, {37, 8, 3}};
     std::mt19937 rng(12345);
     std::vector<std::pair<std::string, Regions>> out;
     for (const Vec3i& d : shapes) {
@@ -239,7 +240,7 @@ TEST(FieldsBuild, BuildFieldsFillsWhatIsAskedAndAgreesWithTheSingleBuilders) {
     EXPECT_FALSE(none.hasPC() || none.hasACD() || none.hasEACD());
 }
 
-TEST(FieldsBuild, EmptyVolumeGivesEmptyFieldsAndMismatchedLabelsThrow) {
+TEST(FieldsBuild, EmptyVolumeGivesEmptyFieldsAndBadArgumentsThrow) {
     const DistanceFields f = buildFields(constantRegions({0, 0, 0}), kFieldPC | kFieldACD | kFieldEACD);
     EXPECT_TRUE(f.pc.empty());
     Regions bad = constantRegions({3, 3, 3});
@@ -248,6 +249,8 @@ TEST(FieldsBuild, EmptyVolumeGivesEmptyFieldsAndMismatchedLabelsThrow) {
     EXPECT_THROW(buildPC(bad), std::invalid_argument);
     const std::vector<uint8_t> shortACD(5, 1);
     EXPECT_THROW(buildEACD(constantRegions({3, 3, 3}), shortACD, 0), std::invalid_argument);
+    EXPECT_THROW(buildACD(constantRegions({3, 3, 3}), 8), std::invalid_argument);
+    EXPECT_THROW(buildEACD(constantRegions({3, 3, 3}), std::vector<uint8_t>(27, 1), -1), std::invalid_argument);
 }
 
 // ---- Invariants, with an independent O(1) homogeneity test --------------------------------------------------

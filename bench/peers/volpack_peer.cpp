@@ -63,7 +63,7 @@ PeerRun runVolPackPeer(const PeerScene& scene, const std::filesystem::path& outD
     std::vector<float> opacity(n), colour(3 * n);
     for (std::size_t i = 0; i < n; ++i) {
         opacity[i] = float(scene.table.opacity[i]);
-        for (int c = 0; c < 3; ++c) colour[3 * i + c] = scene.table.colour[i][c];
+        for (int c = 0; c < 3; ++c) colour[3 * i + c] = 255 * scene.table.colour[i][c];  // VolPack shades in 0..255
     }
     const int sx = 2, sy = sx * g.dims.x, sz = sy * g.dims.y;
     check(vpc, vpSetVolumeSize(vpc, g.dims.x, g.dims.y, g.dims.z), "volume size");

@@ -47,6 +47,7 @@ void acdRow(const Regions& regions, int octant, int y, int z, bool rowNeighbours
 
 std::vector<uint8_t> buildACD(const Regions& regions, int octant) {
     requireLabelPerVoxel(regions, "buildACD");
+    if (octant < 0 || octant >= kOctants) throw std::invalid_argument("buildACD: no octant " + std::to_string(octant));
     const Vec3i& n = regions.dims;
     std::vector<uint8_t> acd(voxelCount(n));
     if (acd.empty()) return acd;

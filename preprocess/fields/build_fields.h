@@ -16,7 +16,8 @@ std::vector<uint8_t> buildPC(const Regions& regions);
 std::vector<uint8_t> buildACD(const Regions& regions, int octant);
 EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant);
 // All eight octants at once (shares the range-minimum tables between the octants): acd[o] is buildACD(regions, o).
-std::array<EACDField, kOctants> buildEACD(const Regions& regions, const std::array<std::vector<uint8_t>, kOctants>& acd);
+std::array<EACDField, kOctants> buildEACD(const Regions& regions,
+                                          const std::array<std::vector<uint8_t>, kOctants>& acd);
 
 // kinds: a mask of FieldKind. EACD needs ACD internally; ACD is kept only when asked for.
 DistanceFields buildFields(const Regions& regions, unsigned kinds);

@@ -84,7 +84,8 @@ struct Slab {
         }
         for (int t = t0; t < t1; ++t)
             for (int pw = 0; pw < nw; ++pw) {
-                const std::size_t local = ((t - t0) * std::size_t(nw) + pw) * nu, voxel = t * stride[a] + pw * stride[w];
+                const std::size_t local = ((t - t0) * std::size_t(nw) + pw) * nu;
+                const std::size_t voxel = t * stride[a] + pw * stride[w];
                 for (int pu = 0; pu < nu; ++pu) f(local + pu, voxel + pu);
             }
     }
@@ -187,7 +188,8 @@ void findWidestAxes(OctantBatch& batch) {
         std::vector<uint8_t>& widest = batch.widest[o];
         widest.resize(batch.acd[o]->size());
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, widest.size(), 1 << 16), [&](const auto& range) {
-            for (std::size_t v = range.begin(); v != range.end(); ++v) widest[v] = uint8_t(widestAxis(ex[v], ey[v], ez[v]));
+            for (std::size_t v = range.begin(); v != range.end(); ++v)
+                widest[v] = uint8_t(widestAxis(ex[v], ey[v], ez[v]));
         });
     }
 }
@@ -239,7 +241,7 @@ void chooseBoxes(const OctantBatch& batch, int o, EACDField& out) {
     });
 }
 
-// EACD of `octants` (at most 4 at a time: the planar extents take 3 bytes per voxel and octant).
+// EACD of `octants`. The planar extents take 4 bytes per voxel and octant while the batch is built.
 void buildBatch(RunFields& runs, const std::vector<int>& octants,
                 const std::array<const std::vector<uint8_t>*, kOctants>& acd,
                 const std::array<EACDField*, kOctants>& out) {
@@ -248,7 +250,8 @@ void buildBatch(RunFields& runs, const std::vector<int>& octants,
     batch.octants = octants;
     for (int o : octants) {
         if (acd[o]->size() != voxels)
-            throw std::invalid_argument("buildEACD: ACD of octant " + std::to_string(o) + " does not match the regions");
+            throw std::invalid_argument("buildEACD: the ACD of octant " + std::to_string(o) +
+                                        " does not match the regions");
         batch.acd[o] = acd[o];
         for (auto& slot : batch.ext[o]) slot.resize(voxels);
     }
@@ -266,6 +269,7 @@ void buildBatch(RunFields& runs, const std::vector<int>& octants,
 }  // namespace
 
 EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant) {
+    if (octant < 0 || octant >= kOctants) throw std::invalid_argument("buildEACD: no octant " + std::to_string(octant));
     EACDField out;
     std::array<const std::vector<uint8_t>*, kOctants> acds{};
     std::array<EACDField*, kOctants> outs{};
@@ -286,7 +290,8 @@ std::array<EACDField, kOctants> buildEACD(const Regions& regions,
         acds[o] = &acd[o];
         outs[o] = &out[o];
     }
-    // Two batches, +z and -z: each still shares every table between two (across x, y) or four (across z) octants.
+    // Two batches, +z and -z, to bound the working memory; each still shares every table between two (across x
+    // or y) or four (across z) octants.
     requireLabelPerVoxel(regions, "buildEACD");
     RunFields runs(regions);
     buildBatch(runs, {0, 1, 2, 3}, acds, outs);

@@ -57,8 +57,8 @@ void RectMin::buildSquares(int maxLen) {
         const uint8_t* src = level(i - 1, i - 1);
         uint8_t* dst = level(i, i);
         for (int w = 0; w < height; ++w)
-            minOfRows(src + at(0, w), src + at(half, w), src + at(0, w + half), src + at(half, w + half), dst + at(0, w),
-                  width);
+            minOfRows(src + at(0, w), src + at(half, w), src + at(0, w + half), src + at(half, w + half),
+                      dst + at(0, w), width);
     }
 }
 
