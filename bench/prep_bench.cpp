@@ -143,7 +143,7 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
     printTimes("CPU seconds per stage (all threads; steadier than wall time on a shared machine):", results,
                &DatasetResult::cpu);
 
-    std::printf("Dense float data through this format and through OpenVDB %s ( file compression flags %u), "
+    std::printf("Dense float data through this format and through OpenVDB %s (file compression flags %u), "
                 "median wall (CPU) seconds. Prepared: readPrepared of sigma, colour and labels only. OpenVDB: sigma "
                 "alone as a FloatGrid (zero voxels inactive), read and densified.\n\n"
                 "| dataset | prepared MiB | read s | MiB/s | OpenVDB sigma MiB (file) | write s | read s | MiB/s |\n"

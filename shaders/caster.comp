@@ -1,6 +1,8 @@
 // The four casters of ALGORITHMS.md section 5 in one loop: the GLSL mirror of renderCpu's trace (keep in step).
 // Specialization constants pick the caster, the sampling and the shading, so each variant compiles to a
-// pipeline without the others' branches. One invocation per pixel of one tile.
+// pipeline without the others' branches. One invocation per pixel of one tile. Each span is shaded once, at its
+// first sample, as the CPU reference does (equal to shading every sample for a directional light or headlight
+// when thresholds are 0).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 

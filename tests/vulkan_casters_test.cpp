@@ -5,6 +5,7 @@
 #include <numeric>
 #include <set>
 
+#include "core/errors.h"
 #include "datasets/phantoms.h"
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
@@ -31,6 +32,7 @@ VulkanRenderer& renderer() {
 }
 
 void expectNoValidationErrors() {
+    EXPECT_TRUE(context().validationEnabled()) << "VK_LAYER_KHRONOS_validation is not installed";
     const auto errors = context().validationErrors();
     EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
 }
@@ -163,6 +165,63 @@ TEST(VulkanCasters, MatchCpuReferenceWithTrilinearSampling) {
     expectMatchesCpu(d.name, prepare(d.volume, d.tf, 0.02, 10, true), true);
     const Volume shells = shellsPhantom({28, 28, 24});
     expectMatchesCpu("shells", prepare(shells, phantomTf(), 0.02, 10, true), true);
+    expectNoValidationErrors();
+}
+
+TEST(VulkanCasters, MatchCpuReferenceWithDirectionalLightBackgroundAndOtherSteps) {
+    const Dataset d = loadDataset("vtk_headsq_ct", 40);
+    const PreparedVolume p = prepare(d.volume, d.tf, 0.02, 10);
+    for (const ViewParams& vp : {view(20, 30), view(-60, 10, Projection::Perspective)}) {
+        const Camera cam = Camera::fit(p.classified.grid, vp);
+        for (Caster c : kCasters) {
+            for (double step : {0.25, 1.7}) {  // 1.7: dt larger than a voxel
+                RenderSettings s = settings(c);
+                s.lightDirection = Vec3d{1, -2, 0.5};
+                s.background = {0.1, 0.2, 0.3};
+                s.stepVoxels = step;
+                s.ert = step > 1 ? 1.0 : 0.95;  // 1: no early termination
+                const RenderResult gpu = renderer().render(p, cam, s);
+                const RenderResult cpu = renderCpu(p, cam, s);
+                SCOPED_TRACE(std::string(casterName(c)) + " step " + std::to_string(step));
+                EXPECT_LT(maxAbsDifference(gpu.image, cpu.image), 1e-3);
+                EXPECT_EQ(gpu.iterations, cpu.iterations);
+            }
+        }
+    }
+    expectNoValidationErrors();
+}
+
+// Tiny steps in a huge region: one leap stands for thousands of samples (ALGORITHMS.md section 6).
+TEST(VulkanCasters, LeapsOfThousandsOfSamplesMatchCpuReference) {
+    const Volume v = constantPhantom({48, 48, 48}, 20);
+    const PreparedVolume p = prepare(v, phantomTf(), 0, 0);
+    ViewParams vp = view(33, 21);
+    vp.width = vp.height = 16;
+    const Camera cam = Camera::fit(v.grid, vp);
+    for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
+        RenderSettings s = settings(c, false);
+        s.stepVoxels = 0.002;
+        const RenderResult gpu = renderer().render(p, cam, s);
+        const RenderResult cpu = renderCpu(p, cam, s);
+        EXPECT_LT(maxAbsDifference(gpu.image, cpu.image), 1e-3) << casterName(c);
+        EXPECT_EQ(gpu.samples, cpu.samples) << casterName(c);
+        EXPECT_GT(*std::max_element(gpu.samples.begin(), gpu.samples.end()), 10000u);
+    }
+    expectNoValidationErrors();
+}
+
+TEST(VulkanCasters, MissingFieldsAndIterationCapAreReported) {
+    const Volume v = shellsPhantom({12, 12, 12});
+    PreparedVolume p = prepare(v, phantomTf(), 0, 0);
+    const Camera cam = Camera::fit(v.grid, view(0, 0));
+    RenderSettings capped = settings(Caster::Primitive);
+    capped.maxIterationsPerRay = 2;
+    EXPECT_THROW(renderer().render(p, cam, capped), std::runtime_error);
+    p.fields = {};
+    EXPECT_THROW(renderer().render(p, cam, settings(Caster::EACD)), InputError);
+    p.classified.normal.clear();
+    EXPECT_THROW(renderer().render(p, cam, settings(Caster::Primitive)), InputError);
+    EXPECT_NO_THROW(renderer().render(p, cam, settings(Caster::Primitive, false)));
     expectNoValidationErrors();
 }
 

@@ -107,5 +107,18 @@ TEST(VulkanNumerics, SpanOpacityOfTinyExtinctionKeepsItsValue) {
     EXPECT_EQ(1.0f - std::pow(1.0f - 1e-8f, 10000.0f), 0.0f);  // what the naive float formula gives
 }
 
+// The messenger the other tests rely on ("no validation errors") does record errors: a zero-sized buffer is one.
+TEST(VulkanValidation, MessengerRecordsErrors) {
+    VulkanContext ctx(VulkanOptions{-1, true});
+    ASSERT_TRUE(ctx.validationEnabled()) << "VK_LAYER_KHRONOS_validation is not installed";
+    EXPECT_TRUE(ctx.validationErrors().empty());
+    try {
+        vk::raii::Buffer buffer(ctx.device(), vk::BufferCreateInfo({}, 0, vk::BufferUsageFlagBits::eStorageBuffer));
+    } catch (const vk::SystemError&) {
+        // The driver may refuse it too; the layer has spoken first.
+    }
+    EXPECT_FALSE(ctx.validationErrors().empty());
+}
+
 }  // namespace
 }  // namespace vr

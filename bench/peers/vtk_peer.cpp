@@ -34,13 +34,15 @@ vtkSmartPointer<vtkDataArray> scalarArray(const Volume& v) {
 }
 
 // The source type, so that the mappers tabulate the TF per integer value as our classification does.
-// VTK's points are voxel centres: the image data starts half a voxel inside our grid's corner.
-vtkSmartPointer<vtkImageData> imageData(const Volume& v) {
+// VTK's points are voxel centres, so the image data starts half a voxel inside our grid's corner; except for the
+// fixed-point mapper, whose nearest sampling truncates the position (voxel v covers [v, v+1) in point units):
+// there the points sit on our voxels' corners, so that every voxel covers our cell of it.
+vtkSmartPointer<vtkImageData> imageData(const Volume& v, VtkMapper kind) {
     auto image = vtkSmartPointer<vtkImageData>::New();
     const GridGeometry& g = v.grid;
     image->SetDimensions(g.dims.x, g.dims.y, g.dims.z);
     image->SetSpacing(g.spacing.x, g.spacing.y, g.spacing.z);
-    const Vec3d first = g.origin + g.spacing * 0.5;
+    const Vec3d first = kind == VtkMapper::FixedPoint ? g.origin : g.origin + g.spacing * 0.5;
     image->SetOrigin(first.x, first.y, first.z);
     vtkSmartPointer<vtkDataArray> scalars;
     switch (v.sourceType) {
@@ -115,7 +117,7 @@ PeerRun runVtkPeer(const PeerScene& scene, VtkMapper kind, const std::filesystem
         throw InputError("vr_peers: only orthographic views are set up for VTK");
     vtkMultiThreader::SetGlobalMaximumNumberOfThreads(scene.options.threads);
     const auto setup = std::chrono::steady_clock::now();
-    vtkSmartPointer<vtkImageData> image = imageData(scene.volume);
+    vtkSmartPointer<vtkImageData> image = imageData(scene.volume, kind);
     vtkSmartPointer<vtkVolumeMapper> mapper = makeMapper(scene, kind);
     mapper->SetInputData(image);
     mapper->SetBlendModeToComposite();
@@ -154,9 +156,11 @@ PeerRun runVtkPeer(const PeerScene& scene, VtkMapper kind, const std::filesystem
     run.setupMs = setupMs;
     run.notes = kind == VtkMapper::FixedPoint
                     ? "nearest, ShadeOff, SampleDistance = step x smallest spacing, opacity unit distance = smallest "
-                      "spacing; 15-bit fixed-point compositing; volume box = voxel centres (half a voxel smaller)"
+                      "spacing; 15-bit fixed-point compositing; points on our voxel corners (its nearest truncates), so the "
+                      "last voxel layer on the +x, +y, +z faces is outside its box"
                     : "nearest 3D texture, ShadeOff, no jittering, same sample distance / opacity unit distance; "
-                      "8-bit framebuffer; Mesa llvmpipe (LP_NUM_THREADS); volume box = voxel centres";
+                      "8-bit framebuffer; Mesa llvmpipe (LP_NUM_THREADS); its box spans the voxel centres (half a "
+                      "voxel inside ours on every face)";
     return run;
 }
 

@@ -3,6 +3,8 @@
 //   ACD  <= kDistanceCap (255): a cube edge above 255 is stored as 255.
 //   PC   <= kDistanceCap - 1 (254): PC is min over octants of ACD - 1, so it inherits the ACD cap.
 //   EACD <= kDistanceCap (255) per axis: the axial runs it extends with are capped at 255.
+// What the cap costs: a leap is at most 255 voxels (PC: 254), so a ray through a region larger than that (the air
+// of a 512^3 volume) takes a few leaps where one would do; nothing is ever wrong.
 #pragma once
 #include "core/distance_fields.h"
 #include "core/regions.h"

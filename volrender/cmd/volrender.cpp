@@ -167,6 +167,9 @@ int run(const Flags& f) {
                     f.caster.c_str(), result.deviceMilliseconds, result.wallMilliseconds,
                     s["iterationsPerRay"]["mean"].get<double>());
     }
+    if (context)  // only with VR_VALIDATION=1: what the validation layer reported
+        for (const std::string& message : context->validationErrors())
+            std::fprintf(stderr, "volrender: validation error: %s\n", message.c_str());
     if (!f.stats.empty()) {
         nlohmann::json stats{
             {"prepared", f.prepared},

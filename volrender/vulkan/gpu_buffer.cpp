@@ -1,6 +1,9 @@
 #include "volrender/vulkan/gpu_buffer.h"
 
+#include <algorithm>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 namespace vr {
 

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The peer renderers side by side (BENCH.md "Peers"): VTK's fixed-point CPU and OpenGL GPU ray casters (on Mesa
+# llvmpipe), VolPack and OpenVDB's vdb_render, with our CPU reference, on the same views of one dataset.
+#   scripts/peers.sh DATASET [VIEWS] [SIZE] [OUTDIR]
+# DATASET: a file in the shared datasets folder or the start of its name (boston_teapot, cranium_ct, ...): the
+# MANIFEST gives its spacing and transfer function. "smoke": one 64x64 view of vtk_headmr (a few seconds).
+# Defaults: 8 views, 512x512, out/peers/NAME. BUILD_DIR (default build) is the build folder; THREADS (default 2).
+# Prints a Markdown table; OUTDIR/peers.json has per peer and view the milliseconds and the image (EXR, linear).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+datasets=${VR_DATASETS_DIR:-$root/../shared/datasets}
+build=${BUILD_DIR:-build}
+
+dataset=${1:?usage: scripts/peers.sh DATASET [VIEWS] [SIZE] [OUTDIR]}
+views=${2:-8}
+size=${3:-512x512}
+if [[ $dataset == smoke ]]; then
+  dataset=vtk_headmr_48x62x42_uint8.raw.gz views=${2:-1} size=${3:-64x64}
+fi
+
+# The manifest row: the exact file name, else the one .raw.gz whose name starts with DATASET.
+row=$(awk -F'\t' -v d="$dataset" 'NR > 1 && $1 == d' "$datasets/MANIFEST.tsv")
+[[ -n $row ]] || row=$(awk -F'\t' -v d="$dataset" 'NR > 1 && index($1, d) == 1 && $1 ~ /\.raw\.gz$/' \
+  "$datasets/MANIFEST.tsv")
+if [[ -z $row || $(wc -l <<<"$row") -ne 1 ]]; then
+  echo "peers.sh: no single raw dataset named $dataset in $datasets/MANIFEST.tsv" >&2
+  exit 1
+fi
+file=$(cut -f1 <<<"$row")
+tf=$(cut -f9 <<<"$row")
+# The first three numbers of the spacing column ("unknown (approx. 1 1 1)" gives 1 1 1).
+spacing=$(cut -f4 <<<"$row" | grep -oE '[0-9]+(\.[0-9]+)?' | head -3 | paste -sd,)
+out=${4:-out/peers/${file%%.raw.gz}}
+
+bash scripts/install-deps.sh libvolpack1-dev libopenvdb-tools xvfb xauth libgl1-mesa-dri libglx-mesa0
+[[ -f $build/CMakeCache.txt ]] || cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+cmake --build "$build" --target vr_peers -j 2
+
+mkdir -p "$out"
+# VTK's OpenGL render windows need an X display, even off screen: a virtual one.
+cmd=("$build/bench/peers/vr_peers" "$datasets/$file" --tf "$datasets/$tf" --spacing "$spacing"
+  --views "$views" --size "$size" --threads "${THREADS:-2}" -o "$out")
+echo "+ xvfb-run -a ${cmd[*]}" >&2
+start=$(date +%s.%N)
+xvfb-run -a -s "-screen 0 1280x1024x24" "${cmd[@]}"
+echo "(all peers: $(awk -v s="$start" -v e="$(date +%s.%N)" 'BEGIN { printf "%.1f", e - s }') s; $out/peers.json)"
