@@ -1,11 +1,11 @@
 // Distance-field build times (PC, ACD x 8, EACD x 8) and mean leap lengths, on constant and random-blocky volumes.
-// Usage: fields_bench [size...]   (default sizes 128 256)
-#include <tbb/global_control.h>
+// Usage: fields_bench [N | NXxNYxNZ ...]   (default: 128 256, i.e. 128^3 and 256^3)
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <random>
 #include <string>
 
@@ -16,7 +16,8 @@ namespace {
 using namespace vr;
 using Clock = std::chrono::steady_clock;
 
-// Wall and CPU (all threads) seconds of one build: the machine may be shared, so both are printed.
+// Wall and CPU seconds (all threads, TBB's brief spinning included) of one build: the machine may be shared,
+// so both are printed.
 struct Timer {
     Clock::time_point wall = Clock::now();
     std::clock_t cpu = std::clock();
@@ -28,26 +29,32 @@ struct Timer {
     }
 };
 
-Regions constantVolume(int n) {
+Regions constantVolume(Vec3i dims) {
     Regions r;
-    r.dims = {n, n, n};
+    r.dims = dims;
     r.label.assign(voxelCount(r.dims), 0);
     r.count = 1;
     return r;
 }
 
-// Random axis-aligned boxes of edge 1..n/4 painted with 8 labels: regions of every size and shape.
-Regions blockyVolume(int n) {
-    Regions r = constantVolume(n);
+// 4 n random axis-aligned boxes of edge 1..n/4 (n the largest dimension) painted with 8 labels: regions of
+// every size and shape.
+Regions blockyVolume(Vec3i dims) {
+    Regions r = constantVolume(dims);
     r.count = 8;
+    const int n = maxComponent(dims);
     std::mt19937 rng(42);
-    std::uniform_int_distribution<int> pos(0, n - 1), edge(1, std::max(1, n / 4)), label(0, 7);
+    std::uniform_int_distribution<int> edge(1, std::max(1, n / 4)), label(0, 7);
     for (int b = 0; b < 4 * n; ++b) {
-        const int x0 = pos(rng), y0 = pos(rng), z0 = pos(rng), ex = edge(rng), ey = edge(rng), ez = edge(rng);
+        Vec3i lo, hi;
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::uniform_int_distribution<int>(0, dims[a] - 1)(rng);
+            hi[a] = std::min(dims[a], lo[a] + edge(rng));
+        }
         const uint32_t l = label(rng);
-        for (int z = z0; z < std::min(n, z0 + ez); ++z)
-            for (int y = y0; y < std::min(n, y0 + ey); ++y)
-                for (int x = x0; x < std::min(n, x0 + ex); ++x) r.label[linearIndex(r.dims, x, y, z)] = l;
+        for (int z = lo.z; z < hi.z; ++z)
+            for (int y = lo.y; y < hi.y; ++y)
+                for (int x = lo.x; x < hi.x; ++x) r.label[linearIndex(r.dims, x, y, z)] = l;
     }
     return r;
 }
@@ -88,13 +95,22 @@ void run(const std::string& name, const Regions& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::vector<int> sizes;
-    for (int i = 1; i < argc; ++i) sizes.push_back(std::stoi(argv[i]));
-    if (sizes.empty()) sizes = {128, 256};
+    std::vector<Vec3i> sizes;
+    for (int i = 1; i < argc; ++i) {
+        Vec3i d;
+        const int fields = std::sscanf(argv[i], "%dx%dx%d", &d.x, &d.y, &d.z);
+        if (fields == 1) d = {d.x, d.x, d.x};
+        if ((fields != 1 && fields != 3) || minComponent(d) < 1) {
+            std::fprintf(stderr, "fields_bench: bad size '%s' (want N or NXxNYxNZ)\n", argv[i]);
+            return 1;
+        }
+        sizes.push_back(d);
+    }
+    if (sizes.empty()) sizes = {{128, 128, 128}, {256, 256, 256}};
     std::printf("threads: %d (TBB)\n", tbb::info::default_concurrency());
-    for (int s : sizes) {
-        run("constant", constantVolume(s));
-        run("random-blocky", blockyVolume(s));
+    for (const Vec3i& d : sizes) {
+        run("constant", constantVolume(d));
+        run("random-blocky", blockyVolume(d));
     }
     return 0;
 }

@@ -88,9 +88,15 @@ TEST(LoadFuzzRegressions, LegacyVtkDataShorterThanThePoints) {
     expectRefused(kRegressions / "vtk_legacy" / "binary_data_too_short.vtk");
 }
 
-// A NIfTI-1 header with an unknown datatype code (1279) crashes vtkNIFTIImageReader::RequestInformation (SIGBUS).
-TEST(LoadFuzzRegressions, NiftiUnknownDatatype) {
+// vtkNIFTIImageReader trusts the header: an unknown datatype code (1279) crashes RequestInformation (SIGBUS); zero
+// dims (dim[0] = 0) divide by zero in RequestData (SIGFPE); headers without the NIfTI magic, read as Analyze 7.5
+// with garbage datatype/bitpix/dims, crash RequestData (SEGV). The loader must validate the header (sizeof_hdr,
+// magic, dim[0] in 1..7, positive dims, a known datatype with its bitpix, vox_offset) before VTK reads it.
+TEST(LoadFuzzRegressions, NiftiHeadersVtkCrashesOn) {
     expectRefused(kRegressions / "nifti" / "unknown_datatype.nii");
+    expectRefused(kRegressions / "nifti" / "fpe_zero_dims.nii");
+    expectRefused(kRegressions / "nifti" / "segv_in_request_data.nii");
+    expectRefused(kRegressions / "nifti" / "segv_in_request_data.nii.gz");
 }
 
 // Headers claiming 10^13 voxels or more over a few bytes of data: VTK's readers allocate the claimed image before

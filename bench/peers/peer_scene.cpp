@@ -12,6 +12,14 @@ std::size_t PeerScene::tableIndex(float value) const {
     return std::size_t(std::clamp(i, 0.0, double(table.opacity.size() - 1)));
 }
 
+CubicLattice::CubicLattice(const GridGeometry& grid) : size(grid.smallestSpacing()) {
+    for (int a = 0; a < 3; ++a) {
+        dims[a] = std::max(1, int(std::lround(grid.dims[a] * grid.spacing[a] / size)));
+        for (int i = 0; i < dims[a]; ++i)
+            source[a].push_back(std::min(grid.dims[a] - 1, int((i + 0.5) * size / grid.spacing[a])));
+    }
+}
+
 PeerScene loadPeerScene(const PeerSceneOptions& options) {
     if (options.views < 1) throw InputError("--views must be at least 1");
     if (!(options.stepVoxels > 0)) throw InputError("--step must be positive");

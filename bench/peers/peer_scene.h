@@ -1,5 +1,6 @@
 // What every peer renders: one volume, its transfer function tabulated per scalar value, and our orbit of views.
 #pragma once
+#include <array>
 #include <filesystem>
 #include <vector>
 
@@ -34,5 +35,19 @@ struct PeerScene {
 };
 
 PeerScene loadPeerScene(const PeerSceneOptions& options);
+
+// The grid resampled (nearest) onto cubic voxels of its smallest spacing, for the peers whose opacity or ray
+// stepping assumes cubic voxels (VolPack, vdb_render): the same lattice for isotropic grids. Voxel v of it is
+// centred at grid.origin + (v + 1/2) * size.
+struct CubicLattice {
+    Vec3i dims;
+    double size = 1;
+    std::array<std::vector<int>, 3> source;  // per axis: the grid voxel each cubic voxel takes its value from
+
+    explicit CubicLattice(const GridGeometry& grid);
+    std::size_t sourceIndex(const GridGeometry& grid, int x, int y, int z) const {
+        return linearIndex(grid.dims, source[0][x], source[1][y], source[2][z]);
+    }
+};
 
 }  // namespace vr

@@ -2,6 +2,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -17,30 +18,28 @@ namespace vr {
 namespace fs = std::filesystem;
 namespace {
 
-// The extinction per index-space unit (vdb_render integrates density * step with the step in voxels), active
-// where non-zero. Index voxel v's centre is at our voxel v's centre, origin + (v + 1/2) h.
+// vdb_render's ray intersector needs cubic voxels: the classified volume on the cubic lattice (voxel size u), as
+// extinction per index unit (vdb_render integrates density * step with the step in voxels), active where non-zero.
 void writeDensityGrid(const PeerScene& scene, const fs::path& path) {
     ClassifyParams params;
     params.transferFunction = scene.tf;
     params.normals = false;
     const ClassifiedVolume classified = classify(scene.volume, params);
     const GridGeometry& g = scene.volume.grid;
-    const double perIndexUnit = g.smallestSpacing();
+    const CubicLattice cubes(g);
+    const double u = cubes.size;
 
     openvdb::initialize();
     auto grid = openvdb::FloatGrid::create(0.f);
-    openvdb::math::Mat4d xform = openvdb::math::Mat4d::identity();
-    for (int a = 0; a < 3; ++a) {
-        xform[a][a] = g.spacing[a];
-        xform[3][a] = g.origin[a] + 0.5 * g.spacing[a];  // OpenVDB's matrices are row-vector: translation last row
-    }
-    grid->setTransform(openvdb::math::Transform::createLinearTransform(xform));
+    openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(u);
+    xform->postTranslate(openvdb::Vec3d(g.origin.x + 0.5 * u, g.origin.y + 0.5 * u, g.origin.z + 0.5 * u));
+    grid->setTransform(xform);
     auto acc = grid->getAccessor();
-    for (int z = 0; z < g.dims.z; ++z)
-        for (int y = 0; y < g.dims.y; ++y)
-            for (int x = 0; x < g.dims.x; ++x) {
-                const float sigma = classified.sigma[linearIndex(g.dims, x, y, z)];
-                if (sigma > 0) acc.setValue(openvdb::Coord(x, y, z), float(sigma * perIndexUnit));
+    for (int z = 0; z < cubes.dims.z; ++z)
+        for (int y = 0; y < cubes.dims.y; ++y)
+            for (int x = 0; x < cubes.dims.x; ++x) {
+                const float sigma = classified.sigma[cubes.sourceIndex(g, x, y, z)];
+                if (sigma > 0) acc.setValue(openvdb::Coord(x, y, z), float(sigma * u));
             }
     grid->setName("density");
     grid->setGridClass(openvdb::GRID_FOG_VOLUME);
@@ -111,7 +110,7 @@ PeerRun runVdbRenderPeer(const PeerScene& scene, const fs::path& outDir) {
     run.notes = std::string(reported ? "render time as vdb_render -v reports it (file load excluded)"
                                      : "time of the whole vdb_render process (file load included)") +
                 "; white emission (one density grid: no TF colour), trilinear on extinction (pre-classified), "
-                "step in index voxels, exact only for isotropic spacing; setup = classify + write .vdb";
+                "anisotropic volumes resampled to cubic voxels of the smallest spacing; setup = classify + write .vdb";
     return run;
 }
 

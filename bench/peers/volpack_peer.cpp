@@ -22,14 +22,14 @@ void check(vpContext* vpc, vpResult r, const char* what) {
 }
 
 // VolPack's object space puts voxel sample v at (v - len/2) / maxlen (the largest dimension spans the unit
-// cube); ours puts voxel v's centre at origin + (v + 1/2) h. This maps the first to the second.
-void objectToWorld(const GridGeometry& g, vpMatrix4 m) {
-    const int maxLen = std::max({g.dims.x, g.dims.y, g.dims.z});
+// cube); our cubic lattice puts voxel v's centre at origin + (v + 1/2) u. This maps the first to the second.
+void objectToWorld(const GridGeometry& g, const CubicLattice& cubes, vpMatrix4 m) {
+    const int maxLen = std::max({cubes.dims.x, cubes.dims.y, cubes.dims.z});
     for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) m[r][c] = r == c ? 1.0 : 0.0;
     for (int a = 0; a < 3; ++a) {
-        m[a][a] = g.spacing[a] * maxLen;
-        m[a][3] = g.origin[a] + g.spacing[a] * (0.5 * g.dims[a] + 0.5);
+        m[a][a] = cubes.size * maxLen;
+        m[a][3] = g.origin[a] + cubes.size * (0.5 * cubes.dims[a] + 0.5);
     }
 }
 
@@ -55,18 +55,25 @@ PeerRun runVolPackPeer(const PeerScene& scene, const std::filesystem::path& outD
     vpContext* vpc = context.get();
 
     // One 16-bit field: the TF table index of the voxel's value; it drives both the opacity (classifier table)
-    // and the colour (a one-material lookup "shader" that returns the TF colour: no lighting).
+    // and the colour (a one-material lookup "shader" that returns the TF colour: no lighting). On the cubic lattice,
+    // because VolPack corrects opacity for the distance between slices in voxels: with cubes of our reference step
+    // that is exact for every view.
+    const CubicLattice cubes(g);
     const std::size_t n = scene.table.opacity.size();
     if (n > 65536) throw InputError("vr_peers: VolPack's field holds at most 65536 table entries");
-    std::vector<std::uint16_t> voxels(scene.volume.values.size());
-    for (std::size_t i = 0; i < voxels.size(); ++i) voxels[i] = std::uint16_t(scene.tableIndex(scene.volume.values[i]));
+    std::vector<std::uint16_t> voxels;
+    voxels.reserve(voxelCount(cubes.dims));
+    for (int z = 0; z < cubes.dims.z; ++z)
+        for (int y = 0; y < cubes.dims.y; ++y)
+            for (int x = 0; x < cubes.dims.x; ++x)
+                voxels.push_back(std::uint16_t(scene.tableIndex(scene.volume.values[cubes.sourceIndex(g, x, y, z)])));
     std::vector<float> opacity(n), colour(3 * n);
     for (std::size_t i = 0; i < n; ++i) {
         opacity[i] = float(scene.table.opacity[i]);
         for (int c = 0; c < 3; ++c) colour[3 * i + c] = 255 * scene.table.colour[i][c];  // VolPack shades in 0..255
     }
-    const int sx = 2, sy = sx * g.dims.x, sz = sy * g.dims.y;
-    check(vpc, vpSetVolumeSize(vpc, g.dims.x, g.dims.y, g.dims.z), "volume size");
+    const int sx = 2, sy = sx * cubes.dims.x, sz = sy * cubes.dims.y;
+    check(vpc, vpSetVolumeSize(vpc, cubes.dims.x, cubes.dims.y, cubes.dims.z), "volume size");
     check(vpc, vpSetVoxelSize(vpc, 2, 1, 1, 1), "voxel size");
     check(vpc, vpSetVoxelField(vpc, 0, 2, 0, int(n - 1)), "voxel field");
     check(vpc, vpSetRawVoxels(vpc, voxels.data(), int(voxels.size() * 2), sx, sy, sz), "voxels");
@@ -82,7 +89,7 @@ PeerRun runVolPackPeer(const PeerScene& scene, const std::filesystem::path& outD
     std::vector<unsigned char> rgba(std::size_t(w) * h * 4);
     check(vpc, vpSetImage(vpc, rgba.data(), w, h, w * 4, VP_RGBA), "image");
     vpMatrix4 model;
-    objectToWorld(g, model);
+    objectToWorld(g, cubes, model);
     check(vpc, vpCurrentMatrix(vpc, VP_MODEL), "model matrix");
     check(vpc, vpSetMatrix(vpc, model), "model matrix");
     const double radius = 0.5 * length(g.extent());
@@ -110,6 +117,7 @@ PeerRun runVolPackPeer(const PeerScene& scene, const std::filesystem::path& outD
     run.setupMs = setupMs;
     run.notes = "shear-warp: one bilinear sample per slice of the principal axis (no sample distance; VolPack "
                 "corrects opacity for the slice spacing along the ray), pre-classified opacity/colour per voxel, "
+                "anisotropic volumes resampled to cubic voxels of the smallest spacing, "
                 "8-bit image, single-threaded; setup = vpClassifyVolume (run-length encoding)";
     return run;
 }

@@ -125,10 +125,14 @@ void faceMinima(const Slab& slab, const std::vector<int>& octs, SlabScratch& sc)
             const int su = octantSign(octs[j], slab.u), sw = octantSign(octs[j], slab.w);
             uint8_t* lenU = sc.lenU[j].data() + off;
             const uint8_t* lenW = (kSquares ? sc.lenU[j] : sc.lenW[j]).data() + off;
-            for (int pw = 0; pw < nw; ++pw, lenU += nu, lenW += nu)
+            const uint8_t* run = sc.runs.data() + off;
+            for (int pw = 0; pw < nw; ++pw, lenU += nu, lenW += nu, run += nu)
                 for (int pu = 0; pu < nu; ++pu) {
-                    const int lu = lenU[pu], lw = kSquares ? lu : lenW[pu];
-                    if (lu != 0) lenU[pu] = faceMin(faceStart(pu, su, lu), faceStart(pw, sw, lw), lu, lw);
+                    const int lu = lenU[pu], lw = kSquares ? lu : lenW[pu], k = std::min(lu, lw);
+                    if (lu == 0) continue;
+                    // The minimum lies between the box's edge along the axis (k: the box is homogeneous) and the
+                    // run of v itself (v is on the face): no query when those meet.
+                    lenU[pu] = run[pu] == k ? k : faceMin(faceStart(pu, su, lu), faceStart(pw, sw, lw), lu, lw);
                 }
         }
     }

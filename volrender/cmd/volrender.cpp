@@ -131,7 +131,9 @@ unsigned fieldsFor(vr::Caster c) {
 
 int run(const Flags& f) {
     if (f.listDevices) {
-        for (const auto& d : vr::VulkanContext::listDevices())
+        const auto devices = vr::VulkanContext::listDevices();
+        if (devices.empty()) throw std::runtime_error("no Vulkan device found (is a Vulkan driver installed?)");
+        for (const auto& d : devices)
             std::printf("%d: %s (%s, Vulkan %s)\n", d.index, d.name.c_str(), d.type.c_str(), d.apiVersion.c_str());
         return 0;
     }
