@@ -15,6 +15,13 @@ CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWit
 if (($#)); then targets=("$@"); else targets=($(ls fuzz/fuzz_*.cpp | sed 's|fuzz/fuzz_||; s|\.cpp$||')); fi
 cmake --build build-fuzz -j "$(nproc)" --target "${targets[@]/#/fuzz_}"
 
+# Memory caps: an "absurd size" input is a finding only if the code really allocates that much before checking.
+# Leaks are checked per input; those inside VTK/OpenVDB/Mesa are suppressed (fuzz/lsan.supp).
+fuzz() {
+  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp \
+    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 "$1" -timeout=20 -rss_limit_mb=2048 -malloc_limit_mb=2048 "${@:2}"
+}
+
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 findings=0
@@ -25,19 +32,20 @@ for t in "${targets[@]}"; do
   cp fuzz/corpus/"$t"/* "$work/corpus/"
   start=$(date +%s)
   # Fork mode keeps fuzzing past a finding (each is saved), so that one known bug does not end the run.
-  # Memory caps: an "absurd size" input is a finding only if the code really allocates that much before checking.
-  # Leaks are checked per input; those inside VTK/OpenVDB/Mesa are suppressed (fuzz/lsan.supp).
-  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/fuzz/lsan.supp \
-    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    build-fuzz/fuzz/fuzz_"$t" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
-    -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=65536 \
-    -artifact_prefix="$work/artifacts/" "$work/corpus" >"$work/log" 2>&1 || true
-  found=$(find "$work/artifacts" -type f | wc -l)
-  if ((found)); then
-    findings=$((findings + found))
-    rm -rf build-fuzz/findings/"$t" && mkdir -p build-fuzz/findings/"$t"
-    cp "$work/log" "$work"/artifacts/* build-fuzz/findings/"$t"/
-  fi
+  fuzz build-fuzz/fuzz/fuzz_"$t" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
+    -max_total_time="$seconds" -max_len=65536 -artifact_prefix="$work/artifacts/" "$work/corpus" >"$work/log" 2>&1 || true
+  # Fork mode may blame an input for what another did: a finding is an input that fails again on its own.
+  found=0
+  rm -rf build-fuzz/findings/"$t"
+  for input in "$work"/artifacts/*; do
+    [[ -f $input ]] || continue
+    if ! fuzz build-fuzz/fuzz/fuzz_"$t" "$input" >"$input.log" 2>&1; then
+      found=$((found + 1))
+      mkdir -p build-fuzz/findings/"$t"
+      cp "$input" "$input.log" build-fuzz/findings/"$t"/
+    fi
+  done
+  findings=$((findings + found))
   executions=$(grep -o '^#[0-9]*:' "$work/log" | tail -1 | tr -d '#:')
   printf '%-18s %12s %8s  %s\n' "$t" "${executions:-?}" "$(($(date +%s) - start))" \
     "$( ((found)) && echo "$found: build-fuzz/findings/$t/" || echo 0)"

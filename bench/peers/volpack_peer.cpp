@@ -33,9 +33,11 @@ void objectToWorld(const GridGeometry& g, const CubicLattice& cubes, vpMatrix4 m
     }
 }
 
-// World -> eye: VolPack's viewer looks down -z with +y up, like ours after the rotation into (right, up, -forward).
+// World -> eye: x right, y up and z along our forward. VolPack's manual has the viewer look down -z, but its
+// shear-warp composites from +z in eye space (checked against our reference on cranium_ct, whose two ends differ),
+// so depth runs along the view direction here.
 void worldToEye(const Camera& cam, vpMatrix4 m) {
-    const Vec3d rows[3] = {cam.right, cam.up, -cam.forward};
+    const Vec3d rows[3] = {cam.right, cam.up, cam.forward};
     for (int r = 0; r < 3; ++r) {
         for (int c = 0; c < 3; ++c) m[r][c] = rows[r][c];
         m[r][3] = -dot(rows[r], cam.eye);
@@ -80,8 +82,8 @@ PeerRun runVolPackPeer(const PeerScene& scene, const std::filesystem::path& outD
     check(vpc, vpSetClassifierTable(vpc, 0, 0, opacity.data(), int(opacity.size() * sizeof(float))), "classifier");
     check(vpc, vpSetLookupShader(vpc, 3, 1, 0, colour.data(), int(colour.size() * sizeof(float)), 0, nullptr, 0),
           "shader");
-    // Voxels under half an 8-bit step are left out of the run-length encoding (they would round to 0).
-    check(vpc, vpSetd(vpc, VP_MIN_VOXEL_OPACITY, 0.5 / 255), "min voxel opacity");
+    // Every voxel with any opacity enters the run-length encoding, as every such voxel counts in ours.
+    check(vpc, vpSetd(vpc, VP_MIN_VOXEL_OPACITY, 0.0), "min voxel opacity");
     check(vpc, vpSetd(vpc, VP_MAX_RAY_OPACITY, scene.options.ert), "max ray opacity");
     check(vpc, vpClassifyVolume(vpc), "classify");  // the three run-length encoded copies, one per axis
 
@@ -104,7 +106,7 @@ PeerRun runVolPackPeer(const PeerScene& scene, const std::filesystem::path& outD
         check(vpc, vpCurrentMatrix(vpc, VP_PROJECT), "projection");
         check(vpc, vpIdentityMatrix(vpc), "projection");
         const double hw = cam.halfHeight * w / h;
-        check(vpc, vpWindow(vpc, VP_PARALLEL, -hw, hw, -cam.halfHeight, cam.halfHeight, -4 * radius, 0), "window");
+        check(vpc, vpWindow(vpc, VP_PARALLEL, -hw, hw, -cam.halfHeight, cam.halfHeight, 0, 4 * radius), "window");
         const auto start = std::chrono::steady_clock::now();
         check(vpc, vpRenderClassifiedVolume(vpc), "render");
         const double ms = millisecondsSince(start);

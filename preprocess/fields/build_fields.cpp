@@ -20,12 +20,7 @@ void toRadius(std::vector<uint8_t>& minACD) {
 
 }  // namespace
 
-std::vector<uint8_t> buildPC(const Regions& regions) {
-    std::vector<uint8_t> pc(voxelCount(regions.dims), uint8_t(kDistanceCap));
-    for (int o = 0; o < kOctants; ++o) lowerToACD(pc, buildACD(regions, o));
-    toRadius(pc);
-    return pc;
-}
+std::vector<uint8_t> buildPC(const Regions& regions) { return buildFields(regions, kFieldPC).pc; }
 
 DistanceFields buildFields(const Regions& regions, unsigned kinds) {
     DistanceFields f;
@@ -34,7 +29,7 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds) {
     if (!pc && !keepACD) return f;
     if (pc) f.pc.assign(voxelCount(regions.dims), uint8_t(kDistanceCap));
     std::array<std::vector<uint8_t>, kOctants> acd;
-    for (int o = 0; o < kOctants; ++o) {
+    for (int o = 0; o < kOctants; ++o) {  // one ACD at a time when only PC is asked for
         std::vector<uint8_t> a = buildACD(regions, o);
         if (pc) lowerToACD(f.pc, a);
         if (keepACD) acd[o] = std::move(a);

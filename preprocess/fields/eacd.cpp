@@ -210,11 +210,14 @@ void boxExtensions(RunFields& runs, OctantBatch& batch, int b) {
         for (std::size_t j = 0; j < octs.size(); ++j) {
             const uint8_t* acd = batch.acd[octs[j]]->data();
             const auto& ext = batch.ext[octs[j]];
+            const uint8_t *ex = ext[0].data(), *ey = ext[1].data(), *ez = ext[2].data();
             const uint8_t* widestAxes = batch.widest[octs[j]].data();
             uint8_t *lenU = sc.lenU[j].data(), *lenW = sc.lenW[j].data();
             slab.forEachVoxel([&](std::size_t l, std::size_t v) {
+                // All three slots are read, so that every array is read in order (the prefetcher follows).
                 const int a = widestAxes[v];
-                const uint8_t widest = ext[a][v], k = acd[v];
+                const uint8_t e0 = ex[v], e1 = ey[v], e2 = ez[v];
+                const uint8_t widest = a == 0 ? e0 : a == 1 ? e1 : e2, k = acd[v];
                 // Nothing to do when b is the widest axis, or when nothing extended (then every slot is k).
                 lenU[l] = a == b || widest == k ? 0 : slab.u == a ? widest : k;
                 lenW[l] = slab.w == a ? widest : k;

@@ -1,0 +1,208 @@
+#include "sweep/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "sweep/error_plot.h"
+#include "sweep/image_strip.h"
+#include "sweep/metrics/pixel_fractions.h"
+#include "sweep/metrics/ssim.h"
+#include "sweep/run_sweep.h"
+#include "sweep/selection.h"
+
+namespace vr {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+std::string fmt(const char* format, double v) {
+    char s[64];
+    std::snprintf(s, sizeof s, format, v);
+    return s;
+}
+std::string db(double psnr) { return std::isinf(psnr) ? "inf" : fmt("%.1f", psnr); }
+std::string setting(const SweepRow& r) {
+    return r.caster + " T_o=" + thresholdText(r.opacityThreshold) + " T_a=" + thresholdText(r.angleThreshold);
+}
+
+const SweepRow* find(const std::vector<SweepRow>& rows, const std::string& caster, double to, double ta) {
+    for (const SweepRow& r : rows)
+        if (r.caster == caster && r.opacityThreshold == to && r.angleThreshold == ta) return &r;
+    return nullptr;
+}
+
+void settingsTable(std::ostream& md, const std::vector<SweepRow>& rows) {
+    md << "| T_o | T_a | caster | regions | segment+fields s | device ms median | p95 | speed-up | iter/ray mean "
+          "| p95 | max | field MB | PSNR mean | PSNR worst | SSIM worst | RMSE mean | max abs worst "
+          "| % off>1/255 worst | % dE00>2.3 worst |\n"
+       << "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const SweepRow& r : rows) {
+        const double prep = r.segmentSeconds + r.pcSeconds + r.acdSeconds + r.eacdSeconds;
+        md << "| " << thresholdText(r.opacityThreshold) << " | " << thresholdText(r.angleThreshold) << " | "
+           << r.caster << " | " << r.regions << " | " << fmt("%.2f", prep) << " | " << fmt("%.2f", r.deviceMsMedian)
+           << " | " << fmt("%.2f", r.deviceMsP95) << " | " << fmt("%.2fx", speedUp(r)) << " | "
+           << fmt("%.1f", r.iterationsMean) << " | " << fmt("%.0f", r.iterationsP95) << " | "
+           << fmt("%.0f", r.iterationsMax) << " | " << fmt("%.1f", double(r.fieldBytes) / 1e6) << " | "
+           << db(r.error.mean.psnr) << " | " << db(r.error.worst.psnr) << " | " << fmt("%.4f", r.error.worst.ssim)
+           << " | " << fmt("%.2e", std::sqrt(r.error.mean.mse)) << " | " << fmt("%.3f", r.error.worst.maxAbs)
+           << " | " << fmt("%.2f", r.error.worst.percentOff8Bit) << " | "
+           << fmt("%.2f", r.error.worst.percentPerceptual) << " |\n";
+    }
+}
+
+void bestSettings(std::ostream& md, const std::vector<SweepRow>& rows) {
+    md << "\nBest setting per caster meeting the target (worst view: PSNR >= " << kTargetPsnr << " dB and < "
+       << kTargetPercentOff << " % of pixels off by more than 1/255), by speed-up over the primitive caster:\n\n"
+       << "| caster | T_o | T_a | speed-up | PSNR worst | % off>1/255 worst | % dE00>2.3 worst |\n"
+       << "|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const std::string& caster : castersOf(rows)) {
+        if (caster == "primitive") continue;
+        if (const SweepRow* b = bestMeetingTarget(rows, caster))
+            md << "| " << caster << " | " << thresholdText(b->opacityThreshold) << " | "
+               << thresholdText(b->angleThreshold) << " | " << fmt("%.2fx", speedUp(*b)) << " | "
+               << db(b->error.worst.psnr) << " | " << fmt("%.2f", b->error.worst.percentOff8Bit) << " | "
+               << fmt("%.2f", b->error.worst.percentPerceptual) << " |\n";
+        else
+            md << "| " << caster << " | - | - | - | none meets the target | | |\n";
+    }
+    if (const SweepRow* best = bestMeetingTarget(rows)) {
+        md << "\n**Best overall:** " << setting(*best) << ", " << fmt("%.2fx", speedUp(*best))
+           << " faster than the primitive caster, PSNR worst view " << db(best->error.worst.psnr) << " dB.\n";
+    }
+    if (const SweepRow* eacd = bestMeetingTarget(rows, "eacd"))
+        md << "\n**Issue target (EACD >= " << kTargetSpeedUp << "x faster with the quality target):** "
+           << (speedUp(*eacd) >= kTargetSpeedUp ? "met" : "not met") << " here; best EACD setting T_o="
+           << thresholdText(eacd->opacityThreshold) << " T_a=" << thresholdText(eacd->angleThreshold) << " at "
+           << fmt("%.2fx", speedUp(*eacd)) << ".\n";
+}
+
+void paretoList(std::ostream& md, const std::vector<SweepRow>& rows) {
+    md << "\nPareto front (render time relative to primitive vs mean PSNR; exact = inf):\n\n";
+    const std::vector<bool> front = psnrFront(rows);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        if (front[i])
+            md << "- " << setting(rows[i]) << ": " << fmt("%.3f", rows[i].ratioToPrimitive) << " of primitive's time, "
+               << "PSNR " << db(rows[i].error.mean.psnr) << " dB, " << fmt("%.2f", rows[i].error.mean.percentPerceptual)
+               << " % dE00 > 2.3\n";
+}
+
+void peersTable(std::ostream& md, const fs::path& file, const std::vector<SweepRow>& rows) {
+    std::ifstream in(file);
+    const json peers = json::parse(in);
+    const SweepRow* primitive = find(rows, "primitive", 0, 0);
+    const SweepRow* eacd = find(rows, "eacd", 0, 0);
+    md << "\nPeers (scripts/peers.sh, same views, size and sample distance; their wall ms per view against our "
+          "wall ms median at T_o = T_a = 0; ratio > 1: the peer is slower; error against our reference):\n\n"
+       << "| peer | median ms | / our primitive | / our EACD | PSNR | SSIM | notes |\n"
+       << "|---|---:|---:|---:|---:|---:|---|\n";
+    for (const json& p : peers) {
+        md << "| " << p.value("peer", "?") << " | ";
+        if (!p.contains("median_ms")) {
+            md << "- | - | - | - | - | " << p.value("error", "") << " |\n";
+            continue;
+        }
+        const double ms = p["median_ms"].get<double>();
+        md << fmt("%.1f", ms) << " | "
+           << (primitive && primitive->wallMsMedian > 0 ? fmt("%.2f", ms / primitive->wallMsMedian) : "-") << " | "
+           << (eacd && eacd->wallMsMedian > 0 ? fmt("%.2f", ms / eacd->wallMsMedian) : "-") << " | ";
+        if (p.contains("psnr"))
+            md << (p["psnr"].is_string() ? p["psnr"].get<std::string>() : fmt("%.1f", p["psnr"].get<double>()))
+               << " | " << fmt("%.4f", p.value("ssim", 0.0)) << " | ";
+        else
+            md << "- | - | ";
+        md << p.value("notes", "") << (p.contains("error") ? " " + p["error"].get<std::string>() : "") << " |\n";
+    }
+}
+
+// Reference, EACD (or the last caster) at the smallest thresholds, the best setting meeting the target, and the
+// largest thresholds: the columns of the strip whose images exist.
+std::vector<StripColumn> stripColumns(const fs::path& images, const std::vector<SweepRow>& rows) {
+    std::vector<StripColumn> cols{{"reference", images / "reference.png", {}}};
+    const std::vector<std::string> casters = castersOf(rows);
+    const std::string caster = std::find(casters.begin(), casters.end(), "eacd") != casters.end() ? "eacd"
+                                                                                                   : casters.back();
+    std::vector<const SweepRow*> chosen;
+    const SweepRow* smallest = nullptr;
+    const SweepRow* largest = nullptr;
+    for (const SweepRow& r : rows) {
+        if (r.caster != caster) continue;
+        const double size = r.opacityThreshold * 1000 + r.angleThreshold;  // order: T_o first, then T_a
+        if (!smallest || size < smallest->opacityThreshold * 1000 + smallest->angleThreshold) smallest = &r;
+        if (!largest || size > largest->opacityThreshold * 1000 + largest->angleThreshold) largest = &r;
+    }
+    for (const SweepRow* r : {smallest, bestMeetingTarget(rows, caster), largest})
+        if (r && std::find(chosen.begin(), chosen.end(), r) == chosen.end()) chosen.push_back(r);
+    for (const SweepRow* r : chosen) {
+        const fs::path image = images / imageName(r->caster, r->opacityThreshold, r->angleThreshold, false);
+        const fs::path error = images / imageName(r->caster, r->opacityThreshold, r->angleThreshold, true);
+        if (fs::exists(image) && fs::exists(error))
+            cols.push_back({setting(*r) + " PSNR " + db(r->error.worst.psnr), image, error});
+    }
+    return cols;
+}
+
+}  // namespace
+
+fs::path writeReport(const fs::path& outDir) {
+    const std::vector<SweepRow> all = readSweepCsv(outDir / "sweep.csv");
+    if (all.empty()) throw fileError((outDir / "sweep.csv").string(), "no sweep results to report");
+    const bool gnuplot = gnuplotAvailable();
+    if (!gnuplot) std::fprintf(stderr, "volsweep: gnuplot not found (install gnuplot-nox): the plots are skipped\n");
+    fs::create_directories(outDir / "plots");
+    fs::create_directories(outDir / "strips");
+
+    std::ostringstream md;
+    md << "# Error against render time: the (T_o, T_a) sweep\n\n"
+       << "Made by volsweep from `sweep.csv` (one row per dataset, setting and caster). Reference: the primitive "
+          "caster at T_o = T_a = 0 on the same lattice, float RGB (premultiplied over black). Render times: Vulkan "
+          "timestamp queries around the dispatches (device time; wall time where the queue has none), median and "
+          "p95 over the views after one warm-up frame per caster; **speed-up** = the primitive caster's device "
+          "median / the caster's, both at the same setting in the same run (on lavapipe only ratios hold, not ms). "
+          "Preprocessing: wall seconds of segmentation and of each distance field (PC, the 8 ACD octants, EACD on "
+          "top of ACD) at the setting; load and classification run once per dataset.\n\n"
+          "Error figures per image over linear RGB, then over the views (mean; worst = the worst view): RMSE; PSNR "
+          "in dB with peak 1 (of the mean MSE over the views, so one exact view does not make it infinite; inf = "
+          "exact); max abs error; SSIM on linear luminance (Rec. 709 weights) with the **Gaussian 11x11 window, "
+          "sigma 1.5** (K1 0.01, K2 0.03, valid positions only); % of pixels whose 8-bit sRGB value differs by "
+          "more than 1 in some channel; % of pixels with **CIEDE2000 > "
+       << kPerceptualDeltaE
+       << "** (linear RGB with sRGB primaries -> XYZ -> CIELAB, D65 white; Sharma et al. 2005).\n\n";
+
+    for (const std::string& dataset : datasetsOf(all)) {
+        const std::vector<SweepRow> rows = rowsOf(all, dataset);
+        const SweepRow& first = rows.front();
+        md << "## " << dataset << "\n\n"
+           << first.width << "x" << first.height << " pixels, " << first.views << " views.\n\n";
+        settingsTable(md, rows);
+        bestSettings(md, rows);
+        paretoList(md, rows);
+        const fs::path plot = outDir / "plots" / (dataset + ".png");
+        if (gnuplot) {
+            plotErrorAgainstTime(rows, dataset + ": error against render time (labels T_o/T_a)", plot);
+            md << "\n![error against render time](plots/" << dataset << ".png)\n";
+        } else {
+            md << "\n(Plot skipped: gnuplot is not installed; `bash scripts/install-deps.sh gnuplot-nox`.)\n";
+        }
+        const std::vector<StripColumn> columns = stripColumns(imagesDir(outDir, dataset), rows);
+        if (columns.size() > 1 && fs::exists(columns.front().image)) {
+            writeImageStrip(columns, outDir / "strips" / (dataset + ".png"));
+            md << "\nImage strip, view 0 (top: image; bottom: |difference to the reference| x10), columns:";
+            for (const StripColumn& c : columns) md << " " << c.label << ";";
+            md << "\n\n![image strip](strips/" << dataset << ".png)\n";
+        }
+        const fs::path peers = outDir / ("peers_" + dataset + ".json");
+        if (fs::exists(peers)) peersTable(md, peers, rows);
+        md << "\n";
+    }
+    const fs::path report = outDir / "report.md";
+    writeFileAtomically(report, [&](std::ostream& out) { out << md.str(); });
+    return report;
+}
+
+}  // namespace vr

@@ -1,0 +1,45 @@
+#include "sweep/sweep_options.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.h"
+#include "sweep/metrics/ssim.h"
+
+namespace vr {
+
+void SweepOptions::validate() const {
+    if (input.empty()) throw InputError("no input volume given");
+    if (transferFunction.empty()) throw InputError("no transfer function given: --tf TF.json");
+    if (outDir.empty()) throw InputError("no output folder given: -o OUTDIR");
+    auto checkGrid = [](const std::vector<double>& grid, const char* flag) {
+        if (grid.empty()) throw InputError(std::string(flag) + ": give at least one threshold");
+        for (double t : grid)
+            if (!std::isfinite(t) || t < 0)
+                throw InputError(std::string(flag) + ": thresholds must be finite and >= 0");
+    };
+    checkGrid(opacityThresholds, "--to");
+    checkGrid(angleThresholds, "--ta");
+    if (std::find(casters.begin(), casters.end(), Caster::Primitive) == casters.end())
+        throw InputError("--casters must include primitive: the other casters' times are given relative to it");
+    if (views < 1 || views > 360) throw InputError("--views must be in 1..360");
+    if (elevations.empty()) throw InputError("--elevations: give at least one elevation");
+    for (double e : elevations)
+        if (!std::isfinite(e)) throw InputError("--elevations must be finite");
+    if (width < kSsimWindow || height < kSsimWindow || width > 8192 || height > 8192)
+        throw InputError("--size: width and height must be in 11..8192 (SSIM needs an 11x11 window)");
+    if (!(stepVoxels > 0) || !std::isfinite(stepVoxels)) throw InputError("--step must be a positive number");
+    const std::string name = datasetName();
+    if (name.empty() || name.find_first_of(",\n\"") != std::string::npos)
+        throw InputError("dataset name '" + name + "' must be non-empty, without commas or quotes (use --name)");
+}
+
+std::string SweepOptions::datasetName() const {
+    if (!dataset.empty()) return dataset;
+    std::string name = input.filename().string();
+    for (const char* ext : {".gz", ".raw", ".nii", ".nrrd", ".nhdr", ".mhd", ".mha", ".vti", ".vtk", ".vdb"})
+        if (name.size() > std::string(ext).size() && name.ends_with(ext)) name.resize(name.size() - std::string(ext).size());
+    return name;
+}
+
+}  // namespace vr

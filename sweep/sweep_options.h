@@ -1,0 +1,37 @@
+// What volsweep is asked to do: one dataset, a grid of thresholds, the casters, the views and the outputs.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "preprocess/load/load_volume.h"
+#include "volrender/render_settings.h"
+
+namespace vr {
+
+struct SweepOptions {
+    std::filesystem::path input;
+    std::string dataset;                 // name in the CSV and report; empty: the input's name without extensions
+    RawOptions raw;
+    std::filesystem::path transferFunction;
+    std::vector<double> opacityThresholds{0, 0.005, 0.01, 0.02, 0.05, 0.1};  // T_o
+    std::vector<double> angleThresholds{0, 1, 3, 10, 20};                    // T_a, degrees
+    std::vector<Caster> casters{Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+    int views = 8;                       // azimuths 360 i / views ...
+    std::vector<double> elevations{0};   // ... at each of these elevations
+    int width = 512, height = 512;
+    double stepVoxels = 0.5;
+    bool shading = true;
+    bool trilinear = false;
+    int device = -1;                     // Vulkan device index; -1: the default choice
+    std::filesystem::path outDir;
+    bool resume = false;                 // skip settings already in OUTDIR/sweep.csv
+    std::filesystem::path peersDir;      // a folder holding peers.json (scripts/peers.sh); empty: none
+
+    // Throws InputError for an empty grid, negative or non-finite thresholds, no primitive caster, bad sizes.
+    void validate() const;
+    // The dataset name used (dataset, else derived from input).
+    std::string datasetName() const;
+};
+
+}  // namespace vr

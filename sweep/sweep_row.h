@@ -1,0 +1,45 @@
+// One row of sweep.csv: one dataset, one (T_o, T_a) setting and one caster, with its costs and error figures.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sweep/metrics/image_error.h"
+
+namespace vr {
+
+struct SweepRow {
+    std::string dataset;
+    double opacityThreshold = 0, angleThreshold = 0;  // T_o, T_a
+    std::string caster;
+    int views = 0, width = 0, height = 0;
+    // Preprocessing wall seconds at this setting (the same for every caster of the setting; 0: not built).
+    double segmentSeconds = 0, pcSeconds = 0, acdSeconds = 0, eacdSeconds = 0;
+    long long regions = 0;
+    double deviceMsMedian = 0, deviceMsP95 = 0, wallMsMedian = 0;
+    double ratioToPrimitive = 0;  // device median / the primitive caster's at this setting, same run
+    double iterationsMean = 0, iterationsP95 = 0, iterationsMax = 0;  // per ray, over all views' pixels
+    long long fieldBytes = 0;      // this caster's distance field (all octants)
+    long long uploadedBytes = 0;   // everything uploaded for one render
+    ErrorSummary error;            // against the reference over all views
+
+    // The setting's key as the CSV writes it ("dataset,T_o,T_a,caster").
+    std::string key() const;
+};
+
+// The column names, in order.
+const std::vector<std::string>& sweepColumns();
+std::string csvHeader();
+std::string toCsvLine(const SweepRow& row);
+// Throws InputError naming `source` and the line for a malformed row.
+SweepRow parseCsvLine(const std::string& line, const std::string& source, int lineNumber);
+
+// Every row of a sweep.csv (none when the file does not exist); throws InputError for a foreign header.
+std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path);
+// Appends rows, writing the header first when the file is new; flushed so an interrupted sweep keeps them.
+void appendSweepCsv(const std::filesystem::path& path, const std::vector<SweepRow>& rows);
+
+// A threshold as written in keys and labels (shortest exact-enough form, e.g. 0.005).
+std::string thresholdText(double t);
+
+}  // namespace vr

@@ -1,0 +1,35 @@
+// Extreme geometry on the CPU reference (ALGORITHMS.md section 6): rays along axes and diagonals, through voxel
+// edges and corners, grazing and missing, eyes inside the volume and on voxel corners; volumes of 1 voxel, lines,
+// primes, spacing ratios of 1:100; constant, checkerboard, noise, transparent and opaque content. PC, ACD and EACD
+// must give primitive's image with finite values, fetch counts as the fields predict, and the iteration cap must
+// fail a render rather than hang it.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "support/render_cases.h"
+#include "volrender/cpu_renderer.h"
+
+namespace vr {
+namespace {
+
+const test::RenderFn kCpu = [](const PreparedVolume& p, const Camera& c, const RenderSettings& s) {
+    return renderCpu(p, c, s);
+};
+
+void report(const char* family, const test::CaseCount& n) {
+    std::printf("%s: %d renders, %d rays\n", family, n.renders, n.rays);
+}
+
+TEST(CpuExtremeGeometry, CastersEqualPrimitiveOnEveryShapeContentAndView) {
+    report("extreme geometry", test::extremeGeometry(kCpu, {}));
+}
+
+TEST(CpuExtremeGeometry, TransparentOpaqueAndRegionsBeyondTheCap) {
+    report("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kCpu));
+}
+
+TEST(CpuExtremeGeometry, IterationCapIsAnError) { report("iteration cap", test::iterationCapIsAnError(kCpu)); }
+
+}  // namespace
+}  // namespace vr

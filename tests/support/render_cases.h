@@ -1,0 +1,55 @@
+// Shared by the CPU and Vulkan stiff / extreme-case tests: synthetic prepared volumes built straight from
+// per-voxel opacity and colour, exact cameras (rays through chosen grid points), and the checks every caster
+// must pass whichever renderer runs it. The cases themselves live in render_cases.cpp so that the CPU reference
+// and the Vulkan casters face exactly the same inputs.
+#pragma once
+#include <functional>
+#include <string>
+
+#include "core/prepared_volume.h"
+#include "volrender/camera.h"
+#include "volrender/render_result.h"
+
+namespace vr::test {
+
+using RenderFn = std::function<RenderResult(const PreparedVolume&, const Camera&, const RenderSettings&)>;
+
+struct VoxelClass {
+    double alpha;  // opacity per reference step
+    Vec3d colour;
+};
+
+// A classified volume from a per-voxel function (no normals), segmented at thresholds 0, with PC, ACD and EACD.
+PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
+                                 const std::function<VoxelClass(const Vec3i&)>& voxel);
+
+// Orthographic camera with a given frame; right must be unit and orthogonal to the unit forward. With odd
+// width and height and halfHeight = height / 2, pixel centres sit exactly 1 world unit apart along right and up
+// and the centre pixel's ray starts exactly at eye.
+Camera orthoCamera(const Vec3d& eye, const Vec3d& forward, const Vec3d& right, int width, int height,
+                   double halfHeight);
+Camera perspectiveCamera(const Vec3d& eye, const Vec3d& forward, const Vec3d& right, int width, int height,
+                         double fovDeg);
+
+// How many inputs (renders) a case family tried, for the report.
+struct CaseCount {
+    int renders = 0;
+    int rays = 0;
+};
+
+// Every case family runs on one renderer; these bound the work where a renderer is slow (a software Vulkan
+// device): primitive stepping of 1e7 samples, and extreme geometry without early termination too.
+struct CaseOptions {
+    bool primitiveTenMillion = true;
+    bool withoutTermination = true;
+};
+
+CaseCount spanOpacityGrid(const RenderFn& render, const CaseOptions& options);
+CaseCount thinSlabsAgainstTheLatticeSum(const RenderFn& render);
+CaseCount hugeRegionAgainstTheClosedForm(const RenderFn& render);
+CaseCount earlyTerminationHitExactly(const RenderFn& render);
+CaseCount extremeGeometry(const RenderFn& render, const CaseOptions& options);
+CaseCount transparentOpaqueAndCappedRegions(const RenderFn& render);
+CaseCount iterationCapIsAnError(const RenderFn& render);
+
+}  // namespace vr::test

@@ -1,0 +1,110 @@
+// volprep against bad input and hostile conditions: flags it does not have (--step belongs to volrender),
+// absurd spacing, thresholds and dims, unwritable outputs, and a run killed while it writes the prepared file.
+// Every refusal exits non-zero with "volprep: <message>" and writes nothing.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/prepared_file.h"
+#include "support/cli.h"
+#include "support/datasets.h"
+
+namespace vr {
+namespace {
+namespace fs = std::filesystem;
+using test::shellQuote;
+
+test::CliOutcome volprep(const std::string& args) {
+    EXPECT_TRUE(fs::exists(test::volprepExecutable())) << "build the volprep target first";
+    return test::runCli(test::volprepExecutable(), args);
+}
+
+void expectRefused(const std::string& args, const std::string& mentions) {
+    const test::CliOutcome r = volprep(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(r.err.rfind("volprep: ", 0), 0u) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(mentions), std::string::npos) << "expected '" << mentions << "' for " << args << " in:\n" << r.err;
+}
+
+// A small raw volume named so that volprep knows its dims and type: a bright block in a dark box.
+fs::path smallRaw(const fs::path& dir) {
+    const fs::path raw = dir / "block_8x6x5_uint8.raw";
+    std::string bytes(8 * 6 * 5, char(10));
+    for (int i = 40; i < 200; i += 3) bytes[i] = char(220);
+    std::ofstream(raw, std::ios::binary) << bytes;
+    return raw;
+}
+
+const std::string kIso = " --iso 200,2,0.8";
+
+TEST(VolprepFaults, StepIsNotAVolprepFlag) {
+    const fs::path dir = test::scratchDir("volprep_faults_step");
+    const std::string in = shellQuote(smallRaw(dir)) + kIso + " -o " + shellQuote(dir / "x.vprep");
+    for (const char* step : {"0", "-1", "nan", "1e9"}) {
+        const test::CliOutcome r = volprep(in + " --step " + step);
+        EXPECT_EQ(r.status, 2) << step;
+        EXPECT_EQ(r.err.rfind("volprep: ", 0), 0u) << r.err;
+        EXPECT_NE(r.err.find("--step"), std::string::npos) << r.err;
+    }
+    EXPECT_FALSE(fs::exists(dir / "x.vprep"));
+}
+
+TEST(VolprepFaults, AbsurdSpacingThresholdsAndDimsAreRefused) {
+    const fs::path dir = test::scratchDir("volprep_faults_numbers");
+    const std::string in = shellQuote(smallRaw(dir)) + kIso + " -o " + shellQuote(dir / "x.vprep");
+    for (const char* spacing : {"0,1,1", "1,-1,1", "nan,1,1", "1,inf,1", "1,1,1e309", "1e-320,1,1"})
+        expectRefused(in + " --spacing " + spacing, "spacing");
+    for (const char* to : {"nan", "-1", "inf", "-inf"}) expectRefused(in + " --to " + to, "--to");
+    for (const char* ta : {"nan", "-0.5", "inf"}) expectRefused(in + " --ta " + ta, "--ta");
+    for (const char* iso : {"nan,1,1", "200,0,1", "200,-1,1", "200,1,-0.5", "200,1,nan", "200,inf,1"})
+        expectRefused(shellQuote(smallRaw(dir)) + " --iso " + iso + " -o " + shellQuote(dir / "x.vprep"), "iso");
+    const fs::path anonymous = dir / "anonymous.bin";
+    std::ofstream(anonymous, std::ios::binary) << std::string(64, 'a');
+    for (const char* dims : {"0x4x4", "4x4x-4", "100000x100000x100000", "65537x1x1"})
+        expectRefused(shellQuote(anonymous) + kIso + " --type uint8 --dims " + dims + " -o " + shellQuote(dir / "x.vprep"),
+                      "anonymous.bin");
+    EXPECT_FALSE(fs::exists(dir / "x.vprep"));
+}
+
+TEST(VolprepFaults, UnwritableOutputsAreRefused) {
+    const fs::path dir = test::scratchDir("volprep_faults_output");
+    std::ofstream(dir / "plain.txt") << "a file, not a folder";
+    fs::create_directory(dir / "folder.vprep");
+    const std::string in = shellQuote(smallRaw(dir)) + kIso + " -o ";
+    expectRefused(in + shellQuote(dir / "plain.txt" / "x.vprep"), "x.vprep");
+    expectRefused(in + shellQuote(dir / "folder.vprep"), "folder.vprep");
+    expectRefused(in + shellQuote(dir / "absent" / "x.vprep"), "does not exist");
+    expectRefused(in + "/sys/volprep_faults.vprep", "volprep_faults.vprep");   // a read-only file system
+    expectRefused(in + "/proc/volprep_faults.vprep", "volprep_faults.vprep");  // no regular files can be made
+}
+
+// SIGKILL in the middle of writing a large prepared file: the previous file is intact and still reads, and what
+// the killed run left is a hidden temporary, not the output.
+TEST(VolprepFaults, KilledWhileWritingLeavesThePreviousFile) {
+    const fs::path dir = test::scratchDir("volprep_faults_kill");
+    const fs::path out = dir / "shells.vprep";
+    const fs::path small = smallRaw(dir);
+    ASSERT_EQ(volprep(shellQuote(small) + kIso + " -o " + shellQuote(out)).status, 0);
+    const std::string before = test::slurp(out);
+
+    const std::string phantom = shellQuote(test::volphantomExecutable()) + " shells --dims 160x160x160 -o " +
+                                shellQuote(dir) + " >/dev/null";
+    ASSERT_EQ(std::system(phantom.c_str()), 0);
+    const fs::path big = dir / "shells_160x160x160_int16.raw";
+    ASSERT_TRUE(fs::exists(big));
+    const bool killed = test::killWhileWriting(
+        test::volprepExecutable(), {big.string(), "--iso", "1000,5,0.8", "--fields", "pc", "-o", out.string()}, dir,
+        ".shells.tmp", 120);
+    EXPECT_TRUE(killed) << "volprep ended before its temporary file appeared";
+    EXPECT_EQ(test::slurp(out), before);
+    EXPECT_EQ(readPrepared(out).classified.grid.dims, (Vec3i{8, 6, 5}));
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        EXPECT_TRUE(name == "shells.vprep" || name == small.filename() || name == big.filename() ||
+                    name.rfind(".shells.tmp", 0) == 0)
+            << name;
+    }
+}
+
+}  // namespace
+}  // namespace vr

@@ -1,0 +1,238 @@
+// volrender against bad input and hostile conditions: absurd steps and sizes, unwritable outputs, missing and
+// damaged prepared files, no Vulkan driver at all, a volume larger than the device allows, and a render killed
+// while it writes its image. Every refusal exits non-zero with "volrender: <message>"; nothing hangs.
+#include <gtest/gtest.h>
+
+#include <zlib.h>
+
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/prepared_file.h"
+#include "support/cli.h"
+#include "support/datasets.h"
+#include "support/render_cases.h"
+#include "volrender/image.h"
+#include "volrender/vulkan/vulkan_context.h"
+
+namespace vr {
+namespace {
+namespace fs = std::filesystem;
+using test::shellQuote;
+
+// A small prepared volume (no normals: renders use --no-shading): a block of opacity 0.3 in transparent air.
+const fs::path& preparedBlock() {
+    static const fs::path path = [] {
+        const GridGeometry grid{{12, 10, 8}, {1, 1, 2}, {0, 0, 0}};
+        const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
+            const bool inside = v.x > 2 && v.x < 9 && v.y > 1 && v.y < 8 && v.z > 1 && v.z < 6;
+            return test::VoxelClass{inside ? 0.3 : 0.0, {0.9, 0.5, 0.2}};
+        });
+        const fs::path out = test::scratchDir("volrender_faults_prepared") / "block.vprep";
+        writePrepared(out, p);
+        return out;
+    }();
+    return path;
+}
+
+test::CliOutcome volrender(const std::string& args, const std::string& env = "") {
+    EXPECT_TRUE(fs::exists(test::volrenderExecutable())) << "build the volrender target first";
+    return test::runCli(test::volrenderExecutable(), args, env);
+}
+
+void expectRefused(const std::string& args, const std::string& mentions, const std::string& env = "") {
+    const test::CliOutcome r = volrender(args, env);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(r.err.rfind("volrender: ", 0), 0u) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(mentions), std::string::npos) << "expected '" << mentions << "' for " << args << " in:\n" << r.err;
+}
+
+TEST(VolrenderFaults, AbsurdStepsAreRefusedOrRenderedNeverHung) {
+    const fs::path dir = test::scratchDir("volrender_faults_step");
+    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
+    for (const char* step : {"0", "-0", "-1", "nan", "inf", "-inf", "1e-300", "1e-30"})
+        for (const char* where : {" --cpu", ""}) expectRefused(in + where + " --step " + step, "--step");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+    // A step far larger than the volume: one sample per ray, a valid image.
+    for (const char* where : {" --cpu", ""}) {
+        const test::CliOutcome r = volrender(in + where + " --step 1e9 --caster eacd");
+        EXPECT_EQ(r.status, 0) << r.err;
+        const Image image = readImage(dir / "x.png");
+        EXPECT_EQ(image.width, 8);
+        fs::remove(dir / "x.png");
+    }
+}
+
+TEST(VolrenderFaults, ImpossibleSizesAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_size");
+    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --cpu --no-shading";
+    for (const char* size : {"0x0", "0x8", "8x0", "-5x5", "100000x100000", "16385x1", "1x16385", "12x", "x12",
+                             "8x8x8", "4294967304x8"})
+        expectRefused(in + " --size " + size, "--size");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+TEST(VolrenderFaults, UnwritableOutputsAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_output");
+    std::ofstream(dir / "plain.txt") << "a file, not a folder";
+    fs::create_directory(dir / "folder.png");
+    const std::string in = shellQuote(preparedBlock()) + " --cpu --no-shading --size 8x8 -o ";
+    expectRefused(in + shellQuote(dir / "plain.txt" / "x.png"), "x.png");
+    expectRefused(in + shellQuote(dir / "folder.png"), "folder.png");
+    expectRefused(in + shellQuote(dir / "absent" / "x.png"), "does not exist");
+    expectRefused(in + "/sys/volrender_faults.png", "volrender_faults.png");  // a read-only file system
+    expectRefused(in + "/proc/volrender_faults.png", "volrender_faults.png");  // no regular files can be made
+    expectRefused(in + shellQuote(dir / "x.png") + " --stats " + shellQuote(dir / "plain.txt" / "s.json"), "s.json");
+    expectRefused(in + shellQuote(dir / "x.png") + " --heatmap /sys/heat.png", "heat.png");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// The prepared file's parts, to damage one at a time (docs/PREPARED_FORMAT.md).
+struct PreparedBytes {
+    std::string bytes;
+    uint64_t headerBytes() const {
+        uint64_t h;
+        std::memcpy(&h, bytes.data() + 12, 8);
+        return h;
+    }
+    nlohmann::json header() const { return nlohmann::json::parse(bytes.substr(20, headerBytes())); }
+    // Replaces the header text, with a correct checksum (so that only the content is wrong).
+    std::string withHeaderText(const std::string& text) const {
+        std::string out = bytes.substr(0, 12);
+        const uint64_t h = text.size();
+        out.append(reinterpret_cast<const char*>(&h), 8);
+        out += text;
+        const uint32_t crc = uint32_t(crc32(0L, reinterpret_cast<const Bytef*>(text.data()), uInt(text.size())));
+        out.append(reinterpret_cast<const char*>(&crc), 4);
+        out += bytes.substr(24 + headerBytes());
+        return out;
+    }
+    std::string withHeader(const std::function<void(nlohmann::json&)>& edit) const {
+        nlohmann::json h = header();
+        edit(h);
+        return withHeaderText(h.dump(1));
+    }
+};
+
+TEST(VolrenderFaults, MissingAndDamagedPreparedFilesAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_damaged");
+    const PreparedBytes good{test::slurp(preparedBlock())};
+    const uint64_t h = good.headerBytes();
+    ASSERT_EQ(good.withHeaderText(good.bytes.substr(20, h)), good.bytes);  // the rewriting is faithful
+
+    std::vector<std::pair<std::string, std::string>> damaged;  // bytes, what the message must say
+    auto add = [&](std::string bytes, std::string says) { damaged.emplace_back(std::move(bytes), std::move(says)); };
+    std::string b = good.bytes;
+    b[0] = 'X';
+    add(b, "not a prepared file");
+    for (uint32_t version : {0u, 2u, 0xffffffffu}) {
+        b = good.bytes;
+        std::memcpy(b.data() + 8, &version, 4);
+        add(b, "version " + std::to_string(version));
+    }
+    for (uint64_t length : {uint64_t(0), uint64_t(7), uint64_t(19), 20 + h / 2, 24 + h, uint64_t(good.bytes.size() / 2),
+                            uint64_t(good.bytes.size() - 1)})
+        add(good.bytes.substr(0, length), length < 20 ? "not a prepared file" : "truncated");
+    b = good.bytes;
+    b[20 + h / 2] ^= 0x20;  // header text changed, checksum not
+    add(b, "header checksum mismatch");
+    b = good.bytes;
+    b[b.size() - 3] ^= 0x01;  // the last chunk's data
+    add(b, "checksum mismatch");
+    uint64_t hugeHeader = uint64_t(1) << 40;
+    b = good.bytes;
+    std::memcpy(b.data() + 12, &hugeHeader, 8);
+    add(b, "header length");
+    add(good.withHeaderText("{ not json"), "bad header");
+    add(good.withHeader([](nlohmann::json& j) { j["grid"]["dims"] = {2, 2, 2}; }), "needs");
+    add(good.withHeader([](nlohmann::json& j) { j["grid"]["dims"] = {0, 10, 8}; }), "absurd grid dims");
+    add(good.withHeader([](nlohmann::json& j) { j["grid"]["dims"] = {100000, 10, 8}; }), "absurd grid dims");
+    add(good.withHeader([](nlohmann::json& j) { j["grid"]["dims"] = {12, 10}; }), "dims");
+    add(good.withHeader([](nlohmann::json& j) { j["grid"]["dims"] = {12.5, 10, 8}; }), "absurd grid dims");
+    add(good.withHeader([](nlohmann::json& j) { j["regionCount"] = 1; }), "regionCount");
+    add(good.withHeader([](nlohmann::json& j) { j["regionCount"] = -1; }), "regionCount");
+    add(good.withHeader([](nlohmann::json& j) { j.erase("chunks"); }), "chunks");
+    add(good.withHeader([](nlohmann::json& j) { j["chunks"].erase(0); }), "sigma");
+    add(good.withHeader([](nlohmann::json& j) { j["chunks"][0]["offset"] = uint64_t(1) << 62; }), "truncated");
+    add(good.withHeader([](nlohmann::json& j) { j["chunks"][1]["bytes"] = 12; }), "needs");
+    add(good.withHeader([](nlohmann::json& j) { j["chunks"][0]["type"] = "float64"; }), "float32");
+    add(good.withHeader([](nlohmann::json& j) { j["chunks"].push_back(j["chunks"][0]); }), "twice");
+    add(good.withHeader([](nlohmann::json& j) { j["grid"]["spacing"] = {0, 1, 2}; }), "spacing");
+    add(good.withHeader([](nlohmann::json& j) { j["grid"]["spacing"] = {1, -1, 2}; }), "spacing");
+    add(good.withHeader([](nlohmann::json& j) { j["grid"]["spacing"] = {1, 1, 1e308}; }), "spacing");
+    add(good.withHeader([](nlohmann::json& j) { j["grid"]["origin"] = {1e308, 0, -1e308}; }), "origin");
+    add(good.withHeader([](nlohmann::json& j) { j["metadata"]["distanceCap"] = 1000; }), "distanceCap");
+
+    int index = 0;
+    for (const auto& [bytes, says] : damaged) {
+        const fs::path file = dir / ("damaged_" + std::to_string(index++) + ".vprep");
+        std::ofstream(file, std::ios::binary) << bytes;
+        const std::string args = shellQuote(file) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
+        for (const char* where : {" --cpu --caster eacd", " --cpu", ""}) {
+            SCOPED_TRACE(file.filename().string() + where + " expecting '" + says + "'");
+            expectRefused(args + where, says);
+            expectRefused(args + where, file.filename().string());
+        }
+    }
+    std::printf("damaged prepared files: %zu\n", damaged.size());
+    expectRefused(shellQuote(dir / "absent.vprep") + " -o " + shellQuote(dir / "x.png") + " --cpu", "absent.vprep");
+    expectRefused(shellQuote(dir) + " -o " + shellQuote(dir / "x.png") + " --cpu", dir.filename().string());
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+TEST(VolrenderFaults, NoVulkanDriverIsAClearErrorAndTheCpuStillRenders) {
+    const fs::path dir = test::scratchDir("volrender_faults_nodevice");
+    const std::string env = "VK_ICD_FILENAMES=/nonexistent/no_icd.json VK_DRIVER_FILES=/nonexistent/no_icd.json";
+    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
+    expectRefused(in, "Vulkan", env);
+    expectRefused("--list-devices", "Vulkan", env);
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+    const test::CliOutcome cpu = volrender(in + " --cpu", env);
+    EXPECT_EQ(cpu.status, 0) << cpu.err;
+    EXPECT_TRUE(fs::exists(dir / "x.png"));
+}
+
+TEST(VolrenderFaults, VolumeLargerThanTheDeviceAllowsIsRefused) {
+    const int limit = [] {
+        VulkanContext ctx;
+        return int(ctx.physicalDevice().getProperties().limits.maxImageDimension3D);
+    }();
+    ASSERT_LT(limit, 1 << 16) << "the prepared format's largest dimension fits this device";
+    const fs::path dir = test::scratchDir("volrender_faults_limit");
+    const GridGeometry grid{{1, 1, limit + 1}, {1, 1, 1}, {0, 0, 0}};
+    writePrepared(dir / "long.vprep", test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
+                      return test::VoxelClass{v.z % 7 ? 0.0 : 0.5, {1, 1, 1}};
+                  }));
+    const std::string in = shellQuote(dir / "long.vprep") + " -o " + shellQuote(dir / "x.png") +
+                           " --size 8x8 --no-shading --azimuth 90";
+    expectRefused(in, std::to_string(limit));
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+    const test::CliOutcome cpu = volrender(in + " --cpu");  // the CPU reference has no such limit
+    EXPECT_EQ(cpu.status, 0) << cpu.err;
+}
+
+// SIGKILL in the middle of writing a large image: the previous image is intact under the output name, and
+// whatever the killed run left is a hidden temporary, not the output.
+TEST(VolrenderFaults, KilledWhileWritingLeavesThePreviousImage) {
+    const fs::path dir = test::scratchDir("volrender_faults_kill");
+    const fs::path out = dir / "big.exr";
+    const std::string small = shellQuote(preparedBlock()) + " -o " + shellQuote(out) + " --cpu --no-shading --size 8x8";
+    ASSERT_EQ(volrender(small).status, 0);
+    const std::string before = test::slurp(out);
+    ASSERT_FALSE(before.empty());
+    const bool killed = test::killWhileWriting(
+        test::volrenderExecutable(),
+        {preparedBlock().string(), "-o", out.string(), "--cpu", "--no-shading", "--size", "3000x3000"}, dir,
+        ".big.tmp", 120);
+    EXPECT_TRUE(killed) << "the render ended before its temporary image appeared";
+    EXPECT_EQ(test::slurp(out), before);
+    EXPECT_EQ(readImage(out).width, 8);
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        EXPECT_TRUE(name == "big.exr" || name.rfind(".big.tmp", 0) == 0) << name;
+    }
+}
+
+}  // namespace
+}  // namespace vr
