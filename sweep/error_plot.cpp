@@ -56,7 +56,7 @@ void plotErrorAgainstTime(const std::vector<SweepRow>& rows, const std::string& 
     }
     const std::size_t n = casters.size();
     std::ofstream gp(script);
-    gp << "set terminal pngcairo size 1600,700 font ',10'\n"
+    gp << "set terminal pngcairo size 1600,700 font ',10' noenhanced\n"
        << "set output " << quoted(png.string()) << "\n"
        << "set datafile commentschars '#'\n"
        << "set multiplot layout 1,2 title " << quoted(title) << "\n"
@@ -68,7 +68,7 @@ void plotErrorAgainstTime(const std::vector<SweepRow>& rows, const std::string& 
             gp << quoted(data.string()) << " index " << i << " using 1:" << column << " with points pt " << (i + 4)
                << " ps 1.5 title " << quoted(casters[i]) << ", ";
         gp << quoted(data.string()) << " index " << frontBlock
-           << " using 1:2 with lines lw 2 lc rgb 'black' title 'Pareto front', ";
+           << " using 1:2 with linespoints lw 2 pt 6 ps 2.5 lc rgb 'black' title 'Pareto front', ";
         for (std::size_t i = 0; i < n; ++i)
             gp << quoted(data.string()) << " index " << i << " using 1:" << column
                << ":4 with labels offset 0.6,0.6 left font ',7' notitle" << (i + 1 < n ? ", " : "\n");

@@ -7,7 +7,7 @@
 namespace vr {
 
 struct StripColumn {
-    std::string label;                 // drawn above the column when a font is found
+    std::string label, subLabel;       // two lines drawn above the column when a font is found
     std::filesystem::path image;       // PNG
     std::filesystem::path errorMap;    // PNG; empty: a black tile (the reference)
 };

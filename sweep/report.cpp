@@ -123,7 +123,7 @@ void peersTable(std::ostream& md, const fs::path& file, const std::vector<SweepR
 // Reference, EACD (or the last caster) at the smallest thresholds, the best setting meeting the target, and the
 // largest thresholds: the columns of the strip whose images exist.
 std::vector<StripColumn> stripColumns(const fs::path& images, const std::vector<SweepRow>& rows) {
-    std::vector<StripColumn> cols{{"reference", images / "reference.png", {}}};
+    std::vector<StripColumn> cols{{"reference", "primitive T=0", images / "reference.png", {}}};
     const std::vector<std::string> casters = castersOf(rows);
     const std::string caster = std::find(casters.begin(), casters.end(), "eacd") != casters.end() ? "eacd"
                                                                                                    : casters.back();
@@ -142,7 +142,9 @@ std::vector<StripColumn> stripColumns(const fs::path& images, const std::vector<
         const fs::path image = images / imageName(r->caster, r->opacityThreshold, r->angleThreshold, false);
         const fs::path error = images / imageName(r->caster, r->opacityThreshold, r->angleThreshold, true);
         if (fs::exists(image) && fs::exists(error))
-            cols.push_back({setting(*r) + " PSNR " + db(r->error.worst.psnr), image, error});
+            cols.push_back({r->caster + " " + thresholdText(r->opacityThreshold) + "/" +
+                                thresholdText(r->angleThreshold),
+                            "PSNR " + db(r->error.worst.psnr) + " dB", image, error});
     }
     return cols;
 }
@@ -192,8 +194,8 @@ fs::path writeReport(const fs::path& outDir) {
         const std::vector<StripColumn> columns = stripColumns(imagesDir(outDir, dataset), rows);
         if (columns.size() > 1 && fs::exists(columns.front().image)) {
             writeImageStrip(columns, outDir / "strips" / (dataset + ".png"));
-            md << "\nImage strip, view 0 (top: image; bottom: |difference to the reference| x10), columns:";
-            for (const StripColumn& c : columns) md << " " << c.label << ";";
+            md << "\nImage strip, view 0 (top: image; bottom: |difference to the reference| x10; labels CASTER T_o/T_a and the worst view's PSNR), columns:";
+            for (const StripColumn& c : columns) md << " " << c.label << " (" << c.subLabel << ");";
             md << "\n\n![image strip](strips/" << dataset << ".png)\n";
         }
         const fs::path peers = outDir / ("peers_" + dataset + ".json");

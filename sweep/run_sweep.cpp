@@ -147,17 +147,12 @@ int runSweep(const SweepOptions& o) {
     for (double to : o.opacityThresholds)
         for (double ta : o.angleThresholds) {
             bool all = o.resume;
-            for (Caster c : o.casters) {
-                SweepRow key{.dataset = dataset, .opacityThreshold = to, .angleThreshold = ta,
-                             .caster = std::string(casterName(c))};
-                all = all && done.count(key.key());
-            }
+            for (Caster c : o.casters) all = all && done.count(rowKey(dataset, to, ta, std::string(casterName(c))));
             if (!all) settings.emplace_back(to, ta);
         }
     if (!o.resume && !done.empty())
         for (const auto& [to, ta] : settings) {
-            SweepRow key{.dataset = dataset, .opacityThreshold = to, .angleThreshold = ta, .caster = "primitive"};
-            if (done.count(key.key()))
+            if (done.count(rowKey(dataset, to, ta, "primitive")))
                 throw fileError(csv.string(), "already holds rows of " + dataset + " at T_o " + thresholdText(to) +
                                                   ", T_a " + thresholdText(ta) + ": pass --resume or another -o");
         }
@@ -206,7 +201,10 @@ int runSweep(const SweepOptions& o) {
     ProgressBar bar("sweep " + dataset, settings.size() * o.casters.size() * views.size());
     std::set<Caster> warmed;
     for (const auto& [to, ta] : settings) {
-        SweepRow row{.dataset = dataset, .opacityThreshold = to, .angleThreshold = ta};
+        SweepRow row;
+        row.dataset = dataset;
+        row.opacityThreshold = to;
+        row.angleThreshold = ta;
         row.views = int(views.size());
         row.width = o.width;
         row.height = o.height;

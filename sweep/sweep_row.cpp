@@ -50,9 +50,11 @@ std::string thresholdText(double t) {
     return s;
 }
 
-std::string SweepRow::key() const {
-    return dataset + "," + thresholdText(opacityThreshold) + "," + thresholdText(angleThreshold) + "," + caster;
+std::string rowKey(const std::string& dataset, double to, double ta, const std::string& caster) {
+    return dataset + "," + thresholdText(to) + "," + thresholdText(ta) + "," + caster;
 }
+
+std::string SweepRow::key() const { return rowKey(dataset, opacityThreshold, angleThreshold, caster); }
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns{

@@ -23,9 +23,12 @@ struct SweepRow {
     long long uploadedBytes = 0;   // everything uploaded for one render
     ErrorSummary error;            // against the reference over all views
 
-    // The setting's key as the CSV writes it ("dataset,T_o,T_a,caster").
     std::string key() const;
 };
+
+// The key of a row as the CSV writes it: "dataset,T_o,T_a,caster".
+std::string rowKey(const std::string& dataset, double opacityThreshold, double angleThreshold,
+                   const std::string& caster);
 
 // The column names, in order.
 const std::vector<std::string>& sweepColumns();

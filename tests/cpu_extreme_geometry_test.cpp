@@ -18,7 +18,7 @@ const test::RenderFn kCpu = [](const PreparedVolume& p, const Camera& c, const R
 };
 
 void report(const char* family, const test::CaseCount& n) {
-    std::printf("%s: %d renders, %d rays\n", family, n.renders, n.rays);
+    std::printf("%s: %d renders, %d rays, %d of them hitting the volume\n", family, n.renders, n.rays, n.hits);
 }
 
 TEST(CpuExtremeGeometry, CastersEqualPrimitiveOnEveryShapeContentAndView) {

@@ -21,7 +21,7 @@ const test::RenderFn kVulkan = [](const PreparedVolume& p, const Camera& c, cons
 };
 
 void report(const char* family, const test::CaseCount& n) {
-    std::printf("%s: %d renders, %d rays\n", family, n.renders, n.rays);
+    std::printf("%s: %d renders, %d rays, %d of them hitting the volume\n", family, n.renders, n.rays, n.hits);
     const auto errors = context().validationErrors();
     EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
 }

@@ -35,7 +35,7 @@ nlohmann::json runJson(const vr::PeerRun& run, const vr::PeerScene& scene) {
     nlohmann::json views = nlohmann::json::array();
     for (std::size_t i = 0; i < run.ms.size(); ++i)
         views.push_back({{"view", i}, {"azimuth_deg", 360.0 * double(i) / double(scene.views.size())},
-                         {"ms", run.ms[i]}, {"image", run.images[i].string()}});
+                         {"ms", run.ms[i]}, {"image", fs::absolute(run.images[i]).string()}});
     return {{"peer", run.peer}, {"notes", run.notes}, {"setup_ms", run.setupMs}, {"median_ms", run.medianMs()},
             {"p95_ms", run.p95Ms()}, {"views", views}};
 }

@@ -34,7 +34,8 @@ Camera perspectiveCamera(const Vec3d& eye, const Vec3d& forward, const Vec3d& ri
 // How many inputs (renders) a case family tried, for the report.
 struct CaseCount {
     int renders = 0;
-    int rays = 0;
+    int rays = 0;  // rays cast, per caster
+    int hits = 0;  // of them, rays that sampled the volume (compared samples where casters are compared)
 };
 
 // Every case family runs on one renderer; these bound the work where a renderer is slow (a software Vulkan

@@ -1,0 +1,105 @@
+// The CI variant of the sweep: the small real MRI head, a 2x2 grid including (0,0) and the largest thresholds,
+// 2 views of 64x64 on the Vulkan device; checks the outputs and what the figures must say.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+
+#include "core/errors.h"
+#include "support/datasets.h"
+#include "sweep/error_plot.h"
+#include "sweep/report.h"
+#include "sweep/run_sweep.h"
+#include "sweep/sweep_row.h"
+
+namespace vr {
+namespace {
+namespace fs = std::filesystem;
+
+SweepOptions smokeOptions(const fs::path& out) {
+    SweepOptions o;
+    o.input = test::datasetsDir() / "vtk_headmr_48x62x42_uint8.raw.gz";
+    o.transferFunction = test::datasetsDir() / "mri.tf.json";
+    o.raw.spacing = Vec3d{4, 4, 4};
+    o.opacityThresholds = {0, 0.1};
+    o.angleThresholds = {0, 20};
+    o.views = 2;
+    o.width = o.height = 64;
+    o.outDir = out;
+    return o;
+}
+
+TEST(SweepSmoke, HeadMrTwoByTwoGrid) {
+    const fs::path out = test::scratchDir("sweep_smoke");
+    const SweepOptions o = smokeOptions(out);
+    ASSERT_EQ(runSweep(o), 4);
+    const fs::path report = writeReport(out);
+
+    const std::vector<SweepRow> rows = readSweepCsv(out / "sweep.csv");
+    ASSERT_EQ(rows.size(), 16u);  // 4 settings x 4 casters
+    EXPECT_TRUE(fs::exists(report));
+    EXPECT_GT(fs::file_size(report), 1000u);
+    EXPECT_TRUE(fs::exists(out / "strips" / (o.datasetName() + ".png")));
+    if (gnuplotAvailable())
+        EXPECT_TRUE(fs::exists(out / "plots" / (o.datasetName() + ".png")));
+    else
+        ADD_FAILURE() << "gnuplot is not installed (bash scripts/install-deps.sh gnuplot-nox): no plot checked";
+
+    // At thresholds 0 every caster gives the reference image (up to float rounding).
+    std::map<std::string, std::map<std::pair<double, double>, double>> rmse;  // caster -> setting -> RMSE
+    for (const SweepRow& r : rows) {
+        EXPECT_EQ(r.views, 2);
+        EXPECT_GT(r.deviceMsMedian, 0);
+        EXPECT_GE(r.iterationsMax, r.iterationsMean);
+        EXPECT_GT(r.ratioToPrimitive, 0);
+        if (r.opacityThreshold == 0 && r.angleThreshold == 0)
+            EXPECT_TRUE(std::isinf(r.error.worst.psnr) || r.error.worst.psnr > 90) << r.key();
+        if (r.caster == "primitive") {
+            EXPECT_EQ(r.error.mean.mse, 0) << "the primitive caster does not depend on the thresholds";
+            EXPECT_EQ(r.ratioToPrimitive, 1);
+        }
+        rmse[r.caster][{r.opacityThreshold, r.angleThreshold}] = std::sqrt(r.error.mean.mse);
+    }
+    // The largest thresholds give the largest error, and some caster's error there is not zero.
+    bool someError = false;
+    for (const auto& [caster, bySetting] : rmse) {
+        const double largest = bySetting.at({0.1, 20});
+        for (const auto& [setting, e] : bySetting) EXPECT_LE(e, largest) << caster;
+        someError = someError || largest > 0;
+    }
+    EXPECT_TRUE(someError);
+}
+
+TEST(SweepSmoke, ResumeSkipsFinishedSettingsAndReRunsAreRefused) {
+    const fs::path out = test::scratchDir("sweep_resume");
+    SweepOptions o = smokeOptions(out);
+    o.opacityThresholds = {0};
+    o.angleThresholds = {0};
+    o.casters = {Caster::Primitive, Caster::EACD};
+    o.views = 1;
+    ASSERT_EQ(runSweep(o), 1);
+    o.resume = true;
+    EXPECT_EQ(runSweep(o), 0);
+    o.angleThresholds = {0, 3};
+    EXPECT_EQ(runSweep(o), 1);
+    EXPECT_EQ(readSweepCsv(out / "sweep.csv").size(), 4u);
+    o.resume = false;
+    EXPECT_THROW(runSweep(o), InputError);
+}
+
+TEST(SweepSmoke, BadInputNamesTheProblem) {
+    const fs::path out = test::scratchDir("sweep_bad");
+    SweepOptions o = smokeOptions(out);
+    o.input = out / "missing_16x16x16_uint8.raw";
+    try {
+        runSweep(o);
+        FAIL() << "no error for a missing input";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("missing_16x16x16_uint8.raw"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(writeReport(out / "nothing"), InputError);
+}
+
+}  // namespace
+}  // namespace vr
