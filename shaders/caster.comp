@@ -24,8 +24,9 @@ layout(set = 0, binding = 4, std430) writeonly buffer OutColour { vec4 outColour
 layout(set = 0, binding = 5, std430) writeonly buffer OutIterations { uint outIterations[]; };
 layout(set = 0, binding = 6, std430) writeonly buffer OutSamples { uvec2 outSamples[]; };
 
-// Set in an iteration count: the ray hit the cap or needed an octant that was not uploaded (a bug).
-const uint kFailed = 0x80000000u;
+// Set in an iteration count: the ray hit the cap or needed an octant that was not uploaded (a bug); the driver
+// ended the loops early.
+const uint kFailed = 0x80000000u, kCutShort = 0x40000000u;
 // Shorter interpolated normals than this count as flat (as the CPU reference).
 const float kFlatNormalLength = 1e-6;
 
@@ -118,6 +119,13 @@ void main() {
         }
         samples += n;
     }
+
+    // Some drivers end loops on their own: llvmpipe stops every loop of an invocation once 65535 iterations have run
+    // in all of them, which would silently shorten a long ray. A loop whose trip count (2) the compiler cannot
+    // know runs short afterwards exactly when that happened.
+    int probe = 0;
+    for (double i = 0.0LF; i < P.loopProbe; i += 1.0LF) ++probe;
+    if (probe < 2) iterations |= kCutShort;
 
     outColour[outIndex] = vec4(vec3(colour + dvec3(P.background.rgb) * (1.0LF - alpha)), float(alpha));
     outIterations[outIndex] = failed ? (iterations | kFailed) : iterations;

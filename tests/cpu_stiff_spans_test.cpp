@@ -47,10 +47,10 @@ TEST(CpuStiffSpans, RenderedSpanOpacityOverTheOpacityAndLengthGrid) {
     report("span opacity grid", test::spanOpacityGrid(kCpu, {}));
 }
 
-TEST(CpuStiffSpans, ThinSlabsMatchTheLatticeSum) { report("thin slabs", test::thinSlabsAgainstTheLatticeSum(kCpu)); }
+TEST(CpuStiffSpans, ThinSlabsMatchTheLatticeSum) { report("thin slabs", test::thinSlabsAgainstTheLatticeSum(kCpu, {})); }
 
 TEST(CpuStiffSpans, HugeRegionMatchesTheClosedForm) {
-    report("huge region", test::hugeRegionAgainstTheClosedForm(kCpu));
+    report("huge region", test::hugeRegionAgainstTheClosedForm(kCpu, {}));
 }
 
 TEST(CpuStiffSpans, EarlyTerminationHitExactly) { report("ert hit exactly", test::earlyTerminationHitExactly(kCpu)); }

@@ -53,8 +53,9 @@ TEST(SweepSmoke, HeadMrTwoByTwoGrid) {
         EXPECT_GT(r.deviceMsMedian, 0);
         EXPECT_GE(r.iterationsMax, r.iterationsMean);
         EXPECT_GT(r.ratioToPrimitive, 0);
-        if (r.opacityThreshold == 0 && r.angleThreshold == 0)
+        if (r.opacityThreshold == 0 && r.angleThreshold == 0) {
             EXPECT_TRUE(std::isinf(r.error.worst.psnr) || r.error.worst.psnr > 90) << r.key();
+        }
         if (r.caster == "primitive") {
             EXPECT_EQ(r.error.mean.mse, 0) << "the primitive caster does not depend on the thresholds";
             EXPECT_EQ(r.ratioToPrimitive, 1);

@@ -8,7 +8,7 @@ namespace vr {
 struct CasterParams {
     double eye[4], forward[4], right[4], up[4];
     double gridOrigin[4], spacing[4];
-    double halfHeight, dt, ert, pad0;
+    double halfHeight, dt, ert, loopProbe;  // loopProbe: 2 (see shaders/caster.comp)
     int32_t dims[4];
     int32_t imageSize[2];
     int32_t perspective;

@@ -16,7 +16,9 @@ namespace vr {
 namespace {
 
 enum Binding : uint32_t { kParams, kClassified, kNormals, kField, kOutColour, kOutIterations, kOutSamples, kBindings };
-constexpr uint32_t kFailed = 0x80000000u;  // set in an iteration count by the shader (shaders/caster.comp)
+// Set in an iteration count by the shader (shaders/caster.comp): the ray hit the cap or needed an octant that was
+// not uploaded; the driver ended the shader's loops early.
+constexpr uint32_t kFailed = 0x80000000u, kCutShort = 0x40000000u;
 constexpr uint32_t kGroup = 8;             // local_size of shaders/caster.comp
 
 void checkInputs(const PreparedVolume& prepared, const RenderSettings& s) {
@@ -62,7 +64,8 @@ CasterParams makeParams(const ClassifiedVolume& cv, const Camera& camera, const 
     p.imageSize[0] = camera.width;
     p.imageSize[1] = camera.height;
     p.perspective = camera.projection == Projection::Perspective;
-    p.maxIterations = uint32_t(std::clamp<long long>(s.maxIterationsPerRay, 1, kFailed - 1));
+    p.maxIterations = uint32_t(std::clamp<long long>(s.maxIterationsPerRay, 1, kCutShort - 1));
+    p.loopProbe = 2;
     std::copy(slots.begin(), slots.end(), p.octantSlot);
     if (s.lightDirection) {
         const Vec3d l = normalize(*s.lightDirection);
@@ -228,6 +231,12 @@ RenderResult VulkanRenderer::renderOnDevice(const PreparedVolume& prepared, cons
                     const std::size_t local = std::size_t(ly) * tile.size[0] + lx;
                     const int px = x0 + lx, py = y0 + ly;
                     const std::size_t out = std::size_t(py) * camera.width + px;
+                    if (it[local] & kCutShort)
+                        throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) + " caster: " +
+                                                 ctx_.info().name + " ended the shader's loops before the ray at pixel (" +
+                                                 std::to_string(px) + ", " + std::to_string(py) +
+                                                 ") was done (llvmpipe allows 65535 loop iterations per shader "
+                                                 "invocation); render with the CPU reference or a hardware device");
                     if (it[local] & kFailed)
                         throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) +
                                                  " caster: the ray at pixel (" + std::to_string(px) + ", " +
