@@ -97,8 +97,9 @@ void peersTable(std::ostream& md, const fs::path& file, const std::vector<SweepR
     const json peers = json::parse(in);
     const SweepRow* primitive = find(rows, "primitive", 0, 0);
     const SweepRow* eacd = find(rows, "eacd", 0, 0);
-    md << "\nPeers (scripts/peers.sh, same views, size and sample distance; their wall ms per view against our "
-          "wall ms median at T_o = T_a = 0; ratio > 1: the peer is slower; error against our reference):\n\n"
+    md << "\nPeers (scripts/peers.sh, same views, size and sample distance; their render ms per view as each "
+          "measures it, against our device ms median at T_o = T_a = 0 (dispatches only; like the peers' times, "
+          "without the upload); ratio > 1: the peer is slower; error against this section's reference):\n\n"
        << "| peer | median ms | / our primitive | / our EACD | PSNR | SSIM | notes |\n"
        << "|---|---:|---:|---:|---:|---:|---|\n";
     for (const json& p : peers) {
@@ -109,8 +110,8 @@ void peersTable(std::ostream& md, const fs::path& file, const std::vector<SweepR
         }
         const double ms = p["median_ms"].get<double>();
         md << fmt("%.1f", ms) << " | "
-           << (primitive && primitive->wallMsMedian > 0 ? fmt("%.2f", ms / primitive->wallMsMedian) : "-") << " | "
-           << (eacd && eacd->wallMsMedian > 0 ? fmt("%.2f", ms / eacd->wallMsMedian) : "-") << " | ";
+           << (primitive && primitive->deviceMsMedian > 0 ? fmt("%.2f", ms / primitive->deviceMsMedian) : "-")
+           << " | " << (eacd && eacd->deviceMsMedian > 0 ? fmt("%.2f", ms / eacd->deviceMsMedian) : "-") << " | ";
         if (p.contains("psnr"))
             md << (p["psnr"].is_string() ? p["psnr"].get<std::string>() : fmt("%.1f", p["psnr"].get<double>()))
                << " | " << fmt("%.4f", p.value("ssim", 0.0)) << " | ";
@@ -194,7 +195,8 @@ fs::path writeReport(const fs::path& outDir) {
         const std::vector<StripColumn> columns = stripColumns(imagesDir(outDir, dataset), rows);
         if (columns.size() > 1 && fs::exists(columns.front().image)) {
             writeImageStrip(columns, outDir / "strips" / (dataset + ".png"));
-            md << "\nImage strip, view 0 (top: image; bottom: |difference to the reference| x10; labels CASTER T_o/T_a and the worst view's PSNR), columns:";
+            md << "\nImage strip, view 0 (top: image; bottom: |difference to the reference| x10; labels: caster "
+                  "T_o/T_a and the worst view's PSNR), columns:";
             for (const StripColumn& c : columns) md << " " << c.label << " (" << c.subLabel << ");";
             md << "\n\n![image strip](strips/" << dataset << ".png)\n";
         }

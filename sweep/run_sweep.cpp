@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <map>
-#include <memory>
 #include <set>
 
 #include "core/atomic_file.h"
@@ -95,52 +94,59 @@ void prepareSetting(PreparedVolume& p, const SegmentationParams& params, unsigne
     row.regions = p.regions.count;
 }
 
-// Every view of one caster: times, work per ray, error against the references; view 0's images are written.
-SweepRow renderCaster(VulkanRenderer& renderer, const PreparedVolume& p, const std::vector<View>& views,
-                      const std::vector<Image>& references, RenderSettings settings, SweepRow row,
-                      const fs::path& images, ProgressBar& bar) {
-    row.caster = std::string(casterName(settings.caster));
+// One caster's measurements over the views of one setting.
+struct CasterRun {
+    RenderSettings settings;
     std::vector<double> device, wall;
     std::vector<uint32_t> iterations;
     std::vector<ImageError> errors;
-    for (std::size_t v = 0; v < views.size(); ++v) {
-        RenderResult r = renderer.render(p, views[v].camera, settings);
-        device.push_back(frameMs(r));
-        wall.push_back(r.wallMilliseconds);
-        iterations.insert(iterations.end(), r.iterations.begin(), r.iterations.end());
-        errors.push_back(imageError(references[v], r.image));
-        if (v == 0) {
-            writeImage(images / imageName(row.caster, row.opacityThreshold, row.angleThreshold, false), r.image);
-            writeImage(images / imageName(row.caster, row.opacityThreshold, row.angleThreshold, true),
-                       errorMap(references[v], r.image));
-        }
-        bar.advance();
+    long long uploadedBytes = 0;
+
+    SweepRow row(SweepRow r, const DistanceFields& fields) const {
+        r.caster = std::string(casterName(settings.caster));
+        r.deviceMsMedian = median(device);
+        r.deviceMsP95 = percentile(device, 0.95);
+        r.wallMsMedian = median(wall);
+        double sum = 0;
+        for (uint32_t i : iterations) sum += i;
+        r.iterationsMean = iterations.empty() ? 0 : sum / double(iterations.size());
+        r.iterationsP95 = percentile(iterations, 0.95);
+        r.iterationsMax = percentile(iterations, 1.0);
+        r.fieldBytes = fieldBytes(fields, settings.caster);
+        r.uploadedBytes = uploadedBytes;
+        r.error = summarize(errors);
+        return r;
     }
-    row.deviceMsMedian = median(device);
-    row.deviceMsP95 = percentile(device, 0.95);
-    row.wallMsMedian = median(wall);
-    double sum = 0;
-    for (uint32_t i : iterations) sum += i;
-    row.iterationsMean = iterations.empty() ? 0 : sum / double(iterations.size());
-    row.iterationsP95 = percentile(iterations, 0.95);
-    row.iterationsMax = percentile(iterations, 1.0);
-    row.fieldBytes = fieldBytes(p.fields, settings.caster);
-    row.uploadedBytes = 0;
-    for (const UploadedResource& u : renderer.lastUploads()) row.uploadedBytes += (long long)u.bytes;
-    row.error = summarize(errors);
-    return row;
+};
+
+// Every caster at every view, the casters taking turns within a view so that a busy machine slows them alike
+// (the ratios are what holds); view 0's image and error map of each caster are written.
+void renderSetting(VulkanRenderer& renderer, const PreparedVolume& p, const std::vector<View>& views,
+                   const std::vector<Image>& references, std::vector<CasterRun>& runs, const SweepRow& setting,
+                   const fs::path& images, ProgressBar& bar) {
+    for (std::size_t v = 0; v < views.size(); ++v)
+        for (CasterRun& run : runs) {
+            const RenderResult r = renderer.render(p, views[v].camera, run.settings);
+            run.device.push_back(frameMs(r));
+            run.wall.push_back(r.wallMilliseconds);
+            run.iterations.insert(run.iterations.end(), r.iterations.begin(), r.iterations.end());
+            run.errors.push_back(imageError(references[v], r.image));
+            run.uploadedBytes = 0;
+            for (const UploadedResource& u : renderer.lastUploads()) run.uploadedBytes += (long long)u.bytes;
+            if (v == 0) {
+                const std::string caster(casterName(run.settings.caster));
+                const double to = setting.opacityThreshold, ta = setting.angleThreshold;
+                writeImage(images / imageName(caster, to, ta, false), r.image);
+                writeImage(images / imageName(caster, to, ta, true), errorMap(references[v], r.image));
+            }
+            bar.advance();
+        }
 }
 
-}  // namespace
-
-int runSweep(const SweepOptions& o) {
-    o.validate();
-    const std::string dataset = o.datasetName();
-    fs::create_directories(o.outDir);
-    const fs::path csv = o.outDir / "sweep.csv";
-    const fs::path images = imagesDir(o.outDir, dataset);
-    fs::create_directories(images);
-
+// The (T_o, T_a) settings to run: all, or with resume those whose rows are not all in the CSV yet. Without resume
+// a setting already there is an InputError (appending would give it twice).
+std::vector<std::pair<double, double>> pendingSettings(const SweepOptions& o, const std::string& dataset,
+                                                       const fs::path& csv) {
     std::set<std::string> done;
     for (const SweepRow& r : readSweepCsv(csv)) done.insert(r.key());
     std::vector<std::pair<double, double>> settings;
@@ -149,30 +155,43 @@ int runSweep(const SweepOptions& o) {
             bool all = o.resume;
             for (Caster c : o.casters) all = all && done.count(rowKey(dataset, to, ta, std::string(casterName(c))));
             if (!all) settings.emplace_back(to, ta);
-        }
-    if (!o.resume && !done.empty())
-        for (const auto& [to, ta] : settings) {
-            if (done.count(rowKey(dataset, to, ta, "primitive")))
+            if (!o.resume && done.count(rowKey(dataset, to, ta, "primitive")))
                 throw fileError(csv.string(), "already holds rows of " + dataset + " at T_o " + thresholdText(to) +
                                                   ", T_a " + thresholdText(ta) + ": pass --resume or another -o");
         }
+    return settings;
+}
+
+ClassifiedVolume loadClassified(const SweepOptions& o, const std::string& dataset, std::size_t settings) {
+    StageClock loading;
+    const Volume volume = loadVolume(o.input, o.raw);
+    const double loadSeconds = loading.stop("load").seconds;
+    ClassifyParams params;
+    params.transferFunction = loadTransferFunction(o.transferFunction);
+    params.normals = o.shading;
+    StageClock classifying;
+    ClassifiedVolume classified = classify(volume, params);
+    std::fprintf(stderr, "%s: %dx%dx%d voxels, load %.2f s, classify %.2f s, %zu settings to run\n",
+                 dataset.c_str(), volume.grid.dims.x, volume.grid.dims.y, volume.grid.dims.z, loadSeconds,
+                 classifying.stop("classify").seconds, settings);
+    return classified;
+}
+
+}  // namespace
+
+int runSweep(const SweepOptions& o) {
+    o.validate();
+    const std::string dataset = o.datasetName();
+    const fs::path csv = o.outDir / "sweep.csv";
+    const fs::path images = imagesDir(o.outDir, dataset);
+
+    const std::vector<std::pair<double, double>> settings = pendingSettings(o, dataset, csv);
 
     // Load and classify once: the classification does not depend on the thresholds.
     PreparedVolume p;
-    {
-        StageClock loading;
-        const Volume volume = loadVolume(o.input, o.raw);
-        const double loadSeconds = loading.stop("load").seconds;
-        ClassifyParams params;
-        params.transferFunction = loadTransferFunction(o.transferFunction);
-        params.normals = o.shading;
-        StageClock classifying;
-        p.classified = classify(volume, params);
-        std::fprintf(stderr, "%s: %dx%dx%d voxels, load %.2f s, classify %.2f s, %zu settings to run\n",
-                     dataset.c_str(), volume.grid.dims.x, volume.grid.dims.y, volume.grid.dims.z, loadSeconds,
-                     classifying.stop("classify").seconds, settings.size());
-    }
+    p.classified = loadClassified(o, dataset, settings.size());
     p.meta.source = o.input.string();
+    fs::create_directories(images);
 
     VulkanContext context(VulkanOptions{o.device, false});
     VulkanRenderer renderer(context);
@@ -209,13 +228,16 @@ int runSweep(const SweepOptions& o) {
         row.width = o.width;
         row.height = o.height;
         prepareSetting(p, SegmentationParams{to, ta, o.shading, o.trilinear}, kinds, row);
-        std::vector<SweepRow> rows;
+        std::vector<CasterRun> runs;
         for (Caster c : o.casters) {
-            RenderSettings s = base;
-            s.caster = c;
-            if (warmed.insert(c).second) renderer.render(p, views.front().camera, s);  // pipeline build, caches
-            rows.push_back(renderCaster(renderer, p, views, references, s, row, images, bar));
+            runs.push_back({});
+            runs.back().settings = base;
+            runs.back().settings.caster = c;
+            if (warmed.insert(c).second) renderer.render(p, views.front().camera, runs.back().settings);  // warm-up
         }
+        renderSetting(renderer, p, views, references, runs, row, images, bar);
+        std::vector<SweepRow> rows;
+        for (const CasterRun& run : runs) rows.push_back(run.row(row, p.fields));
         double primitiveMs = 0;
         for (const SweepRow& r : rows)
             if (r.caster == "primitive") primitiveMs = r.deviceMsMedian;

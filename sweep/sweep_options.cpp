@@ -29,6 +29,8 @@ void SweepOptions::validate() const {
     if (width < kSsimWindow || height < kSsimWindow || width > 8192 || height > 8192)
         throw InputError("--size: width and height must be in 11..8192 (SSIM needs an 11x11 window)");
     if (!(stepVoxels > 0) || !std::isfinite(stepVoxels)) throw InputError("--step must be a positive number");
+    if (!peersDir.empty() && !std::filesystem::is_regular_file(peersDir / "peers.json"))
+        throw InputError("--peers " + peersDir.string() + ": no peers.json there (run scripts/peers.sh)");
     const std::string name = datasetName();
     if (name.empty() || name.find_first_of(",\n\"") != std::string::npos)
         throw InputError("dataset name '" + name + "' must be non-empty, without commas or quotes (use --name)");
@@ -37,8 +39,8 @@ void SweepOptions::validate() const {
 std::string SweepOptions::datasetName() const {
     if (!dataset.empty()) return dataset;
     std::string name = input.filename().string();
-    for (const char* ext : {".gz", ".raw", ".nii", ".nrrd", ".nhdr", ".mhd", ".mha", ".vti", ".vtk", ".vdb"})
-        if (name.size() > std::string(ext).size() && name.ends_with(ext)) name.resize(name.size() - std::string(ext).size());
+    for (const std::string ext : {".gz", ".raw", ".nii", ".nrrd", ".nhdr", ".mhd", ".mha", ".vti", ".vtk", ".vdb"})
+        if (name.size() > ext.size() && name.ends_with(ext)) name.resize(name.size() - ext.size());
     return name;
 }
 

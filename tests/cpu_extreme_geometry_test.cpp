@@ -22,7 +22,7 @@ void report(const char* family, const test::CaseCount& n) {
 }
 
 TEST(CpuExtremeGeometry, CastersEqualPrimitiveOnEveryShapeContentAndView) {
-    report("extreme geometry", test::extremeGeometry(kCpu, {}));
+    report("extreme geometry", test::extremeGeometry(kCpu));
 }
 
 TEST(CpuExtremeGeometry, TransparentOpaqueAndRegionsBeyondTheCap) {

@@ -32,9 +32,7 @@ void report(const char* family, const test::CaseCount& n) {
 }
 
 TEST(VulkanExtremeGeometry, CastersEqualPrimitiveOnEveryShapeContentAndView) {
-    test::CaseOptions options;
-    options.withoutTermination = false;  // the CPU test covers ert = 1 too; a software device is slow
-    report("extreme geometry", test::extremeGeometry(kVulkan, options));
+    report("extreme geometry", test::extremeGeometry(kVulkan));
 }
 
 TEST(VulkanExtremeGeometry, TransparentOpaqueAndRegionsBeyondTheCap) {

@@ -21,7 +21,9 @@ Lab linearRgbToLab(double r, double g, double b) {
     const double x = 0.4124564 * r + 0.3575761 * g + 0.1804375 * b;
     const double y = 0.2126729 * r + 0.7151522 * g + 0.0721750 * b;
     const double z = 0.0193339 * r + 0.1191920 * g + 0.9503041 * b;
-    constexpr double xn = 0.4124564 + 0.3575761 + 0.1804375, yn = 0.2126729 + 0.7151522 + 0.0721750, zn = 0.0193339 + 0.1191920 + 0.9503041;
+    constexpr double xn = 0.4124564 + 0.3575761 + 0.1804375;
+    constexpr double yn = 0.2126729 + 0.7151522 + 0.0721750;
+    constexpr double zn = 0.0193339 + 0.1191920 + 0.9503041;
     auto f = [](double t) {
         constexpr double d = 6.0 / 29.0;
         return t > d * d * d ? std::cbrt(t) : t / (3 * d * d) + 4.0 / 29.0;

@@ -44,7 +44,8 @@ Image errorMap(const Image& reference, const Image& image, float gain) {
     requireSameSize(reference, image);
     Image map(image.width, image.height);
     for (std::size_t i = 0; i < map.rgba.size(); i += 4) {
-        for (int c = 0; c < 3; ++c) map.rgba[i + c] = std::min(1.f, gain * std::abs(image.rgba[i + c] - reference.rgba[i + c]));
+        for (int c = 0; c < 3; ++c)
+            map.rgba[i + c] = std::min(1.f, gain * std::abs(image.rgba[i + c] - reference.rgba[i + c]));
         map.rgba[i + 3] = 1;
     }
     return map;

@@ -432,7 +432,7 @@ std::vector<NamedCamera> insideCameras(const GridGeometry& grid) {
 
 }  // namespace
 
-CaseCount extremeGeometry(const RenderFn& render, const CaseOptions& options) {
+CaseCount extremeGeometry(const RenderFn& render) {
     CaseCount count;
     for (const Shape& shape : shapes()) {
         const GridGeometry grid{shape.dims, shape.spacing, {0, 0, 0}};
@@ -447,7 +447,6 @@ CaseCount extremeGeometry(const RenderFn& render, const CaseOptions& options) {
             const PreparedVolume p = syntheticPrepared(grid, grid.smallestSpacing(), content.voxel);
             for (const NamedCamera& cam : cameras)
                 for (const double ert : {0.99, 1.0}) {
-                    if (ert == 1.0 && !options.withoutTermination) continue;
                     const std::string what = shape.name + " " + content.name + " " + cam.name + " ert " +
                                              std::to_string(ert);
                     renderAllAndCompare(render, p, cam.camera, unshaded(cam.step, ert), what, count);
