@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -326,6 +327,11 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     g.dims = n;
     g.spacing = vec3Field(r, grid, "spacing");
     g.origin = vec3Field(r, grid, "origin");
+    // A zero, negative or overflowing spacing makes every ray degenerate (a zero step never ends).
+    for (int a = 0; a < 3; ++a)
+        if (!(g.spacing[a] > 0) || !std::isfinite(g.origin[a]))
+            throw r.fail("bad header: 'spacing' must be positive and 'origin' finite");
+    if (!std::isfinite(length(g.extent()))) throw r.fail("bad header: 'spacing' x dims overflows (extent not finite)");
     p.classified.referenceStep = field<double>(r, header, "referenceStep");
     p.regions.dims = n;
     p.regions.count = uint32_t(countField(r, header, "regionCount", UINT32_MAX));

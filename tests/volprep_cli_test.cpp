@@ -10,39 +10,24 @@
 #include "core/errors.h"
 #include "core/prepared_file.h"
 #include "datasets/phantoms.h"
+#include "support/cli.h"
 #include "support/datasets.h"
 
 namespace vr {
 namespace {
 namespace fs = std::filesystem;
 
-const fs::path kVolprep = fs::path(VR_BINARY_DIR) / "preprocess" / "volprep";
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-struct Outcome {
-    int status;
-    std::string out, err;
-};
+const fs::path kVolprep = test::volprepExecutable();
+using test::slurp;
+using Outcome = test::CliOutcome;
 
 // Runs volprep with `args` (already quoted where needed), capturing both streams.
-Outcome volprep(const fs::path& dir, const std::string& args) {
+Outcome volprep(const std::string& args) {
     EXPECT_TRUE(fs::exists(kVolprep)) << "build the volprep target first: " << kVolprep;
-    fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    std::string cmd = kVolprep.string() + " " + args + " >" + out.string() + " 2>" + err.string();
-    int raw = std::system(cmd.c_str());
-    Outcome r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-    fs::remove(out);
-    fs::remove(err);
-    return r;
+    return test::runCli(kVolprep, args);
 }
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string q(const fs::path& p) { return test::shellQuote(p); }
 
 test::DatasetEntry headsq() {
     for (const auto& e : test::rawManifest())
@@ -74,7 +59,7 @@ double mean(const std::vector<T>& v, Get get) {
 TEST(Volprep, PreparesTheHeadCtAndItReadsBackConsistently) {
     fs::path dir = test::scratchDir("volprep_headsq");
     fs::path out = dir / "headsq.vprep";
-    Outcome r = volprep(dir, headsqArgs(out));
+    Outcome r = volprep(headsqArgs(out));
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;  // no progress bars when stderr is not a terminal
     for (const char* word : {"voxels", "regions", "mean PC radius", "mean ACD edge", "mean EACD extents", "load",
@@ -120,7 +105,7 @@ TEST(Volprep, PreparesTheHeadCtAndItReadsBackConsistently) {
 TEST(Volprep, BuildsOnlyTheRequestedFieldsAndNormals) {
     fs::path dir = test::scratchDir("volprep_fields");
     fs::path out = dir / "pc.vprep";
-    Outcome r = volprep(dir, headsqArgs(out) + " --fields pc --no-normals --to 0.05 --ta 10 --trilinear");
+    Outcome r = volprep(headsqArgs(out) + " --fields pc --no-normals --to 0.05 --ta 10 --trilinear");
     ASSERT_EQ(r.status, 0) << r.err;
     PreparedVolume p = readPrepared(out, kFieldPC, true);
     EXPECT_TRUE(p.fields.hasPC());
@@ -145,8 +130,8 @@ TEST(Volprep, ReadsHeaderlessRawWithFlagsInEitherByteOrder) {
             .write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * 2));
     }
     std::string common = " --dims 24x20x16 --type int16 --spacing 1,1,2 --iso 1000,2,0.8 --iso 40,1,0.1";
-    ASSERT_EQ(volprep(dir, q(dir / "le.bin.raw") + common + " -o " + q(dir / "le.vprep")).status, 0);
-    Outcome r = volprep(dir, q(dir / "be.bin.raw") + common + " --big-endian -o " + q(dir / "be.vprep"));
+    ASSERT_EQ(volprep(q(dir / "le.bin.raw") + common + " -o " + q(dir / "le.vprep")).status, 0);
+    Outcome r = volprep(q(dir / "be.bin.raw") + common + " --big-endian -o " + q(dir / "be.vprep"));
     ASSERT_EQ(r.status, 0) << r.err;
     PreparedVolume le = readPrepared(dir / "le.vprep"), be = readPrepared(dir / "be.vprep");
     EXPECT_EQ(le.classified.grid.dims, Vec3i(24, 20, 16));
@@ -163,7 +148,7 @@ TEST(Volprep, ReadsHeaderlessRawWithFlagsInEitherByteOrder) {
 // volphantom writes NAME_DxDxD_TYPE.raw, which volprep reads with no raw flags.
 TEST(Volprep, PreparesAPhantomWrittenByVolphantom) {
     fs::path dir = test::scratchDir("volprep_phantom");
-    fs::path volphantom = fs::path(VR_BINARY_DIR) / "datasets" / "volphantom";
+    fs::path volphantom = test::volphantomExecutable();
     std::string cmd = volphantom.string() + " engine --dims 32x24x16 -o " + q(dir) + " >/dev/null";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
     fs::path raw = dir / "engine_32x24x16_uint8.raw";
@@ -172,7 +157,7 @@ TEST(Volprep, PreparesAPhantomWrittenByVolphantom) {
     ASSERT_EQ(bytes.size(), engine.values.size());
     for (std::size_t i = 0; i < bytes.size(); ++i) ASSERT_EQ(uint8_t(bytes[i]), engine.values[i]) << i;
 
-    Outcome r = volprep(dir, q(raw) + " --iso 200,1,0.5 --iso 255,1,1 --to 0 --ta 0 -o " + q(dir / "engine.vprep"));
+    Outcome r = volprep(q(raw) + " --iso 200,1,0.5 --iso 255,1,1 --to 0 --ta 0 -o " + q(dir / "engine.vprep"));
     ASSERT_EQ(r.status, 0) << r.err;
     PreparedVolume p = readPrepared(dir / "engine.vprep");
     EXPECT_EQ(p.classified.grid.dims, Vec3i(32, 24, 16));
@@ -183,7 +168,7 @@ TEST(Volprep, PreparesAPhantomWrittenByVolphantom) {
 
 TEST(Volprep, HelpDescribesEveryFlag) {
     fs::path dir = test::scratchDir("volprep_help");
-    Outcome r = volprep(dir, "--help");
+    Outcome r = volprep("--help");
     EXPECT_EQ(r.status, 0);
     for (const char* flag : {"--output", "--tf", "--iso", "--to", "--ta", "--fields", "--trilinear", "--no-normals",
                              "--dims", "--type", "--spacing", "--big-endian"})
@@ -216,7 +201,7 @@ TEST(Volprep, BadInputFailsClearlyAndWritesNothing) {
              {in + tf, "--output is required"},
          }) {
         SCOPED_TRACE(c.args);
-        Outcome r = volprep(dir, c.args);
+        Outcome r = volprep(c.args);
         EXPECT_NE(r.status, 0);
         EXPECT_EQ(r.err.rfind("volprep: ", 0), 0u) << r.err;
         EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
@@ -228,13 +213,13 @@ TEST(Volprep, BadInputFailsClearlyAndWritesNothing) {
 TEST(Volprep, AFailedRunLeavesTheExistingOutputUntouched) {
     fs::path dir = test::scratchDir("volprep_keep");
     fs::path out = dir / "keep.vprep";
-    ASSERT_EQ(volprep(dir, headsqArgs(out) + " --fields pc").status, 0);
+    ASSERT_EQ(volprep(headsqArgs(out) + " --fields pc").status, 0);
     std::string before = slurp(out);
     // Fails late, in the loader, after the flags were accepted.
     fs::path truncated = dir / "cut_64x64x93_uint16.raw.gz";
     std::string gz = slurp(test::datasetsDir() / headsq().file);
     std::ofstream(truncated, std::ios::binary).write(gz.data(), std::streamsize(gz.size() / 2));
-    Outcome r = volprep(dir, q(truncated) + " --tf " + q(test::datasetsDir() / headsq().tf) + " -o " + q(out));
+    Outcome r = volprep(q(truncated) + " --tf " + q(test::datasetsDir() / headsq().tf) + " -o " + q(out));
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.err.find(truncated.string()), std::string::npos) << r.err;
     EXPECT_EQ(slurp(out), before);

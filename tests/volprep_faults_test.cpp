@@ -52,8 +52,16 @@ TEST(VolprepFaults, StepIsNotAVolprepFlag) {
 TEST(VolprepFaults, AbsurdSpacingThresholdsAndDimsAreRefused) {
     const fs::path dir = test::scratchDir("volprep_faults_numbers");
     const std::string in = shellQuote(smallRaw(dir)) + kIso + " -o " + shellQuote(dir / "x.vprep");
-    for (const char* spacing : {"0,1,1", "1,-1,1", "nan,1,1", "1,inf,1", "1,1,1e309", "1e-320,1,1"})
+    for (const char* spacing : {"0,1,1", "1,-1,1", "nan,1,1", "1,inf,1", "1,1,1e309", "1e300,1e300,1e300"})
         expectRefused(in + " --spacing " + spacing, "spacing");
+    // Positive and finite but absurd: prepared, and then refused by volrender, naming the spacing (it renders the
+    // step in voxels of the smallest spacing, so a ray would take ~1e320 samples).
+    ASSERT_EQ(volprep(in + " --spacing 1e-320,1,1").status, 0);
+    const test::CliOutcome render = test::runCli(test::volrenderExecutable(),
+                                                 shellQuote(dir / "x.vprep") + " -o " + shellQuote(dir / "x.png") + " --cpu");
+    EXPECT_EQ(render.status, 1);
+    EXPECT_NE(render.err.find("smallest spacing"), std::string::npos) << render.err;
+    fs::remove(dir / "x.vprep");
     for (const char* to : {"nan", "-1", "inf", "-inf"}) expectRefused(in + " --to " + to, "--to");
     for (const char* ta : {"nan", "-0.5", "inf"}) expectRefused(in + " --ta " + ta, "--ta");
     for (const char* iso : {"nan,1,1", "200,0,1", "200,-1,1", "200,1,-0.5", "200,1,nan", "200,inf,1"})

@@ -2,16 +2,15 @@
 // bad input exiting non-zero with "volrender: <message>" on stderr.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "core/prepared_file.h"
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
+#include "support/cli.h"
 #include "support/datasets.h"
 #include "volrender/image.h"
 
@@ -19,30 +18,16 @@ namespace vr {
 namespace {
 namespace fs = std::filesystem;
 
-const fs::path kVolrender = fs::path(VR_BINARY_DIR) / "volrender" / "volrender";
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-struct Outcome {
-    int status;
-    std::string out, err;
-};
+const fs::path kVolrender = test::volrenderExecutable();
+using test::slurp;
+using Outcome = test::CliOutcome;
 
 Outcome volrender(const std::string& args) {
     EXPECT_TRUE(fs::exists(kVolrender)) << "build the volrender target first: " << kVolrender;
-    const fs::path dir = test::scratchDir("volrender_cli_streams");
-    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    const std::string cmd = kVolrender.string() + " " + args + " >" + out.string() + " 2>" + err.string();
-    const int raw = std::system(cmd.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+    return test::runCli(kVolrender, args);
 }
 
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+std::string q(const fs::path& p) { return test::shellQuote(p); }
 
 // vtk_headsq_ct with its transfer function and spacing, thresholds (0.02, 10 deg), every field: prepared once.
 const fs::path& preparedHead() {

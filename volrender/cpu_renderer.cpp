@@ -76,6 +76,7 @@ void checkInputs(const PreparedVolume& prepared, const RenderSettings& s) {
         throw InputError("prepared volume: classified data does not match its grid");
     if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
         throw InputError("--step " + std::to_string(s.stepVoxels) + ": the step must be a positive number of voxels");
+    requireLatticeFits(cv.grid, s.stepVoxels);
     if (!(s.ert > 0 && s.ert <= 1))
         throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
     if (s.shading && cv.normal.size() != voxels)

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 
 #include "camera.h"
 #include "core/distance_fields.h"
+#include "core/errors.h"
 #include "core/grid.h"
 
 namespace vr {
@@ -48,6 +50,17 @@ inline RayInterval intersectGrid(const GridRay& r, const Vec3i& dims) {
     }
     if (!(t0 < t1)) return {0, 0};
     return {t0, t1};
+}
+
+// Lattice indices are exact in double below 2^53 (the shaders count in double) and latticeCount() corrects its
+// estimate one sample at a time: with a step so small that a ray across the grid takes more than 2^52 samples it
+// would never finish. Renderers refuse such steps before casting (host only: no GLSL counterpart).
+inline void requireLatticeFits(const GridGeometry& grid, double stepVoxels) {
+    if (length(grid.extent()) / (stepVoxels * grid.smallestSpacing()) <= 0x1p52) return;
+    char text[160];
+    std::snprintf(text, sizeof text, "--step %g: too small for this volume (a ray across it would take more than "
+                  "2^52 samples of %g x its smallest spacing %g)", stepVoxels, stepVoxels, grid.smallestSpacing());
+    throw InputError(text);
 }
 
 // The lattice t_k = tEntry + k dt, shared by every caster. Positions are recomputed from k, never accumulated.

@@ -78,6 +78,9 @@ void requireValidGeometry(const GridGeometry& g, const fs::path& path) {
         if (!std::isfinite(g.origin[a]))
             throw fileError(path.string(), std::string("origin along ") + "xyz"[a] + " is not finite");
     }
+    // Cameras and rays use the extent's length: it must not overflow.
+    if (!std::isfinite(length(g.extent())))
+        throw fileError(path.string(), "spacing x dims overflows: the volume's extent is not finite");
 }
 
 }  // namespace

@@ -76,9 +76,9 @@ void checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     if (f.prepared.empty()) throw vr::InputError("no prepared volume given (see --help)");
     if (f.output.empty()) throw vr::InputError("no output image given: -o IMAGE");
     if (!fs::is_regular_file(f.prepared)) throw vr::fileError(f.prepared, "no such file");
-    int w = 0, h = 0;
+    long long w = 0, h = 0;  // wider than int: 4294967304x8 must not wrap around to 8x8
     char extra = 0;
-    if (std::sscanf(f.size.c_str(), "%dx%d%c", &w, &h, &extra) != 2)
+    if (std::sscanf(f.size.c_str(), "%lldx%lld%c", &w, &h, &extra) != 2)
         throw vr::InputError("--size '" + f.size + "': expected WIDTHxHEIGHT, e.g. 512x512");
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
         throw vr::InputError("--size " + f.size + ": width and height must be in 1..16384");
@@ -96,8 +96,8 @@ void checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
 
     view.projection = f.projection == "ortho" ? vr::Projection::Orthographic : vr::Projection::Perspective;
     view.fovDeg = f.fov;
-    view.width = w;
-    view.height = h;
+    view.width = int(w);
+    view.height = int(h);
     s.caster = vr::parseCaster(f.caster);
     s.stepVoxels = f.step;
     s.ert = f.ert;

@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "shaders/embedded_shaders.h"
+#include "volrender/ray_setup.h"
 #include "volrender/span.h"
 #include "volrender/vulkan/caster_params.h"
 #include "volrender/vulkan/view_octants.h"
@@ -19,7 +20,7 @@ enum Binding : uint32_t { kParams, kClassified, kNormals, kField, kOutColour, kO
 // Set in an iteration count by the shader (shaders/caster.comp): the ray hit the cap or needed an octant that was
 // not uploaded; the driver ended the shader's loops early.
 constexpr uint32_t kFailed = 0x80000000u, kCutShort = 0x40000000u;
-constexpr uint32_t kGroup = 8;             // local_size of shaders/caster.comp
+constexpr uint32_t kGroup = 8;  // local_size of shaders/caster.comp
 
 void checkInputs(const PreparedVolume& prepared, const RenderSettings& s) {
     const ClassifiedVolume& cv = prepared.classified;
@@ -28,6 +29,7 @@ void checkInputs(const PreparedVolume& prepared, const RenderSettings& s) {
         throw InputError("prepared volume: classified data does not match its grid");
     if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
         throw InputError("--step " + std::to_string(s.stepVoxels) + ": the step must be a positive number of voxels");
+    requireLatticeFits(cv.grid, s.stepVoxels);
     if (!(s.ert > 0 && s.ert <= 1))
         throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
     if (s.shading && cv.normal.size() != voxels)
