@@ -3,11 +3,12 @@
 # MANIFEST.tsv and one synthetic phantom through volsweep into one folder: sweep.csv, report.md, plots/ (gnuplot),
 # strips/ and images/. Also runs scripts/peers.sh (when present) on the datasets in PEERS and joins its figures.
 #   scripts/report.sh [OUTDIR]            (default out/sweep)
-# Defaults sized to finish within 30 minutes on 2 cores with lavapipe (see the "This run" section of the report):
+# Defaults sized for about 30 minutes on 2 cores with lavapipe (see the "This run" section of the report):
 # 256x256 images, 4 views, a 3x3 threshold grid for volumes of a million voxels or more, 5x3 below that.
 # Environment: BUILD_DIR (default build), VIEWS (4), SIZE (256x256), ONLY (space-separated dataset name prefixes,
 # e.g. "cranium_ct vtk_headsq_ct phantom"), PEERS (dataset prefixes for scripts/peers.sh, default "vtk_headsq_ct";
-# "" for none), RESUME=1 (keep OUTDIR and skip the settings already in its sweep.csv).
+# "" for none), RESUME=1 (keep OUTDIR and skip the settings already in its sweep.csv), BIG_TO, BIG_TA, SMALL_TO,
+# SMALL_TA (the threshold grids, comma-separated).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -18,8 +19,8 @@ views=${VIEWS:-4}
 size=${SIZE:-256x256}
 only=${ONLY:-}
 peers=${PEERS-vtk_headsq_ct}
-big_to=0,0.02,0.1 big_ta=0,3,20        # 3x3 for volumes of >= 1M voxels
-small_to=0,0.01,0.02,0.05,0.1 small_ta=0,3,20
+big_to=${BIG_TO:-0,0.02,0.1} big_ta=${BIG_TA:-0,3,20}  # 3x3 for volumes of >= 1M voxels
+small_to=${SMALL_TO:-0,0.01,0.02,0.05,0.1} small_ta=${SMALL_TA:-0,3,20}
 phantom_dims=128x128x128
 
 bash scripts/install-deps.sh gnuplot-nox
@@ -102,8 +103,8 @@ cat >>"$out/report.md" <<MD
 $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) CPU cores, Vulkan device: ${device:-unknown}. Images ${size}, ${views}
 views (azimuth 360 i / ${views}, elevation 0), step 0.5 voxel, nearest sampling, Phong shading with a headlight.
 Threshold grid: T_o {${big_to}} x T_a {${big_ta}} degrees for volumes of a million voxels or more,
-T_o {${small_to}} x T_a {${small_ta}} below that (sized so that the whole report fits in 30 minutes on this
-machine). Peers (scripts/peers.sh, unshaded as they render) on: ${peers:-none}, compared in the NAME_unshaded
+T_o {${small_to}} x T_a {${small_ta}} below that (sized for about 30 minutes on this 2-core machine; the wall
+time below grows with whatever else shares it). Peers (scripts/peers.sh, unshaded as they render) on: ${peers:-none}, compared in the NAME_unshaded
 sections with our unshaded casters at T_o = T_a = 0.
 
 | dataset | dims | T_o | T_a | seconds |

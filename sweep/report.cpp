@@ -75,6 +75,21 @@ void bestSettings(std::ostream& md, const std::vector<SweepRow>& rows) {
         md << "\n**Best overall:** " << setting(*best) << ", " << fmt("%.2fx", speedUp(*best))
            << " faster than the primitive caster, PSNR worst view " << db(best->error.worst.psnr) << " dB.\n";
     }
+    // How much the thresholds change the work: when the iterations per ray hardly move, so do the render times,
+    // and the differences in speed-up between settings are timing noise.
+    md << "\nIterations per ray (mean) over the grid:";
+    const char* separator = " ";
+    for (const std::string& caster : castersOf(rows)) {
+        double lo = INFINITY, hi = 0;
+        for (const SweepRow& r : rows)
+            if (r.caster == caster) {
+                lo = std::min(lo, r.iterationsMean);
+                hi = std::max(hi, r.iterationsMean);
+            }
+        md << separator << caster << " " << fmt("%.2f", lo) << " .. " << fmt("%.2f", hi);
+        separator = "; ";
+    }
+    md << ".\n";
     if (const SweepRow* eacd = bestMeetingTarget(rows, "eacd"))
         md << "\n**Issue target (EACD >= " << kTargetSpeedUp << "x faster with the quality target):** "
            << (speedUp(*eacd) >= kTargetSpeedUp ? "met" : "not met") << " here; best EACD setting T_o="
