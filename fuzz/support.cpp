@@ -16,10 +16,12 @@ namespace fs = std::filesystem;
 
 const fs::path& scratchDir() {
     static const fs::path dir = [] {
-        const fs::path base = fs::is_directory("/dev/shm") ? fs::path("/dev/shm") : fs::temp_directory_path();
+        const char* given = std::getenv("VR_FUZZ_SCRATCH");  // scripts/fuzz.sh: one folder it removes, crashes too
+        const fs::path base = given              ? fs::path(given)
+                              : fs::is_directory("/dev/shm") ? fs::path("/dev/shm")
+                                                             : fs::temp_directory_path();
         fs::path d = base / ("vr_fuzz_" + std::to_string(getpid()));
         fs::create_directories(d);
-        std::atexit([] { std::error_code ec; fs::remove_all(scratchDir(), ec); });
         return d;
     }();
     return dir;

@@ -9,7 +9,8 @@
 
 namespace vr::fuzz {
 
-// A folder of this process's own (in /dev/shm where there is one: no disk traffic per execution), removed at exit.
+// A folder of this process's own, in $VR_FUZZ_SCRATCH (scripts/fuzz.sh sets it and removes it afterwards: libFuzzer
+// leaves without exit handlers), else in /dev/shm where there is one (no disk traffic per execution).
 const std::filesystem::path& scratchDir();
 
 // Writes the bytes to scratchDir() / name and returns that path.

@@ -22,8 +22,10 @@ fuzz() {
     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 "$1" -timeout=20 -rss_limit_mb=2048 -malloc_limit_mb=2048 "${@:2}"
 }
 
-scratch=$(mktemp -d)
+scratch=$(mktemp -d -p /dev/shm 2>/dev/null || mktemp -d)  # in memory where possible: one file per execution
 trap 'rm -rf "$scratch"' EXIT
+export VR_FUZZ_SCRATCH=$scratch/inputs  # the fuzzers' own folders, also of those that crashed
+mkdir -p "$VR_FUZZ_SCRATCH"
 findings=0
 printf '%-18s %12s %8s  %s\n' target executions seconds findings
 for t in "${targets[@]}"; do

@@ -1,5 +1,7 @@
 #include "support/datasets.h"
 
+#include <unistd.h>
+
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -51,7 +53,9 @@ std::vector<DatasetEntry> rawManifest() {
 }
 
 fs::path scratchDir(const std::string& name) {
-    fs::path p = fs::path(VR_BINARY_DIR) / "test-scratch" / name;
+    // One folder per process: CTest runs the cases of one executable as parallel processes, and a folder
+    // shared between them would be wiped by one while another writes into it.
+    fs::path p = fs::path(VR_BINARY_DIR) / "test-scratch" / (name + "." + std::to_string(::getpid()));
     fs::remove_all(p);
     fs::create_directories(p);
     return p;

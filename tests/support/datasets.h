@@ -24,7 +24,7 @@ struct DatasetEntry {
 std::vector<DatasetEntry> manifest();
 std::vector<DatasetEntry> rawManifest();  // only the .raw.gz rows
 
-// A fresh empty folder under the build tree for one test's outputs.
+// A fresh empty folder under the build tree for one test's outputs (unique to this process).
 std::filesystem::path scratchDir(const std::string& name);
 
 }  // namespace vr::test
