@@ -11,6 +11,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <vector>
@@ -213,6 +215,39 @@ TEST(LoadBadInput, CorruptNiftiHeader) {
     expectInputError(dir / "corrupt.nii", {"corrupt.nii"});
     writeText(dir / "text.nii.gz", "this is not gzip, nor NIfTI");
     expectInputError(dir / "text.nii.gz", {"text.nii.gz"});
+}
+
+// vtkNIFTIImageReader crashes on headers it trusts, so the loader checks them first: a valid 4x3x2 uint8 file (it
+// must load, in both NIfTI versions) and variants each broken in one field.
+std::string niftiFile(int version, std::int16_t dim0, std::int16_t bitpix, const char* magic, std::size_t dataBytes) {
+    const bool two = version == 2;
+    std::string file(two ? 544 : 352, '\0');
+    const auto put = [&](std::size_t at, auto value) { std::memcpy(file.data() + at, &value, sizeof value); };
+    put(0, std::int32_t(two ? 540 : 348));
+    const std::int64_t dims[8] = {dim0, 4, 3, 2, 1, 1, 1, 1};
+    for (int i = 0; i < 8; ++i) two ? put(16 + 8 * i, dims[i]) : put(40 + 2 * i, std::int16_t(dims[i]));
+    put(two ? 12 : 70, std::int16_t(2));  // uint8
+    put(two ? 14 : 72, bitpix);
+    for (int i = 1; i < 4; ++i) two ? put(104 + 8 * i, 1.0) : put(76 + 4 * i, 1.0f);  // pixdim
+    two ? put(168, std::int64_t(544)) : put(108, 352.0f);                           // vox_offset
+    std::memcpy(file.data() + (two ? 4 : 344), magic, two ? 8 : 4);
+    return file + std::string(dataBytes, '\x05');
+}
+
+TEST(LoadBadInput, NiftiHeaderCheckedBeforeVtkReadsIt) {
+    const fs::path dir = test::scratchDir("bad_nifti_fields");
+    writeText(dir / "good1.nii", niftiFile(1, 3, 8, "n+1", 24));
+    EXPECT_EQ(loadVolume(dir / "good1.nii").grid.dims, (Vec3i{4, 3, 2}));
+    writeText(dir / "good2.nii", niftiFile(2, 3, 8, "n+2\0\r\n\032\n", 24));
+    EXPECT_EQ(loadVolume(dir / "good2.nii").grid.dims, (Vec3i{4, 3, 2}));
+    writeText(dir / "dim0.nii", niftiFile(1, 0, 8, "n+1", 24));
+    expectInputError(dir / "dim0.nii", {"dim[0] is 0"});
+    writeText(dir / "bitpix.nii", niftiFile(1, 3, 16, "n+1", 24));
+    expectInputError(dir / "bitpix.nii", {"bitpix is 16"});
+    writeText(dir / "pair.nii", niftiFile(1, 3, 8, "ni1", 24));
+    expectInputError(dir / "pair.nii", {".img"});
+    writeText(dir / "short.nii", niftiFile(1, 3, 8, "n+1", 20));
+    expectInputError(dir / "short.nii", {"372 bytes", "376"});
 }
 
 TEST(LoadBadInput, VdbThatIsNotAVdb) {

@@ -6,6 +6,7 @@
 
 #include "core/errors.h"
 #include "preprocess/load/format_loaders.h"
+#include "preprocess/load/header_checks.h"
 #include "preprocess/load/vtk_image_volume.h"
 #include "preprocess/load/vtk_read.h"
 
@@ -24,7 +25,9 @@ Volume loadDicomSeries(const fs::path& folder) {
     for (const auto& entry : fs::directory_iterator(folder))
         if (entry.is_regular_file()) {
             ++files;
-            dicomFiles += reader->CanReadFile(entry.path().c_str()) != 0;
+            if (reader->CanReadFile(entry.path().c_str()) == 0) continue;
+            ++dicomFiles;
+            checkDicomFile(entry.path());  // each slice the reader will parse, before it does
         }
     if (dicomFiles == 0)
         throw fileError(folder.string(), "folder holds no DICOM files (" + std::to_string(files) +

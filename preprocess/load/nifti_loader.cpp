@@ -3,6 +3,7 @@
 #include <vtkNew.h>
 
 #include "preprocess/load/format_loaders.h"
+#include "preprocess/load/header_checks.h"
 #include "preprocess/load/vtk_image_volume.h"
 #include "preprocess/load/vtk_read.h"
 
@@ -12,6 +13,7 @@ namespace vr {
 // (colin27: equal voxel for voxel). The one change is VTK's own and is kept: for qfac = -1 (a left-handed index
 // frame) it reverses the slices, so that the volume does not render mirrored.
 Volume loadNifti(const std::filesystem::path& path) {
+    checkNiftiHeader(path);
     vtkNew<vtkNIFTIImageReader> reader;
     VtkReadErrors errors;
     reader->SetFileName(path.c_str());

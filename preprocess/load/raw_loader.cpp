@@ -1,6 +1,7 @@
 // Headerless raw volumes (.raw, .raw.gz): dims and type from flags or from the file name, x fastest.
 #include <zlib.h>
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <climits>
@@ -73,7 +74,8 @@ std::vector<unsigned char> readPlain(const fs::path& path, std::size_t expected,
     return bytes;
 }
 
-// The decompressed size is only known by decompressing, so read `expected` bytes and then look for more.
+// The decompressed size is only known by decompressing, so the buffer grows with the data actually there (a tiny
+// file must not get the memory its name claims) and one more read looks for data beyond `expected`.
 std::vector<unsigned char> readGzip(const fs::path& path, std::size_t expected, const Vec3i& dims,
                                     ScalarType type) {
     gzFile file = gzopen(path.c_str(), "rb");
@@ -84,6 +86,7 @@ std::vector<unsigned char> readGzip(const fs::path& path, std::size_t expected, 
     } closer{file};
     gzbuffer(file, 1 << 20);
 
+    // Reads up to n bytes; fewer only at the end of the data.
     const auto readInto = [&](unsigned char* dst, std::size_t n) {
         std::size_t done = 0;
         while (done < n) {
@@ -107,8 +110,13 @@ std::vector<unsigned char> readGzip(const fs::path& path, std::size_t expected, 
         return done;
     };
 
-    std::vector<unsigned char> bytes(expected);
-    const std::size_t got = readInto(bytes.data(), expected);
+    std::vector<unsigned char> bytes;
+    std::size_t got = 0;
+    for (std::size_t size = std::min<std::size_t>(expected, 1 << 20); got == bytes.size() && got < expected;
+         size = std::min(expected, 2 * size)) {
+        bytes.resize(size);
+        got += readInto(bytes.data() + got, size - got);
+    }
     if (got < expected) throw fileError(path.string(), sizeMismatch(expected, got, dims, type));
     std::size_t extra = 0;
     for (std::vector<unsigned char> rest(1 << 16);;) {

@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "preprocess/load/format_loaders.h"
+#include "preprocess/load/header_checks.h"
 #include "preprocess/load/vtk_image_volume.h"
 #include "preprocess/load/vtk_read.h"
 
@@ -27,11 +28,18 @@ Volume readWith(const fs::path& path, const std::string& format) {
 
 }  // namespace
 
-Volume loadMetaImage(const fs::path& path) { return readWith<vtkMetaImageReader>(path, "MetaImage"); }
+Volume loadMetaImage(const fs::path& path) {
+    checkMetaImageHeader(path);
+    return readWith<vtkMetaImageReader>(path, "MetaImage");
+}
 Volume loadVtkXmlImage(const fs::path& path) { return readWith<vtkXMLImageDataReader>(path, "VTK XML image data"); }
-Volume loadVtkLegacy(const fs::path& path) { return readWith<vtkStructuredPointsReader>(path, "VTK structured points"); }
+Volume loadVtkLegacy(const fs::path& path) {
+    checkVtkLegacyFile(path);
+    return readWith<vtkStructuredPointsReader>(path, "VTK structured points");
+}
 
 Volume loadNrrd(const fs::path& path) {
+    checkNrrdFile(path);
     vtkNew<vtkNrrdReader> reader;
     VtkReadErrors errors;
     reader->SetFileName(path.c_str());

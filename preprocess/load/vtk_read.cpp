@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cctype>
 #include <iostream>
+#include <new>
+#include <stdexcept>
 #include <regex>
 
 #include "core/errors.h"
@@ -142,7 +144,14 @@ vtkImageData* VtkReadErrors::read(vtkAlgorithm* reader, const std::filesystem::p
         checkVoxelBudget(path, std::int64_t(e[1]) - e[0] + 1, std::int64_t(e[3]) - e[2] + 1,
                          std::int64_t(e[5]) - e[4] + 1, stored + sizeof(float));
     }
-    reader->Update();
+    // A size the header check missed may still reach an allocation inside the reader.
+    try {
+        reader->Update();
+    } catch (const std::bad_alloc&) {
+        throw fail("the reader ran out of memory allocating what the file claims");
+    } catch (const std::length_error&) {
+        throw fail("the reader was asked for an impossible allocation size");
+    }
     failOnComplaint();
     if (const unsigned long code = reader->GetErrorCode(); code != vtkErrorCode::NoError)
         throw fail(errorCodeText(code));

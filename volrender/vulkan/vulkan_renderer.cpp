@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "shaders/embedded_shaders.h"
 #include "volrender/ray_setup.h"
+#include "volrender/render_checks.h"
 #include "volrender/span.h"
 #include "volrender/vulkan/caster_params.h"
 #include "volrender/vulkan/view_octants.h"
@@ -22,30 +23,6 @@ enum Binding : uint32_t { kParams, kClassified, kNormals, kField, kOutColour, kO
 constexpr uint32_t kFailed = 0x80000000u, kCutShort = 0x40000000u;
 constexpr uint32_t kGroup = 8;  // local_size of shaders/caster.comp
 
-void checkInputs(const PreparedVolume& prepared, const RenderSettings& s) {
-    const ClassifiedVolume& cv = prepared.classified;
-    const std::size_t voxels = cv.grid.voxels();
-    if (voxels == 0 || cv.sigma.size() != voxels || cv.colour.size() != voxels)
-        throw InputError("prepared volume: classified data does not match its grid");
-    if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
-        throw InputError("--step " + std::to_string(s.stepVoxels) + ": the step must be a positive number of voxels");
-    requireLatticeFits(cv.grid, s.stepVoxels);
-    if (!(s.ert > 0 && s.ert <= 1))
-        throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
-    if (s.shading && cv.normal.size() != voxels)
-        throw InputError("prepared volume has no normals: shading needs them");
-    if (s.lightDirection && !(length(*s.lightDirection) > 0 && std::isfinite(length(*s.lightDirection))))
-        throw InputError("--light: the light direction must be a finite non-zero vector");
-    const DistanceFields& f = prepared.fields;
-    const bool present = s.caster == Caster::Primitive || (s.caster == Caster::PC && f.pc.size() == voxels) ||
-                         (s.caster == Caster::ACD && f.acd[0].size() == voxels) ||
-                         (s.caster == Caster::EACD && f.eacd[0].size() == voxels);
-    if (!present)
-        throw InputError("prepared volume has no " + std::string(casterName(s.caster)) + " field: the caster needs it");
-    if (s.trilinear && s.caster != Caster::Primitive && !prepared.meta.segmentation.trilinear)
-        throw InputError("trilinear sampling with the " + std::string(casterName(s.caster)) +
-                         " caster needs a volume segmented for trilinear sampling (border voxels)");
-}
 
 void put(double out[4], const Vec3d& v) {
     out[0] = v.x, out[1] = v.y, out[2] = v.z, out[3] = 0;
@@ -135,7 +112,7 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear
 
 RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera& camera,
                                     const RenderSettings& settings) {
-    checkInputs(prepared, settings);
+    checkRenderInputs(prepared, settings);
     try {
         return renderOnDevice(prepared, camera, settings);
     } catch (const vk::OutOfDeviceMemoryError&) {
