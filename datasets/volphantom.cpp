@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/tool_main.h"
 #include "datasets/phantoms.h"
 
 namespace {
@@ -58,15 +59,7 @@ int main(int argc, char** argv) {
     app.add_option("--type", typeName, "voxel type written: uint8, int16, uint16, float32 (default: the phantom's own)");
     app.add_option("--axis", axis, "ramp axis: 0, 1 or 2")->check(CLI::Range(0, 2))->capture_default_str();
     app.add_option("--seed", seed, "noise seed")->capture_default_str();
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "volphantom: %s\n", e.what());
-        return 2;
-    }
-    try {
+    return vr::runTool("volphantom", app, argc, argv, [&] {
         vr::Vec3i n(dims[0], dims[1], dims[2]);
         vr::Volume v = makePhantom(kind, n, {spacing[0], spacing[1], spacing[2]}, axis, seed);
         vr::ScalarType type = typeName.empty() ? v.sourceType : vr::parseScalarType(typeName);
@@ -82,9 +75,6 @@ int main(int argc, char** argv) {
             }
         });
         std::printf("%s (spacing %g,%g,%g)\n", path.c_str(), spacing[0], spacing[1], spacing[2]);
-    } catch (const vr::InputError& e) {
-        std::fprintf(stderr, "volphantom: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

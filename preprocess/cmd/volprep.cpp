@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/tool_main.h"
 #include "core/errors.h"
 #include "preprocess/cmd/summary.h"
 #include "preprocess/pipeline/prepare.h"
@@ -94,24 +95,10 @@ int main(int argc, char** argv) {
     app.footer("Exit status: 0 done, 1 bad input (file, transfer function, thresholds), 2 bad command line.");
     Flags flags;
     addFlags(app, flags);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "volprep: %s\nRun volprep --help for the options.\n", e.what());
-        return 2;
-    }
-    try {
+    return vr::runTool("volprep", app, argc, argv, [&] {
         checkBeforeRunning(flags);
         vr::PrepareResult result = vr::prepareFile(flags.input, flags.output, optionsFrom(flags));
         vr::printSummary(stdout, flags.output, result);
-    } catch (const vr::InputError& e) {
-        std::fprintf(stderr, "volprep: %s\n", e.what());
-        return 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "volprep: internal error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

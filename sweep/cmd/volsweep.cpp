@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "core/tool_main.h"
 #include "core/errors.h"
 #include "sweep/report.h"
 #include "sweep/run_sweep.h"
@@ -84,15 +85,7 @@ int main(int argc, char** argv) {
     app.footer("Exit status: 0 done, 1 bad input or device failure, 2 bad command line.");
     Flags flags;
     addFlags(app, flags);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "volsweep: %s\nRun volsweep --help for the options.\n", e.what());
-        return 2;
-    }
-    try {
+    return vr::runTool("volsweep", app, argc, argv, [&] {
         if (flags.outDir.empty()) throw vr::InputError("no output folder given: -o OUTDIR");
         if (!flags.reportOnly) {
             if (flags.input.empty()) throw vr::InputError("no input volume given (see --help)");
@@ -101,10 +94,5 @@ int main(int argc, char** argv) {
         }
         std::printf("%s\n", vr::writeReport(flags.outDir).c_str());
         return 0;
-    } catch (const vr::InputError& e) {
-        std::fprintf(stderr, "volsweep: %s\n", e.what());
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "volsweep: %s\n", e.what());
-    }
-    return 1;
+    });
 }

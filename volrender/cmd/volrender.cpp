@@ -9,6 +9,7 @@
 #include <fstream>
 #include <memory>
 
+#include "core/tool_main.h"
 #include "core/errors.h"
 #include "core/prepared_file.h"
 #include "volrender/cmd/heatmap.h"
@@ -196,22 +197,11 @@ int main(int argc, char** argv) {
     app.footer("Exit status: 0 done, 1 bad input or device failure, 2 bad command line.");
     Flags flags;
     addFlags(app, flags);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "volrender: %s\nRun volrender --help for the options.\n", e.what());
-        return 2;
-    }
-    try {
-        return run(flags);
-    } catch (const vr::InputError& e) {
-        std::fprintf(stderr, "volrender: %s\n", e.what());
-    } catch (const vk::SystemError& e) {
-        std::fprintf(stderr, "volrender: Vulkan error: %s\n", e.what());
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "volrender: %s\n", e.what());
-    }
-    return 1;
+    return vr::runTool("volrender", app, argc, argv, [&] {
+        try {
+            return run(flags);
+        } catch (const vk::SystemError& e) {  // e.g. no driver: say it is Vulkan's, and what still works
+            throw std::runtime_error(std::string("Vulkan error: ") + e.what() + " (--cpu renders without a device)");
+        }
+    });
 }
