@@ -17,19 +17,15 @@ const test::RenderFn kCpu = [](const PreparedVolume& p, const Camera& c, const R
     return renderCpu(p, c, s);
 };
 
-void report(const char* family, const test::CaseCount& n) {
-    std::printf("%s: %d renders, %d rays, %d of them hitting the volume\n", family, n.renders, n.rays, n.hits);
-}
-
 TEST(CpuExtremeGeometry, CastersEqualPrimitiveOnEveryShapeContentAndView) {
-    report("extreme geometry", test::extremeGeometry(kCpu));
+    test::report("extreme geometry", test::extremeGeometry(kCpu));
 }
 
 TEST(CpuExtremeGeometry, TransparentOpaqueAndRegionsBeyondTheCap) {
-    report("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kCpu));
+    test::report("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kCpu));
 }
 
-TEST(CpuExtremeGeometry, IterationCapIsAnError) { report("iteration cap", test::iterationCapIsAnError(kCpu)); }
+TEST(CpuExtremeGeometry, IterationCapIsAnError) { test::report("iteration cap", test::iterationCapIsAnError(kCpu)); }
 
 }  // namespace
 }  // namespace vr

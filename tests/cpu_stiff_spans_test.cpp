@@ -18,10 +18,6 @@ const test::RenderFn kCpu = [](const PreparedVolume& p, const Camera& c, const R
     return renderCpu(p, c, s);
 };
 
-void report(const char* family, const test::CaseCount& n) {
-    std::printf("%s: %d renders, %d rays, %d of them hitting the volume\n", family, n.renders, n.rays, n.hits);
-}
-
 // The span function itself, from the stored (float) extinction as the renderer calls it: 1 - (1 - alpha)^N.
 TEST(CpuStiffSpans, SpanFunctionOverTheOpacityAndLengthGrid) {
     int tried = 0;
@@ -44,16 +40,16 @@ TEST(CpuStiffSpans, SpanFunctionOverTheOpacityAndLengthGrid) {
 }
 
 TEST(CpuStiffSpans, RenderedSpanOpacityOverTheOpacityAndLengthGrid) {
-    report("span opacity grid", test::spanOpacityGrid(kCpu, {}));
+    test::report("span opacity grid", test::spanOpacityGrid(kCpu, {}));
 }
 
-TEST(CpuStiffSpans, ThinSlabsMatchTheLatticeSum) { report("thin slabs", test::thinSlabsAgainstTheLatticeSum(kCpu, {})); }
+TEST(CpuStiffSpans, ThinSlabsMatchTheLatticeSum) { test::report("thin slabs", test::thinSlabsAgainstTheLatticeSum(kCpu, {})); }
 
 TEST(CpuStiffSpans, HugeRegionMatchesTheClosedForm) {
-    report("huge region", test::hugeRegionAgainstTheClosedForm(kCpu, {}));
+    test::report("huge region", test::hugeRegionAgainstTheClosedForm(kCpu, {}));
 }
 
-TEST(CpuStiffSpans, EarlyTerminationHitExactly) { report("ert hit exactly", test::earlyTerminationHitExactly(kCpu)); }
+TEST(CpuStiffSpans, EarlyTerminationHitExactly) { test::report("ert hit exactly", test::earlyTerminationHitExactly(kCpu)); }
 
 }  // namespace
 }  // namespace vr

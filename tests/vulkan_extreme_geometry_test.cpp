@@ -25,21 +25,21 @@ const test::RenderFn kVulkan = [](const PreparedVolume& p, const Camera& c, cons
     return renderer().render(p, c, s);
 };
 
-void report(const char* family, const test::CaseCount& n) {
-    std::printf("%s: %d renders, %d rays, %d of them hitting the volume\n", family, n.renders, n.rays, n.hits);
+void reportClean(const char* family, const test::CaseCount& n) {
+    test::report(family, n);
     const auto errors = context().validationErrors();
     EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
 }
 
 TEST(VulkanExtremeGeometry, CastersEqualPrimitiveOnEveryShapeContentAndView) {
-    report("extreme geometry", test::extremeGeometry(kVulkan));
+    reportClean("extreme geometry", test::extremeGeometry(kVulkan));
 }
 
 TEST(VulkanExtremeGeometry, TransparentOpaqueAndRegionsBeyondTheCap) {
-    report("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kVulkan));
+    reportClean("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kVulkan));
 }
 
-TEST(VulkanExtremeGeometry, IterationCapIsAnError) { report("iteration cap", test::iterationCapIsAnError(kVulkan)); }
+TEST(VulkanExtremeGeometry, IterationCapIsAnError) { reportClean("iteration cap", test::iterationCapIsAnError(kVulkan)); }
 
 // One voxel longer than the device's largest 3D image: refused with the limit in the message, never a driver crash
 // or a silently clipped image. A volume that fits once but not with two octants stacked along z (ACD, a view

@@ -22,8 +22,8 @@ const test::RenderFn kVulkan = [](const PreparedVolume& p, const Camera& c, cons
     return renderer.render(p, c, s);
 };
 
-void report(const char* family, const test::CaseCount& n) {
-    std::printf("%s: %d renders, %d rays, %d of them hitting the volume\n", family, n.renders, n.rays, n.hits);
+void reportClean(const char* family, const test::CaseCount& n) {
+    test::report(family, n);
     const auto errors = context().validationErrors();
     EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
 }
@@ -38,15 +38,15 @@ test::CaseOptions options() {
 }
 
 TEST(VulkanStiffSpans, RenderedSpanOpacityOverTheOpacityAndLengthGrid) {
-    report("span opacity grid", test::spanOpacityGrid(kVulkan, options()));
+    reportClean("span opacity grid", test::spanOpacityGrid(kVulkan, options()));
 }
 
 TEST(VulkanStiffSpans, ThinSlabsMatchTheLatticeSum) {
-    report("thin slabs", test::thinSlabsAgainstTheLatticeSum(kVulkan, options()));
+    reportClean("thin slabs", test::thinSlabsAgainstTheLatticeSum(kVulkan, options()));
 }
 
 TEST(VulkanStiffSpans, HugeRegionMatchesTheClosedForm) {
-    report("huge region", test::hugeRegionAgainstTheClosedForm(kVulkan, options()));
+    reportClean("huge region", test::hugeRegionAgainstTheClosedForm(kVulkan, options()));
 }
 
 // 64,000 samples stepped one by one along one ray. A driver that ends loops on its own (llvmpipe) must make the
@@ -82,7 +82,7 @@ TEST(VulkanStiffSpans, RayLongerThanTheDriverLoopLimitIsAnErrorOrComplete) {
 }
 
 TEST(VulkanStiffSpans, EarlyTerminationHitExactly) {
-    report("ert hit exactly", test::earlyTerminationHitExactly(kVulkan));
+    reportClean("ert hit exactly", test::earlyTerminationHitExactly(kVulkan));
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "support/render_cases.h"
 
+#include <cstdio>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -563,6 +565,10 @@ CaseCount iterationCapIsAnError(const RenderFn& render) {
         }
     }
     return count;
+}
+
+void report(const char* family, const CaseCount& n) {
+    std::printf("%s: %d renders, %d rays, %d of them hitting the volume\n", family, n.renders, n.rays, n.hits);
 }
 
 }  // namespace vr::test

@@ -39,6 +39,9 @@ struct CaseCount {
     int hits = 0;  // of them, rays that sampled the volume (compared samples where casters are compared)
 };
 
+// Prints what a case family tried (the figures of the closing notes' tables).
+void report(const char* family, const CaseCount& n);
+
 // Every case family runs on one renderer; this bounds what it is asked where it cannot do it all (llvmpipe).
 struct CaseOptions {
     // Most lattice samples asked of primitive and PC where they step one sample per fetch (llvmpipe ends a shader
