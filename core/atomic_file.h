@@ -8,6 +8,9 @@ namespace vr {
 
 // Calls write(stream) on a temporary file beside `path`, flushes, fsyncs and renames it over `path`.
 // On any failure the temporary file is removed, `path` is untouched, and InputError names `path`.
+// The temporary is named ".STEM.tmp-PID-RANDOM.EXT" after `path` and the writing process. A process killed while it
+// writes (SIGKILL) leaves it behind; the next write of `path` removes such leftovers: those whose process is gone
+// or that nobody has written to for 10 minutes, never another file.
 void writeFileAtomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
 // For writers that need a file name (e.g. OpenImageIO): fills the temporary path, then renames it.

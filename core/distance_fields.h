@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "extent_code.h"
 #include "vec3.h"
 
 namespace vr {
@@ -25,8 +26,12 @@ struct DistanceFields {
     std::vector<uint8_t> pc;
     // ACD: per octant, the edge k >= 1 of the cube {v + s*e : e in [0,k)^3} in v's region and inside the volume.
     std::array<std::vector<uint8_t>, kOctants> acd;
-    // EACD: per octant, extents (ex, ey, ez) >= acd of the box {v + s*e : 0 <= e_a < ext_a}.
+    // EACD: per octant, extents (ex, ey, ez) >= 1 of the box {v + s*e : 0 <= e_a < ext_a}; exact extents are
+    // >= acd, coded ones (rounded down) may be smaller on some axis.
     std::array<std::vector<std::array<uint8_t, 3>>, kOctants> eacd;
+    // The code the EACD extents are rounded to (extent_code.h): every stored box is one the code can hold, so the
+    // file and the device store it coded without changing it. The builders give Exact; the pipeline quantises.
+    ExtentCode eacdCode = ExtentCode::Exact;
 
     bool hasPC() const { return !pc.empty(); }
     bool hasACD() const { return !acd[0].empty(); }

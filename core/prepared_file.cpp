@@ -16,6 +16,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "extent_code.h"
 
 namespace vr {
 namespace fs = std::filesystem;
@@ -40,14 +41,17 @@ struct ChunkLayout {
     std::size_t elementBytes;
 };
 
-ChunkLayout layoutOf(const std::string& name) {
+ChunkLayout layoutOf(const std::string& name, ExtentCode eacdCode) {
     if (name == "sigma") return {"float32", 1, 4};
     if (name == "colour" || name == "normal") return {"float32", 3, 4};
     if (name == "labels") return {"uint32", 1, 4};
     if (name == "pc") return {"uint8", 1, 1};
     for (int o = 0; o < kOctants; ++o) {
         if (name == "acd" + std::to_string(o)) return {"uint8", 1, 1};
-        if (name == "eacd" + std::to_string(o)) return {"uint8", 3, 1};
+        if (name == "eacd" + std::to_string(o))
+            return eacdCode == ExtentCode::Exact ? ChunkLayout{"uint8", 3, 1}
+                   : eacdCode == ExtentCode::Log16 ? ChunkLayout{"uint16", 1, 2}
+                                                   : ChunkLayout{"uint8", 1, 1};
     }
     return {nullptr, 0, 0};
 }
@@ -64,12 +68,18 @@ ChunkSource source(std::string name, const std::vector<T>& v) {
     return {std::move(name), v.data(), v.size()};
 }
 
-std::vector<ChunkSource> chunkSources(const PreparedVolume& p) {
+// Coded EACD chunks come from eacdBytes (the coded octants); exact ones are the extents themselves.
+std::vector<ChunkSource> chunkSources(const PreparedVolume& p,
+                                      const std::array<std::vector<uint8_t>, kOctants>& eacdBytes) {
+    const bool coded = p.fields.eacdCode != ExtentCode::Exact;
     std::vector<ChunkSource> all = {source("sigma", p.classified.sigma), source("colour", p.classified.colour),
                                     source("normal", p.classified.normal), source("labels", p.regions.label),
                                     source("pc", p.fields.pc)};
     for (int o = 0; o < kOctants; ++o) all.push_back(source("acd" + std::to_string(o), p.fields.acd[o]));
-    for (int o = 0; o < kOctants; ++o) all.push_back(source("eacd" + std::to_string(o), p.fields.eacd[o]));
+    for (int o = 0; o < kOctants; ++o)
+        all.push_back({"eacd" + std::to_string(o),
+                       coded ? static_cast<const void*>(eacdBytes[o].data()) : p.fields.eacd[o].data(),
+                       p.fields.eacd[o].size()});
     std::erase_if(all, [](const ChunkSource& c) { return c.elements == 0; });
     return all;
 }
@@ -118,7 +128,7 @@ void checkSizes(const fs::path& path, const PreparedVolume& p) {
     if (p.classified.sigma.size() != g.voxels() || p.classified.colour.size() != g.voxels() ||
         p.regions.label.size() != g.voxels())
         throw fail("sigma, colour and labels must hold one value per voxel");
-    for (const ChunkSource& c : chunkSources(p))
+    for (const ChunkSource& c : chunkSources(p, {}))
         if (c.elements != g.voxels()) throw fail("chunk '" + c.name + "' does not hold one value per voxel");
     for (int o = 1; o < kOctants; ++o)
         if (p.fields.acd[o].empty() != p.fields.acd[0].empty() || p.fields.eacd[o].empty() != p.fields.eacd[0].empty())
@@ -200,9 +210,9 @@ struct ChunkRead {
 };
 
 template <typename T>
-std::function<char*()> destination(std::vector<T>& vec, Vec3i dims) {
-    return [&vec, dims] {
-        vec.resize(voxelCount(dims));
+std::function<char*()> destination(std::vector<T>& vec, std::size_t elements) {
+    return [&vec, elements] {
+        vec.resize(elements);
         return reinterpret_cast<char*>(vec.data());
     };
 }
@@ -244,12 +254,16 @@ void readChunks(const Reader& r, uint64_t dataStart, const std::vector<ChunkRead
 void writePrepared(const fs::path& path, const PreparedVolume& p) {
     checkSizes(path, p);
     const GridGeometry& g = p.classified.grid;
-    std::vector<ChunkSource> chunks = chunkSources(p);
+    const ExtentCode code = p.fields.eacdCode;
+    std::array<std::vector<uint8_t>, kOctants> eacdBytes;
+    if (code != ExtentCode::Exact)
+        for (int o = 0; o < kOctants; ++o) eacdBytes[o] = encodeExtentField(code, p.fields.eacd[o]);
+    std::vector<ChunkSource> chunks = chunkSources(p, eacdBytes);
 
     json table = json::array();
     uint64_t offset = 0;
     for (const ChunkSource& c : chunks) {
-        ChunkLayout l = layoutOf(c.name);
+        ChunkLayout l = layoutOf(c.name, code);
         uint64_t bytes = uint64_t(c.elements) * l.components * l.elementBytes;
         table.push_back({{"name", c.name},
                          {"type", l.type},
@@ -264,6 +278,7 @@ void writePrepared(const fs::path& path, const PreparedVolume& p) {
                    {"referenceStep", p.classified.referenceStep},
                    {"regionCount", p.regions.count},
                    {"metadata", metadataJson(p.meta)},
+                   {"eacdCode", extentCodeName(code)},
                    {"chunks", table}};
     // Paths need not be UTF-8: replace what JSON cannot hold rather than fail the write.
     std::string text = header.dump(1, ' ', false, json::error_handler_t::replace);
@@ -345,12 +360,17 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     p.meta.segmentation.trilinear = field<bool>(r, meta, "trilinear");
     p.meta.distanceCap = int(countField(r, meta, "distanceCap", kDistanceCap));
     p.meta.statistics = field<json>(r, meta, "statistics");
+    try {
+        p.fields.eacdCode = parseExtentCode(field<std::string>(r, header, "eacdCode"), "'eacdCode'");
+    } catch (const InputError& e) {
+        throw r.fail(std::string("bad header: ") + e.what());
+    }
 
     // The chunk table must agree with the dims and lie inside the file before anything is allocated.
     std::map<std::string, ChunkEntry> table;
     for (const json& c : field<json>(r, header, "chunks")) {
         auto name = field<std::string>(r, c, "name");
-        ChunkLayout l = layoutOf(name);
+        ChunkLayout l = layoutOf(name, p.fields.eacdCode);
         if (!l.type) throw r.fail("bad header: unknown chunk '" + name + "'");
         if (table.count(name)) throw r.fail("bad header: chunk '" + name + "' appears twice");
         if (field<std::string>(r, c, "type") != l.type || countField(r, c, "components", 3) != uint64_t(l.components))
@@ -370,7 +390,11 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     // Gather the chunks to read, then read them all at once (see readChunks).
     auto has = [&](const std::string& name) { return table.count(name) > 0; };
     std::vector<ChunkRead> reads;
-    auto want = [&](const std::string& name, auto& vec) { reads.push_back({name, table.at(name), destination(vec, n)}); };
+    // The table's sizes were checked against the dims and the chunk's layout above.
+    auto want = [&](const std::string& name, auto& vec) {
+        const ChunkEntry& e = table.at(name);
+        reads.push_back({name, e, destination(vec, e.bytes / sizeof(vec[0]))});
+    };
     auto wantOctants = [&](const std::string& prefix, const char* label, auto& arrays) {
         for (int o = 0; o < kOctants; ++o) {
             std::string name = prefix + std::to_string(o);
@@ -379,6 +403,9 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
             want(name, arrays[o]);
         }
     };
+    // Coded EACD is read as bytes and decoded after the read; exact extents go straight to their arrays.
+    const bool eacdCoded = (fields & kFieldEACD) && p.fields.eacdCode != ExtentCode::Exact;
+    std::array<std::vector<uint8_t>, kOctants> eacdBytes;
     for (const char* required : {"sigma", "colour", "labels"})
         if (!has(required)) throw r.fail(std::string("has no '") + required + "' chunk");
     want("sigma", p.classified.sigma);
@@ -391,8 +418,16 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
         want("pc", p.fields.pc);
     }
     if (fields & kFieldACD) wantOctants("acd", "ACD", p.fields.acd);
-    if (fields & kFieldEACD) wantOctants("eacd", "EACD", p.fields.eacd);
+    if (eacdCoded)
+        wantOctants("eacd", "EACD", eacdBytes);
+    else if (fields & kFieldEACD)
+        wantOctants("eacd", "EACD", p.fields.eacd);
     readChunks(r, dataStart, reads);
+    if (eacdCoded)
+        for (int o = 0; o < kOctants; ++o) {
+            p.fields.eacd[o] = decodeExtentField(p.fields.eacdCode, eacdBytes[o].data(), voxelCount(n));
+            eacdBytes[o] = {};
+        }
 
     // The labels must name regions that exist: whatever indexes per-region data by label relies on it.
     const std::vector<uint32_t>& label = p.regions.label;

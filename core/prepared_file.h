@@ -6,7 +6,7 @@
 
 namespace vr {
 
-constexpr int kPreparedFormatVersion = 1;
+constexpr int kPreparedFormatVersion = 2;  // 2: EACD chunks coded (eacdCode)
 
 void writePrepared(const std::filesystem::path& path, const PreparedVolume& prepared);
 

@@ -207,7 +207,7 @@ def transfer_function():
     put("transfer_function", "malformed", '[{"Points": [0, 0, 0.5, 0}')
 
 
-def prepared_file(dims, chunks, version=1):
+def prepared_file(dims, chunks, version=2, eacd_code="exact"):
     voxels = dims[0] * dims[1] * dims[2]
     table, blobs, offset = [], [], 0
     for name, type_, components, size in chunks:
@@ -218,13 +218,16 @@ def prepared_file(dims, chunks, version=1):
                       "crc32": zlib.crc32(blob)})
         blobs.append(blob)
         offset += len(blob)
-    header = json.dumps({
+    header = {
         "grid": {"dims": list(dims), "spacing": [1.0, 1.0, 2.0], "origin": [0.0, 0.0, 0.0]},
         "referenceStep": 1.0, "regionCount": 2,
         "metadata": {"source": "tiny.raw", "classification": "{}", "opacityThreshold": 0.01,
                      "angleThresholdDeg": 3.0, "useNormals": True, "trilinear": False, "distanceCap": 255,
                      "statistics": {}},
-        "chunks": table}, indent=1).encode()
+        "chunks": table}
+    if version >= 2:  # version 1 stored exact EACD only and had no eacdCode
+        header["eacdCode"] = eacd_code
+    header = json.dumps(header, indent=1).encode()
     return (b"VOLPREP\0" + struct.pack("<IQ", version, len(header)) + header + struct.pack("<I", zlib.crc32(header))
             + b"".join(blobs))
 
@@ -235,6 +238,11 @@ def prepared():
               + [("eacd%d" % o, "uint8", 3, 1) for o in range(8)])
     put("prepared", "all_chunks", prepared_file((2, 2, 1), base + fields))
     put("prepared", "no_fields", prepared_file((3, 1, 2), base))
+    # Coded EACD (core/extent_code.h): log16 is a uint16 per octant, joint8 a table index byte.
+    for code, type_, size in (("log16", "uint16", 2), ("joint8", "uint8", 1)):
+        coded = fields[:-8] + [("eacd%d" % o, type_, 1, size) for o in range(8)]
+        put("prepared", code + "_chunks", prepared_file((2, 2, 1), base + coded, eacd_code=code))
+    put("prepared", "version_1", prepared_file((2, 2, 1), base + fields, version=1))
     put("prepared", "wrong_version", prepared_file((2, 2, 1), base, version=7))
     put("prepared", "truncated", prepared_file((2, 2, 1), base + fields)[:-30])
 

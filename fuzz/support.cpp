@@ -7,9 +7,26 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <new>
 
 #include "core/errors.h"
 #include "preprocess/load/load_volume.h"
+
+// Allocations fail as in an ordinary build: an impossible size (a length field OpenVDB trusts, up to 2^64) gives
+// std::bad_alloc, which the loaders turn into InputError, where ASan's own operator new would abort. Sizes that can
+// be served still meet libFuzzer's -malloc_limit_mb, so allocating what a header claims stays a finding. (ASan's
+// new/delete mismatch check cannot tell these from its own operators, so it is off.)
+extern "C" const char* __asan_default_options() { return "allocator_may_return_null=1:alloc_dealloc_mismatch=0"; }
+
+void* operator new(std::size_t bytes) {
+    if (void* p = std::malloc(bytes ? bytes : 1)) return p;
+    throw std::bad_alloc();
+}
+void* operator new[](std::size_t bytes) { return operator new(bytes); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace vr::fuzz {
 namespace fs = std::filesystem;

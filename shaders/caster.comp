@@ -1,6 +1,7 @@
 // The four casters of ALGORITHMS.md section 5 in one loop: the GLSL mirror of renderCpu's trace (keep in step).
 // Specialization constants pick the caster, the sampling and the shading, so each variant compiles to a
-// pipeline without the others' branches. One invocation per pixel of one tile. Each span is shaded once, at its
+// pipeline without the others' branches. One invocation per pixel of one tile and one brick (brick_state.glsl:
+// a ray's state carries over from brick to brick, so bricks change no leap). Each span is shaded once, at its
 // first sample, as the CPU reference does (equal to shading every sample for a directional light or headlight
 // when thresholds are 0).
 #version 450
@@ -16,16 +17,18 @@ const int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
 #include "span.glsl"
+#include "brick_state.glsl"
+#include "extent_code.glsl"
 
 layout(set = 0, binding = 1) uniform sampler3D classified;  // rgb colour, a: extinction sigma
 layout(set = 0, binding = 2) uniform sampler3D normals;     // xyz: unit normal or 0 (flat); shading only
-layout(set = 0, binding = 3) uniform usampler3D field;      // PC: r; ACD: r per octant slab; EACD: rgb
+layout(set = 0, binding = 3) uniform usampler3D field;      // PC: r; ACD: r per octant slab; EACD: rgb, or r coded
 layout(set = 0, binding = 4, std430) writeonly buffer OutColour { vec4 outColour[]; };
 layout(set = 0, binding = 5, std430) writeonly buffer OutIterations { uint outIterations[]; };
 layout(set = 0, binding = 6, std430) writeonly buffer OutSamples { uvec2 outSamples[]; };
 
-// Set in an iteration count: the ray hit the cap or needed an octant that was not uploaded (a bug); the driver
-// ended the loops early.
+// Set in an iteration count: the ray hit the cap, needed an octant that was not uploaded or was in no pass over
+// the bricks (a bug); the driver ended the loops early.
 const uint kFailed = 0x80000000u, kCutShort = 0x40000000u;
 // Shorter interpolated normals than this count as flat (as the CPU reference).
 const float kFlatNormalLength = 1e-6;
@@ -37,9 +40,9 @@ struct SampleValue {
 };
 
 SampleValue nearestSample(ivec3 v) {
-    vec4 c = texelFetch(classified, v, 0);
+    vec4 c = texelFetch(classified, brickTexel(v), 0);
     SampleValue s = SampleValue(double(c.a), c.rgb, vec3(0.0));
-    if (SHADING) s.normal = texelFetch(normals, v, 0).xyz;
+    if (SHADING) s.normal = texelFetch(normals, brickTexel(v), 0).xyz;
     return s;
 }
 
@@ -54,10 +57,10 @@ SampleValue trilinearSample(dvec3 p) {
         ivec3 u = clampVoxel(base + bit);
         dvec3 w3 = mix(1.0LF - f, f, bvec3(bit));
         precise double w = w3.x * w3.y * w3.z;
-        vec4 cs = texelFetch(classified, u, 0);
+        vec4 cs = texelFetch(classified, brickTexel(u), 0);
         s.sigma += w * double(cs.a);
         s.colour += cs.rgb * float(w);
-        if (SHADING) s.normal += texelFetch(normals, u, 0).xyz * float(w);
+        if (SHADING) s.normal += texelFetch(normals, brickTexel(u), 0).xyz * float(w);
     }
     float len = length(s.normal);
     s.normal = len > kFlatNormalLength ? s.normal / len : vec3(0.0);
@@ -79,30 +82,40 @@ void main() {
     vec3 toEye = -vec3(direction);
     vec3 toLight = P.light.w != 0.0 ? P.light.xyz : toEye;
 
-    dvec3 colour = dvec3(0.0LF);
-    double alpha = 0.0LF;
-    uint iterations = 0u;
-    double samples = 0.0LF;
-    bool failed = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0.0LF;
-    for (double k = 0.0LF, n = 1.0LF; !failed && k < kCount && alpha < P.ert; k += n) {
+    bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0.0LF;
+    RayState state = T.firstDispatch != 0
+                         ? RayState(dvec4(0.0LF), 0.0LF, 0.0LF, 0u, missingOctant ? kFailed : 0u)
+                         : loadRayState(outIndex);
+    dvec3 colour = state.composite.rgb;
+    double alpha = state.composite.a;
+    uint iterations = state.iterations;
+    double samples = state.samples;
+    bool failed = (state.flags & kFailed) != 0u;
+    double k = state.k;
+    // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
+    // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
+    bool mine = rayInPass(oct) && k < kCount && inBrick(sampleVoxel(g, latticeT(iv, k)));
+    if (!mine && T.firstDispatch == 0 && T.lastDispatch == 0) return;
+    for (double n = 1.0LF; mine && !failed && k < kCount && alpha < P.ert; k += n) {
+        double t = latticeT(iv, k);
+        ivec3 v = sampleVoxel(g, t);
+        if (!inBrick(v)) break;
         if (++iterations > P.maxIterations) {
             failed = true;
             break;
         }
-        double t = latticeT(iv, k);
-        ivec3 v = sampleVoxel(g, t);
         SampleValue s = TRILINEAR ? trilinearSample(rayAt(g, t)) : nearestSample(v);
 
         double wanted = 1.0LF;
         VoxelBox box = VoxelBox(v, v);
         if (CASTER == kPC) {
-            int r = int(texelFetch(field, v, 0).r);
+            int r = int(texelFetch(field, brickTexel(v), 0).r);
             wanted = pcLeapSamples(r, g);
             box = chebyshevBall(v, r);
         } else if (CASTER == kACD || CASTER == kEACD) {
-            uvec4 f = texelFetch(field, ivec3(v.x, v.y, slot * P.dims.z + v.z), 0);
+            uvec4 f = texelFetch(field, fieldTexel(v, slot), 0);
             // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
-            ivec3 ext = max(ivec3(1), CASTER == kACD ? ivec3(f.r) : ivec3(f.rgb));
+            ivec3 ext = CASTER == kACD ? max(ivec3(1), ivec3(f.r)) : decodeExtents(f);
             box = octantBox(v, oct, ext);
             wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t);
         }
@@ -125,10 +138,13 @@ void main() {
     // know runs short afterwards exactly when that happened.
     int probe = 0;
     for (double i = 0.0LF; i < P.loopProbe; i += 1.0LF) ++probe;
-    if (probe < 2) iterations |= kCutShort;
+    uint flags = state.flags | (probe < 2 ? kCutShort : 0u);
+    if (T.lastDispatch != 0 && k < kCount && alpha < P.ert) failed = true;  // in no pass: a bug
+    if (failed) flags |= kFailed;
+    storeRayState(outIndex, RayState(dvec4(colour, alpha), k, samples, iterations, flags));
 
     outColour[outIndex] = vec4(vec3(colour + dvec3(P.background.rgb) * (1.0LF - alpha)), float(alpha));
-    outIterations[outIndex] = failed ? (iterations | kFailed) : iterations;
+    outIterations[outIndex] = iterations | flags;
     double high = floor(samples / 4294967296.0LF);
     outSamples[outIndex] = uvec2(uint(samples - high * 4294967296.0LF), uint(high));
 }

@@ -24,9 +24,18 @@ layout(set = 0, binding = 0, std140) uniform Params {
     vec4 background;   // rgb
 } P;
 
+// One dispatch renders one brick of one tile for the rays of one pass (volrender/vulkan/vulkan_renderer.cpp).
 layout(push_constant) uniform Tile {
     ivec2 tileOrigin;  // first pixel of this dispatch
     ivec2 tileSize;    // pixels of this dispatch (the output buffers hold one tile)
+    ivec4 brickLo;     // the brick's core (inclusive, global voxels): samples whose voxel lies in it are this
+    ivec4 brickHi;     // dispatch's
+    ivec4 imageLo;     // global voxel of texel (0, 0, 0) of the brick's images
+    ivec4 imageDims;   // texels of one slab of the brick's images
+    int firstDispatch; // 1: start every ray of the tile
+    int lastDispatch;  // 1: a ray left unfinished was in no pass (a bug)
+    int passAxes;      // this pass takes the rays whose octant bits on passAxes ...
+    int passSigns;     // ... are passSigns (the bricks come in an order they all cross them in)
 } T;
 
 #endif

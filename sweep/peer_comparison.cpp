@@ -42,6 +42,13 @@ json comparePeer(const json& peer, const std::map<double, Image>& references, co
             continue;
         }
         errors.push_back(imageError(*reference, image));
+        if (!out.contains("image")) {  // the first compared view, for the report's strip: its PNG and error map
+            const fs::path png = fs::path(path).replace_extension(".png"), map = path.parent_path() /
+                                 (path.stem().string() + "_error.png");
+            writeImage(map, errorMap(*reference, image));
+            out["image"] = (fs::exists(png) ? png : path).string();
+            out["error_map"] = map.string();
+        }
     }
     out["views_compared"] = errors.size();
     if (errors.empty()) {

@@ -107,11 +107,49 @@ void paretoList(std::ostream& md, const std::vector<SweepRow>& rows) {
                << " % dE00 > 2.3\n";
 }
 
-void peersTable(std::ostream& md, const fs::path& file, const std::vector<SweepRow>& rows) {
+// One dataset's peers against our casters, for the table at the end of the report.
+struct PeerSummary {
+    std::string dataset;
+    int width = 0, height = 0, views = 0;
+    double primitiveMs = 0, eacdMs = 0;
+    std::string vtk;  // the fastest VTK renderer; empty when none rendered
+    double vtkMs = 0;
+};
+
+std::string peerPsnr(const json& p) {
+    if (!p.contains("psnr")) return "-";
+    return p["psnr"].is_string() ? p["psnr"].get<std::string>() : fmt("%.1f", p["psnr"].get<double>());
+}
+
+// Our reference and EACD image beside each peer's, error maps below: the strip strips/DATASET_peers.png.
+void peersStrip(std::ostream& md, const json& peers, const fs::path& outDir, const std::string& dataset,
+                const SweepRow* eacd) {
+    const fs::path images = imagesDir(outDir, dataset);
+    std::vector<StripColumn> cols{{"ours: reference", "primitive T=0", images / "reference.png", {}}};
+    if (eacd)
+        cols.push_back({"ours: eacd T=0", fmt("%.1f ms", eacd->deviceMsMedian), images / imageName("eacd", 0, 0, false),
+                        images / imageName("eacd", 0, 0, true)});
+    for (const json& p : peers)
+        if (p.contains("image") && p.contains("error_map"))
+            cols.push_back({p.value("peer", "?"), fmt("%.1f ms", p.value("median_ms", 0.0)) + ", PSNR " + peerPsnr(p),
+                            p["image"].get<std::string>(), p["error_map"].get<std::string>()});
+    for (const StripColumn& c : cols)
+        if (!fs::exists(c.image) || (!c.errorMap.empty() && !fs::exists(c.errorMap))) return;
+    if (cols.size() < 3) return;
+    writeImageStrip(cols, outDir / "strips" / (dataset + "_peers.png"));
+    md << "\nSide by side, view 0 (top: image; bottom: |difference to our reference| x10), columns:";
+    for (const StripColumn& c : cols) md << " " << c.label << " (" << c.subLabel << ");";
+    md << "\n\n![peers side by side](strips/" << dataset << "_peers.png)\n";
+}
+
+PeerSummary peersTable(std::ostream& md, const fs::path& file, const std::vector<SweepRow>& rows,
+                       const fs::path& outDir) {
     std::ifstream in(file);
     const json peers = json::parse(in);
     const SweepRow* primitive = find(rows, "primitive", 0, 0);
     const SweepRow* eacd = find(rows, "eacd", 0, 0);
+    PeerSummary summary{rows.front().dataset, rows.front().width, rows.front().height, rows.front().views,
+                        primitive ? primitive->deviceMsMedian : 0, eacd ? eacd->deviceMsMedian : 0, "", 0};
     md << "\nPeers (scripts/peers.sh, same views, size and sample distance; their render ms per view as each "
           "measures it, against our device ms median at T_o = T_a = 0 (dispatches only; like the peers' times, "
           "without the upload); ratio > 1: the peer is slower; error against this section's reference):\n\n"
@@ -124,16 +162,43 @@ void peersTable(std::ostream& md, const fs::path& file, const std::vector<SweepR
             continue;
         }
         const double ms = p["median_ms"].get<double>();
+        const std::string name = p.value("peer", "?");
+        if (name.rfind("vtk", 0) == 0 && ms > 0 && (summary.vtk.empty() || ms < summary.vtkMs)) {
+            summary.vtk = name;
+            summary.vtkMs = ms;
+        }
         md << fmt("%.1f", ms) << " | "
            << (primitive && primitive->deviceMsMedian > 0 ? fmt("%.2f", ms / primitive->deviceMsMedian) : "-")
            << " | " << (eacd && eacd->deviceMsMedian > 0 ? fmt("%.2f", ms / eacd->deviceMsMedian) : "-") << " | ";
         if (p.contains("psnr"))
-            md << (p["psnr"].is_string() ? p["psnr"].get<std::string>() : fmt("%.1f", p["psnr"].get<double>()))
-               << " | " << fmt("%.4f", p.value("ssim", 0.0)) << " | ";
+            md << peerPsnr(p) << " | " << fmt("%.4f", p.value("ssim", 0.0)) << " | ";
         else
             md << "- | - | ";
         md << p.value("notes", "") << (p.contains("error") ? " " + p["error"].get<std::string>() : "") << " |\n";
     }
+    if (!summary.vtk.empty() && summary.eacdMs > 0)
+        md << "\n**EACD against the fastest VTK renderer (" << summary.vtk << "):** " << fmt("%.1f", summary.vtkMs)
+           << " ms against " << fmt("%.1f", summary.eacdMs) << " ms: EACD is "
+           << fmt("%.1fx", summary.vtkMs / summary.eacdMs) << (summary.vtkMs > summary.eacdMs ? " faster" : " (slower)")
+           << ".\n";
+    peersStrip(md, peers, outDir, rows.front().dataset, eacd);
+    return summary;
+}
+
+// Every dataset with peers in one table: our EACD against the fastest VTK renderer.
+void peersSummary(std::ostream& md, const std::vector<PeerSummary>& all) {
+    if (all.empty()) return;
+    md << "## Peers at a glance: EACD against the fastest VTK renderer\n\n"
+       << "Same image size, views and sample distance in one run; our device ms median at T_o = T_a = 0, the "
+          "peers' render ms as each measures it (details and images in each dataset's section).\n\n"
+       << "| dataset | image | views | our primitive ms | our EACD ms | fastest VTK | VTK ms | VTK / EACD |\n"
+       << "|---|---|---:|---:|---:|---|---:|---:|\n";
+    for (const PeerSummary& s : all)
+        md << "| " << s.dataset << " | " << s.width << "x" << s.height << " | " << s.views << " | "
+           << fmt("%.1f", s.primitiveMs) << " | " << fmt("%.1f", s.eacdMs) << " | " << (s.vtk.empty() ? "-" : s.vtk)
+           << " | " << (s.vtk.empty() ? "-" : fmt("%.1f", s.vtkMs)) << " | "
+           << (s.vtk.empty() || s.eacdMs <= 0 ? "-" : fmt("%.1fx", s.vtkMs / s.eacdMs)) << " |\n";
+    md << "\n";
 }
 
 // Reference, EACD (or the last caster) at the smallest thresholds, the best setting meeting the target, and the
@@ -181,7 +246,9 @@ fs::path writeReport(const fs::path& outDir) {
           "caster at T_o = T_a = 0 on the same lattice, float RGB (premultiplied over black). Render times: Vulkan "
           "timestamp queries around the dispatches (device time; wall time where the queue has none), median and "
           "p95 over the views after one warm-up frame per caster; **speed-up** = the primitive caster's device "
-          "median / the caster's, both at the same setting in the same run (on lavapipe only ratios hold, not ms). "
+          "median / the caster's, in the same run (the primitive caster reads no regions or fields, so its work and "
+          "image do not depend on the thresholds: its row at every setting is the reference's renders, after one "
+          "warm-up frame; on lavapipe only ratios hold, not ms). "
           "Preprocessing: wall seconds of segmentation and of each distance field (PC, the 8 ACD octants, EACD on "
           "top of ACD) at the setting; load and classification run once per dataset.\n\n"
           "Error figures per image over linear RGB, then over the views (mean; worst = the worst view): RMSE; PSNR "
@@ -192,6 +259,7 @@ fs::path writeReport(const fs::path& outDir) {
        << kPerceptualDeltaE
        << "** (linear RGB with sRGB primaries -> XYZ -> CIELAB, D65 white; Sharma et al. 2005).\n\n";
 
+    std::vector<PeerSummary> peerSummaries;
     for (const std::string& dataset : datasetsOf(all)) {
         const std::vector<SweepRow> rows = rowsOf(all, dataset);
         const SweepRow& first = rows.front();
@@ -216,9 +284,10 @@ fs::path writeReport(const fs::path& outDir) {
             md << "\n\n![image strip](strips/" << dataset << ".png)\n";
         }
         const fs::path peers = outDir / ("peers_" + dataset + ".json");
-        if (fs::exists(peers)) peersTable(md, peers, rows);
+        if (fs::exists(peers)) peerSummaries.push_back(peersTable(md, peers, rows, outDir));
         md << "\n";
     }
+    peersSummary(md, peerSummaries);
     const fs::path report = outDir / "report.md";
     writeFileAtomically(report, [&](std::ostream& out) { out << md.str(); });
     return report;

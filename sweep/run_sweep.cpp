@@ -7,14 +7,13 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/progress.h"
-#include "preprocess/classify/classify.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/pipeline/prepare.h"
-#include "preprocess/segment/segment.h"
+#include "preprocess/pipeline/staged_prepare.h"
+#include "sweep/downsample.h"
 #include "sweep/order_statistics.h"
 #include "sweep/peer_comparison.h"
 #include "sweep/sweep_row.h"
 #include "volrender/camera.h"
+#include "volrender/vulkan/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {
@@ -62,35 +61,19 @@ long long fieldBytes(const DistanceFields& f, Caster c) {
         case Caster::Primitive: return 0;
         case Caster::PC: return (long long)f.pc.size();
         case Caster::ACD: return (long long)(f.acd[0].size() * kOctants);
-        case Caster::EACD: return (long long)(f.eacd[0].size() * kOctants * 3);
+        case Caster::EACD: return (long long)(f.eacd[0].size() * kOctants * extentCodeBytes(f.eacdCode));
     }
     return 0;
 }
 
-// Segment and build the fields at one setting, recording each stage's wall seconds in `row`.
-void prepareSetting(PreparedVolume& p, const SegmentationParams& params, unsigned kinds, SweepRow& row) {
-    p.regions = {};
-    p.fields = {};
-    StageClock segmenting;
-    p.regions = segment(p.classified, params);
-    row.segmentSeconds = segmenting.stop("segment").seconds;
-    p.fields.dims = p.regions.dims;
-    if (kinds & kFieldPC) {
-        StageClock clock;
-        p.fields.pc = buildPC(p.regions);
-        row.pcSeconds = clock.stop("pc").seconds;
+// The wall seconds of the stages the preparation ran for one setting (segmentation and the fields), into `row`.
+void recordStages(const StagedPreparation& staged, const PreparedVolume& p, SweepRow& row) {
+    for (const StageTime& t : staged.lastStages()) {
+        if (t.stage == "segment") row.segmentSeconds = t.seconds;
+        if (t.stage == "pc") row.pcSeconds = t.seconds;
+        if (t.stage == "acd") row.acdSeconds = t.seconds;
+        if (t.stage == "eacd") row.eacdSeconds = t.seconds;
     }
-    if (kinds & (kFieldACD | kFieldEACD)) {
-        StageClock clock;
-        for (int o = 0; o < kOctants; ++o) p.fields.acd[o] = buildACD(p.regions, o);
-        row.acdSeconds = clock.stop("acd").seconds;
-    }
-    if (kinds & kFieldEACD) {
-        StageClock clock;
-        p.fields.eacd = buildEACD(p.regions, p.fields.acd);
-        row.eacdSeconds = clock.stop("eacd").seconds;
-    }
-    p.meta.segmentation = params;
     row.regions = p.regions.count;
 }
 
@@ -101,6 +84,15 @@ struct CasterRun {
     std::vector<uint32_t> iterations;
     std::vector<ImageError> errors;
     long long uploadedBytes = 0;
+
+    void record(const RenderResult& r, const ImageError& error, const std::vector<UploadedResource>& uploads) {
+        device.push_back(frameMs(r));
+        wall.push_back(r.wallMilliseconds);
+        iterations.insert(iterations.end(), r.iterations.begin(), r.iterations.end());
+        errors.push_back(error);
+        uploadedBytes = 0;
+        for (const UploadedResource& u : uploads) uploadedBytes += (long long)u.bytes;
+    }
 
     SweepRow row(SweepRow r, const DistanceFields& fields) const {
         r.caster = std::string(casterName(settings.caster));
@@ -124,15 +116,15 @@ struct CasterRun {
 void renderSetting(VulkanRenderer& renderer, const PreparedVolume& p, const std::vector<View>& views,
                    const std::vector<Image>& references, std::vector<CasterRun>& runs, const SweepRow& setting,
                    const fs::path& images, ProgressBar& bar) {
+    // One upload serves every caster and view of the setting (each render reads its part of it).
+    GpuVolumeContents contents{{}, runs.front().settings.shading, 0};
+    for (const CasterRun& run : runs) contents.casters.push_back(run.settings.caster);
+    for (const View& view : views) contents.octants |= viewOctants(view.camera);
+    const GpuVolume volume = renderer.upload(p, contents);
     for (std::size_t v = 0; v < views.size(); ++v)
         for (CasterRun& run : runs) {
-            const RenderResult r = renderer.render(p, views[v].camera, run.settings);
-            run.device.push_back(frameMs(r));
-            run.wall.push_back(r.wallMilliseconds);
-            run.iterations.insert(run.iterations.end(), r.iterations.begin(), r.iterations.end());
-            run.errors.push_back(imageError(references[v], r.image));
-            run.uploadedBytes = 0;
-            for (const UploadedResource& u : renderer.lastUploads()) run.uploadedBytes += (long long)u.bytes;
+            const RenderResult r = renderer.render(volume, views[v].camera, run.settings);
+            run.record(r, imageError(references[v], r.image), renderer.lastUploads());
             if (v == 0) {
                 const std::string caster(casterName(run.settings.caster));
                 const double to = setting.opacityThreshold, ta = setting.angleThreshold;
@@ -162,19 +154,25 @@ std::vector<std::pair<double, double>> pendingSettings(const SweepOptions& o, co
     return settings;
 }
 
-ClassifiedVolume loadClassified(const SweepOptions& o, const std::string& dataset, std::size_t settings) {
-    StageClock loading;
-    const Volume volume = loadVolume(o.input, o.raw);
-    const double loadSeconds = loading.stop("load").seconds;
-    ClassifyParams params;
-    params.transferFunction = loadTransferFunction(o.transferFunction);
-    params.normals = o.shading;
-    StageClock classifying;
-    ClassifiedVolume classified = classify(volume, params);
-    std::fprintf(stderr, "%s: %dx%dx%d voxels, load %.2f s, classify %.2f s, %zu settings to run\n",
-                 dataset.c_str(), volume.grid.dims.x, volume.grid.dims.y, volume.grid.dims.z, loadSeconds,
-                 classifying.stop("classify").seconds, settings);
-    return classified;
+// The sweep's classification (its TF, normals for shading) and the fields its casters read.
+PrepareOptions prepareOptions(const SweepOptions& o) {
+    PrepareOptions options;
+    options.raw = o.raw;
+    options.classify.transferFunction = loadTransferFunction(o.transferFunction);
+    options.classify.normals = o.shading;
+    options.fields = fieldsFor(o.casters);
+    return options;
+}
+
+// Loads and classifies: the classification does not depend on the thresholds, so it is done once.
+const PreparedVolume& loadClassified(StagedPreparation& staged, const PrepareOptions& options,
+                                     const std::string& dataset, std::size_t settings) {
+    const PreparedVolume& p = staged.prepare(options, PrepStage::Classify);
+    const Vec3i dims = p.classified.grid.dims;
+    std::fprintf(stderr, "%s: %dx%dx%d voxels", dataset.c_str(), dims.x, dims.y, dims.z);
+    for (const StageTime& t : staged.lastStages()) std::fprintf(stderr, ", %s %.2f s", t.stage.c_str(), t.seconds);
+    std::fprintf(stderr, ", %zu settings to run\n", settings);
+    return p;
 }
 
 }  // namespace
@@ -187,10 +185,11 @@ int runSweep(const SweepOptions& o) {
 
     const std::vector<std::pair<double, double>> settings = pendingSettings(o, dataset, csv);
 
-    // Load and classify once: the classification does not depend on the thresholds.
-    PreparedVolume p;
-    p.classified = loadClassified(o, dataset, settings.size());
-    p.meta.source = o.input.string();
+    // Load and classify once; per setting the staged preparation re-runs only segmentation and the fields.
+    StagedPreparation staged = o.downsample > 1 ? StagedPreparation(downsample(loadVolume(o.input, o.raw), o.downsample))
+                                                : StagedPreparation(o.input);
+    PrepareOptions options = prepareOptions(o);
+    const PreparedVolume& p = loadClassified(staged, options, dataset, settings.size());
     fs::create_directories(images);
 
     VulkanContext context(VulkanOptions{o.device, false});
@@ -204,8 +203,16 @@ int runSweep(const SweepOptions& o) {
     // The reference: the primitive caster at T_o = T_a = 0 (it reads no regions or fields), once per view.
     std::vector<Image> references;
     std::map<double, Image> elevationZero;
+    // These renders are also the primitive caster's row at every setting: it reads no regions or fields, so its
+    // images and times do not depend on the thresholds (rendering it again per setting would only repeat them).
+    const GpuVolume classified = renderer.upload(p, {{Caster::Primitive}, base.shading, 0});  // for every view
+    CasterRun primitive;
+    primitive.settings = base;
+    renderer.render(classified, views.front().camera, base);  // warm-up
     for (const View& v : views) {
-        references.push_back(renderer.render(p, v.camera, base).image);
+        const RenderResult r = renderer.render(classified, v.camera, base);
+        primitive.record(r, imageError(r.image, r.image), renderer.lastUploads());
+        references.push_back(r.image);
         if (v.elevation == 0) elevationZero[v.azimuth] = references.back();
     }
     writeImage(images / "reference.png", references.front());
@@ -216,8 +223,7 @@ int runSweep(const SweepOptions& o) {
     }
     if (settings.empty()) return 0;
 
-    const unsigned kinds = fieldsFor(o.casters);
-    ProgressBar bar("sweep " + dataset, settings.size() * o.casters.size() * views.size());
+    ProgressBar bar("sweep " + dataset, settings.size() * (o.casters.size() - 1) * views.size());
     std::set<Caster> warmed;
     for (const auto& [to, ta] : settings) {
         SweepRow row;
@@ -227,16 +233,19 @@ int runSweep(const SweepOptions& o) {
         row.views = int(views.size());
         row.width = o.width;
         row.height = o.height;
-        prepareSetting(p, SegmentationParams{to, ta, o.shading, o.trilinear}, kinds, row);
+        options.segmentation = SegmentationParams{to, ta, o.shading, o.trilinear};
+        staged.prepare(options);
+        recordStages(staged, p, row);
         std::vector<CasterRun> runs;
         for (Caster c : o.casters) {
+            if (c == Caster::Primitive) continue;  // its row comes from the reference's renders
             runs.push_back({});
             runs.back().settings = base;
             runs.back().settings.caster = c;
             if (warmed.insert(c).second) renderer.render(p, views.front().camera, runs.back().settings);  // warm-up
         }
-        renderSetting(renderer, p, views, references, runs, row, images, bar);
-        std::vector<SweepRow> rows;
+        if (!runs.empty()) renderSetting(renderer, p, views, references, runs, row, images, bar);
+        std::vector<SweepRow> rows{primitive.row(row, p.fields)};
         for (const CasterRun& run : runs) rows.push_back(run.row(row, p.fields));
         double primitiveMs = 0;
         for (const SweepRow& r : rows)

@@ -22,6 +22,7 @@ void SweepOptions::validate() const {
     checkGrid(angleThresholds, "--ta");
     if (std::find(casters.begin(), casters.end(), Caster::Primitive) == casters.end())
         throw InputError("--casters must include primitive: the other casters' times are given relative to it");
+    if (downsample < 1 || downsample > 16) throw InputError("--downsample must be in 1..16");
     if (views < 1 || views > 360) throw InputError("--views must be in 1..360");
     if (elevations.empty()) throw InputError("--elevations: give at least one elevation");
     for (double e : elevations)

@@ -17,6 +17,7 @@ struct SweepOptions {
     std::vector<double> opacityThresholds{0, 0.005, 0.01, 0.02, 0.05, 0.1};  // T_o
     std::vector<double> angleThresholds{0, 1, 3, 10, 20};                    // T_a, degrees
     std::vector<Caster> casters{Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+    int downsample = 1;                  // > 1: sweep the volume box-averaged over blocks of this many voxels^3
     int views = 8;                       // azimuths 360 i / views ...
     std::vector<double> elevations{0};   // ... at each of these elevations
     int width = 512, height = 512;

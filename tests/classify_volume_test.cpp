@@ -78,6 +78,50 @@ TEST(Classify, GradientOfALinearRampIsInPhysicalUnits) {
     }
 }
 
+TEST(Classify, NormalsAreTheNormalisedCentralGradientBitForBit) {
+    // Any shape (axes of 1 and 2 voxels included) and uneven spacing: classify's row-wise gradients are gradient.h's.
+    std::mt19937 rng(9);
+    std::uniform_int_distribution<int> values(0, 255);
+    for (Vec3i dims : {Vec3i{7, 6, 5}, Vec3i{1, 4, 3}, Vec3i{2, 1, 6}, Vec3i{5, 2, 1}, Vec3i{1, 1, 4}}) {
+        const Volume v = makeVolume(dims, {0.7, 1.3, 2.1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
+        ClassifyParams params;
+        params.transferFunction = linearTF(0, 255);
+        const ClassifiedVolume c = classify(v, params);
+        for (int z = 0; z < dims.z; ++z)
+            for (int y = 0; y < dims.y; ++y)
+                for (int x = 0; x < dims.x; ++x) {
+                    const Vec3d g = centralGradient(v, x, y, z);
+                    const double m = length(g);
+                    // Integer values: a gradient is 0 or far above the flat floor.
+                    const std::array<float, 3> n = m > 0 ? std::array<float, 3>{float(g.x / m), float(g.y / m),
+                                                                                float(g.z / m)}
+                                                         : std::array<float, 3>{0, 0, 0};
+                    ASSERT_EQ(c.normal[linearIndex(dims, x, y, z)], n) << x << "," << y << "," << z;
+                }
+    }
+}
+
+TEST(Classify, IntoAUsedVolumeEqualsAFreshOne) {
+    std::mt19937 rng(4);
+    std::uniform_int_distribution<int> values(0, 255);
+    const Volume big = makeVolume({9, 8, 7}, {1, 1, 1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
+    const Volume small = makeVolume({4, 5, 3}, {0.5, 1, 2}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
+    ClassifyParams params;
+    params.transferFunction = linearTF(10, 200);
+    ClassifiedVolume reused = classify(big, params);
+    for (const Volume* v : {&small, &big, &big})
+        for (bool normals : {false, true}) {
+            params.normals = normals;
+            classify(*v, params, reused);
+            const ClassifiedVolume fresh = classify(*v, params);
+            EXPECT_EQ(reused.grid, fresh.grid);
+            EXPECT_EQ(reused.referenceStep, fresh.referenceStep);
+            EXPECT_EQ(reused.sigma, fresh.sigma);
+            EXPECT_EQ(reused.colour, fresh.colour);
+            EXPECT_EQ(reused.normal, fresh.normal);
+        }
+}
+
 TEST(Classify, LevoyUsesThePhysicalGradient) {
     // f = 10 x with spacing 2: |grad| = 5 per world unit. Iso 40, width 1: alpha = 0.9 (1 - |40 - f| / 5).
     const Volume v = makeVolume({9, 2, 2}, {2, 1, 1}, ScalarType::Float32, [](int x, int, int) { return 10.0 * x; });

@@ -240,6 +240,48 @@ TEST(FieldsBuild, BuildFieldsFillsWhatIsAskedAndAgreesWithTheSingleBuilders) {
     EXPECT_FALSE(none.hasPC() || none.hasACD() || none.hasEACD());
 }
 
+TEST(FieldsBruteForce, EACDEqualsTheNaiveGreedyOnLargerRegionsSampled) {
+    // Regions tens of voxels wide, so that extensions follow their neighbours' across many slices and slabs.
+    std::mt19937 rng(99);
+    const Regions r = blockyRegions({75, 40, 34}, 8, 3, rng);
+    const DistanceFields f = buildFields(r, kFieldACD | kFieldEACD);
+    for (std::size_t v = 0; v < r.label.size(); v += 29)
+        for (int o = 0; o < kOctants; ++o) {
+            const Box e{f.eacd[o][v][0], f.eacd[o][v][1], f.eacd[o][v][2]};
+            ASSERT_EQ(e, bruteEACD(r, coordOf(r.dims, v), o)) << "octant " << o << " voxel " << v;
+        }
+}
+
+TEST(FieldsBuild, BuildFieldsReportsEachFieldOnceInOrder) {
+    std::mt19937 rng(8);
+    const Regions r = blockyRegions({9, 7, 6}, 6, 3, rng);
+    auto order = [&](unsigned kinds) {
+        std::vector<FieldKind> done;
+        const DistanceFields f = buildFields(r, kinds, [&](FieldKind k) { done.push_back(k); });
+        EXPECT_EQ(f.pc, buildFields(r, kinds).pc);
+        return done;
+    };
+    using V = std::vector<FieldKind>;
+    EXPECT_EQ(order(kFieldPC | kFieldACD | kFieldEACD), V({kFieldACD, kFieldPC, kFieldEACD}));
+    EXPECT_EQ(order(kFieldEACD), V({kFieldACD, kFieldEACD}));  // ACD built for EACD, reported, not kept
+    EXPECT_EQ(order(kFieldPC), V({kFieldPC}));
+    EXPECT_EQ(order(0), V());
+}
+
+TEST(FieldsBuild, SharedRunsGiveTheSameFieldsAsTheStandAloneBuilders) {
+    for (const auto& [name, r] : smallVolumes()) {
+        SCOPED_TRACE(name);
+        AxialRuns runs(r);
+        for (int axis = 0; axis < 3; ++axis)
+            for (int sign : {1, -1}) ASSERT_EQ(runs.get(axis, sign), axialRuns(r, axis, sign));
+        const ACDFields acd = buildACDs(runs);
+        for (int o = 0; o < kOctants; ++o) ASSERT_EQ(acd[o], buildACD(r, o)) << "octant " << o;
+        EXPECT_EQ(buildACDs(r), acd);
+        EXPECT_EQ(pcFromACD(acd), buildPC(r));
+        EXPECT_EQ(buildEACD(runs, acd), buildEACD(r, acd));
+    }
+}
+
 TEST(FieldsBuild, EmptyVolumeGivesEmptyFieldsAndBadArgumentsThrow) {
     const DistanceFields f = buildFields(constantRegions({0, 0, 0}), kFieldPC | kFieldACD | kFieldEACD);
     EXPECT_TRUE(f.pc.empty());
@@ -251,6 +293,10 @@ TEST(FieldsBuild, EmptyVolumeGivesEmptyFieldsAndBadArgumentsThrow) {
     EXPECT_THROW(buildEACD(constantRegions({3, 3, 3}), shortACD, 0), std::invalid_argument);
     EXPECT_THROW(buildACD(constantRegions({3, 3, 3}), 8), std::invalid_argument);
     EXPECT_THROW(buildEACD(constantRegions({3, 3, 3}), std::vector<uint8_t>(27, 1), -1), std::invalid_argument);
+    EXPECT_THROW(AxialRuns{bad}, std::invalid_argument);
+    ACDFields uneven;
+    uneven[3].resize(2);
+    EXPECT_THROW(pcFromACD(uneven), std::invalid_argument);
 }
 
 // ---- Invariants, with an independent O(1) homogeneity test --------------------------------------------------

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/errors.h"
+#include "core/extent_code.h"
 #include "core/prepared_file.h"
 #include "datasets/phantoms.h"
 #include "support/datasets.h"
@@ -209,6 +210,61 @@ TEST_F(PreparedFile, RejectsAForeignFile) {
     expectRejected(bad, "not a prepared file");
     writeBytes(bad, {'h', 'i', '\n'});
     expectRejected(bad, "not a prepared file");
+}
+
+TEST_F(PreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
+    const std::size_t exactBytes = split(good).data.size();
+    const std::size_t voxels = prepared.classified.grid.voxels();
+    for (ExtentCode code : {ExtentCode::Log16, ExtentCode::Joint8}) {
+        SCOPED_TRACE(extentCodeName(code));
+        PreparedVolume p = prepared;
+        quantiseEACD(p.fields, code);
+        writePrepared(bad, p);
+        const json header = split(bad).header;
+        EXPECT_EQ(header["eacdCode"], extentCodeName(code));
+        const json c = chunkEntry(header, "eacd5");
+        EXPECT_EQ(c["type"], code == ExtentCode::Log16 ? "uint16" : "uint8");
+        EXPECT_EQ(c["components"], 1);
+        EXPECT_EQ(c["bytes"], voxels * extentCodeBytes(code));
+        EXPECT_EQ(split(bad).data.size(), exactBytes - kOctants * voxels * (3 - extentCodeBytes(code)));
+
+        const PreparedVolume r = readPrepared(bad);
+        EXPECT_EQ(r.fields.eacdCode, code);
+        EXPECT_EQ(r.fields.eacd, p.fields.eacd);
+        EXPECT_EQ(r.fields.acd, p.fields.acd);
+        EXPECT_FALSE(readPrepared(bad, kFieldPC).fields.hasEACD());
+
+        // Extents the code cannot hold are stored rounded down, never up.
+        PreparedVolume unrounded = prepared;
+        unrounded.fields.eacdCode = code;
+        writePrepared(bad, unrounded);
+        EXPECT_EQ(readPrepared(bad, kFieldEACD).fields.eacd, p.fields.eacd);
+    }
+    EXPECT_EQ(readPrepared(good).fields.eacdCode, ExtentCode::Exact);
+}
+
+TEST_F(PreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
+    Parts parts = split(good);
+    parts.header["eacdCode"] = "log12";
+    join(bad, parts);
+    expectRejected(bad, "bad header: 'eacdCode': unknown EACD code 'log12' (expected exact, log16 or joint8)");
+
+    parts.header.erase("eacdCode");
+    join(bad, parts);
+    expectRejected(bad, "bad header: missing or invalid 'eacdCode'");
+
+    parts.header["eacdCode"] = "joint8";  // the chunks hold 3 exact bytes per voxel
+    join(bad, parts);
+    expectRejected(bad, "chunk 'eacd0' should be 1 x uint8");
+}
+
+TEST_F(PreparedFile, RejectsTheVersionBeforeCodedExtents) {
+    // Version 1 stored EACD as 3 bytes per octant with no eacdCode: refused with the way out, not misread.
+    std::vector<char> b = readBytes(good);
+    const uint32_t v = 1;
+    std::memcpy(b.data() + 8, &v, 4);
+    writeBytes(bad, b);
+    expectRejected(bad, "prepared format version 1, this build reads version 2 (run volprep again)");
 }
 
 TEST_F(PreparedFile, RejectsAnotherVersion) {

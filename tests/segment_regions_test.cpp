@@ -230,6 +230,74 @@ TEST(Segment, BoundedVariationOnRandomVolumes) {
     }
 }
 
+// Voxels drawn from a few classified values, so that runs, corners and seams of equal keys abound.
+ClassifiedVolume patchyClassified(Vec3i dims, unsigned seed, int values) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> pick(0, values - 1);
+    ClassifiedVolume c = emptyClassified(dims, true);
+    for (std::size_t i = 0; i < c.sigma.size(); ++i) {
+        const int v = pick(rng);
+        c.sigma[i] = v == 0 ? 0.f : 0.1f * float(v);
+        c.colour[i] = {0.2f * float(v % 3), 0.5f, 1.f};
+        c.normal[i] = v % 2 ? Normal{0, 0, 1} : Normal{0.6f, 0.8f, 0};
+    }
+    return c;
+}
+
+TEST(Segment, LabelsAreTheComponentsOfEqualKeysOnEveryShape) {
+    for (Vec3i dims : {Vec3i{1, 1, 13}, Vec3i{1, 7, 9}, Vec3i{8, 1, 5}, Vec3i{6, 5, 1}, Vec3i{33, 2, 3},
+                       Vec3i{9, 9, 9}, Vec3i{2, 40, 2}})
+        for (int values : {2, 3, 6}) {
+            SCOPED_TRACE(testing::Message() << dims.x << "x" << dims.y << "x" << dims.z << ", " << values);
+            const ClassifiedVolume c = patchyClassified(dims, unsigned(dims.x * 7 + values), values);
+            SegmentationParams p{0.05, 10, true, false};
+            const RegionKeyer key(c, p);
+            const Regions plain = segment(c, p);
+            expectCompactFirstVoxelOrder(plain, dims);
+            EXPECT_EQ(plain.label, floodFill(dims, [&](auto a, auto b) { return key(a) == key(b); }).label);
+            p.trilinear = true;
+            const Regions trilinear = segment(c, p);
+            expectCompactFirstVoxelOrder(trilinear, dims);
+            expectFootprintsInsideRegions(plain, trilinear);
+        }
+}
+
+TEST(Segment, KeysOfARunEqualSingleKeys) {
+    // Many distinct (sigma, colour) pairs, more than the run's cache holds, with repeats far apart.
+    const Vec3i dims{50, 40, 10};
+    ClassifiedVolume c = emptyClassified(dims, true);
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<int> pick(0, 3000);
+    std::uniform_real_distribution<float> unit(-1, 1);
+    for (std::size_t i = 0; i < c.sigma.size(); ++i) {
+        const int v = pick(rng);
+        c.sigma[i] = v % 7 == 0 ? 0.f : float(v) * 1e-3f;
+        c.colour[i] = {float(v % 11) / 10, float(v % 13) / 12, float(v % 17) / 16};
+        c.normal[i] = {unit(rng), unit(rng), unit(rng)};
+    }
+    for (SegmentationParams p : {SegmentationParams{0, 0, true, false}, SegmentationParams{0.05, 10, true, false},
+                                 SegmentationParams{0.2, 0, false, false}}) {
+        const RegionKeyer key(c, p);
+        std::vector<RegionKey> run(c.sigma.size() - 5);
+        key.keys(5, run.size(), run.data());
+        for (std::size_t j = 0; j < run.size(); ++j) ASSERT_EQ(run[j], key(5 + j)) << j;
+        // Packed keys (binned thresholds only) are equal exactly where the keys are.
+        EXPECT_EQ(key.packs(), p.opacityThreshold > 0);
+        if (!key.packs()) continue;
+        std::vector<PackedKey> packed(run.size());
+        key.keys(5, packed.size(), packed.data());
+        std::uniform_int_distribution<std::size_t> any(0, run.size() - 1);
+        for (int k = 0; k < 20000; ++k) {
+            const std::size_t a = any(rng), b = k % 2 ? any(rng) : (a + 1) % run.size();
+            ASSERT_EQ(packed[a] == packed[b], run[a] == run[b]) << a << " " << b;
+        }
+    }
+    // Coarse thresholds pack, bit-exact ones and bins too fine for 64 bits do not.
+    EXPECT_TRUE(RegionKeyer(c, {1.0, 180, true, false}).packs());
+    EXPECT_FALSE(RegionKeyer(c, {0.05, 0, true, false}).packs());
+    EXPECT_FALSE(RegionKeyer(c, {1e-6, 10, true, false}).packs());
+}
+
 TEST(Segment, SmoothRampIsNotOneRegion) {
     // Opacity rises by 0.01 per voxel: every neighbour pair is similar at T_o = 0.05, the ends are not.
     const Vec3i dims{101, 3, 2};

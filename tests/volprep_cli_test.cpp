@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "core/errors.h"
@@ -96,10 +97,34 @@ TEST(Volprep, PreparesTheHeadCtAndItReadsBackConsistently) {
             EXPECT_NEAR(s["leaps"]["eacdMeanExtent"][o][a].get<double>(),
                         mean(p.fields.eacd[o], [a](const std::array<uint8_t, 3>& x) { return x[a]; }), 1e-9);
     }
-    EXPECT_EQ(s["bytes"]["eacd"].get<std::size_t>(), 24 * n);
+    EXPECT_EQ(p.fields.eacdCode, ExtentCode::Log16);  // the default: 2 bytes per octant
+    EXPECT_EQ(s["eacdCode"], "log16");
+    EXPECT_EQ(s["bytes"]["eacd"].get<std::size_t>(), 16 * n);
     EXPECT_EQ(s["bytes"]["sigma"].get<std::size_t>(), 4 * n);
     for (const char* stage : {"load", "classify", "segment", "pc", "acd", "eacd"})
         EXPECT_GE(s["seconds"][stage].get<double>(), 0.0) << stage;
+}
+
+TEST(Volprep, StoresEacdInTheCodeAsked) {
+    fs::path dir = test::scratchDir("volprep_eacd_code");
+    std::map<ExtentCode, PreparedVolume> p;
+    for (ExtentCode code : {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8}) {
+        const std::string name(extentCodeName(code));
+        fs::path out = dir / (name + ".vprep");
+        Outcome r = volprep(headsqArgs(out) + " --fields eacd --no-normals --eacd-code " + name);
+        ASSERT_EQ(r.status, 0) << r.err;
+        EXPECT_NE(r.out.find(name + " code"), std::string::npos) << r.out;
+        p[code] = readPrepared(out, kFieldEACD, false);
+        EXPECT_EQ(p[code].fields.eacdCode, code);
+        EXPECT_EQ(p[code].meta.statistics["bytes"]["eacd"].get<std::size_t>(),
+                  kOctants * extentCodeBytes(code) * p[code].classified.grid.voxels());
+    }
+    // The coded files hold the exact boxes rounded down by their code.
+    for (ExtentCode code : {ExtentCode::Log16, ExtentCode::Joint8}) {
+        DistanceFields rounded = p[ExtentCode::Exact].fields;
+        quantiseEACD(rounded, code);
+        EXPECT_EQ(rounded.eacd, p[code].fields.eacd) << extentCodeName(code);
+    }
 }
 
 TEST(Volprep, BuildsOnlyTheRequestedFieldsAndNormals) {
@@ -171,7 +196,7 @@ TEST(Volprep, HelpDescribesEveryFlag) {
     Outcome r = volprep("--help");
     EXPECT_EQ(r.status, 0);
     for (const char* flag : {"--output", "--tf", "--iso", "--to", "--ta", "--fields", "--trilinear", "--no-normals",
-                             "--dims", "--type", "--spacing", "--big-endian"})
+                             "--eacd-code", "--dims", "--type", "--spacing", "--big-endian"})
         EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
 }
 
@@ -191,6 +216,7 @@ TEST(Volprep, BadInputFailsClearlyAndWritesNothing) {
              {in + tf + " --to -1 -o " + q(out), "--to must be a finite number >= 0"},
              {in + tf + " --ta nan -o " + q(out), "--ta must be a finite number >= 0"},
              {in + tf + " --fields pc,octree -o " + q(out), "octree not in {pc,acd,eacd}"},
+             {in + tf + " --eacd-code log12 -o " + q(out), "log12 not in {log16,joint8,exact}"},
              {in + tf + " --iso 1,2,3 -o " + q(out), "--tf excludes --iso"},
              {in + " --iso 500,2 -o " + q(out), "--iso takes value,width,strength"},
              {in + " --tf " + q(dir / "none.json") + " -o " + q(out), "none.json"},

@@ -9,4 +9,13 @@ namespace vr {
 // caster needs (normals for shading, the caster's field, border regions for trilinear leaping).
 void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& settings);
 
+// Throws InputError naming --step when a ray across `grid` takes more lattice samples than the iteration cap
+// (settings.maxIterationsPerRay, or the default cap where that is lower): such a step is refused up front instead
+// of failing the render with the cap's error, which is meant for runaway casters.
+void requireSamplesWithinCap(const GridGeometry& grid, const RenderSettings& settings);
+
+// The part of checkRenderInputs that needs no voxel data (step, ERT, light, trilinear leaping on a volume
+// segmented for it): what a render of a volume already on a device checks.
+void checkRenderSettings(const GridGeometry& grid, bool segmentedForTrilinear, const RenderSettings& settings);
+
 }  // namespace vr

@@ -25,5 +25,8 @@ struct ClassifyParams {
 // volume's range with linear interpolation) or from the iso-contours; sigma = -ln(1 - alpha) / dt0.
 // Throws InputError for bad parameters (no or two classifications, bad TF or iso-contours, dt0 <= 0).
 ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params);
+// The same into `out`, reusing the memory of its arrays: a classification of the same size then takes no fresh
+// pages (about half the cost of a first one). On a throw `out` is left in an unspecified state.
+void classify(const Volume& volume, const ClassifyParams& params, ClassifiedVolume& out);
 
 }  // namespace vr

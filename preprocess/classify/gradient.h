@@ -6,7 +6,8 @@
 namespace vr {
 
 // Central differences in physical units (divided by 2h), one-sided at the border (divided by h);
-// an axis with a single voxel has no derivative (0).
+// an axis with a single voxel has no derivative (0). One voxel at a time: the definition that classify's row-wise
+// gradients are tested against, bit for bit.
 inline Vec3d centralGradient(const Volume& volume, int x, int y, int z) {
     const Vec3i& n = volume.grid.dims;
     const Vec3i v{x, y, z};

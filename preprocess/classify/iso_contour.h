@@ -6,7 +6,10 @@
 namespace vr {
 
 // One iso-value f_v with width r (world units) and strength a_v in [0,1].
-struct IsoContour { double value, width, strength; };
+struct IsoContour {
+    double value, width, strength;
+    bool operator==(const IsoContour&) const = default;
+};
 
 // alpha = a_v (1 - |f_v - f| / (r |grad f|)) where |grad f| > 0 and |f_v - f| <= r |grad f|,
 // a_v where grad f = 0 and f = f_v, else 0. `gradientMagnitude` is |grad f| per world unit.

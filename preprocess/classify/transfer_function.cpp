@@ -97,19 +97,6 @@ std::array<double, 3> TransferFunction::colourAt(double f) const {
     return rgb;
 }
 
-void SampledTransferFunction::locate(double f, std::size_t& i, double& w) const {
-    const double t = (f - lo) / step;
-    const std::size_t last = opacity.size() - 1;
-    if (!(t > 0)) {  // also NaN
-        i = 0, w = 0;
-    } else if (t >= double(last)) {
-        i = last, w = 0;
-    } else {
-        i = std::size_t(t);
-        w = t - double(i);
-    }
-}
-
 double SampledTransferFunction::opacityAt(double f) const {
     std::size_t i;
     double w;

@@ -15,8 +15,12 @@ struct TransferFunction {
         double x, opacity;
         double midpoint = 0.5;   // where in the segment the value is halfway, in [0,1]
         double sharpness = 0.0;  // 0 = linear, 1 = a step at the midpoint
+        bool operator==(const OpacityPoint&) const = default;
     };
-    struct ColourPoint { double x, r, g, b; };
+    struct ColourPoint {
+        double x, r, g, b;
+        bool operator==(const ColourPoint&) const = default;
+    };
     std::vector<OpacityPoint> opacity;  // strictly increasing x
     std::vector<ColourPoint> colour;    // strictly increasing x; empty -> white
     std::string colourSpace = "RGB";    // ParaView's name: RGB, HSV, Lab, Lab/CIEDE2000, Diverging, Step
@@ -40,8 +44,19 @@ struct SampledTransferFunction {
     // Linear interpolation between samples, clamped at both ends (exact at the sample values).
     double opacityAt(double f) const;
     std::array<float, 3> colourAt(double f) const;
-    // Index of the sample at or below f, and the weight of the next one.
-    void locate(double f, std::size_t& i, double& w) const;
+    // Index of the sample at or below f, and the weight of the next one (inline: classification calls it per voxel).
+    void locate(double f, std::size_t& i, double& w) const {
+        const double t = (f - lo) / step;
+        const std::size_t last = opacity.size() - 1;
+        if (!(t > 0)) {  // also NaN
+            i = 0, w = 0;
+        } else if (t >= double(last)) {
+            i = last, w = 0;
+        } else {
+            i = std::size_t(t);
+            w = t - double(i);
+        }
+    }
 };
 
 SampledTransferFunction sampleTransferFunction(const TransferFunction& tf, double lo, double hi, std::size_t count);

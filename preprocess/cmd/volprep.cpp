@@ -18,6 +18,7 @@ struct Flags {
     std::vector<std::vector<double>> iso;
     double to = 0.01, ta = 3;
     std::vector<std::string> fields{"pc", "acd", "eacd"};
+    std::string eacdCode{vr::extentCodeName(vr::kDefaultExtentCode)};
     bool trilinear = false, noNormals = false;
     std::vector<int> dims;
     std::string type;
@@ -40,6 +41,11 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_option("--fields", f.fields, "distance fields to build, comma-separated")
         ->delimiter(',')
         ->check(CLI::IsMember({"pc", "acd", "eacd"}))
+        ->capture_default_str();
+    app.add_option("--eacd-code", f.eacdCode,
+                   "how EACD box extents are stored, rounded down: log16 (2 bytes per octant, exact to 16, cap 255), "
+                   "joint8 (1 byte per octant, 6 levels per axis up to 50) or exact (3 bytes)")
+        ->check(CLI::IsMember({"log16", "joint8", "exact"}))
         ->capture_default_str();
     app.add_flag("--trilinear", f.trilinear, "regions for trilinear sampling: border voxels become their own regions");
     app.add_flag("--no-normals", f.noNormals, "no gradients: no shading, and T_a is ignored");
@@ -83,6 +89,7 @@ vr::PrepareOptions optionsFrom(const Flags& f) {
     o.fields = 0;
     for (const std::string& name : f.fields)
         o.fields |= name == "pc" ? vr::kFieldPC : name == "acd" ? vr::kFieldACD : vr::kFieldEACD;
+    o.eacdCode = vr::parseExtentCode(f.eacdCode, "--eacd-code");
     return o;
 }
 

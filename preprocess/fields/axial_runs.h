@@ -1,5 +1,6 @@
-// Axial run lengths, the building block of EACD (ALGORITHMS.md section 4).
+// Axial run lengths, the building block of ACD and EACD (ALGORITHMS.md section 4).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -10,5 +11,21 @@ namespace vr {
 // run[u] = number of voxels of u's region met from u stepping by `sign` along `axis`, u included, stopping at the
 // volume border. Cap: runs above kDistanceCap (255) are stored as 255 (a shorter run is still homogeneous).
 std::vector<uint8_t> axialRuns(const Regions& regions, int axis, int sign);
+
+// The six run fields of one Regions, each computed once and shared by the ACD and EACD builders.
+class AxialRuns {
+public:
+    explicit AxialRuns(const Regions& regions);  // throws std::invalid_argument when labels and dims disagree
+    const Regions& regions() const { return regions_; }
+    const Vec3i& dims() const { return regions_.dims; }
+    // Computes the field on first use: not for concurrent first uses (call computeAll() before going parallel).
+    const std::vector<uint8_t>& get(int axis, int sign);
+    // All six, in parallel.
+    void computeAll();
+
+private:
+    const Regions& regions_;
+    std::array<std::vector<uint8_t>, 6> runs_;
+};
 
 }  // namespace vr

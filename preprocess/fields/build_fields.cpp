@@ -1,7 +1,11 @@
 // PC from the ACDs, and the driver building the requested fields.
-#include <algorithm>
-
 #include "preprocess/fields/build_fields.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "preprocess/fields/byte_rows.h"
 
 namespace vr {
 
@@ -9,9 +13,14 @@ namespace {
 
 // The centred cube of Chebyshev radius r is the union of the 8 octant cubes of edge r + 1 cornered at v,
 // so pc = min over octants of acd - 1 exactly (capped at 254 because ACD caps at 255).
-void lowerToACD(std::vector<uint8_t>& minACD, const std::vector<uint8_t>& acd) {
-    std::transform(minACD.begin(), minACD.end(), acd.begin(), minACD.begin(),
-                   [](uint8_t m, uint8_t a) { return std::min(m, a); });
+void lowerToACD(uint8_t* minACD, const uint8_t* acd, std::size_t n) {
+    forEachLane(n, [&](std::size_t k, auto t) { store(minACD + k, minOf(load(minACD + k, t), load(acd + k, t))); });
+}
+
+void lowerToACDInParallel(std::vector<uint8_t>& minACD, const std::vector<uint8_t>& acd) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, acd.size(), 1 << 16), [&](const auto& r) {
+        lowerToACD(minACD.data() + r.begin(), acd.data() + r.begin(), r.size());
+    });
 }
 
 void toRadius(std::vector<uint8_t>& minACD) {
@@ -20,23 +29,65 @@ void toRadius(std::vector<uint8_t>& minACD) {
 
 }  // namespace
 
-std::vector<uint8_t> buildPC(const Regions& regions) { return buildFields(regions, kFieldPC).pc; }
+std::vector<uint8_t> pcFromACD(const ACDFields& acd) {
+    std::vector<uint8_t> pc = acd[0];
+    for (int o = 1; o < kOctants; ++o) {
+        if (acd[o].size() != pc.size()) throw std::invalid_argument("pcFromACD: the octants differ in size");
+        lowerToACDInParallel(pc, acd[o]);
+    }
+    toRadius(pc);
+    return pc;
+}
 
-DistanceFields buildFields(const Regions& regions, unsigned kinds) {
+std::vector<uint8_t> buildPC(const Regions& regions) {
+    AxialRuns runs(regions);
+    const std::size_t voxels = regions.label.size();
+    if (voxels == 0) return {};
+    runs.computeAll();
+    // One minimum per thread rather than all eight ACDs at once. Lowered serially: a thread waiting inside a
+    // parallel loop may run another octant's task, which must not meet a half-lowered minimum.
+    tbb::enumerable_thread_specific<std::vector<uint8_t>> minima(voxels, uint8_t(kDistanceCap));
+    tbb::parallel_for(0, kOctants, [&](int o) {
+        const std::vector<uint8_t> acd = buildACD(runs, o);
+        lowerToACD(minima.local().data(), acd.data(), voxels);
+    });
+    auto first = minima.begin();
+    std::vector<uint8_t> pc = std::move(*first);
+    for (auto it = ++first; it != minima.end(); ++it) lowerToACDInParallel(pc, *it);
+    toRadius(pc);
+    return pc;
+}
+
+ACDFields buildACDs(const Regions& regions) {
+    AxialRuns runs(regions);
+    return buildACDs(runs);
+}
+
+DistanceFields buildFields(const Regions& regions, unsigned kinds) { return buildFields(regions, kinds, [](FieldKind) {}); }
+
+DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::function<void(FieldKind)>& done) {
     DistanceFields f;
     f.dims = regions.dims;
-    const bool pc = kinds & kFieldPC, keepACD = kinds & (kFieldACD | kFieldEACD);
-    if (!pc && !keepACD) return f;
-    if (pc) f.pc.assign(voxelCount(regions.dims), uint8_t(kDistanceCap));
-    std::array<std::vector<uint8_t>, kOctants> acd;
-    for (int o = 0; o < kOctants; ++o) {  // one ACD at a time when only PC is asked for
-        std::vector<uint8_t> a = buildACD(regions, o);
-        if (pc) lowerToACD(f.pc, a);
-        if (keepACD) acd[o] = std::move(a);
+    const bool pc = kinds & kFieldPC, acd = kinds & (kFieldACD | kFieldEACD);
+    if (!acd) {
+        if (pc) {
+            f.pc = buildPC(regions);
+            done(kFieldPC);
+        }
+        return f;
     }
-    if (pc) toRadius(f.pc);
-    if (kinds & kFieldEACD) f.eacd = buildEACD(regions, acd);
-    if (kinds & kFieldACD) f.acd = std::move(acd);
+    AxialRuns runs(regions);
+    ACDFields acds = buildACDs(runs);
+    done(kFieldACD);
+    if (pc) {
+        f.pc = pcFromACD(acds);
+        done(kFieldPC);
+    }
+    if (kinds & kFieldEACD) {
+        f.eacd = buildEACD(runs, acds);
+        done(kFieldEACD);
+    }
+    if (kinds & kFieldACD) f.acd = std::move(acds);
     return f;
 }
 

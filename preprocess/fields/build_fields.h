@@ -6,22 +6,38 @@
 // What the cap costs: a leap is at most 255 voxels (PC: 254), so a ray through a region larger than that (the air
 // of a 512^3 volume) takes a few leaps where one would do; nothing is ever wrong.
 #pragma once
+#include <functional>
+
 #include "core/distance_fields.h"
 #include "core/regions.h"
+#include "preprocess/fields/axial_runs.h"
 
 namespace vr {
 
 using EACDField = std::vector<std::array<uint8_t, 3>>;
+using ACDFields = std::array<std::vector<uint8_t>, kOctants>;
 
-// PC from the eight ACD passes, one at a time (no ACD is kept).
+// PC from the eight ACD passes (no ACD is kept).
 std::vector<uint8_t> buildPC(const Regions& regions);
+// PC from ACDs already built: one pass, pc = min over octants of acd - 1.
+std::vector<uint8_t> pcFromACD(const ACDFields& acd);
 std::vector<uint8_t> buildACD(const Regions& regions, int octant);
+// All eight octants, in parallel, sharing the axial runs: acd[o] is buildACD(regions, o).
+ACDFields buildACDs(const Regions& regions);
 EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant);
 // All eight octants at once (shares the range-minimum tables between the octants): acd[o] is buildACD(regions, o).
-std::array<EACDField, kOctants> buildEACD(const Regions& regions,
-                                          const std::array<std::vector<uint8_t>, kOctants>& acd);
+std::array<EACDField, kOctants> buildEACD(const Regions& regions, const ACDFields& acd);
 
-// kinds: a mask of FieldKind. EACD needs ACD internally; ACD is kept only when asked for.
+// The same builders on axial runs shared between them (each run field is computed once).
+std::vector<uint8_t> buildACD(AxialRuns& runs, int octant);
+ACDFields buildACDs(AxialRuns& runs);
+std::array<EACDField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd);
+
+// kinds: a mask of FieldKind. EACD needs ACD internally; ACD is kept only when asked for. The fastest way to get
+// several fields: the runs, ACDs and PC are shared.
 DistanceFields buildFields(const Regions& regions, unsigned kinds);
+// The same, calling done(kind) as each field is finished, so that a caller can time them: ACD first (with the axial
+// runs; also when it is built only for EACD), then PC (alone when only PC is asked for), then EACD.
+DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::function<void(FieldKind)>& done);
 
 }  // namespace vr

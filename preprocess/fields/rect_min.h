@@ -1,6 +1,7 @@
 // Minimum of a 2D byte image over any axis-aligned rectangle in O(1): a 2D sparse table.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <vector>
@@ -11,12 +12,19 @@ class RectMin {
 public:
     // The image to build from: nu x nw bytes, u fastest. Fill it, then call build() or buildSquares().
     uint8_t* resize(int nu, int nw);
-    // Tables for every rectangle up to maxLenU x maxLenW (only the levels those need are built).
-    void build(int maxLenU, int maxLenW);
+    // Level pairs (i, j) (a rectangle of lenU x lenW needs i = floor(log2 lenU), j = floor(log2 lenW)): bit j of
+    // [i]. A rectangle query needs one pair, so only those asked for (and the chains to them) are built.
+    using Levels = std::array<uint16_t, 16>;
+    static void addLevels(Levels& levels, int lenU, int lenW) {
+        levels[std::bit_width(unsigned(lenU)) - 1] |= uint16_t(1u << (std::bit_width(unsigned(lenW)) - 1));
+    }
+    // Tables for the rectangles of the level pairs in `levels`, all inside the image.
+    void build(const Levels& levels);
     // Tables for squares only, up to maxLen: a few levels instead of their square.
     void buildSquares(int maxLen);
-    // Minimum over [u0, u0 + lenU) x [w0, w0 + lenW): inside the image, 1 <= lenU <= maxLenU, 1 <= lenW <= maxLenW
-    // of the last build (lenU == lenW after buildSquares). A plain value, so that hot loops keep it in registers.
+    // Minimum over [u0, u0 + lenU) x [w0, w0 + lenW), inside the image, for a rectangle the last build made tables
+    // for (its level pair; after buildSquares, lenU == lenW <= maxLen). A plain value, so that hot loops keep it in
+    // registers.
     class Query {
     public:
         uint8_t operator()(int u0, int w0, int lenU, int lenW) const {

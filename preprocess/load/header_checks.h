@@ -2,26 +2,48 @@
 // data sizes, element lengths) and crash, hang or read uninitialised memory on what fuzzing fed them. Each throws
 // InputError naming the file and the problem; a file that passes is one the reader can take safely.
 #pragma once
+#include <cstdint>
 #include <filesystem>
 
 namespace vr {
 
-// NIfTI-1 or NIfTI-2 single file (.nii, .nii.gz): size and magic, dims, a scalar datatype with its bitpix, and a
-// vox_offset with the data after it inside the file (.nii).
+// NIfTI-1 or NIfTI-2 single file (.nii, .nii.gz): size and magic, dims, a scalar datatype with its bitpix, dims
+// within memory, and a vox_offset with the data after it inside the file (.nii) or its decompressed stream (.nii.gz).
 void checkNiftiHeader(const std::filesystem::path& path);
 
 // NRRD (.nrrd, .nhdr): no control bytes in the header; raw data as long as sizes x type; ASCII data with enough
-// values; other encodings but gzip refused.
+// values; gzip data that decompress to that length.
 void checkNrrdFile(const std::filesystem::path& path);
+
+// OpenVDB (.vdb), versions 222 to 224: the header, the file's metadata, the grid descriptors and each grid's
+// metadata hold no length beyond the end of the file (OpenVDB allocates whatever length they state).
+void checkVdbFile(const std::filesystem::path& path);
+
+// VTK XML image data (.vti): a WholeExtent within memory whose first point data array the file can hold (at the
+// densest encoding, raw bytes, or at its compressor's largest ratio).
+void checkVtkXmlImageFile(const std::filesystem::path& path);
 
 // Legacy VTK structured points (.vtk): the header lines with their numbers, and data as long as POINT_DATA says.
 void checkVtkLegacyFile(const std::filesystem::path& path);
 
-// MetaImage (.mha, .mhd): NDims, DimSize, ElementType present and sane; compressed data with CompressedDataSize.
+// MetaImage (.mha, .mhd): NDims, DimSize, ElementType present and sane; dims within memory; data (in the file or
+// the one ElementDataFile) as long as DimSize x ElementType, compressed ones with a CompressedDataSize the file
+// holds that decompress to that length.
 void checkMetaImageHeader(const std::filesystem::path& path);
 
 // One DICOM file of a series: a DICM preamble, explicit or implicit VR little-endian elements that parse, non-empty
 // transfer syntax and rescale values, and pixel data at least rows x columns x bits allocated long.
 void checkDicomFile(const std::filesystem::path& path);
+
+// How data are packed: what gzread reads (gzip members, or plain bytes without the gzip magic) or what MetaIO
+// inflates (zlib or gzip).
+enum class Compression { GzipOrPlain, ZlibOrGzip };
+
+// The bytes that the compressed data starting `offset` bytes into `path` (and at most `compressedBytes` long)
+// decompress to, counted by decompressing them up to `needed` (the count returned is at most that): what a reader
+// can really fill, found in time and memory bounded by `needed`. Throws InputError naming the file for a corrupt
+// stream; data that end early are simply counted short.
+std::uintmax_t decompressedBytes(const std::filesystem::path& path, std::uintmax_t offset, std::uintmax_t needed,
+                                 Compression compression, std::uintmax_t compressedBytes = UINTMAX_MAX);
 
 }  // namespace vr

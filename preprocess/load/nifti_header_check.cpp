@@ -1,12 +1,11 @@
 // NIfTI header checks before vtkNIFTIImageReader, which trusts the header: an unknown datatype, dim[0] = 0 or a
-// file without the magic (read as Analyze 7.5) crash it.
+// file without the magic (read as Analyze 7.5) crash it, and it allocates the image the dims claim before reading.
 #include <zlib.h>
 
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <cctype>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -14,6 +13,7 @@
 
 #include "core/errors.h"
 #include "preprocess/load/header_checks.h"
+#include "preprocess/load/voxel_budget.h"
 
 namespace vr {
 namespace fs = std::filesystem;
@@ -122,15 +122,24 @@ void checkNiftiHeader(const fs::path& path) {
         nifti2 ? double(field<std::int64_t>(header, 168, swap)) : double(field<float>(header, 108, swap));
     if (!(voxOffset >= double(size + 4) && voxOffset <= 1e15))
         throw fail("vox_offset " + std::to_string(voxOffset) + " does not lie after the header");
-    if (!gzipped) {
-        std::error_code ec;
-        const double fileSize = double(fs::file_size(path, ec));
-        const double needed = std::floor(voxOffset) + voxels * (bits / 8);
-        if (!ec && needed > fileSize)
-            throw fail("the file holds " + std::to_string(std::uintmax_t(fileSize)) +
-                       " bytes but vox_offset and dims " + "need " +
-                       (needed < 1e18 ? std::to_string(std::uint64_t(needed)) : std::string("over 10^18")));
-    }
+
+    // Dims beyond the third (time, components) give each voxel several values; all must fit in memory before the
+    // data are looked for.
+    double values = 1;
+    for (int i = 4; i <= dims[0]; ++i) values *= double(dims[i]);
+    if (values > 1e9) throw fail("dims 4 to " + std::to_string(dims[0]) + " claim over 10^9 values per voxel");
+    const auto dim = [&](int i) { return i <= dims[0] ? dims[i] : 1; };
+    checkVoxelBudget(path, dim(1), dim(2), dim(3), std::size_t(values) * (bits / 8 + sizeof(float)));
+    // vtkNIFTIImageReader allocates the image before it reads: the data must be there first. A .nii.gz is counted
+    // by decompressing it (up to what is needed), as its gzip trailer gives the size only mod 2^32.
+    const std::uintmax_t needed = std::uintmax_t(voxOffset) + std::uintmax_t(voxels) * std::uintmax_t(bits / 8);
+    std::error_code ec;
+    const std::uintmax_t held =
+        gzipped ? decompressedBytes(path, 0, needed, Compression::GzipOrPlain) : fs::file_size(path, ec);
+    if (ec) throw fileError(path.string(), "cannot read: " + ec.message());
+    if (held < needed)
+        throw fail(std::string(gzipped ? "the gzip data decompress to " : "the file holds ") + std::to_string(held) +
+                   " bytes but vox_offset and dims need " + std::to_string(needed));
 }
 
 }  // namespace vr

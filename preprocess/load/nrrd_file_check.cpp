@@ -1,10 +1,11 @@
-// NRRD checks before vtkNrrdReader, which loops forever on control bytes in a header line and reads short data
-// without a word (the missing voxels stay uninitialised).
+// NRRD checks before vtkNrrdReader, which loops forever on control bytes in a header line, reads short data
+// without a word (the missing voxels stay uninitialised) and allocates the image before it inflates gzip data.
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -52,23 +53,55 @@ void checkNrrdFile(const fs::path& path) {
         ++lineNumber;
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (line.empty()) break;
+        if (lineNumber == 1 && !line.starts_with("NRRD000"))
+            throw fail("not a NRRD file: its first line is not the magic \"NRRD000N\"");
         for (char c : line)
             if (std::iscntrl(static_cast<unsigned char>(c)) && c != '\t')
                 throw fail("header line " + std::to_string(lineNumber) + " holds control byte " +
                            std::to_string(int(static_cast<unsigned char>(c))));
         if (lineNumber == 1 || line[0] == '#') continue;
-        if (const auto colon = line.find(": "); colon != std::string::npos && line.find(":=") != colon)
-            fields[trim(line.substr(0, colon))] = trim(line.substr(colon + 2));
+        const auto colon = line.find(": ");
+        if (colon == std::string::npos || line.find(":=") == colon) continue;  // not a field ("key:=value" pairs)
+        const std::string key = trim(line.substr(0, colon));
+        if (!fields.emplace(key, trim(line.substr(colon + 2))).second)
+            throw fail("the field \"" + key + "\" appears twice (header line " + std::to_string(lineNumber) + ")");
+        // vtkNrrdReader reads per-axis fields with the dimension it has seen so far (a sizes line before the
+        // dimension one made it read through a null stream, SEGV); the format puts dimension first, too.
+        static const std::set<std::string> perAxis{"sizes",     "spacings", "thicknesses", "axis mins",
+                                                   "axismins",  "axis maxs", "axismaxs",   "centers",
+                                                   "centerings", "labels",  "units",       "kinds",
+                                                   "space directions"};
+        if (perAxis.contains(key) && !fields.contains("dimension"))
+            throw fail("the field \"" + key + "\" comes before the dimension field (header line " +
+                       std::to_string(lineNumber) + ")");
     }
     const std::streamoff headerEnd = in.eof() ? -1 : std::streamoff(in.tellg());
-
+    if (lineNumber == 0) throw fail("the file is empty");
+    // vtkNrrdReader reads through a null stream (SEGV) when dimension or sizes are missing; the format requires
+    // these four fields.
+    for (const char* key : {"type", "dimension", "sizes", "encoding"})
+        if (!fields.contains(key))
+            throw fail(std::string("no \"") + key + "\" field (a NRRD header needs type, dimension, sizes and encoding)");
+    std::istringstream dimensionText(fields["dimension"]);
+    int dimension = 0;
+    if (!(dimensionText >> dimension) || !(dimensionText >> std::ws).eof() || dimension < 1 || dimension > 16)
+        throw fail("dimension \"" + fields["dimension"] + "\" is not an integer in 1..16");
     const auto it = fields.find("sizes");
-    const int bytes = typeBytes(fields["type"]);
-    if (it == fields.end() || bytes == 0) return;  // VTK's reader names what is missing
     std::istringstream sizesText(it->second);
     std::vector<std::int64_t> sizes;
     for (std::int64_t n; sizesText >> n;) sizes.push_back(n);
-    if (sizes.empty()) return;
+    if (!sizesText.eof() || sizes.size() != std::size_t(dimension))
+        throw fail("sizes \"" + it->second + "\" are not " + std::to_string(dimension) + " integers (the dimension)");
+    // vtkNrrdReader takes the first axis for components when the dimension is 4 or that axis has 9 samples or
+    // fewer, and reads through a null stream (SEGV) when that leaves fewer than 2 or more than 3 image axes.
+    const bool componentAxis = dimension == 4 || sizes[0] <= 9;
+    if (const int axes = dimension - componentAxis; axes < 2 || axes > 3)
+        throw fail("dimension " + std::to_string(dimension) + " and sizes \"" + it->second + "\" leave VTK's reader " +
+                   std::to_string(axes) + " image axes" +
+                   (componentAxis ? " (it takes the first axis for components)" : "") + "; it reads 2 or 3");
+
+    const int bytes = typeBytes(fields["type"]);
+    if (bytes == 0) return;  // VTK's reader names the type it does not know
     // A size no machine can hold is told as such, before the data are looked at.
     const std::size_t loading = std::size_t(bytes) + sizeof(float);
     std::uintmax_t values = 1;
@@ -106,6 +139,13 @@ void checkNrrdFile(const fs::path& path) {
         if (count < values)
             throw fail("it holds " + std::to_string(count) + " ASCII values but sizes \"" + it->second + "\" need " +
                        std::to_string(values));
+    } else if (encoding == "gzip" || encoding == "gz") {
+        // Counted by decompressing (up to what is needed): the reader allocates the image before it inflates.
+        const std::uintmax_t needed = values * std::uintmax_t(bytes);
+        if (const std::uintmax_t got = decompressedBytes(data, std::uintmax_t(start), needed, Compression::GzipOrPlain);
+            got < needed)
+            throw fail("its gzip data decompress to " + std::to_string(got) + " bytes but sizes \"" + it->second +
+                       "\" of type " + fields["type"] + " need " + std::to_string(needed));
     }
 }
 

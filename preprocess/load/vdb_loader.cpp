@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "preprocess/load/format_loaders.h"
+#include "preprocess/load/header_checks.h"
 #include "preprocess/load/voxel_budget.h"
 
 namespace vr {
@@ -17,6 +18,7 @@ Volume loadVdb(const std::filesystem::path& path) {
     std::call_once(initialized, [] { openvdb::initialize(); });
     const auto fail = [&](const std::string& problem) { return fileError(path.string(), problem); };
 
+    checkVdbFile(path);
     openvdb::FloatGrid::Ptr grid;
     try {
         openvdb::io::File file(path.string());

@@ -32,7 +32,10 @@ Volume loadMetaImage(const fs::path& path) {
     checkMetaImageHeader(path);
     return readWith<vtkMetaImageReader>(path, "MetaImage");
 }
-Volume loadVtkXmlImage(const fs::path& path) { return readWith<vtkXMLImageDataReader>(path, "VTK XML image data"); }
+Volume loadVtkXmlImage(const fs::path& path) {
+    checkVtkXmlImageFile(path);
+    return readWith<vtkXMLImageDataReader>(path, "VTK XML image data");
+}
 Volume loadVtkLegacy(const fs::path& path) {
     checkVtkLegacyFile(path);
     return readWith<vtkStructuredPointsReader>(path, "VTK structured points");

@@ -63,7 +63,10 @@ std::size_t bytesOf(const std::vector<T>& v) {
     return v.size() * sizeof(T);
 }
 
-DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, std::vector<StageTime>& stages) {
+}  // namespace
+
+DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
+                                std::vector<StageTime>& stages) {
     DistanceFields f;
     f.dims = regions.dims;
     if (kinds & kFieldPC) {
@@ -82,13 +85,12 @@ DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, std::vec
     if (kinds & kFieldEACD) {
         Stage eacd(stages, "eacd");
         f.eacd = buildEACD(regions, f.acd);
+        quantiseEACD(f, eacdCode);  // memory, file and device then hold the same boxes
         eacd.done();
     }
     if (!(kinds & kFieldACD)) f.acd = {};  // built only for EACD
     return f;
 }
-
-}  // namespace
 
 StageClock::StageClock() : wall_(std::chrono::steady_clock::now()), cpu_(processCpuSeconds()) {}
 
@@ -138,11 +140,12 @@ json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& s
     std::size_t acd = 0, eacd = 0;
     for (int o = 0; o < kOctants; ++o) {
         acd += bytesOf(f.acd[o]);
-        eacd += bytesOf(f.eacd[o]);
+        eacd += f.eacd[o].size() * extentCodeBytes(f.eacdCode);  // as stored: coded
     }
     s["bytes"] = {{"sigma", bytesOf(p.classified.sigma)}, {"colour", bytesOf(p.classified.colour)},
                   {"normal", bytesOf(p.classified.normal)}, {"labels", bytesOf(p.regions.label)},
                   {"pc", bytesOf(f.pc)}, {"acd", acd}, {"eacd", eacd}};
+    s["eacdCode"] = extentCodeName(f.eacdCode);
     json seconds = json::object(), cpuSeconds = json::object();
     for (const StageTime& t : stages) {
         seconds[t.stage] = t.seconds;
@@ -166,7 +169,7 @@ PrepareResult prepareVolume(const fs::path& input, const PrepareOptions& options
     Stage segmenting(r.stages, "segment");
     p.regions = segment(p.classified, options.segmentation);
     segmenting.done();
-    p.fields = buildTimedFields(p.regions, options.fields, r.stages);
+    p.fields = buildTimedFields(p.regions, options.fields, options.eacdCode, r.stages);
 
     p.meta.source = input.string();
     p.meta.classification = classificationText(options.classify);

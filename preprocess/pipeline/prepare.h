@@ -17,6 +17,7 @@ struct PrepareOptions {
     ClassifyParams classify;           // a transfer function or iso-contours
     SegmentationParams segmentation;   // T_o, T_a, useNormals, trilinear
     unsigned fields = kFieldPC | kFieldACD | kFieldEACD;
+    ExtentCode eacdCode = kDefaultExtentCode;  // EACD extents rounded down to this code (core/extent_code.h)
 };
 
 struct StageTime {
@@ -50,6 +51,10 @@ PrepareResult prepareVolume(const std::filesystem::path& input, const PrepareOpt
 // prepareVolume, then writes the prepared file atomically (nothing is left at `output` on failure).
 PrepareResult prepareFile(const std::filesystem::path& input, const std::filesystem::path& output,
                           const PrepareOptions& options);
+
+// The fields of `kinds` (a FieldKind mask) as prepareVolume builds them, each timed into `stages` (pc, acd, eacd).
+DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
+                                std::vector<StageTime>& stages);
 
 // What the stages produced: voxels, regions, mean region size, mean leap per field and octant
 // (PC radius, ACD edge, EACD extents), bytes per chunk group and the stage times given.

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <type_traits>
+#include <vector>
 
 #include "core/errors.h"
 
@@ -57,6 +59,15 @@ RegionKeyer::RegionKeyer(const ClassifiedVolume& classified, const SegmentationP
     useNormals_ = params.useNormals && classified.hasNormals();
     exactNormals_ = params.angleThresholdDeg == 0 || cellsPerEdgeFor(params.angleThresholdDeg) > kMaxCellsPerEdge;
     if (!exactNormals_) cellsPerEdge_ = cubeMapCellsPerEdge(params.angleThresholdDeg);
+    if (opacityWidth_ > 0) {
+        // Bins 0 .. 1 + 1/T_o (opacity 1 + bin), cells 0 .. 6 K^2 (1 + cell).
+        binBits_ = std::bit_width(uint64_t(1 + std::floor(1.0 / opacityWidth_)));
+        const int normalBits =
+            !useNormals_    ? 0
+            : exactNormals_ ? 96
+                            : std::bit_width(std::max<uint64_t>(1, uint64_t(6) * cellsPerEdge_ * cellsPerEdge_));
+        packs_ = 4 * binBits_ + normalBits <= 64;
+    }
 }
 
 uint32_t RegionKeyer::bin(double value, double width, float exact) const {
@@ -64,22 +75,74 @@ uint32_t RegionKeyer::bin(double value, double width, float exact) const {
     return uint32_t(std::floor(std::clamp(value, 0.0, 1.0) / width));
 }
 
-RegionKey RegionKeyer::operator()(std::size_t i) const {
-    RegionKey key;
+void RegionKeyer::opacityAndColour(std::size_t i, RegionKey& key) const {
     const float sigma = classified_.sigma[i];
-    if (!(sigma > 0)) return key;  // transparent: nothing else matters
     key.opacity = opacityWidth_ > 0 ? 1 + bin(classified_.opacity(i), opacityWidth_, sigma) : bits(sigma);
     for (int c = 0; c < 3; ++c) key.colour[c] = bin(classified_.colour[i][c], opacityWidth_, classified_.colour[i][c]);
-    if (useNormals_) {
-        const std::array<float, 3>& n = classified_.normal[i];
-        if (exactNormals_) {
-            key.normal = {bits(n[0]), bits(n[1]), bits(n[2])};
-        } else {
-            const bool flat = n[0] == 0 && n[1] == 0 && n[2] == 0;
-            key.normal[0] = flat ? 0 : 1 + cubeMapCell(n, cellsPerEdge_);
-        }
+}
+
+void RegionKeyer::normal(std::size_t i, RegionKey& key) const {
+    const std::array<float, 3>& n = classified_.normal[i];
+    if (exactNormals_) {
+        key.normal = {bits(n[0]), bits(n[1]), bits(n[2])};
+    } else {
+        const bool flat = n[0] == 0 && n[1] == 0 && n[2] == 0;
+        key.normal[0] = flat ? 0 : 1 + cubeMapCell(n, cellsPerEdge_);
     }
+}
+
+RegionKey RegionKeyer::operator()(std::size_t i) const {
+    RegionKey key;
+    if (!(classified_.sigma[i] > 0)) return key;  // transparent: nothing else matters
+    opacityAndColour(i, key);
+    if (useNormals_) normal(i, key);
     return key;
 }
+
+PackedKey RegionKeyer::pack(const RegionKey& key) const {
+    PackedKey p = key.opacity;
+    for (int c = 0; c < 3; ++c) p |= PackedKey(key.colour[c]) << ((c + 1) * binBits_);
+    return p | PackedKey(key.normal[0]) << (4 * binBits_);
+}
+
+template <typename Key>
+void RegionKeyer::keysInto(std::size_t first, std::size_t count, Key* out) const {
+    // A direct-mapped cache from (sigma, colour) bits to their bins: the bins are a function of those bits.
+    struct Entry {
+        std::array<uint32_t, 4> in{~0u, 0, 0, 0};  // sigma = NaN bits: never a voxel's (sigma > 0 here)
+        uint32_t opacity = 0;
+        std::array<uint32_t, 3> colour{};
+    };
+    constexpr unsigned kCacheBits = 10;
+    std::vector<Entry> cache(std::size_t(1) << kCacheBits);
+    for (std::size_t j = 0; j < count; ++j) {
+        const std::size_t i = first + j;
+        RegionKey key;
+        if (classified_.sigma[i] > 0) {
+            const std::array<float, 3>& rgb = classified_.colour[i];
+            const std::array<uint32_t, 4> in{bits(classified_.sigma[i]), bits(rgb[0]), bits(rgb[1]), bits(rgb[2])};
+            const uint32_t hash = (in[0] ^ (in[1] * 3) ^ (in[2] * 5) ^ (in[3] * 7)) * 2654435761u;
+            Entry& e = cache[hash >> (32 - kCacheBits)];
+            if (e.in[0] != in[0] || e.in[1] != in[1] || e.in[2] != in[2] || e.in[3] != in[3]) {
+                e.in = in;
+                opacityAndColour(i, key);
+                e.opacity = key.opacity;
+                e.colour = key.colour;
+            }
+            key.opacity = e.opacity;
+            key.colour = e.colour;
+            if (useNormals_) normal(i, key);
+        }
+        if constexpr (std::is_same_v<Key, PackedKey>) {
+            out[j] = pack(key);
+        } else {
+            out[j] = key;
+        }
+    }
+}
+
+void RegionKeyer::keys(std::size_t first, std::size_t count, RegionKey* out) const { keysInto(first, count, out); }
+
+void RegionKeyer::keys(std::size_t first, std::size_t count, PackedKey* out) const { keysInto(first, count, out); }
 
 }  // namespace vr

@@ -34,20 +34,39 @@ int cubeMapCellsPerEdge(double angleDeg);
 // Cell of a non-zero direction on a cube map with `cellsPerEdge` cells per face edge, in [0, 6 K^2).
 uint32_t cubeMapCell(const std::array<float, 3>& direction, int cellsPerEdge);
 
+// A RegionKey in 64 bits where the thresholds bin every field (RegionKeyer::packs): equal packed keys <=> equal keys.
+using PackedKey = uint64_t;
+
 class RegionKeyer {
 public:
     // Throws InputError for a negative or NaN threshold.
     RegionKeyer(const ClassifiedVolume& classified, const SegmentationParams& params);
     RegionKey operator()(std::size_t voxel) const;
+    // The keys of voxels first .. first + count - 1 into out: operator() for each, but the bins of a (sigma, colour)
+    // seen recently in the run are looked up, not recomputed (a volume classified by a TF has few distinct ones).
+    void keys(std::size_t first, std::size_t count, RegionKey* out) const;
+    // Whether every key packs into a PackedKey without loss: opacity and colour binned (T_o > 0) and normals
+    // ignored or binned into cells (T_a > 0), with bins few enough to fit 64 bits (compared bit for bit, the
+    // stored floats take 32 bits each).
+    bool packs() const { return packs_; }
+    // keys() packed; only where packs().
+    void keys(std::size_t first, std::size_t count, PackedKey* out) const;
 
 private:
+    template <typename Key>
+    void keysInto(std::size_t first, std::size_t count, Key* out) const;
+    PackedKey pack(const RegionKey& key) const;
     uint32_t bin(double value, double width, float exact) const;
+    void opacityAndColour(std::size_t voxel, RegionKey& key) const;
+    void normal(std::size_t voxel, RegionKey& key) const;
 
     const ClassifiedVolume& classified_;
     double opacityWidth_ = 0;  // bin width of opacity and colour; 0 = exact
     bool useNormals_ = false;
     bool exactNormals_ = true;
     int cellsPerEdge_ = 0;
+    bool packs_ = false;
+    int binBits_ = 0;  // bits of each packed opacity and colour bin
 };
 
 }  // namespace vr

@@ -17,7 +17,7 @@ struct Flags {
     std::vector<double> spacing, to{0, 0.005, 0.01, 0.02, 0.05, 0.1}, ta{0, 1, 3, 10, 20}, elevations{0};
     std::vector<int> dims;
     std::vector<std::string> casters{"primitive", "pc", "acd", "eacd"};
-    int views = 8, device = -1;
+    int views = 8, device = -1, downsample = 1;
     double step = 0.5;
     bool noShading = false, trilinear = false, resume = false, reportOnly = false;
 };
@@ -34,6 +34,8 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_option("--ta", f.ta, "normal angle thresholds T_a, degrees")->delimiter(',')->capture_default_str();
     app.add_option("--casters", f.casters, "casters (primitive is required: times are relative to it)")
         ->delimiter(',')->check(CLI::IsMember({"primitive", "pc", "acd", "eacd"}))->capture_default_str();
+    app.add_option("--downsample", f.downsample, "average blocks of NxNxN voxels first (a smaller volume, faster "
+                                                 "sweeps)")->capture_default_str();
     app.add_option("--views", f.views, "azimuths per elevation, 360/N degrees apart")->capture_default_str();
     app.add_option("--elevations", f.elevations, "camera elevations, degrees")->delimiter(',')
         ->capture_default_str();
@@ -60,6 +62,7 @@ vr::SweepOptions options(const Flags& f) {
     o.angleThresholds = f.ta;
     o.casters.clear();
     for (const std::string& c : f.casters) o.casters.push_back(vr::parseCaster(c));
+    o.downsample = f.downsample;
     o.views = f.views;
     o.elevations = f.elevations;
     char extra = 0;

@@ -14,7 +14,7 @@ nlohmann::json viewStatistics(const RenderResult& result, const std::vector<Uplo
     nlohmann::json uploaded = nlohmann::json::object();
     std::size_t total = 0;
     for (const auto& u : uploads) {
-        uploaded[u.name] = u.bytes;
+        uploaded[u.name] = uploaded.value(u.name, std::size_t(0)) + u.bytes;
         total += u.bytes;
     }
     return {{"deviceMs", result.deviceMilliseconds},
@@ -26,6 +26,23 @@ nlohmann::json viewStatistics(const RenderResult& result, const std::vector<Uplo
             {"samplesRepresented", {{"total", samples}, {"meanPerRay", samples / rays}}},
             {"uploadedBytes", uploaded},
             {"uploadedBytesTotal", total}};
+}
+
+nlohmann::json uploadStatistics(const GpuVolume& volume, double milliseconds) {
+    auto triple = [](const Vec3i& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+    nlohmann::json bytes = nlohmann::json::object(), bricks = nlohmann::json::array();
+    for (const Brick& b : volume.bricks().bricks())
+        bricks.push_back({{"lo", triple(b.lo)}, {"hi", triple(b.hi)}, {"imageLo", triple(b.imageLo)},
+                          {"imageDims", triple(b.imageDims)}, {"bytes", nlohmann::json::object()}});
+    for (const UploadedResource& u : volume.uploads()) {
+        bytes[u.name] = bytes.value(u.name, std::size_t(0)) + u.bytes;
+        bricks[u.brick]["bytes"][u.name] = u.bytes;
+    }
+    return {{"milliseconds", milliseconds},
+            {"bytes", bytes},
+            {"bytesTotal", volume.uploadedBytes()},
+            {"brickCounts", triple(volume.bricks().counts())},
+            {"bricks", bricks}};
 }
 
 }  // namespace vr

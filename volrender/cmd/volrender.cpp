@@ -8,13 +8,16 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include "core/tool_main.h"
 #include "core/errors.h"
 #include "core/prepared_file.h"
 #include "volrender/cmd/heatmap.h"
+#include "volrender/caster_choice.h"
 #include "volrender/cmd/render_stats.h"
 #include "volrender/cpu_renderer.h"
+#include "volrender/vulkan/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace {
@@ -32,7 +35,8 @@ struct Flags {
 void addFlags(CLI::App& app, Flags& f) {
     app.add_option("prepared", f.prepared, "prepared volume written by volprep");
     app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...");
-    app.add_option("--caster", f.caster, "primitive, pc, acd or eacd")->capture_default_str();
+    app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, or auto (chosen from the file's statistics "
+                                         "and the view)")->capture_default_str();
     app.add_option("--size", f.size, "image size WIDTHxHEIGHT (1..16384 each)")->capture_default_str();
     app.add_option("--projection", f.projection, "ortho or persp")->capture_default_str();
     app.add_option("--fov", f.fov, "vertical field of view of persp, degrees")->capture_default_str();
@@ -99,7 +103,7 @@ void checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     view.fovDeg = f.fov;
     view.width = int(w);
     view.height = int(h);
-    s.caster = vr::parseCaster(f.caster);
+    if (f.caster != "auto") s.caster = vr::parseCaster(f.caster);
     s.stepVoxels = f.step;
     s.ert = f.ert;
     s.shading = !f.noShading;
@@ -130,6 +134,21 @@ unsigned fieldsFor(vr::Caster c) {
     return 0;
 }
 
+// --caster auto: the caster for the orbit's views, from the statistics the prepared file stores (the fields are
+// read once the caster is known).
+vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s) {
+    const vr::PreparedVolume header = vr::readPrepared(f.prepared, 0, false);
+    vr::CasterDemand d{view.projection, {}, 0, (long long)view.width * view.height, s.stepVoxels, f.views};
+    for (int i = 0; i < f.views; ++i) {
+        view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
+        view.elevationDeg = f.elevation;
+        const vr::Camera camera = vr::Camera::fit(header.classified.grid, view);
+        if (i == 0) d.direction = camera.forward;
+        d.octants |= vr::viewOctants(camera);
+    }
+    return vr::chooseCaster(header.meta.statistics, d);
+}
+
 int run(const Flags& f) {
     if (f.listDevices) {
         const auto devices = vr::VulkanContext::listDevices();
@@ -141,6 +160,13 @@ int run(const Flags& f) {
     vr::ViewParams view;
     vr::RenderSettings settings;
     checkFlags(f, view, settings);
+    std::string choice;  // why --caster auto chose its caster
+    if (f.caster == "auto") {
+        const vr::CasterChoice c = autoCaster(f, view, settings);
+        settings.caster = c.caster;
+        choice = c.reason;
+        std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(c.caster).data(), choice.c_str());
+    }
     const vr::PreparedVolume prepared = vr::readPrepared(f.prepared, fieldsFor(settings.caster), settings.shading);
 
     std::unique_ptr<vr::VulkanContext> context;
@@ -149,13 +175,30 @@ int run(const Flags& f) {
         context = std::make_unique<vr::VulkanContext>(vr::VulkanOptions{f.device, false});
         renderer = std::make_unique<vr::VulkanRenderer>(*context);
     }
-    nlohmann::json viewStats = nlohmann::json::array();
+    std::vector<vr::Camera> cameras;
+    unsigned octants = 0;  // of every view's rays: the orbit shares one upload
     for (int i = 0; i < f.views; ++i) {
         view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
         view.elevationDeg = f.elevation;
-        const vr::Camera camera = vr::Camera::fit(prepared.classified.grid, view);
+        cameras.push_back(vr::Camera::fit(prepared.classified.grid, view));
+        octants |= vr::viewOctants(cameras.back());
+    }
+    std::optional<vr::GpuVolume> uploaded;
+    nlohmann::json uploadStats;
+    if (renderer) {
+        const auto start = std::chrono::steady_clock::now();
+        uploaded.emplace(renderer->upload(prepared, {{settings.caster}, settings.shading, octants}));
+        uploadStats = vr::uploadStatistics(
+            *uploaded, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        std::printf("upload: %.2f ms, %.1f MB in %zu brick(s)\n", uploadStats["milliseconds"].get<double>(),
+                    double(uploaded->uploadedBytes()) / 1e6, uploaded->bricks().bricks().size());
+    }
+    nlohmann::json viewStats = nlohmann::json::array();
+    for (int i = 0; i < f.views; ++i) {
+        view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
+        const vr::Camera& camera = cameras[i];
         const vr::RenderResult result =
-            renderer ? renderer->render(prepared, camera, settings) : vr::renderCpu(prepared, camera, settings);
+            renderer ? renderer->render(*uploaded, camera, settings) : vr::renderCpu(prepared, camera, settings);
         const std::string image = numbered(f.output, i, f.views);
         vr::writeImage(image, result.image);
         if (!f.heatmap.empty())
@@ -167,7 +210,7 @@ int run(const Flags& f) {
         s["azimuth"] = view.azimuthDeg;
         viewStats.push_back(s);
         std::printf("%s: %s caster, %.2f ms device, %.2f ms wall, %.1f iterations per ray\n", image.c_str(),
-                    f.caster.c_str(), result.deviceMilliseconds, result.wallMilliseconds,
+                    vr::casterName(settings.caster).data(), result.deviceMilliseconds, result.wallMilliseconds,
                     s["iterationsPerRay"]["mean"].get<double>());
     }
     if (context)  // only with VR_VALIDATION=1: what the validation layer reported
@@ -178,10 +221,12 @@ int run(const Flags& f) {
             {"prepared", f.prepared},
             {"renderer", context ? context->info().name : std::string("cpu reference")},
             {"settings",
-             {{"caster", f.caster}, {"size", f.size}, {"projection", f.projection}, {"fov", f.fov},
+             {{"caster", vr::casterName(settings.caster)}, {"casterAsked", f.caster}, {"casterChoice", choice},
+              {"size", f.size}, {"projection", f.projection}, {"fov", f.fov},
               {"azimuth", f.azimuth}, {"elevation", f.elevation}, {"step", f.step}, {"ert", f.ert},
               {"shading", settings.shading}, {"trilinear", settings.trilinear}, {"light", f.light},
               {"background", f.background}, {"views", f.views}}},
+            {"upload", uploadStats},
             {"views", viewStats}};
         std::ofstream(f.stats) << stats.dump(2) << "\n";
     }

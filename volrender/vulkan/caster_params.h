@@ -24,9 +24,17 @@ static_assert(offsetof(CasterParams, octantSlot) == 256);
 static_assert(offsetof(CasterParams, light) == 288);
 static_assert(sizeof(CasterParams) == 336);
 
+// One dispatch: a tile, one brick, one pass (the Tile block of shaders/caster_params.glsl).
 struct TilePush {
     int32_t origin[2];
     int32_t size[2];
+    int32_t brickLo[4], brickHi[4];
+    int32_t imageLo[4], imageDims[4];
+    int32_t firstDispatch, lastDispatch;
+    int32_t passAxes, passSigns;
 };
+static_assert(offsetof(TilePush, brickLo) == 16);
+static_assert(offsetof(TilePush, firstDispatch) == 80);
+static_assert(sizeof(TilePush) == 96);
 
 }  // namespace vr

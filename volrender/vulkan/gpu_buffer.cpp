@@ -18,19 +18,77 @@ HostBuffer::HostBuffer(const VulkanContext& ctx, vk::DeviceSize bytes, vk::Buffe
     mapped_ = memory_.mapMemory(0, bytes);
 }
 
+DeviceBuffer::DeviceBuffer(const VulkanContext& ctx, vk::DeviceSize bytes, vk::BufferUsageFlags usage) {
+    buffer_ = vk::raii::Buffer(ctx.device(), vk::BufferCreateInfo({}, bytes, usage));
+    auto req = buffer_.getMemoryRequirements();
+    memory_ = vk::raii::DeviceMemory(
+        ctx.device(),
+        vk::MemoryAllocateInfo(req.size, ctx.memoryType(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal)));
+    buffer_.bindMemory(*memory_, 0);
+}
+
+namespace {
+
+constexpr vk::ImageUsageFlags kVolumeUsage = vk::ImageUsageFlagBits::eSampled | vk::ImageUsageFlagBits::eTransferDst;
+
+vk::ImageCreateInfo volumeImageInfo(const Vec3i& dims, vk::Format format) {
+    return vk::ImageCreateInfo({}, vk::ImageType::e3D, format,
+                               vk::Extent3D(uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)), 1, 1,
+                               vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal, kVolumeUsage);
+}
+
+}  // namespace
+
+std::size_t formatBytes(vk::Format format) {
+    switch (format) {
+        case vk::Format::eR8Uint: return 1;
+        case vk::Format::eR16Uint: return 2;
+        case vk::Format::eR8G8B8A8Uint: return 4;
+        case vk::Format::eR16G16B16A16Snorm: return 8;
+        case vk::Format::eR32G32B32A32Sfloat: return 16;
+        default: throw std::logic_error("formatBytes: a volume image format without its size here");
+    }
+}
+
+bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format, const ImageLimits& limits) {
+    const vk::raii::PhysicalDevice& gpu = ctx.physicalDevice();
+    uint32_t maxDimension = gpu.getProperties().limits.maxImageDimension3D;
+    if (limits.maxDimension > 0) maxDimension = std::min(maxDimension, limits.maxDimension);
+    vk::ImageFormatProperties format3d;
+    try {
+        format3d = gpu.getImageFormatProperties(format, vk::ImageType::e3D, vk::ImageTiling::eOptimal, kVolumeUsage);
+    } catch (const vk::FormatNotSupportedError&) {
+        return false;
+    }
+    for (int a = 0; a < 3; ++a) {
+        const uint32_t formatMax = a == 0 ? format3d.maxExtent.width : a == 1 ? format3d.maxExtent.height
+                                                                              : format3d.maxExtent.depth;
+        if (extent[a] < 1 || uint32_t(extent[a]) > std::min(maxDimension, formatMax)) return false;
+    }
+    // The memory the driver asks for, with its padding, against one allocation's limits.
+    const vk::raii::Image probe(ctx.device(), volumeImageInfo(extent, format));
+    const vk::MemoryRequirements req = probe.getMemoryRequirements();
+    const auto props = gpu.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceMaintenance3Properties>();
+    vk::DeviceSize maxBytes =
+        std::min(props.get<vk::PhysicalDeviceMaintenance3Properties>().maxMemoryAllocationSize, format3d.maxResourceSize);
+    const auto memory = gpu.getMemoryProperties();
+    const uint32_t type = ctx.memoryType(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal);
+    maxBytes = std::min(maxBytes, memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size);
+    if (req.size > maxBytes) return false;
+    return limits.maxTexelBytes == 0 ||
+           vk::DeviceSize(extent.x) * extent.y * extent.z * formatBytes(format) <= limits.maxTexelBytes;
+}
+
 VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
                          const void* texels, std::size_t texelBytes)
     : bytes_(texelBytes) {
-    using U = vk::ImageUsageFlagBits;
     vk::Extent3D extent(uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z));
     auto limits = ctx.physicalDevice().getProperties().limits;
     if (std::max({extent.width, extent.height, extent.depth}) > limits.maxImageDimension3D)
         throw std::runtime_error("a volume of " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
                                  std::to_string(dims.z) + " texels exceeds the device's 3D image limit of " +
                                  std::to_string(limits.maxImageDimension3D));
-    image_ = vk::raii::Image(ctx.device(), vk::ImageCreateInfo({}, vk::ImageType::e3D, format, extent, 1, 1,
-                                                               vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal,
-                                                               U::eSampled | U::eTransferDst));
+    image_ = vk::raii::Image(ctx.device(), volumeImageInfo(dims, format));
     auto req = image_.getMemoryRequirements();
     memory_ = vk::raii::DeviceMemory(
         ctx.device(),

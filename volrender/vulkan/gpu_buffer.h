@@ -23,6 +23,31 @@ private:
     void* mapped_ = nullptr;
 };
 
+// A buffer in device-local memory that only shaders read and write (the ray state carried between bricks).
+class DeviceBuffer {
+public:
+    DeviceBuffer(const VulkanContext& ctx, vk::DeviceSize bytes, vk::BufferUsageFlags usage);
+    const vk::raii::Buffer& buffer() const { return buffer_; }
+
+private:
+    vk::raii::Buffer buffer_{nullptr};
+    vk::raii::DeviceMemory memory_{nullptr};
+};
+
+// Lower limits than the device's for one volume image (0: the device's own), so that tests can force bricks.
+// The device's own: maxImageDimension3D and the format's largest extent; the memory the driver asks for the image
+// (with its padding) within maxMemoryAllocationSize, the format's maxResourceSize and the heap.
+struct ImageLimits {
+    uint32_t maxDimension = 0;         // texels along any axis
+    vk::DeviceSize maxTexelBytes = 0;  // texels x their bytes (without the driver's padding: the same on every device)
+};
+
+// Bytes of one texel of the formats volume images use.
+std::size_t formatBytes(vk::Format format);
+
+// Whether a device-local 3D image of this extent and format can be created and allocated in one piece.
+bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format, const ImageLimits& limits);
+
 // A 3D image in device-local memory, filled once from host texels and then only read (texelFetch).
 class VolumeImage {
 public:

@@ -17,9 +17,14 @@
 namespace vr {
 namespace {
 
-enum Binding : uint32_t { kParams, kClassified, kNormals, kField, kOutColour, kOutIterations, kOutSamples, kBindings };
-// Set in an iteration count by the shader (shaders/caster.comp): the ray hit the cap or needed an octant that was
-// not uploaded; the driver ended the shader's loops early.
+enum Binding : uint32_t {
+    kParams, kClassified, kNormals, kField, kOutColour, kOutIterations, kOutSamples,
+    kRayState = 7,    // shaders/brick_state.glsl
+    kExtentTable = 8  // shaders/extent_code.glsl
+};
+constexpr vk::DeviceSize kRayStateBytes = 64;  // RayState of shaders/brick_state.glsl (std430)
+// Set in an iteration count by the shader (shaders/caster.comp): the ray hit the cap, needed an octant that was
+// not uploaded or was in no pass over the bricks; the driver ended the shader's loops early.
 constexpr uint32_t kFailed = 0x80000000u, kCutShort = 0x40000000u;
 constexpr uint32_t kGroup = 8;  // local_size of shaders/caster.comp
 
@@ -28,18 +33,18 @@ void put(double out[4], const Vec3d& v) {
     out[0] = v.x, out[1] = v.y, out[2] = v.z, out[3] = 0;
 }
 
-CasterParams makeParams(const ClassifiedVolume& cv, const Camera& camera, const RenderSettings& s,
+CasterParams makeParams(const GridGeometry& grid, const Camera& camera, const RenderSettings& s,
                         const std::array<int, kOctants>& slots) {
     CasterParams p{};
     put(p.eye, camera.eye);
     put(p.forward, camera.forward);
     put(p.right, camera.right);
     put(p.up, camera.up);
-    put(p.gridOrigin, cv.grid.origin);
-    put(p.spacing, cv.grid.spacing);
+    put(p.gridOrigin, grid.origin);
+    put(p.spacing, grid.spacing);
     p.halfHeight = camera.halfHeight;
-    p.dt = s.stepVoxels * cv.grid.smallestSpacing();
-    for (int a = 0; a < 3; ++a) p.dims[a] = cv.grid.dims[a];
+    p.dt = s.stepVoxels * grid.smallestSpacing();
+    for (int a = 0; a < 3; ++a) p.dims[a] = grid.dims[a];
     p.imageSize[0] = camera.width;
     p.imageSize[1] = camera.height;
     p.perspective = camera.projection == Projection::Perspective;
@@ -61,7 +66,8 @@ CasterParams makeParams(const ClassifiedVolume& cv, const Camera& camera, const 
 
 }  // namespace
 
-VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize) : ctx_(ctx), tileSize_(tileSize) {
+VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const ImageLimits& limits)
+    : ctx_(ctx), tileSize_(tileSize), limits_(limits) {
     const vk::raii::Device& device = ctx.device();
     pool_ = vk::raii::CommandPool(device, vk::CommandPoolCreateInfo({}, ctx.queueFamily()));
 
@@ -71,7 +77,8 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize) : ctx_(ct
         {kParams, T::eUniformBuffer, 1, compute},          {kClassified, T::eCombinedImageSampler, 1, compute},
         {kNormals, T::eCombinedImageSampler, 1, compute},  {kField, T::eCombinedImageSampler, 1, compute},
         {kOutColour, T::eStorageBuffer, 1, compute},       {kOutIterations, T::eStorageBuffer, 1, compute},
-        {kOutSamples, T::eStorageBuffer, 1, compute}};
+        {kOutSamples, T::eStorageBuffer, 1, compute},     {kExtentTable, T::eUniformBuffer, 1, compute},
+        {kRayState, T::eStorageBuffer, 1, compute}};
     setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     vk::PushConstantRange push(compute, 0, sizeof(TilePush));
     vk::DescriptorSetLayout layout = *setLayout_;
@@ -95,26 +102,26 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize) : ctx_(ct
     unusedField_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, vk::Format::eR8Uint, &zeroField, 1);
 }
 
-const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear, bool shading) {
-    const auto key = std::make_tuple(caster, trilinear, shading);
+const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode) {
+    // Only the EACD caster reads the code: the others share one pipeline whatever the volume's code.
+    const auto key = std::make_tuple(caster, trilinear, shading, caster == Caster::EACD ? eacdCode : ExtentCode::Exact);
     auto it = pipelines_.find(key);
     if (it != pipelines_.end()) return it->second;
     // Booleans are 32-bit VkBool32 in specialization data.
-    const uint32_t values[3] = {uint32_t(caster), trilinear ? 1u : 0u, shading ? 1u : 0u};
-    const std::array<vk::SpecializationMapEntry, 3> entries{vk::SpecializationMapEntry(0, 0, 4),
-                                                            vk::SpecializationMapEntry(1, 4, 4),
-                                                            vk::SpecializationMapEntry(2, 8, 4)};
+    const uint32_t values[4] = {uint32_t(caster), trilinear ? 1u : 0u, shading ? 1u : 0u, uint32_t(std::get<3>(key))};
+    const std::array<vk::SpecializationMapEntry, 4> entries{
+        vk::SpecializationMapEntry(0, 0, 4), vk::SpecializationMapEntry(1, 4, 4), vk::SpecializationMapEntry(2, 8, 4),
+        vk::SpecializationMapEntry(3, 12, 4)};  // 3: EACD_CODE (shaders/extent_code.glsl)
     vk::SpecializationInfo spec(entries, vk::ArrayProxyNoTemporaries<const uint32_t>(values));
     vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *shader_, "main", &spec);
     vk::raii::Pipeline p(ctx_.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *pipelineLayout_));
     return pipelines_.emplace(key, std::move(p)).first->second;
 }
 
-RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera& camera,
-                                    const RenderSettings& settings) {
-    checkRenderInputs(prepared, settings);
+template <typename Work>
+auto VulkanRenderer::deviceErrors(Work&& work) -> decltype(work()) {
     try {
-        return renderOnDevice(prepared, camera, settings);
+        return work();
     } catch (const vk::OutOfDeviceMemoryError&) {
         throw std::runtime_error("the Vulkan device " + ctx_.info().name +
                                  " ran out of memory (try a smaller volume, --caster primitive or --no-shading)");
@@ -126,52 +133,104 @@ RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera
     }
 }
 
-RenderResult VulkanRenderer::renderOnDevice(const PreparedVolume& prepared, const Camera& camera,
+GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolumeContents& contents) {
+    return deviceErrors([&] { return GpuVolume(ctx_, pool_, prepared, contents, limits_); });
+}
+
+RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings) {
+    checkRenderSettings(volume.grid(), volume.segmentedForTrilinear(), settings);
+    volume.requireHolds(settings, viewOctants(camera));
+    uploads_.clear();  // what this render reads of the volume
+    for (const UploadedResource& u : volume.uploads())
+        if (u.name == "classified" || (settings.shading && u.name == "normals") ||
+            (settings.caster != Caster::Primitive && u.name == casterName(settings.caster)))
+            uploads_.push_back(u);
+    return deviceErrors([&] { return renderOnDevice(volume, camera, settings); });
+}
+
+RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera& camera,
+                                    const RenderSettings& settings) {
+    checkRenderInputs(prepared, settings);
+    const auto start = std::chrono::steady_clock::now();
+    const GpuVolume volume = upload(prepared, {{settings.caster}, settings.shading, viewOctants(camera)});
+    RenderResult result = render(volume, camera, settings);
+    result.wallMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camera& camera,
                                             const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
-    const unsigned octants = viewOctants(camera);
-    const GpuVolume volume(ctx_, pool_, prepared, settings.caster, settings.shading, octants);
-    uploads_ = volume.uploads();
-    const vk::raii::Pipeline& pipe = pipeline(settings.caster, settings.trilinear, settings.shading);
+    const vk::raii::Pipeline& pipe =
+        pipeline(settings.caster, settings.trilinear, settings.shading, volume.eacdCode());
 
     using B = vk::BufferUsageFlagBits;
     HostBuffer params(ctx_, sizeof(CasterParams), B::eUniformBuffer);
-    const CasterParams p = makeParams(prepared.classified, camera, settings, volume.octantSlot());
+    const CasterParams p = makeParams(volume.grid(), camera, settings, volume.octantSlot());
     std::memcpy(params.data(), &p, sizeof(p));
+    HostBuffer extentTable(ctx_, sizeof(ExtentTable), B::eUniformBuffer);  // decodes coded EACD (extent_code.glsl)
+    std::memcpy(extentTable.data(), extentDecodeTable(volume.eacdCode()).data(), sizeof(ExtentTable));
     const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
     HostBuffer colour(ctx_, tilePixels * 16, B::eStorageBuffer);
     HostBuffer iterations(ctx_, tilePixels * 4, B::eStorageBuffer);
     HostBuffer samples(ctx_, tilePixels * 8, B::eStorageBuffer);
+    DeviceBuffer rayState(ctx_, tilePixels * kRayStateBytes, B::eStorageBuffer);
 
-    std::array<vk::DescriptorPoolSize, 3> sizes{vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1),
-                                                vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 3),
-                                                vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3)};
+    // One descriptor set per brick: its images, the rest shared.
+    const std::vector<Brick>& bricks = volume.bricks().bricks();
+    const uint32_t brickCount = uint32_t(bricks.size());
+    std::array<vk::DescriptorPoolSize, 3> sizes{
+        vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 3 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 4 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
-        device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, sizes));
-    vk::DescriptorSetLayout layout = *setLayout_;
-    vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo(*descriptorPool, layout));
-    const vk::DescriptorSet set = *sets[0];
+        device,
+        vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, brickCount, sizes));
+    const std::vector<vk::DescriptorSetLayout> layouts(brickCount, *setLayout_);
+    vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo(*descriptorPool, layouts));
     auto imageInfo = [&](const VolumeImage& image) {
         return vk::DescriptorImageInfo(*sampler_, *image.view(), vk::ImageLayout::eShaderReadOnlyOptimal);
     };
-    const vk::DescriptorImageInfo images[3] = {
-        imageInfo(volume.classified()), imageInfo(volume.normals() ? *volume.normals() : *unusedNormals_),
-        imageInfo(volume.field() ? *volume.field() : *unusedField_)};
-    const vk::DescriptorBufferInfo buffers[4] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
+    const vk::DescriptorBufferInfo buffers[5] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*colour.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*iterations.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*samples.buffer(), 0, VK_WHOLE_SIZE}};
-    using T = vk::DescriptorType;
-    std::vector<vk::WriteDescriptorSet> writes{
-        {set, kParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
-        {set, kClassified, 0, 1, T::eCombinedImageSampler, &images[0]},
-        {set, kNormals, 0, 1, T::eCombinedImageSampler, &images[1]},
-        {set, kField, 0, 1, T::eCombinedImageSampler, &images[2]},
-        {set, kOutColour, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
-        {set, kOutIterations, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
-        {set, kOutSamples, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]}};
-    device.updateDescriptorSets(writes, {});
+                                                 {*samples.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*rayState.buffer(), 0, VK_WHOLE_SIZE}};
+    const vk::DescriptorBufferInfo table(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
+    for (uint32_t b = 0; b < brickCount; ++b) {
+        const vk::DescriptorSet set = *sets[b];
+        const VolumeImage* normals = volume.normals(int(b));
+        const VolumeImage* field = volume.field(settings.caster, int(b));
+        const vk::DescriptorImageInfo images[3] = {imageInfo(volume.classified(int(b))),
+                                                   imageInfo(normals ? *normals : *unusedNormals_),
+                                                   imageInfo(field ? *field : *unusedField_)};
+        using T = vk::DescriptorType;
+        std::vector<vk::WriteDescriptorSet> writes{
+            {set, kParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
+            {set, kClassified, 0, 1, T::eCombinedImageSampler, &images[0]},
+            {set, kNormals, 0, 1, T::eCombinedImageSampler, &images[1]},
+            {set, kField, 0, 1, T::eCombinedImageSampler, &images[2]},
+            {set, kOutColour, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
+            {set, kOutIterations, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
+            {set, kOutSamples, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
+            {set, kRayState, 0, 1, T::eStorageBuffer, nullptr, &buffers[4]},
+            {set, kExtentTable, 0, 1, T::eUniformBuffer, nullptr, &table}};
+        device.updateDescriptorSets(writes, {});
+    }
+
+    // One pass per sign pattern of the view's rays on the split axes, each over the bricks in its front-to-back
+    // order; a ray runs in its own pass only.
+    const unsigned splitAxes = volume.bricks().splitAxes();
+    std::vector<unsigned> passes;
+    for (int oct = 0; oct < kOctants; ++oct) {
+        const unsigned signs = unsigned(oct) & splitAxes;
+        if ((viewOctants(camera) >> oct & 1) && std::find(passes.begin(), passes.end(), signs) == passes.end())
+            passes.push_back(signs);
+    }
+    std::vector<std::pair<unsigned, std::vector<int>>> dispatches;  // (signs, bricks in order)
+    for (unsigned signs : passes) dispatches.emplace_back(signs, volume.bricks().frontToBack(signs));
 
     RenderResult result;
     result.image = Image(camera.width, camera.height);
@@ -181,15 +240,36 @@ RenderResult VulkanRenderer::renderOnDevice(const PreparedVolume& prepared, cons
 
     for (int y0 = 0; y0 < camera.height; y0 += tileSize_) {
         for (int x0 = 0; x0 < camera.width; x0 += tileSize_) {
-            const TilePush tile{{x0, y0}, {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)}};
+            TilePush tile{};
+            tile.origin[0] = x0, tile.origin[1] = y0;
+            tile.size[0] = std::min(tileSize_, camera.width - x0), tile.size[1] = std::min(tileSize_, camera.height - y0);
             submitAndWait(ctx_, pool_, [&](const vk::raii::CommandBuffer& cmd) {
                 using S = vk::PipelineStageFlagBits;
+                using A = vk::AccessFlagBits;
                 cmd.resetQueryPool(*queries_, 0, 2);
                 cmd.writeTimestamp(S::eTopOfPipe, *queries_, 0);
                 cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipe);
-                cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout_, 0, set, {});
-                cmd.pushConstants<TilePush>(*pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0, tile);
-                cmd.dispatch((tile.size[0] + kGroup - 1) / kGroup, (tile.size[1] + kGroup - 1) / kGroup, 1);
+                tile.firstDispatch = 1;
+                for (std::size_t pass = 0; pass < dispatches.size(); ++pass) {
+                    const auto& [signs, order] = dispatches[pass];
+                    for (std::size_t i = 0; i < order.size(); ++i) {
+                        const Brick& b = bricks[order[i]];
+                        for (int a = 0; a < 3; ++a) {
+                            tile.brickLo[a] = b.lo[a], tile.brickHi[a] = b.hi[a];
+                            tile.imageLo[a] = b.imageLo[a], tile.imageDims[a] = b.imageDims[a];
+                        }
+                        tile.lastDispatch = pass + 1 == dispatches.size() && i + 1 == order.size();
+                        tile.passAxes = int(splitAxes), tile.passSigns = int(signs);
+                        cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout_, 0,
+                                               *sets[order[i]], {});
+                        cmd.pushConstants<TilePush>(*pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0, tile);
+                        cmd.dispatch((tile.size[0] + kGroup - 1) / kGroup, (tile.size[1] + kGroup - 1) / kGroup, 1);
+                        // The next brick reads the ray states this one wrote.
+                        vk::MemoryBarrier carried(A::eShaderWrite, A::eShaderRead | A::eShaderWrite);
+                        cmd.pipelineBarrier(S::eComputeShader, S::eComputeShader, {}, carried, {}, {});
+                        tile.firstDispatch = 0;
+                    }
+                }
                 cmd.writeTimestamp(S::eBottomOfPipe, *queries_, 1);
                 vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
                 cmd.pipelineBarrier(S::eComputeShader, S::eHost, {}, toHost, {}, {});
@@ -219,7 +299,8 @@ RenderResult VulkanRenderer::renderOnDevice(const PreparedVolume& prepared, cons
                     if (it[local] & kFailed)
                         throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) +
                                                  " caster: the ray at pixel (" + std::to_string(px) + ", " +
-                                                 std::to_string(py) + ") hit the iteration cap or a missing octant (a bug)");
+                                                 std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
+                                                 "pass (a bug)");
                     std::memcpy(result.image.pixel(px, py), c + local * 4, 4 * sizeof(float));
                     result.iterations[out] = it[local];
                     result.samples[out] = uint64_t(sm[local * 2]) | (uint64_t(sm[local * 2 + 1]) << 32);

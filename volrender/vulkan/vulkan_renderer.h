@@ -1,4 +1,4 @@
-// The Vulkan compute casters: same inputs and outputs as renderCpu, one dispatch per image tile.
+// The Vulkan compute casters: same inputs and outputs as renderCpu, one dispatch per image tile and brick.
 #pragma once
 #include <map>
 #include <memory>
@@ -16,23 +16,35 @@ namespace vr {
 class VulkanRenderer {
 public:
     // Tiles of tileSize x tileSize pixels are separate submits, so no dispatch runs long enough to trip a
-    // GPU watchdog.
-    explicit VulkanRenderer(const VulkanContext& ctx, int tileSize = 128);
+    // GPU watchdog. `limits` lowers the device's image limits (tests force bricks with it).
+    explicit VulkanRenderer(const VulkanContext& ctx, int tileSize = 128, const ImageLimits& limits = {});
 
-    // Uploads what the caster and the view need (see GpuVolume), renders, reads back. Throws InputError for a
-    // prepared volume that lacks what the settings need, std::runtime_error for device failures (out of
-    // memory, device lost) and for a ray that hit the iteration cap.
+    // Uploads a prepared volume once for many renders (see GpuVolume); a volume too large for one image is split
+    // into bricks. Throws InputError when the prepared volume lacks what `contents` asks for.
+    GpuVolume upload(const PreparedVolume& prepared, const GpuVolumeContents& contents);
+
+    // Renders an uploaded volume, reads back. Throws InputError for unusable settings, std::invalid_argument when
+    // the volume lacks what the settings or the view need, std::runtime_error for device failures (out of memory,
+    // device lost) and for a ray that hit the iteration cap.
+    RenderResult render(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
+
+    // Uploads just what this caster and view need, then renders (one-off renders; an orbit uploads once).
     RenderResult render(const PreparedVolume& prepared, const Camera& camera, const RenderSettings& settings);
 
-    // The resources uploaded by the last render, with their bytes.
+    // The resources the last render read (of the volume uploaded for it or given to it), per brick: the classified
+    // volume, the normals when shading, the caster's field.
     const std::vector<UploadedResource>& lastUploads() const { return uploads_; }
 
 private:
-    RenderResult renderOnDevice(const PreparedVolume& prepared, const Camera& camera, const RenderSettings& settings);
-    const vk::raii::Pipeline& pipeline(Caster caster, bool trilinear, bool shading);
+    RenderResult renderOnDevice(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
+    const vk::raii::Pipeline& pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode);
+    // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
+    template <typename Work>
+    auto deviceErrors(Work&& work) -> decltype(work());
 
     const VulkanContext& ctx_;
     int tileSize_;
+    ImageLimits limits_;
     vk::raii::CommandPool pool_{nullptr};
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout pipelineLayout_{nullptr};
@@ -41,7 +53,7 @@ private:
     vk::raii::QueryPool queries_{nullptr};
     double timestampPeriodNs_ = 0;  // 0: the queue has no timestamps
     uint64_t timestampMask_ = 0;
-    std::map<std::tuple<Caster, bool, bool>, vk::raii::Pipeline> pipelines_;
+    std::map<std::tuple<Caster, bool, bool, ExtentCode>, vk::raii::Pipeline> pipelines_;
     // Bound where a variant reads nothing (normals without shading, field for primitive): never sampled.
     std::unique_ptr<VolumeImage> unusedNormals_, unusedField_;
     std::vector<UploadedResource> uploads_;

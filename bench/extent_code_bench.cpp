@@ -1,0 +1,153 @@
+// EACD extent codes (core/extent_code.h) compared (prints Markdown tables): per dataset and threshold setting, the
+// EACD caster on the device with exact extents (3 bytes per octant), log16 (2) and joint8 (1): bytes per voxel
+// stored and uploaded, mean iterations per ray and median device time over an orbit after one warm-up frame, both
+// as ratios to exact and to log16, the wall and process CPU time of the orbit, and the worst view's PSNR against
+// the exact code's image. Iterations do not depend on the device; times do (the lead re-measures on a quiet GPU).
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+#include "core/errors.h"
+#include "core/extent_code.h"
+#include "preprocess/classify/classify.h"
+#include "preprocess/fields/build_fields.h"
+#include "preprocess/load/load_volume.h"
+#include "preprocess/pipeline/prepare.h"
+#include "preprocess/segment/segment.h"
+#include "support/datasets.h"
+#include "volrender/vulkan/view_octants.h"
+#include "volrender/vulkan/vulkan_renderer.h"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace vr;
+
+constexpr ExtentCode kCodes[] = {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8};
+
+// PSNR of the displayed RGB (clamped to [0,1]) of b against a; +inf when equal.
+double psnr(const Image& a, const Image& b) {
+    double sum = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+        if (i % 4 == 3) continue;
+        const double d = std::clamp(a.rgba[i], 0.f, 1.f) - std::clamp(b.rgba[i], 0.f, 1.f);
+        sum += d * d;
+        ++n;
+    }
+    return sum == 0 ? INFINITY : 10 * std::log10(double(n) / sum);
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+struct CodeRun {
+    double iterations = 0, deviceMs = 0, deviceBytesPerVoxel = 0;
+    StageTime orbit;
+    double worstPsnr = INFINITY;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"EACD extent codes on the device: exact vs log16 vs joint8, iterations per ray and device time"};
+    std::vector<std::string> datasets{"boston_teapot", "cranium_ct"};
+    int size = 512, views = 4, device = -1;
+    double to = 0.02, ta = 10, step = 0.5;
+    app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->capture_default_str();
+    app.add_option("--size", size, "image width = height")->capture_default_str();
+    app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 20)")->capture_default_str();
+    app.add_option("--to", to, "T_o of the second threshold setting (the first is 0)")->capture_default_str();
+    app.add_option("--ta", ta, "T_a of the second threshold setting, degrees")->capture_default_str();
+    app.add_option("--step", step, "step in voxels")->capture_default_str();
+    app.add_option("--device", device, "Vulkan device index");
+    bool quick = false;
+    app.add_flag("--short", quick, "a quick run for CI: 64x64, 2 views, the teapot only");
+    CLI11_PARSE(app, argc, argv);
+    if (quick) size = 64, views = 2, datasets = {"boston_teapot"};
+
+    try {
+        VulkanContext ctx(VulkanOptions{device, false});
+        VulkanRenderer renderer(ctx);
+        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, nearest, Phong headlight, "
+                    "ERT 0.99, EACD caster.\n\n",
+                    ctx.info().name.c_str(), size, size, views, step);
+        std::printf("Stored bytes per voxel (8 octants): PC 1, ACD 8, EACD exact %zu, log16 %zu, joint8 %zu.\n\n",
+                    kOctants * extentCodeBytes(ExtentCode::Exact), kOctants * extentCodeBytes(ExtentCode::Log16),
+                    kOctants * extentCodeBytes(ExtentCode::Joint8));
+        std::printf("| dataset | T_o, T_a | code | device B/voxel (octants of the orbit) | iterations/ray | "
+                    "x exact | x log16 | median device ms | x exact | x log16 | orbit wall s (CPU s) | "
+                    "PSNR vs exact, worst view (dB) |\n");
+        std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+        for (const std::string& name : datasets) {
+            const auto rows = test::rawManifest();
+            const auto row = std::find_if(rows.begin(), rows.end(),
+                                          [&](const test::DatasetEntry& e) { return e.file.rfind(name, 0) == 0; });
+            if (row == rows.end()) throw InputError("no raw dataset starting with '" + name + "' in the manifest");
+            RawOptions raw;
+            raw.spacing = row->spacing;
+            ClassifyParams cp;
+            cp.transferFunction = loadTransferFunction(test::datasetsDir() / row->tf);
+            PreparedVolume exact;
+            exact.classified = classify(loadVolume(test::datasetsDir() / row->file, raw), cp);
+            std::vector<Camera> cameras;
+            unsigned octants = 0;
+            for (int v = 0; v < views; ++v) {
+                ViewParams vp;
+                vp.width = vp.height = size;
+                vp.azimuthDeg = 360.0 * v / views;
+                vp.elevationDeg = 20;
+                cameras.push_back(Camera::fit(exact.classified.grid, vp));
+                octants |= viewOctants(cameras.back());
+            }
+            for (auto [settingTo, settingTa] : {std::pair{0.0, 0.0}, std::pair{to, ta}}) {
+                exact.meta.segmentation = {settingTo, settingTa, true, false};
+                exact.regions = segment(exact.classified, exact.meta.segmentation);
+                exact.fields = buildFields(exact.regions, kFieldEACD);
+                RenderSettings s;
+                s.caster = Caster::EACD;
+                s.stepVoxels = step;
+                std::vector<Image> reference;  // the exact code's image per view
+                std::array<CodeRun, 3> runs;
+                for (ExtentCode code : kCodes) {
+                    PreparedVolume p = exact;
+                    quantiseEACD(p.fields, code);
+                    const GpuVolume volume = renderer.upload(p, {{Caster::EACD}, s.shading, octants});
+                    CodeRun& run = runs[int(code)];
+                    for (const UploadedResource& u : volume.uploads())
+                        if (u.name == "eacd") run.deviceBytesPerVoxel += double(u.bytes) / double(p.classified.grid.voxels());
+                    renderer.render(volume, cameras[0], s);  // warm-up
+                    std::vector<double> ms;
+                    const StageClock clock;
+                    for (int v = 0; v < views; ++v) {
+                        const RenderResult r = renderer.render(volume, cameras[v], s);
+                        ms.push_back(r.deviceMilliseconds > 0 ? r.deviceMilliseconds : r.wallMilliseconds);
+                        run.iterations += std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0) /
+                                          double(r.iterations.size()) / views;
+                        if (code == ExtentCode::Exact) reference.push_back(r.image);
+                        run.worstPsnr = std::min(run.worstPsnr, psnr(reference[v], r.image));
+                    }
+                    run.orbit = clock.stop("orbit");
+                    run.deviceMs = median(ms);
+                }
+                for (ExtentCode code : kCodes) {
+                    const CodeRun& r = runs[int(code)];
+                    const CodeRun &e = runs[int(ExtentCode::Exact)], &l = runs[int(ExtentCode::Log16)];
+                    std::printf("| %s | %g, %g | %s | %.0f | %.2f | %.3f | %.3f | %.1f | %.3f | %.3f | %.2f (%.2f) | %.1f |\n",
+                                row->file.c_str(), settingTo, settingTa, std::string(extentCodeName(code)).c_str(),
+                                r.deviceBytesPerVoxel, r.iterations, r.iterations / e.iterations,
+                                r.iterations / l.iterations, r.deviceMs, r.deviceMs / e.deviceMs, r.deviceMs / l.deviceMs,
+                                r.orbit.seconds, r.orbit.cpuSeconds, r.worstPsnr);
+                    std::fflush(stdout);
+                }
+            }
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "extent_code_bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

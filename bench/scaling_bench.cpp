@@ -1,0 +1,214 @@
+// Preprocessing cost against volume size: per edge N (64 .. 512, N^3 voxels), the wall and CPU seconds of every
+// stage (classify, segment, pc, acd, eacd) of a full staged preparation, and of the two incremental ones: a
+// threshold change (segmentation and fields) and a transfer-function change (classification too). For a
+// synthetic phantom made at each size and a real volume resampled (trilinear) to each size. Prints Markdown
+// tables with nanoseconds per voxel, so that linear growth reads as a flat column. One size is alive at a time.
+#include <tbb/blocked_range.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+
+#include "core/errors.h"
+#include "datasets/phantoms.h"
+#include "preprocess/pipeline/staged_prepare.h"
+#include "support/datasets.h"
+
+namespace {
+namespace fs = std::filesystem;
+using vr::Vec3i;
+
+const std::vector<std::string> kStages = {"classify", "segment", "pc", "acd", "eacd"};
+const std::vector<std::string> kScenarios = {"full", "threshold change", "TF change"};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Source position of destination voxel i when n voxels are resampled to m over the same extent (centres aligned).
+struct Tap {
+    int lo, hi;
+    double w;  // weight of hi
+};
+std::vector<Tap> taps(int n, int m) {
+    std::vector<Tap> t(m);
+    for (int i = 0; i < m; ++i) {
+        const double s = std::clamp((i + 0.5) * n / m - 0.5, 0.0, double(n - 1));
+        const int lo = int(s);
+        t[i] = {lo, std::min(lo + 1, n - 1), s - lo};
+    }
+    return t;
+}
+
+// Trilinear resampling to `dims` over the same physical extent; integer volumes stay integer (rounded).
+vr::Volume resample(const vr::Volume& v, Vec3i dims) {
+    vr::Volume out;
+    out.grid = v.grid;
+    out.grid.dims = dims;
+    for (int a = 0; a < 3; ++a) out.grid.spacing[a] = v.grid.spacing[a] * v.grid.dims[a] / dims[a];
+    out.sourceType = v.sourceType;
+    out.source = v.source + " resampled";
+    out.values.resize(out.grid.voxels());
+    const std::vector<Tap> tx = taps(v.grid.dims.x, dims.x), ty = taps(v.grid.dims.y, dims.y),
+                           tz = taps(v.grid.dims.z, dims.z);
+    const bool integer = v.sourceType != vr::ScalarType::Float32;
+    tbb::parallel_for(tbb::blocked_range<int>(0, dims.z), [&](const tbb::blocked_range<int>& zs) {
+        for (int z = zs.begin(); z != zs.end(); ++z)
+            for (int y = 0; y < dims.y; ++y)
+                for (int x = 0; x < dims.x; ++x) {
+                    const Tap &a = tx[x], &b = ty[y], &c = tz[z];
+                    const auto line = [&](int j, int k) { return v.at(a.lo, j, k) * (1 - a.w) + v.at(a.hi, j, k) * a.w; };
+                    const auto plane = [&](int k) { return line(b.lo, k) * (1 - b.w) + line(b.hi, k) * b.w; };
+                    const double f = plane(c.lo) * (1 - c.w) + plane(c.hi) * c.w;
+                    out.values[vr::linearIndex(dims, x, y, z)] = float(integer ? std::round(f) : f);
+                }
+    });
+    return out;
+}
+
+// Per scenario and stage (and "total" for the whole prepare call), one wall and one CPU time per run.
+struct SizeResult {
+    std::string volume;
+    int edge = 0;
+    std::map<std::string, std::map<std::string, std::vector<double>>> wall, cpu;
+    uint32_t regions = 0;
+};
+
+void record(SizeResult& r, const std::string& scenario, const vr::StagedPreparation& staged,
+            const vr::StageTime& total) {
+    for (const vr::StageTime& t : staged.lastStages()) {
+        r.wall[scenario][t.stage].push_back(t.seconds);
+        r.cpu[scenario][t.stage].push_back(t.cpuSeconds);
+    }
+    r.wall[scenario]["total"].push_back(total.seconds);
+    r.cpu[scenario]["total"].push_back(total.cpuSeconds);
+}
+
+// The three scenarios on one volume, `runs` times: a fresh preparation, then a new T_o, then a new TF (every
+// opacity scaled by 0.8).
+SizeResult benchSize(const std::string& name, const vr::Volume& volume, const vr::PrepareOptions& base, int runs) {
+    SizeResult r{name, volume.grid.dims.x, {}, {}, 0};
+    vr::PrepareOptions thresholdChanged = base;
+    thresholdChanged.segmentation.opacityThreshold *= 2;
+    vr::PrepareOptions tfChanged = thresholdChanged;
+    for (auto& p : tfChanged.classify.transferFunction->opacity) p.opacity *= 0.8;
+    for (int run = 0; run < runs; ++run) {
+        vr::StagedPreparation staged(volume);
+        const std::pair<std::string, const vr::PrepareOptions*> steps[] = {
+            {"full", &base}, {"threshold change", &thresholdChanged}, {"TF change", &tfChanged}};
+        for (const auto& [scenario, options] : steps) {
+            vr::StageClock clock;
+            const vr::PreparedVolume& p = staged.prepare(*options);
+            record(r, scenario, staged, clock.stop("total"));
+            if (scenario == "full") r.regions = p.regions.count;
+        }
+    }
+    return r;
+}
+
+void printTable(const char* title, const std::vector<SizeResult>& results,
+                std::map<std::string, std::map<std::string, std::vector<double>>> SizeResult::*times) {
+    std::printf("%s\n\n| volume | N | voxels | regions |", title);
+    for (const auto& s : kStages) std::printf(" %s |", s.c_str());
+    for (const auto& s : kScenarios) std::printf(" %s | ns/voxel |", s.c_str());
+    std::printf("\n|---|---:|---:|---:|");
+    for (std::size_t i = 0; i < kStages.size() + 2 * kScenarios.size(); ++i) std::printf("---:|");
+    std::printf("\n");
+    for (const SizeResult& r : results) {
+        const double voxels = std::pow(double(r.edge), 3);
+        const auto& full = (r.*times).at("full");
+        std::printf("| %s | %d | %.0f | %u |", r.volume.c_str(), r.edge, voxels, r.regions);
+        for (const auto& s : kStages) std::printf(full.count(s) ? " %.3f |" : " - |", full.count(s) ? median(full.at(s)) : 0);
+        for (const auto& s : kScenarios) {
+            const double t = median((r.*times).at(s).at("total"));
+            std::printf(" %.3f | %.1f |", t, 1e9 * t / voxels);
+        }
+        std::printf("\n");
+    }
+    std::printf("\n");
+}
+
+vr::test::DatasetEntry findDataset(const std::string& file) {
+    for (const auto& e : vr::test::rawManifest())
+        if (e.file == file) return e;
+    throw vr::InputError(file + ": not a raw dataset of " + (vr::test::datasetsDir() / "MANIFEST.tsv").string());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Preprocessing time per stage against volume size (64^3 .. 512^3): full, threshold change, TF change"};
+    bool shortMode = false;
+    std::vector<int> edges{64, 128, 256, 512};
+    int runs = 3;
+    std::string real = "vispy_mri_head_256x256x256_uint8.raw.gz";
+    std::string phantom = "engine";
+    vr::PrepareOptions options;
+    options.segmentation = {0.05, 10, true, false};
+    app.add_flag("--short", shortMode, "64^3 and 128^3 only, one run: a few seconds (CTest)");
+    app.add_option("--sizes", edges, "edges N of the N^3 volumes")->delimiter(',')->capture_default_str();
+    app.add_option("--runs", runs, "runs per size (medians are printed)")->capture_default_str();
+    app.add_option("--real", real, "raw dataset of MANIFEST.tsv resampled to each size")->capture_default_str();
+    app.add_option("--phantom", phantom, "engine or shells")->check(CLI::IsMember({"engine", "shells"}))
+        ->capture_default_str();
+    app.add_option("--to", options.segmentation.opacityThreshold, "T_o (a threshold change doubles it)")
+        ->capture_default_str();
+    app.add_option("--ta", options.segmentation.angleThresholdDeg, "T_a, degrees")->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
+    if (shortMode) edges = {64, 128}, runs = 1;
+
+    try {
+        const fs::path dir = vr::test::datasetsDir();
+        const vr::test::DatasetEntry entry = findDataset(real);
+        vr::RawOptions raw;
+        raw.dims = entry.dims;
+        raw.type = entry.type;
+        raw.spacing = entry.spacing;
+        const vr::Volume source = vr::loadVolume(dir / entry.file, raw);
+        std::string realName = entry.file.substr(0, entry.file.find(".raw"));  // NAME_DxDxD_TYPE -> NAME
+        for (int cut = 0; cut < 2; ++cut) realName.resize(std::min(realName.size(), realName.rfind('_')));
+
+        vr::PrepareOptions phantomOptions = options, realOptions = options;
+        phantomOptions.classify.transferFunction =
+            vr::loadTransferFunction(dir / (phantom == "shells" ? "cranium_ct.tf.json" : "sim.tf.json"));
+        realOptions.classify.transferFunction = vr::loadTransferFunction(dir / entry.tf);
+
+        std::vector<SizeResult> results;
+        for (int n : edges) {
+            const Vec3i dims{n, n, n};
+            {
+                const vr::Volume v = phantom == "shells" ? vr::shellsPhantom(dims) : vr::enginePhantom(dims);
+                results.push_back(benchSize("phantom " + phantom, v, phantomOptions, runs));
+            }
+            {
+                const vr::Volume v = resample(source, dims);
+                results.push_back(benchSize(realName, v, realOptions, runs));
+            }
+            std::fprintf(stderr, "%d^3 done\n", n);
+        }
+        std::stable_sort(results.begin(), results.end(),
+                         [](const SizeResult& a, const SizeResult& b) { return a.volume < b.volume; });
+
+        std::printf("Staged preparation against size: T_o = %g (a threshold change doubles it), T_a = %g deg, "
+                    "normals on, nearest sampling, EACD code %s, %d threads; median of %d runs. Stages of the full "
+                    "preparation; full, threshold change and TF change are whole prepare() calls (%s resampled "
+                    "trilinearly to N^3; the phantom made at N^3).\n\n",
+                    options.segmentation.opacityThreshold, options.segmentation.angleThresholdDeg,
+                    std::string(vr::extentCodeName(options.eacdCode)).c_str(), tbb::info::default_concurrency(),
+                    runs, entry.file.c_str());
+        printTable("Wall seconds:", results, &SizeResult::wall);
+        printTable("CPU seconds (all threads; steadier than wall time on a shared machine):", results,
+                   &SizeResult::cpu);
+    } catch (const vr::InputError& e) {
+        std::fprintf(stderr, "scaling_bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,163 @@
+#include "extent_code.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <bit>
+#include <cstring>
+#include <string>
+
+#include "distance_fields.h"
+#include "errors.h"
+
+namespace vr {
+namespace {
+
+// Log16: the 32 values of a 5-bit index. 1..16 exactly (short leaps are common and every voxel lost there is
+// a large fraction of the leap), then round(16 * (255/16)^(k/16)), k = 1..16: at most 16 % of a long leap is lost.
+constexpr std::array<uint8_t, 32> kLog16Values = {
+    1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11,  12,  13,  14,  15,  16,
+    19, 23, 27, 32, 38, 45, 54, 64, 76, 90, 107, 128, 152, 180, 214, 255};
+// Joint8: the levels of each axis; the table holds every (x, y, z) of levels, x fastest (6^3 = 216 boxes). Level
+// sets topping out at 32, 48, 50 and 64 came within 2 % of each other in iterations per ray on the teapot and the
+// cranium (bench/extent_code_bench); this one was best on the cranium.
+constexpr std::array<uint8_t, 6> kJoint8Levels = {1, 2, 4, 8, 20, 50};
+constexpr int kJoint8Side = int(kJoint8Levels.size());
+static_assert(kJoint8Side * kJoint8Side * kJoint8Side <= kExtentTableEntries);
+
+template <std::size_t N>
+constexpr bool increasingFromOne(const std::array<uint8_t, N>& values) {
+    for (std::size_t i = 1; i < N; ++i)
+        if (values[i] <= values[i - 1]) return false;
+    return values[0] == 1;
+}
+static_assert(increasingFromOne(kLog16Values) && kLog16Values.back() == 255, "log16 must reach the 255 cap");
+static_assert(increasingFromOne(kJoint8Levels));
+
+// For every extent 0..255, the index of the largest value not above it (0 for the invalid extent 0).
+template <std::size_t N>
+constexpr std::array<uint8_t, 256> floorIndex(const std::array<uint8_t, N>& values) {
+    std::array<uint8_t, 256> index{};
+    std::size_t i = 0;
+    for (int v = 0; v < 256; ++v) {
+        while (i + 1 < N && values[i + 1] <= v) ++i;
+        index[std::size_t(v)] = uint8_t(i);
+    }
+    return index;
+}
+constexpr std::array<uint8_t, 256> kLog16Index = floorIndex(kLog16Values);
+constexpr std::array<uint8_t, 256> kJoint8Index = floorIndex(kJoint8Levels);
+
+// Runs f(i) for i in [0, n) on all threads.
+template <typename F>
+void forEachVoxel(std::size_t n, F f) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i) f(i);
+    });
+}
+
+ExtentTable makeTable(ExtentCode code) {
+    ExtentTable t;
+    t.fill({1, 1, 1, 0});
+    if (code == ExtentCode::Log16)
+        for (std::size_t i = 0; i < kLog16Values.size(); ++i)
+            t[i] = {kLog16Values[i], kLog16Values[i], kLog16Values[i], 0};
+    if (code == ExtentCode::Joint8)
+        for (int i = 0; i < kJoint8Side * kJoint8Side * kJoint8Side; ++i)
+            t[std::size_t(i)] = {kJoint8Levels[std::size_t(i % kJoint8Side)],
+                                 kJoint8Levels[std::size_t(i / kJoint8Side % kJoint8Side)],
+                                 kJoint8Levels[std::size_t(i / (kJoint8Side * kJoint8Side))], 0};
+    return t;
+}
+
+}  // namespace
+
+std::string_view extentCodeName(ExtentCode code) {
+    switch (code) {
+        case ExtentCode::Exact: return "exact";
+        case ExtentCode::Log16: return "log16";
+        case ExtentCode::Joint8: return "joint8";
+    }
+    return "?";
+}
+
+ExtentCode parseExtentCode(std::string_view name, std::string_view what) {
+    for (ExtentCode c : {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8})
+        if (name == extentCodeName(c)) return c;
+    throw InputError(std::string(what) + ": unknown EACD code '" + std::string(name) +
+                     "' (expected exact, log16 or joint8)");
+}
+
+std::size_t extentCodeBytes(ExtentCode code) {
+    switch (code) {
+        case ExtentCode::Exact: return 3;
+        case ExtentCode::Log16: return 2;
+        case ExtentCode::Joint8: return 1;
+    }
+    return 0;
+}
+
+uint16_t encodeExtents(ExtentCode code, const Extents& e) {
+    // The tables of both codes are products of per-axis values, so the largest box inside e takes the largest
+    // value not above e on each axis.
+    if (code == ExtentCode::Log16)
+        return uint16_t(kLog16Index[e[0]] | (kLog16Index[e[1]] << 5) | (kLog16Index[e[2]] << 10));
+    return uint16_t(kJoint8Index[e[0]] + kJoint8Side * (kJoint8Index[e[1]] + kJoint8Side * kJoint8Index[e[2]]));
+}
+
+Extents decodeExtents(ExtentCode code, uint16_t coded) {
+    const ExtentTable& t = extentDecodeTable(code);
+    if (code == ExtentCode::Log16)
+        return {uint8_t(t[coded & 31][0]), uint8_t(t[(coded >> 5) & 31][1]), uint8_t(t[(coded >> 10) & 31][2])};
+    const ExtentTableEntry& box = t[coded & 255];
+    return {uint8_t(box[0]), uint8_t(box[1]), uint8_t(box[2])};
+}
+
+Extents quantiseExtents(ExtentCode code, const Extents& e) {
+    return code == ExtentCode::Exact ? e : decodeExtents(code, encodeExtents(code, e));
+}
+
+const ExtentTable& extentDecodeTable(ExtentCode code) {
+    static const ExtentTable tables[3] = {makeTable(ExtentCode::Exact), makeTable(ExtentCode::Log16),
+                                          makeTable(ExtentCode::Joint8)};
+    return tables[int(code)];
+}
+
+std::vector<uint8_t> encodeExtentField(ExtentCode code, const std::vector<Extents>& extents) {
+    const std::size_t bytes = extentCodeBytes(code);
+    std::vector<uint8_t> out(extents.size() * bytes);
+    if (code == ExtentCode::Exact) {
+        std::memcpy(out.data(), extents.data(), out.size());
+        return out;
+    }
+    static_assert(std::endian::native == std::endian::little, "coded extents are stored little-endian");
+    forEachVoxel(extents.size(), [&](std::size_t i) {
+        const uint16_t c = encodeExtents(code, extents[i]);
+        std::memcpy(&out[i * bytes], &c, bytes);
+    });
+    return out;
+}
+
+std::vector<Extents> decodeExtentField(ExtentCode code, const uint8_t* bytes, std::size_t voxels) {
+    std::vector<Extents> out(voxels);
+    if (code == ExtentCode::Exact) {
+        std::memcpy(out.data(), bytes, voxels * sizeof(Extents));
+        return out;
+    }
+    const std::size_t n = extentCodeBytes(code);
+    forEachVoxel(voxels, [&](std::size_t i) {
+        uint16_t c = 0;
+        std::memcpy(&c, bytes + i * n, n);
+        out[i] = decodeExtents(code, c);
+    });
+    return out;
+}
+
+void quantiseEACD(DistanceFields& fields, ExtentCode code) {
+    fields.eacdCode = code;
+    if (code == ExtentCode::Exact) return;
+    for (auto& octant : fields.eacd)
+        forEachVoxel(octant.size(), [&](std::size_t i) { octant[i] = quantiseExtents(code, octant[i]); });
+}
+
+}  // namespace vr

@@ -1,0 +1,34 @@
+// The EACD builder's working state (ALGORITHMS.md section 4) and its two extension steps (eacd_extensions.cpp).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/distance_fields.h"
+#include "preprocess/fields/axial_runs.h"
+
+namespace vr {
+
+// The octants built together. Their extents live in planar byte arrays while being built (ext[o][a][v]: each
+// step reads and writes whole slots, so one byte per voxel moves instead of three) and are interleaved at the end.
+// widest[o][v] is the axis step 1 extends (the first with the largest extent), longest[o][v] its extent.
+struct OctantBatch {
+    std::vector<int> octants;
+    std::array<const std::vector<uint8_t>*, kOctants> acd{};
+    std::array<std::array<std::vector<uint8_t>, 3>, kOctants> ext;
+    std::array<std::vector<uint8_t>, kOctants> widest, longest;
+
+    std::vector<int> withSign(int axis, int sign) const {
+        std::vector<int> out;
+        for (int o : octants)
+            if (octantSign(o, axis) == sign) out.push_back(o);
+        return out;
+    }
+};
+
+// Step 1, along axis a: ext[o][a] = the extension along a of the ACD cube of every octant of the batch.
+void cubeExtensions(AxialRuns& runs, OctantBatch& batch, int a);
+// Step 2, along axis b: ext[o][b] = the extension along b of the box that step 1 extended along widest[o].
+void boxExtensions(AxialRuns& runs, OctantBatch& batch, int b);
+
+}  // namespace vr

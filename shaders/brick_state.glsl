@@ -1,0 +1,44 @@
+// Bricks: a volume too large for one image is rendered one brick per dispatch, in an order every ray of the pass
+// crosses them in; each ray's state (the lattice index it reached, the composite so far, its counters) is
+// carried from one dispatch to the next, so that a split render takes the same leaps as an unsplit one.
+#ifndef VR_BRICK_STATE_GLSL
+#define VR_BRICK_STATE_GLSL
+
+struct RayState {
+    dvec4 composite;  // premultiplied colour, alpha
+    double k;         // the next lattice sample
+    double samples;   // lattice samples represented so far
+    uint iterations;
+    uint flags;       // kFailed, kCutShort (caster.comp)
+};
+
+layout(set = 0, binding = 7, std430) buffer RayStates { RayState rayState[]; };  // one per pixel of the tile
+
+// Member by member: glslang stores a whole struct into a buffer with an OpStore of mismatched types.
+RayState loadRayState(uint i) {
+    return RayState(rayState[i].composite, rayState[i].k, rayState[i].samples, rayState[i].iterations,
+                    rayState[i].flags);
+}
+
+void storeRayState(uint i, RayState s) {
+    rayState[i].composite = s.composite;
+    rayState[i].k = s.k;
+    rayState[i].samples = s.samples;
+    rayState[i].iterations = s.iterations;
+    rayState[i].flags = s.flags;
+}
+
+bool inBrick(ivec3 v) { return all(greaterThanEqual(v, T.brickLo.xyz)) && all(lessThanEqual(v, T.brickHi.xyz)); }
+
+bool rayInPass(int oct) { return (oct & T.passAxes) == T.passSigns; }
+
+// Texel of a global voxel in this brick's classified and normal images.
+ivec3 brickTexel(ivec3 v) { return v - T.imageLo.xyz; }
+
+// Texel of a global voxel in slab `slot` of this brick's field image (ACD / EACD stack octants along z).
+ivec3 fieldTexel(ivec3 v, int slot) {
+    ivec3 t = brickTexel(v);
+    return ivec3(t.xy, slot * T.imageDims.z + t.z);
+}
+
+#endif

@@ -1,0 +1,345 @@
+// What a Vulkan render puts on the device (issue 6): only what it reads, one upload for many renders, and a volume
+// split into bricks that each fit the device's image limits rendering the same image, with the same leaps, as the
+// unsplit one.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "datasets/phantoms.h"
+#include "preprocess/classify/classify.h"
+#include "preprocess/fields/build_fields.h"
+#include "preprocess/segment/segment.h"
+#include "support/render_cases.h"
+#include "volrender/vulkan/view_octants.h"
+#include "volrender/vulkan/vulkan_renderer.h"
+
+namespace vr {
+namespace {
+
+constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+
+VulkanContext& context() {
+    static VulkanContext ctx(VulkanOptions{-1, true});  // validation on in every test
+    return ctx;
+}
+
+// 20-pixel tiles on 32x24 images: full and partial tiles.
+VulkanRenderer& whole() {
+    static VulkanRenderer r(context(), 20);
+    return r;
+}
+
+// Images of at most 6^3 RGBA32F texels and 24 texels along an axis: the test volumes split along every axis, and
+// ACD / EACD, whose octant slabs stack along z, split along z again. One tile per image: the dispatches are many.
+constexpr ImageLimits kSmallImages{24, 16 * 6 * 6 * 6};
+VulkanRenderer& bricked() {
+    static VulkanRenderer r(context(), 32, kSmallImages);
+    return r;
+}
+
+void expectNoValidationErrors() {
+    EXPECT_TRUE(context().validationEnabled()) << "VK_LAYER_KHRONOS_validation is not installed";
+    const auto errors = context().validationErrors();
+    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
+}
+
+const TransferFunction& phantomTf() {
+    static const TransferFunction tf = parseTransferFunction(R"({
+        "Points": [0, 0, 0.5, 0, 40, 0.1, 0.5, 0, 100, 0.05, 0.5, 0, 200, 0.3, 0.5, 0, 255, 0.9, 0.5, 0],
+        "RGBPoints": [0, 0.9, 0.5, 0.4, 128, 0.3, 0.8, 0.2, 255, 1, 1, 0.9]
+    })", "phantom TF");
+    return tf;
+}
+
+PreparedVolume prepare(const Volume& volume, double to, double ta, bool trilinear) {
+    PreparedVolume p;
+    ClassifyParams cp;
+    cp.transferFunction = phantomTf();
+    p.classified = classify(volume, cp);
+    p.meta.segmentation = {to, ta, true, trilinear};
+    p.regions = segment(p.classified, p.meta.segmentation);
+    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
+    return p;
+}
+
+ViewParams view(double az, double el, Projection projection = Projection::Orthographic, double fov = 30) {
+    ViewParams v;
+    v.projection = projection;
+    v.azimuthDeg = az;
+    v.elevationDeg = el;
+    v.fovDeg = fov;
+    v.width = 32;
+    v.height = 24;
+    return v;
+}
+
+RenderSettings settings(Caster caster, bool shading, bool trilinear = false) {
+    RenderSettings s;
+    s.caster = caster;
+    s.shading = shading;
+    s.trilinear = trilinear;
+    return s;
+}
+
+// Bytes per resource name, summed over bricks.
+std::map<std::string, std::size_t> bytesByName(const std::vector<UploadedResource>& uploads) {
+    std::map<std::string, std::size_t> out;
+    for (const UploadedResource& u : uploads) out[u.name] += u.bytes;
+    return out;
+}
+
+std::size_t texels(const Vec3i& d) { return std::size_t(d.x) * d.y * d.z; }
+
+TEST(VulkanUploads, ARenderUploadsOnlyWhatItReads) {
+    const Volume v = shellsPhantom({20, 18, 16});
+    const PreparedVolume p = prepare(v, 0.02, 10, false);
+    const std::size_t voxels = v.grid.voxels();
+    const Camera ortho = Camera::fit(v.grid, view(30, 20));
+    const Camera persp = Camera::fit(v.grid, view(0, 0, Projection::Perspective));
+    using Bytes = std::map<std::string, std::size_t>;
+
+    whole().render(p, ortho, settings(Caster::Primitive, false));
+    EXPECT_EQ(bytesByName(whole().lastUploads()), (Bytes{{"classified", voxels * 16}}));  // no field, no normals
+    whole().render(p, ortho, settings(Caster::Primitive, true));
+    EXPECT_EQ(bytesByName(whole().lastUploads()), (Bytes{{"classified", voxels * 16}, {"normals", voxels * 8}}));
+    whole().render(p, ortho, settings(Caster::PC, false));
+    EXPECT_EQ(bytesByName(whole().lastUploads()), (Bytes{{"classified", voxels * 16}, {"pc", voxels}}));
+    // Orthographic: exactly the one octant of the view direction.
+    whole().render(p, ortho, settings(Caster::ACD, false));
+    EXPECT_EQ(bytesByName(whole().lastUploads()), (Bytes{{"classified", voxels * 16}, {"acd", voxels}}));
+    whole().render(p, ortho, settings(Caster::EACD, true));
+    EXPECT_EQ(bytesByName(whole().lastUploads()),
+              (Bytes{{"classified", voxels * 16}, {"normals", voxels * 8}, {"eacd", voxels * 4}}));
+
+    // Perspective: the octants its rays have, which viewOctants finds exactly here (down -z from the centre line:
+    // the rays spread over x and y, never toward +z).
+    unsigned seen = 0;
+    for (int y = 0; y < persp.height; ++y)
+        for (int x = 0; x < persp.width; ++x) {
+            const Vec3d d = persp.ray(x + 0.5, y + 0.5).direction;
+            seen |= 1u << octantOf(d.x, d.y, d.z);
+        }
+    EXPECT_EQ(viewOctants(persp), seen);
+    EXPECT_EQ(seen, 0b11110000u);
+    for (Caster c : {Caster::ACD, Caster::EACD}) {
+        whole().render(p, persp, settings(c, false));
+        const std::size_t texel = c == Caster::ACD ? 1 : 4;
+        EXPECT_EQ(bytesByName(whole().lastUploads()),
+                  (Bytes{{"classified", voxels * 16}, {std::string(casterName(c)), 4 * voxels * texel}}));
+    }
+    for (const UploadedResource& u : whole().lastUploads()) EXPECT_EQ(u.brick, 0) << u.name;  // one brick
+    expectNoValidationErrors();
+}
+
+// One upload for an orbit and every caster: each render reads (and reports) its own part, and renders what a
+// render that uploads for itself renders.
+TEST(VulkanUploads, OneUploadServesAnOrbitOfEveryCaster) {
+    const Volume v = enginePhantom({24, 20, 18});
+    const PreparedVolume p = prepare(v, 0.02, 10, false);
+    const std::size_t voxels = v.grid.voxels();
+    std::vector<Camera> cameras;
+    unsigned octants = 0;
+    for (int i = 0; i < 4; ++i) {
+        cameras.push_back(Camera::fit(v.grid, view(90.0 * i + 10, 20)));
+        octants |= viewOctants(cameras.back());
+    }
+    ASSERT_EQ(std::popcount(octants), 4);
+    const GpuVolume volume = whole().upload(p, {{kCasters, kCasters + 4}, true, octants});
+    const std::map<std::string, std::size_t> all{{"classified", voxels * 16}, {"normals", voxels * 8},
+                                                 {"pc", voxels},             {"acd", voxels * 4},
+                                                 {"eacd", voxels * 16}};
+    EXPECT_EQ(bytesByName(volume.uploads()), all);
+    EXPECT_EQ(volume.uploadedBytes(), voxels * (16 + 8 + 1 + 4 + 16));
+
+    for (const Camera& cam : cameras)
+        for (Caster c : kCasters)
+            for (bool shading : {true, false}) {
+                SCOPED_TRACE(std::string(casterName(c)) + (shading ? " shaded" : " unshaded"));
+                const RenderResult shared = whole().render(volume, cam, settings(c, shading));
+                std::map<std::string, std::size_t> read{{"classified", all.at("classified")}};
+                if (shading) read["normals"] = all.at("normals");
+                if (c != Caster::Primitive) read[std::string(casterName(c))] = all.at(std::string(casterName(c)));
+                EXPECT_EQ(bytesByName(whole().lastUploads()), read);
+                const RenderResult own = whole().render(p, cam, settings(c, shading));
+                EXPECT_EQ(maxAbsDifference(shared.image, own.image), 0.0);
+                EXPECT_EQ(shared.iterations, own.iterations);
+            }
+
+    // What the upload lacks is the caller's error, named.
+    const Camera persp = Camera::fit(v.grid, view(0, 0, Projection::Perspective));
+    EXPECT_THROW(whole().render(volume, persp, settings(Caster::ACD, false)), std::invalid_argument);  // octants
+    const GpuVolume plain = whole().upload(p, {{Caster::Primitive}, false, 0});
+    EXPECT_THROW(whole().render(plain, cameras[0], settings(Caster::Primitive, true)), std::invalid_argument);
+    EXPECT_THROW(whole().render(plain, cameras[0], settings(Caster::PC, false)), std::invalid_argument);
+    EXPECT_NO_THROW(whole().render(plain, cameras[0], settings(Caster::Primitive, false)));
+    expectNoValidationErrors();
+}
+
+// Bricks: their cores tile the volume, their images hold the core and one neighbour voxel each side, and the
+// uploads give each brick's bytes.
+void expectBrickFigures(const GpuVolume& volume, const PreparedVolume& p, int slots) {
+    const Vec3i dims = p.classified.grid.dims;
+    std::size_t cores = 0;
+    for (const Brick& b : volume.bricks().bricks()) {
+        cores += texels(b.hi - b.lo + Vec3i{1, 1, 1});
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_EQ(b.imageLo[a], std::max(0, b.lo[a] - 1));
+            EXPECT_EQ(b.imageLo[a] + b.imageDims[a] - 1, std::min(dims[a] - 1, b.hi[a] + 1));
+        }
+    }
+    EXPECT_EQ(cores, p.classified.grid.voxels());
+    const auto& bricks = volume.bricks().bricks();
+    for (const UploadedResource& u : volume.uploads()) {
+        ASSERT_LT(std::size_t(u.brick), bricks.size());
+        const std::size_t n = texels(bricks[u.brick].imageDims);
+        const std::map<std::string, std::size_t> perTexel{
+            {"classified", 16}, {"normals", 8}, {"pc", 1}, {"acd", slots}, {"eacd", 4 * slots}};
+        EXPECT_EQ(u.bytes, n * perTexel.at(u.name)) << u.name << " brick " << u.brick;
+    }
+}
+
+// Split and unsplit renders of every caster, nearest and trilinear, orthographic and perspective (outside and
+// inside the volume): the same image, the same fetches and samples per ray.
+void expectSplitEqualsUnsplit(const std::string& name, const PreparedVolume& p) {
+    const GridGeometry& grid = p.classified.grid;
+    std::vector<std::pair<std::string, Camera>> cameras{
+        {"ortho az 30 el 20", Camera::fit(grid, view(30, 20))},
+        {"ortho along -z", Camera::fit(grid, view(0, 0))},
+        {"ortho az -135 el -35", Camera::fit(grid, view(-135, -35))},
+        {"persp az -60 el 10", Camera::fit(grid, view(-60, 10, Projection::Perspective))},
+        {"persp az 20 el 30 fov 90", Camera::fit(grid, view(20, 30, Projection::Perspective, 90))}};
+    // From the centre: rays of seven octants, split on every axis, so seven passes.
+    cameras.emplace_back("persp inside", test::perspectiveCamera(grid.centre(), normalize(Vec3d{1, 1, 1}),
+                                                                 normalize(Vec3d{1, -1, 0}), 32, 24, 120));
+    for (const auto& [camName, cam] : cameras)
+        for (Caster c : kCasters)
+            for (bool trilinear : {false, true}) {
+                SCOPED_TRACE(name + " " + camName + " " + std::string(casterName(c)) +
+                             (trilinear ? " trilinear" : " nearest"));
+                const RenderSettings s = settings(c, true, trilinear);
+                const RenderResult unsplit = whole().render(p, cam, s);
+                ASSERT_EQ(whole().lastUploads().size(), c == Caster::Primitive ? 2u : 3u);  // one brick
+                const RenderResult split = bricked().render(p, cam, s);
+                EXPECT_LT(maxAbsDifference(split.image, unsplit.image), 1e-4);
+                EXPECT_EQ(split.iterations, unsplit.iterations);
+                EXPECT_EQ(split.samples, unsplit.samples);
+            }
+    const unsigned inside = viewOctants(cameras.back().second);
+    EXPECT_EQ(std::popcount(inside), 7);  // all but the one behind the eye
+    const GpuVolume volume = bricked().upload(p, {{kCasters, kCasters + 4}, true, inside});
+    const Vec3i counts = volume.bricks().counts();
+    EXPECT_GT(counts.x, 1);
+    EXPECT_GT(counts.y, 1);
+    EXPECT_GT(counts.z, 1);
+    expectBrickFigures(volume, p, 7);
+}
+
+TEST(VulkanBricks, SplitRendersEqualUnsplitOnPhantoms) {
+    expectSplitEqualsUnsplit("shells", prepare(shellsPhantom({16, 14, 12}), 0.02, 10, true));
+    expectSplitEqualsUnsplit("engine", prepare(enginePhantom({18, 14, 12}), 0, 0, true));
+    expectSplitEqualsUnsplit("noise", prepare(noisePhantom({12, 10, 14}, 3), 0.05, 20, true));
+    expectNoValidationErrors();
+}
+
+// The synthetic volumes of the stiff and extreme cases (render_cases.h): a long thin stack seen along it, and
+// white noise with opaque and transparent voxels under odd spacings.
+TEST(VulkanBricks, SplitRendersEqualUnsplitOnSyntheticVolumes) {
+    const PreparedVolume slabs = test::syntheticPrepared({{2, 3, 60}, {1, 1, 1}, {0, 0, 0}}, 1.0, [](const Vec3i& v) {
+        return test::VoxelClass{v.z % 2 ? 0.02 : 1e-4, {1, 0.2, 0}};
+    });
+    const PreparedVolume noise = test::syntheticPrepared({{13, 7, 11}, {1, 2.5, 0.7}, {-3, 0, 2}}, 0.7, [](const Vec3i& v) {
+        const unsigned h = unsigned(v.x * 73856093 ^ v.y * 19349663 ^ v.z * 83492791) % 100;
+        return test::VoxelClass{h < 10 ? 0.0 : h > 90 ? 1.0 : h / 100.0, {h / 100.0, 0.5, 1 - h / 100.0}};
+    });
+    for (const PreparedVolume* p : {&slabs, &noise}) {
+        const GridGeometry& g = p->classified.grid;
+        const std::vector<Camera> cameras{
+            test::orthoCamera({1, 1.5, 70}, {0, 0, -1}, {1, 0, 0}, 5, 5, 2.5),  // along the stack, voxel edges
+            Camera::fit(g, view(45, 35.264389682754654)),
+            Camera::fit(g, view(150, -20, Projection::Perspective, 70)),
+            test::perspectiveCamera(g.centre(), normalize(Vec3d{-1, 0.3, 1}), normalize(Vec3d{1, 0, 1}), 17, 13, 140)};
+        for (const Camera& cam : cameras)
+            for (Caster c : kCasters)
+                for (double step : {0.25, 1.7}) {
+                    RenderSettings s = settings(c, false);
+                    s.stepVoxels = step;
+                    s.ert = step > 1 ? 1.0 : 0.99;
+                    const RenderResult unsplit = whole().render(*p, cam, s);
+                    const RenderResult split = bricked().render(*p, cam, s);
+                    SCOPED_TRACE(std::string(casterName(c)) + " step " + std::to_string(step));
+                    EXPECT_LT(maxAbsDifference(split.image, unsplit.image), 1e-4);
+                    EXPECT_EQ(split.iterations, unsplit.iterations);
+                    EXPECT_EQ(split.samples, unsplit.samples);
+                }
+    }
+    expectNoValidationErrors();
+}
+
+// A limit on one image dimension alone: unsplit where one octant fits, split along z only where the stacked
+// octant slabs of a perspective view exceed it (as a 512^3 volume's four slabs exceed 2048 texels).
+TEST(VulkanBricks, StackedOctantSlabsSplitAlongZ) {
+    const Volume v = shellsPhantom({16, 16, 16});
+    const PreparedVolume p = prepare(v, 0.02, 10, false);
+    VulkanRenderer slabLimited(context(), 20, ImageLimits{32, 0});
+    const Camera ortho = Camera::fit(v.grid, view(30, 20));
+    const Camera persp = Camera::fit(v.grid, view(0, 0, Projection::Perspective));
+    const GpuVolume one = slabLimited.upload(p, {{Caster::ACD}, false, viewOctants(ortho)});
+    EXPECT_EQ(one.bricks().counts(), (Vec3i{1, 1, 1}));
+    const GpuVolume four = slabLimited.upload(p, {{Caster::ACD}, false, viewOctants(persp)});
+    EXPECT_EQ(four.bricks().counts().x, 1);
+    EXPECT_EQ(four.bricks().counts().y, 1);
+    EXPECT_GE(four.bricks().counts().z, 3);
+    EXPECT_LE(four.bricks().largestImage().z * 4, 32);
+    expectBrickFigures(four, p, 4);
+    for (Caster c : {Caster::ACD, Caster::EACD}) {
+        const RenderResult split = slabLimited.render(p, persp, settings(c, true));
+        const RenderResult unsplit = whole().render(p, persp, settings(c, true));
+        EXPECT_LT(maxAbsDifference(split.image, unsplit.image), 1e-4) << casterName(c);
+        EXPECT_EQ(split.iterations, unsplit.iterations) << casterName(c);
+    }
+    expectNoValidationErrors();
+}
+
+// Only what cannot be split is refused: an image limit below one voxel and its neighbours.
+TEST(VulkanBricks, UnsplittableVolumeIsRefusedClearly) {
+    const Volume v = shellsPhantom({8, 8, 8});
+    const PreparedVolume p = prepare(v, 0, 0, false);
+    VulkanRenderer tiny(context(), 20, ImageLimits{0, 64});
+    try {
+        tiny.render(p, Camera::fit(v.grid, view(0, 0)), settings(Caster::Primitive, false));
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot be split"), std::string::npos) << e.what();
+    }
+    expectNoValidationErrors();
+}
+
+// Front-to-back orders: along every axis a ray of the given signs crosses bricks in increasing order.
+TEST(VulkanBricks, FrontToBackOrderFollowsEveryAxisSign) {
+    const BrickGrid grid({10, 9, 8}, {3, 2, 4});
+    ASSERT_EQ(grid.bricks().size(), 24u);
+    EXPECT_EQ(grid.splitAxes(), 7u);
+    for (unsigned signs = 0; signs < 8; ++signs) {
+        const std::vector<int> order = grid.frontToBack(signs);
+        std::vector<int> rank(order.size());
+        for (std::size_t i = 0; i < order.size(); ++i) rank[order[i]] = int(i);
+        const auto& b = grid.bricks();
+        for (std::size_t i = 0; i < b.size(); ++i)
+            for (std::size_t j = 0; j < b.size(); ++j) {
+                bool before = i != j;  // i lies before j on every axis for these signs (or level with it)
+                for (int a = 0; a < 3; ++a) {
+                    const bool down = signs >> a & 1;
+                    before = before && (down ? b[i].lo[a] >= b[j].lo[a] : b[i].lo[a] <= b[j].lo[a]);
+                }
+                if (before) {
+                    EXPECT_LT(rank[i], rank[j]) << "signs " << signs << " bricks " << i << ", " << j;
+                }
+            }
+    }
+}
+
+}  // namespace
+}  // namespace vr
