@@ -107,6 +107,7 @@ struct Timings {
     std::map<Caster, std::vector<double>> fixed;  // device ms per (view, repeat)
     std::vector<double> autoMs;
     std::map<Caster, int> chosen;                 // auto's choices over the views
+    std::vector<std::string> reasons;             // auto's estimates per view
 };
 
 // Every view `repeats` times, the fixed casters taking turns within a view (in a rotating order) so that a busy
@@ -136,12 +137,15 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
             const Camera& camera = cameras[i];
             const CasterDemand demand{v.projection, camera.forward, viewOctants(camera),
                                       (long long)v.width * v.height, step, int(views.size())};
-            const Caster chosen = chooseCaster(p.meta.statistics, demand).caster;
-            if (r == 0) ++t.chosen[chosen];
+            const CasterChoice choice = chooseCaster(p.meta.statistics, demand);
+            if (r == 0) {
+                ++t.chosen[choice.caster];
+                t.reasons.push_back(choice.reason);
+            }
             for (int k = 0; k < 4; ++k) {
                 s.caster = kFixed[(k + turn) % 4];
                 t.fixed[s.caster].push_back(renderer.render(volume, camera, s).deviceMilliseconds);
-                if (s.caster == chosen) t.autoMs.push_back(t.fixed[s.caster].back());
+                if (s.caster == choice.caster) t.autoMs.push_back(t.fixed[s.caster].back());
             }
             ++turn;
         }
@@ -153,12 +157,13 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
 int main(int argc, char** argv) {
     CLI::App app{"--caster auto against the fixed casters: median device ms over a few views on every shared "
                  "dataset and the phantoms, and auto's ratio to the fastest fixed caster"};
-    bool shortMode = false;
+    bool shortMode = false, explain = false;
     int size = 256, viewCount = 4, repeats = 3, phantomSize = 128, device = -1;
     double step = 0.5;
     std::vector<double> to{0, 0.02}, ta{0, 10};
     std::vector<std::string> datasets;
     app.add_flag("--short", shortMode, "one tiny dataset (vtk_headmr), 64x64, 2 views, once: a few seconds (CTest)");
+    app.add_flag("--explain", explain, "print auto's estimates for every view below each row");
     app.add_option("--datasets", datasets, "dataset name prefixes (MANIFEST.tsv files, phantom_NAME); default all")
         ->delimiter(',');
     app.add_option("--size", size, "image width = height")->capture_default_str();
@@ -216,6 +221,9 @@ int main(int argc, char** argv) {
                 std::printf("| %s | %zu | %g, %g | %u |%s %.1f (%s) | %.2f%s |\n", scene.name.c_str(),
                             scene.voxels, to[k], ta[k], p.regions.count, cells.c_str(), autoMs,
                             choices.c_str(), ratio, ratio <= kTarget ? "" : " **over**");
+                if (explain)
+                    for (std::size_t v = 0; v < t.reasons.size(); ++v)
+                        std::printf("|  | view %zu: %s |||||||||\n", v, t.reasons[v].c_str());
                 std::fflush(stdout);
             }
         }

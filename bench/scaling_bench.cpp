@@ -110,6 +110,10 @@ SizeResult benchSize(const std::string& name, const vr::Volume& volume, const vr
             if (scenario == "full") r.regions = p.regions.count;
         }
     }
+    std::fprintf(stderr, "%s %d^3:", name.c_str(), r.edge);  // the figures so far, should a long run be cut short
+    for (const auto& s : kScenarios)
+        std::fprintf(stderr, " %s %.3f s (%.3f CPU s)", s.c_str(), median(r.wall[s]["total"]), median(r.cpu[s]["total"]));
+    std::fprintf(stderr, "\n");
     return r;
 }
 
@@ -191,7 +195,6 @@ int main(int argc, char** argv) {
                 const vr::Volume v = resample(source, dims);
                 results.push_back(benchSize(realName, v, realOptions, runs));
             }
-            std::fprintf(stderr, "%d^3 done\n", n);
         }
         std::stable_sort(results.begin(), results.end(),
                          [](const SizeResult& a, const SizeResult& b) { return a.volume < b.volume; });

@@ -4,7 +4,8 @@
 #   scripts/peers.sh DATASET [VIEWS] [SIZE] [OUTDIR]
 # DATASET: a file in the shared datasets folder or the start of its name (boston_teapot, cranium_ct, ...): the
 # MANIFEST gives its spacing and transfer function. "smoke": one 64x64 view of vtk_headmr (a few seconds).
-# Defaults: 8 views, 512x512, out/peers/NAME. BUILD_DIR (default build) is the build folder; THREADS (default 2).
+# Defaults: 8 views, 512x512, out/peers/NAME. BUILD_DIR (default build) is the build folder; THREADS (default 2);
+# PEER_LIST (comma-separated, default all: ours-cpu-primitive,vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render).
 # Prints a Markdown table; OUTDIR/peers.json has per peer and view the milliseconds and the image (EXR, linear).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -41,6 +42,7 @@ mkdir -p "$out"
 # VTK's OpenGL render windows need an X display, even off screen: a virtual one.
 cmd=("$build/bench/peers/vr_peers" "$datasets/$file" --tf "$datasets/$tf" --spacing "$spacing"
   --views "$views" --size "$size" --threads "${THREADS:-2}" -o "$out")
+if [[ -n ${PEER_LIST:-} ]]; then cmd+=(--peers "$PEER_LIST"); fi
 echo "+ xvfb-run -a ${cmd[*]}" >&2
 start=$(date +%s.%N)
 xvfb-run -a -s "-screen 0 1280x1024x24" "${cmd[@]}"

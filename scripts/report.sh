@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
-# The full threshold-sweep report (BENCH.md "Error against run time"): every raw dataset of the shared
-# MANIFEST.tsv and one synthetic phantom through volsweep into one folder: sweep.csv, report.md, plots/ (gnuplot),
-# strips/ and images/. Also runs scripts/peers.sh (when present) on the datasets in PEERS and joins its figures.
+# The full report (BENCH.md "Error against run time" and "Peers"): every raw dataset of the shared MANIFEST.tsv
+# and one synthetic phantom through volsweep over the issue's 6x5 threshold grid, and the peers side by side with
+# our casters on every CT dataset, into one folder: sweep.csv, report.md, plots/, strips/, images/, peers/.
 #   scripts/report.sh [OUTDIR]            (default out/sweep)
-# Defaults sized for about 30 minutes on 2 cores with lavapipe (see the "This run" section of the report):
-# 256x256 images, 4 views, a 3x3 threshold grid for volumes of a million voxels or more, 5x3 below that.
-# Environment: BUILD_DIR (default build), VIEWS (4), SIZE (256x256), ONLY (space-separated dataset name prefixes,
-# e.g. "cranium_ct vtk_headsq_ct phantom"), PEERS (dataset prefixes for scripts/peers.sh, default "vtk_headsq_ct";
-# "" for none), RESUME=1 (keep OUTDIR and skip the settings already in its sweep.csv), BIG_TO, BIG_TA, SMALL_TO,
-# SMALL_TA (the threshold grids, comma-separated).
+# Sized for 30 minutes on this 2-core machine with lavapipe (the "This run" section of the report says why):
+# 256x256 images, 4 views; volumes of BIG_VOXELS voxels or more are swept box-averaged by DOWNSAMPLE per axis;
+# the peers at 512x512 (4 views) on the full-size CT volumes.
+# Environment: BUILD_DIR (default build), VIEWS (4), SIZE (256x256), TO and TA (the grid, comma-separated; default
+# the issue's 0,0.005,0.01,0.02,0.05,0.1 x 0,1,3,10,20), BIG_VOXELS (4000000), DOWNSAMPLE (2), ONLY
+# (space-separated dataset name prefixes, e.g. "cranium_ct vtk_headsq_ct phantom"), PEERS (dataset prefixes for
+# the peers, default the CT volumes "boston_teapot cranium_ct vtk_headsq_ct"; "" for none), PEER_SIZE (512x512),
+# PEER_VIEWS (4), PEER_LIST (the peers run, default vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render),
+# RESUME=1 (keep OUTDIR and skip the settings already in its sweep.csv).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -17,10 +20,15 @@ build=${BUILD_DIR:-build}
 out=${1:-out/sweep}
 views=${VIEWS:-4}
 size=${SIZE:-256x256}
+to=${TO:-0,0.005,0.01,0.02,0.05,0.1}
+ta=${TA:-0,1,3,10,20}
+big_voxels=${BIG_VOXELS:-4000000}
+downsample=${DOWNSAMPLE:-2}
 only=${ONLY:-}
-peers=${PEERS-vtk_headsq_ct}
-big_to=${BIG_TO:-0,0.02,0.1} big_ta=${BIG_TA:-0,3,20}  # 3x3 for volumes of >= 1M voxels
-small_to=${SMALL_TO:-0,0.01,0.02,0.05,0.1} small_ta=${SMALL_TA:-0,3,20}
+peers=${PEERS-boston_teapot cranium_ct vtk_headsq_ct}
+peer_size=${PEER_SIZE:-512x512}
+peer_views=${PEER_VIEWS:-4}
+peer_list=${PEER_LIST:-vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render}
 phantom_dims=128x128x128
 
 bash scripts/install-deps.sh gnuplot-nox
@@ -34,6 +42,9 @@ mkdir -p "$out"
 start=$SECONDS
 timings=""
 
+# CPU seconds (user + system) of every finished child process so far: what a step costs whatever shares the machine.
+cpu_now() { times | awk 'NR == 2 { s = 0; for (i = 1; i <= 2; ++i) { split($i, t, /[ms]/); s += t[1] * 60 + t[2] } printf "%.0f", s }'; }
+
 wanted() {  # wanted NAME: whether ONLY is empty or NAME starts with one of its prefixes
   [[ -z $only ]] && return 0
   local p
@@ -41,47 +52,48 @@ wanted() {  # wanted NAME: whether ONLY is empty or NAME starts with one of its 
   return 1
 }
 
-sweep() {  # sweep NAME FILE TF SPACING
-  local name=$1 file=$2 tf=$3 spacing=$4
-  local dims voxels to=$big_to ta=$big_ta
-  dims=$(grep -oE '_[0-9]+x[0-9]+x[0-9]+_' <<<"$file" | tr -d _ | tr x ' ')
+sweep() {  # sweep NAME FILE TF SPACING DIMS ("X Y Z")
+  local name=$1 file=$2 tf=$3 spacing=$4 dims=$5 factor=1 swept=$5
+  local voxels t0=$SECONDS c0
+  c0=$(cpu_now)
   voxels=$(awk '{ print $1 * $2 * $3 }' <<<"$dims")
-  if ((voxels < 1000000)); then to=$small_to ta=$small_ta; fi
-  local t0=$SECONDS
-  echo "+ volsweep $name (T_o $to, T_a $ta)" >&2
+  if ((voxels >= big_voxels && downsample > 1)); then
+    factor=$downsample
+    swept=$(awk -v f="$factor" '{ printf "%d %d %d", ($1 + f - 1) / f, ($2 + f - 1) / f, ($3 + f - 1) / f }' <<<"$dims")
+    name="${name}_at_$(tr ' ' x <<<"$swept")"
+  fi
+  echo "+ volsweep $name (T_o $to, T_a $ta, downsample $factor)" >&2
   "$volsweep" "$file" --tf "$tf" --spacing "$spacing" --name "$name" --to "$to" --ta "$ta" --views "$views" \
-    --size "$size" -o "$out" "${resume[@]}" </dev/null >/dev/null
-  timings+="| $name | $dims | $to | $ta | $((SECONDS - t0)) |"$'\n'
+    --size "$size" --downsample "$factor" -o "$out" "${resume[@]}" </dev/null >/dev/null
+  timings+="| $name | $(tr ' ' x <<<"$dims") | $(tr ' ' x <<<"$swept") | $((SECONDS - t0)) | $(($(cpu_now) - c0)) |"$'\n'
   echo "  $name: $((SECONDS - t0)) s" >&2
-  local p
-  for p in $peers; do
-    [[ $name == "$p"* ]] && peers_of "$name" "$file" "$tf" "$spacing"
-  done
-  return 0
 }
 
-# The peers render without shading (scripts/peers.sh): compare them with an unshaded sweep at T_o = T_a = 0 of
-# the same dataset, in its own report section NAME_unshaded.
+# The peers render without shading (scripts/peers.sh): they are compared with our unshaded casters at
+# T_o = T_a = 0 on the full-size volume, at their image size and views, in the report section NAME_unshaded.
 peers_of() {  # peers_of NAME FILE TF SPACING
-  local name=$1 file=$2 tf=$3 spacing=$4 t0=$SECONDS
-  [[ -f scripts/peers.sh ]] || return 0
-  if ! BUILD_DIR=$build bash scripts/peers.sh "$(basename "$file")" "$views" "$size" "$out/peers/$name" \
-    </dev/null >&2; then
+  local name=$1 file=$2 tf=$3 spacing=$4 t0=$SECONDS c0
+  c0=$(cpu_now)
+  if ! BUILD_DIR=$build PEER_LIST=$peer_list bash scripts/peers.sh "$(basename "$file")" "$peer_views" \
+    "$peer_size" "$out/peers/$name" </dev/null >&2; then
     echo "report.sh: scripts/peers.sh failed on $name: the report has no peers for it" >&2
     return 0
   fi
   "$volsweep" "$file" --tf "$tf" --spacing "$spacing" --name "${name}_unshaded" --no-shading --to 0 --ta 0 \
-    --views "$views" --size "$size" -o "$out" --peers "$out/peers/$name" "${resume[@]}" </dev/null >/dev/null
-  timings+="| ${name}_unshaded + peers | | 0 | 0 | $((SECONDS - t0)) |"$'\n'
+    --views "$peer_views" --size "$peer_size" -o "$out" --peers "$out/peers/$name" "${resume[@]}" </dev/null >/dev/null
+  timings+="| ${name}_unshaded + peers (${peer_size}) | | | $((SECONDS - t0)) | $(($(cpu_now) - c0)) |"$'\n'
 }
 
 # Every headerless raw dataset of the manifest, with its spacing (the first three numbers) and transfer function.
-while IFS=$'\t' read -r file _dims _type spacing _source _desc _sha _notes tf; do
+while IFS=$'\t' read -r file dims _type spacing _source _desc _sha _notes tf; do
   [[ $file == *.raw.gz ]] || continue
   name=${file%.raw.gz}
   wanted "$name" || continue
   spacing=$(grep -oE '[0-9]+(\.[0-9]+)?' <<<"$spacing" | head -3 | paste -sd,)
-  sweep "$name" "$datasets/$file" "$datasets/$tf" "$spacing"
+  sweep "$name" "$datasets/$file" "$datasets/$tf" "$spacing" "$dims"
+  for p in $peers; do
+    if [[ $name == "$p"* ]]; then peers_of "$name" "$datasets/$file" "$datasets/$tf" "$spacing"; fi
+  done
 done < <(tail -n +2 "$datasets/MANIFEST.tsv")
 
 # One synthetic phantom: CT-like shells in Hounsfield units with the CT transfer function.
@@ -89,26 +101,40 @@ if wanted phantom; then
   mkdir -p "$out/phantom"
   "$build/datasets/volphantom" shells --dims "$phantom_dims" --type int16 -o "$out/phantom" </dev/null >/dev/null
   sweep "phantom_shells_${phantom_dims}_int16" "$out/phantom/shells_${phantom_dims}_int16.raw" \
-    "$datasets/cranium_ct.tf.json" 1,1,1
+    "$datasets/cranium_ct.tf.json" 1,1,1 "$(tr x ' ' <<<"$phantom_dims")"
 fi
 
 "$volsweep" --report-only -o "$out" >/dev/null
 total=$((SECONDS - start))
-# CPU seconds of everything this script ran (user + system): what the run costs whatever else shares the machine.
-cpu=$(times | awk 'NR == 2 { s = 0; for (i = 1; i <= 2; ++i) { split($i, t, /[ms]/); s += t[1] * 60 + t[2] } printf "%.0f", s }')
+cpu=$(cpu_now)
 device=$(vulkaninfo --summary 2>/dev/null | awk -F'= ' '/deviceName/ { print $2; exit }' || true)
 cat >>"$out/report.md" <<MD
 ## This run (scripts/report.sh)
 
-$(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) CPU cores, Vulkan device: ${device:-unknown}. Images ${size}, ${views}
-views (azimuth 360 i / ${views}, elevation 0), step 0.5 voxel, nearest sampling, Phong shading with a headlight.
-Threshold grid: T_o {${big_to}} x T_a {${big_ta}} degrees for volumes of a million voxels or more,
-T_o {${small_to}} x T_a {${small_ta}} below that (sized for about 30 minutes on this 2-core machine; the wall
-time below grows with whatever else shares it). Peers (scripts/peers.sh, unshaded as they render) on: ${peers:-none}, compared in the NAME_unshaded
-sections with our unshaded casters at T_o = T_a = 0.
+$(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) CPU cores, Vulkan device: ${device:-unknown}.
 
-| dataset | dims | T_o | T_a | seconds |
-|---|---|---|---|---:|
+**Sweeps:** images ${size}, ${views} views (azimuth 360 i / ${views}, elevation 0), step 0.5 voxel, nearest
+sampling, Phong shading with a headlight, the grid T_o {${to}} x T_a {${ta}} degrees on every dataset. Volumes of
+${big_voxels} voxels or more are swept box-averaged over ${downsample}^3 blocks (named NAME_at_DIMS below and in
+their sections).
+
+**Peers:** ${peer_list} (scripts/peers.sh, unshaded as they render) on: ${peers:-none}, at ${peer_size} with
+${peer_views} views on the full-size volumes, compared in the NAME_unshaded sections with our unshaded casters at
+T_o = T_a = 0, same size, views and sample distance.
+
+**Why these sizes (the 30-minute budget on 2 cores with lavapipe).** Where the time goes, measured: per setting,
+segmentation and the three fields cost about 0.4 CPU-us per voxel (teapot, 11.7 M voxels: about 4.5 CPU-s); per
+256x256 view the primitive caster costs about 0.45 s, PC about 0.3 s, ACD and EACD 0.02-0.05 s; the volume is
+uploaded once per setting, not per render. The primitive caster reads no regions or fields, so its images and
+times do not depend on the thresholds: it is rendered once per view (the reference), not at every setting, and
+PC is then the largest render cost. Over the 12 volumes at full size the 30 settings would cost about 50 CPU-s
+each (25 of them preprocessing), some 25 minutes on an idle machine: too close to the budget. Box-averaging the
+five volumes of 7 M voxels or more by 2 per axis makes the preprocessing 8 times cheaper there, which brings the
+sweeps to about 15 minutes; the peers at 512x512 on the three CT volumes take about 4 minutes more. Larger
+images or more views scale the render part (about half of the total) linearly.
+
+| dataset | dims | swept at | seconds | CPU seconds |
+|---|---|---|---:|---:|
 ${timings}
 **Whole report: ${total} s wall, ${cpu} s CPU** (user + system of all its processes; the wall time depends on
 what else runs on the machine).

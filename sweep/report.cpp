@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -185,6 +186,34 @@ PeerSummary peersTable(std::ostream& md, const fs::path& file, const std::vector
     return summary;
 }
 
+// Per dataset, the time its sweep spent preprocessing and rendering, from the CSV (render seconds estimated as
+// the median wall ms x views; the primitive caster's renders are the reference's, counted once).
+void timeTable(std::ostream& md, const std::vector<SweepRow>& all) {
+    md << "## Where the time went (from sweep.csv)\n\n"
+       << "| dataset | settings | segment s | PC s | ACD s | EACD s | render s: primitive | PC | ACD | EACD |\n"
+       << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const std::string& dataset : datasetsOf(all)) {
+        const std::vector<SweepRow> rows = rowsOf(all, dataset);
+        std::map<std::string, double> render;
+        double segment = 0, pc = 0, acd = 0, eacd = 0;
+        int settings = 0;
+        for (const SweepRow& r : rows) {
+            const double seconds = r.wallMsMedian * r.views / 1000;
+            if (r.caster != "primitive") {
+                render[r.caster] += seconds;
+                continue;
+            }
+            if (settings++ == 0) render["primitive"] = seconds;
+            segment += r.segmentSeconds, pc += r.pcSeconds, acd += r.acdSeconds, eacd += r.eacdSeconds;
+        }
+        md << "| " << dataset << " | " << settings << " | " << fmt("%.1f", segment) << " | " << fmt("%.1f", pc)
+           << " | " << fmt("%.1f", acd) << " | " << fmt("%.1f", eacd);
+        for (const char* c : {"primitive", "pc", "acd", "eacd"}) md << " | " << fmt("%.1f", render[c]);
+        md << " |\n";
+    }
+    md << "\n";
+}
+
 // Every dataset with peers in one table: our EACD against the fastest VTK renderer.
 void peersSummary(std::ostream& md, const std::vector<PeerSummary>& all) {
     if (all.empty()) return;
@@ -288,6 +317,7 @@ fs::path writeReport(const fs::path& outDir) {
         md << "\n";
     }
     peersSummary(md, peerSummaries);
+    timeTable(md, all);
     const fs::path report = outDir / "report.md";
     writeFileAtomically(report, [&](std::ostream& out) { out << md.str(); });
     return report;

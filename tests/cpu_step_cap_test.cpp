@@ -56,7 +56,8 @@ TEST(CpuStepCap, StepsBeyondTheIterationCapAreRefusedNamingTheFlag) {
 }
 
 TEST(CpuStepCap, TheRendererRefusesBeforeCasting) {
-    const PreparedVolume p = test::syntheticPrepared(kGrid, 1.0, [](const Vec3i&) { return test::VoxelClass{0, {1, 1, 1}}; });
+    const PreparedVolume p =
+        test::syntheticPrepared(kGrid, 1.0, [](const Vec3i&) { return test::VoxelClass{0, {1, 1, 1}}; });
     const Camera cam = Camera::fit(kGrid, ViewParams{Projection::Orthographic, 30, 0, 0, 4, 4});
     try {
         renderCpu(p, cam, withStep(1e-9));

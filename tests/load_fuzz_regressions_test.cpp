@@ -103,6 +103,12 @@ TEST(LoadFuzzRegressions, NrrdHeadersVtkReadsThroughANullStream) {
     expectRefused(kRegressions / "nrrd" / "one_image_axis.nrrd");
 }
 
+// " type: " (a key after a space, which vtkNrrdReader does not take for "type") sends vtkNrrdReader::ReadHeader into
+// an endless loop (found by fuzz_nrrd): keys are matched as VTK matches them, and a header without a type is refused.
+TEST(LoadFuzzRegressions, NrrdKeyAfterASpace) {
+    expectRefused(kRegressions / "nrrd" / "type_key_after_a_space.nrrd");
+}
+
 // Likewise vtkStructuredPointsReader, ASCII and binary, when POINT_DATA promises more values than the file holds.
 TEST(LoadFuzzRegressions, LegacyVtkDataShorterThanThePoints) {
     expectRefused(kRegressions / "vtk_legacy" / "ascii_data_too_short.vtk");
@@ -171,8 +177,9 @@ TEST(LoadFuzzRegressions, VdbBoundingBoxBeyondIntRange) {
 }
 
 // Length-prefixed strings and metadata values of up to 4 GiB in a file of a few KiB (found by fuzz_vdb): OpenVDB
-// allocates, and zero-fills, what they state (GridDescriptor::read, MetaMap::readMeta), and a grid ending beyond the
-// file let it read a zipped block's length of 0x3030300000000 bytes. The loader walks these before OpenVDB reads.
+// allocates, and zero-fills, what they state (GridDescriptor::read, MetaMap::readMeta, Transform::read), and a grid
+// ending beyond the file let it read a zipped block's length of 0x3030300000000 bytes. The loader walks these before
+// OpenVDB reads them.
 TEST(LoadFuzzRegressions, VdbLengthsBeyondTheFile) {
     const std::size_t bound = std::size_t(64) << 20;
     expectRefused(kRegressions / "vdb" / "grid_name_of_4gib.vdb", bound);
@@ -180,6 +187,7 @@ TEST(LoadFuzzRegressions, VdbLengthsBeyondTheFile) {
     expectRefused(kRegressions / "vdb" / "metadata_value_of_4gib.vdb", bound);
     expectRefused(kRegressions / "vdb" / "grid_metadata_of_1gib.vdb", bound);
     expectRefused(kRegressions / "vdb" / "zipped_length_beyond_the_file.vdb", bound);
+    expectRefused(kRegressions / "vdb" / "transform_type_of_4gib.vdb", bound);
 }
 
 // A length field deep in a grid's tree that OpenVDB allocates from without a check (0x7469736e65640000 bytes): the

@@ -262,6 +262,20 @@ TEST(Segment, LabelsAreTheComponentsOfEqualKeysOnEveryShape) {
         }
 }
 
+TEST(Segment, IntoUsedRegionsEqualsFresh) {
+    Regions reused = segment(patchyClassified({9, 8, 7}, 1, 3), SegmentationParams{});
+    for (Vec3i dims : {Vec3i{4, 6, 5}, Vec3i{9, 8, 7}, Vec3i{9, 8, 7}})
+        for (bool trilinear : {false, true}) {
+            const ClassifiedVolume c = patchyClassified(dims, unsigned(dims.x + trilinear), 4);
+            const SegmentationParams p{0.05, 10, true, trilinear};
+            segment(c, p, reused);
+            const Regions fresh = segment(c, p);
+            EXPECT_EQ(reused.dims, fresh.dims);
+            EXPECT_EQ(reused.count, fresh.count);
+            EXPECT_EQ(reused.label, fresh.label);
+        }
+}
+
 TEST(Segment, KeysOfARunEqualSingleKeys) {
     // Many distinct (sigma, colour) pairs, more than the run's cache holds, with repeats far apart.
     const Vec3i dims{50, 40, 10};

@@ -119,11 +119,16 @@ CasterChoice chooseCaster(const json& s, const CasterDemand& d) {
     for (const Estimate& e : estimates)
         if (e.cost <= tie && e.bytes < best->bytes) best = &e;
 
-    char reason[256];
-    std::snprintf(reason, sizeof reason,
-                  "estimated leap %.1f voxels per iteration against a step of %.2f, %.0f MB of field to upload for "
-                  "%d view(s) (%zu caster(s) in the file considered)",
-                  best->leap, step, best->bytes / 1e6, d.views, estimates.size());
+    // Every candidate's leap and cost relative to the primitive caster's, so that a choice can be checked.
+    std::string reason = "estimated voxels per iteration and cost relative to primitive (with " +
+                         std::to_string(d.views) + " view(s) sharing the upload):";
+    for (const Estimate& e : estimates) {
+        char part[96];
+        std::snprintf(part, sizeof part, " %s %.2f, %.3f;", std::string(casterName(e.caster)).c_str(), e.leap,
+                      e.cost / estimates.front().cost);
+        reason += part;
+    }
+    reason.pop_back();
     return {best->caster, reason};
 }
 

@@ -21,7 +21,7 @@ struct CasterDemand {
 
 struct CasterChoice {
     Caster caster = Caster::Primitive;
-    std::string reason;  // one line: what decided it
+    std::string reason;  // one line: each candidate's estimated leap and relative cost
 };
 
 // Estimates each available caster's cost as pixels x ray length / mean leap x a per-iteration weight, plus the

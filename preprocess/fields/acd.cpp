@@ -39,8 +39,8 @@ public:
     }
 
 private:
-    // The voxels of a row whose neighbour toward the octant along x is inside: [first, first + count); the
-    // remaining one has runX = 1, so every field is 1 there.
+    // The voxels of a row whose neighbour toward the octant along x is inside: [first(), first() + n.x - 1); the
+    // remaining one, borderX(), has runX = 1, so every field is 1 there.
     int first() const { return sx_ > 0 ? 0 : 1; }
     int borderX() const { return sx_ > 0 ? n_.x - 1 : 0; }
 
@@ -112,8 +112,8 @@ std::vector<uint8_t> buildACD(const Regions& regions, int octant) {
     return buildACD(runs, octant);
 }
 
-std::array<std::vector<uint8_t>, kOctants> buildACDs(AxialRuns& runs) {
-    std::array<std::vector<uint8_t>, kOctants> acd;
+ACDFields buildACDs(AxialRuns& runs) {
+    ACDFields acd;
     if (voxelCount(runs.dims()) == 0) return acd;
     runs.computeAll();
     tbb::parallel_for(0, kOctants, [&](int o) { acd[o] = buildACD(runs, o); });

@@ -68,9 +68,9 @@ void buildBatch(AxialRuns& runs, const std::vector<int>& octants,
             throw std::invalid_argument("buildEACD: the ACD of octant " + std::to_string(o) +
                                         " does not match the regions");
         batch.acd[o] = acd[o];
-        for (auto& slot : batch.ext[o]) slot.resize(voxels);
-        batch.widest[o].resize(voxels);
-        batch.longest[o].resize(voxels);
+        for (auto& slot : batch.ext[o]) slot.allocate(voxels);
+        batch.widest[o].allocate(voxels);
+        batch.longest[o].allocate(voxels);
     }
     for (int a = 0; a < 3; ++a) cubeExtensions(runs, batch, a);
     findWidestAxes(batch);
@@ -78,9 +78,9 @@ void buildBatch(AxialRuns& runs, const std::vector<int>& octants,
     for (int o : octants) {
         out[o]->resize(voxels);
         chooseBoxes(batch, o, *out[o]);
-        batch.ext[o] = {};
-        batch.widest[o] = {};
-        batch.longest[o] = {};
+        for (auto& slot : batch.ext[o]) slot.release();
+        batch.widest[o].release();
+        batch.longest[o].release();
     }
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/distance_fields.h"
@@ -9,14 +10,27 @@
 
 namespace vr {
 
+// A byte per voxel, left uninitialised: each step writes every voxel's slot before any step reads it, and zeroing
+// hundreds of megabytes first would cost more than some steps.
+class ByteVolume {
+public:
+    void allocate(std::size_t voxels) { bytes_ = std::make_unique_for_overwrite<uint8_t[]>(voxels); }
+    void release() { bytes_.reset(); }
+    uint8_t* data() { return bytes_.get(); }
+    const uint8_t* data() const { return bytes_.get(); }
+
+private:
+    std::unique_ptr<uint8_t[]> bytes_;
+};
+
 // The octants built together. Their extents live in planar byte arrays while being built (ext[o][a][v]: each
 // step reads and writes whole slots, so one byte per voxel moves instead of three) and are interleaved at the end.
 // widest[o][v] is the axis step 1 extends (the first with the largest extent), longest[o][v] its extent.
 struct OctantBatch {
     std::vector<int> octants;
     std::array<const std::vector<uint8_t>*, kOctants> acd{};
-    std::array<std::array<std::vector<uint8_t>, 3>, kOctants> ext;
-    std::array<std::vector<uint8_t>, kOctants> widest, longest;
+    std::array<std::array<ByteVolume, 3>, kOctants> ext;
+    std::array<ByteVolume, kOctants> widest, longest;
 
     std::vector<int> withSign(int axis, int sign) const {
         std::vector<int> out;

@@ -1,5 +1,3 @@
-#include <atomic>
-#include <cstdio>
 // EACD steps 1 and 2 (ALGORITHMS.md section 4): the extension of a box along an axis is the minimum, over its
 // near face, of the axial runs along the octant's direction. Slices across the axis are walked toward -s (s the
 // octant's sign there), so that the neighbour w = v + s e_a is done first: where w's face is v's, one step on,
@@ -44,7 +42,6 @@ inline int faceStart(int p, int sign, int len) { return sign > 0 ? p : p - len +
 
 // For slice t of the slab: lenU = minimum of the runs over each voxel's face (skipped where lenU is 0), for the
 // octants `octs`. Square faces (kSquares: lenU == lenW, lenW unused) need only the square tables.
-inline std::atomic<long> gQ[2], gT[2];
 template <bool kSquares>
 void faceMinima(const Slab& slab, int t, const std::vector<int>& octs, WalkScratch& sc) {
     const int nu = slab.nu, nw = slab.nw;
@@ -62,8 +59,6 @@ void faceMinima(const Slab& slab, int t, const std::vector<int>& octs, WalkScrat
         forEachNonzero(lenU, int(slab.plane), [&](int l) { RectMin::addLevels(levels, lenU[l], lenW[l]); });
     }
     if (maxU == 0 && levels == RectMin::Levels{}) return;  // no face in this slice
-    gT[kSquares] += 1;
-    for (std::size_t j = 0; j < octs.size(); ++j) for (std::size_t i = 0; i < slab.plane; ++i) gQ[kSquares] += sc.lenU[j][off + i] != 0;
     std::copy_n(sc.runs.data() + off, slab.plane, sc.table.resize(nu, nw));
     if (kSquares)
         sc.table.buildSquares(maxU);
@@ -166,13 +161,15 @@ void cubeExtensions(AxialRuns& runFields, OctantBatch& batch, int a) {
 
 // Step 2, for axis b: ext[o][b] = extension along b of the box extended along its widest axis a (a != b), whose
 // near face is L = ext[a] along a by k along the third axis. No face where b is the widest axis (ext stays L) or
-// where nothing extended (L == k: every extent is k). Otherwise, with r the run of v, and w's face if it has one
-// (as rectangles in the slice, whichever axis each extended) and its extension ew:
+// where nothing extended (L == k: every extent is k). Otherwise, with r the run of v, kw and Lw the ACD edge and
+// longest step-1 extension of w, w's face if it has one (as rectangles in the slice, whichever axis each
+// extended) and its extension ew:
 //   w's face is v's:                      ext = min(r, 1 + ew) (one step on);
 //   r == k:                               ext = k (v is on its face);
 //   w's face holds v's, r <= 1 + ew:      ext = r;
-//   kw < k, or kw == k and Lw < L:        ext = k (the box of depth k + 1 along b holds w's k-cube, or that cube
-//                                         extended along a by L > Lw >= its extension there: not homogeneous);
+//   kw < k, or kw == k and Lw < L:        ext = k (the box of depth k + 1 along b holds w's cube of edge k, or
+//                                         that cube extended along a by L, more than its extension there, which
+//                                         is at most Lw: in both cases not homogeneous);
 //   otherwise a query. Step 2 never writes slot a of a voxel, so `longest` stays step 1's.
 void boxExtensions(AxialRuns& runFields, OctantBatch& batch, int b) {
     bothDirections(runFields, batch, b, [&](int sign, const std::vector<int>& octs, WalkScratch& sc) {
@@ -245,5 +242,4 @@ void boxExtensions(AxialRuns& runFields, OctantBatch& batch, int b) {
     });
 }
 
-struct Report { ~Report() { for (int q = 0; q < 2; ++q) fprintf(stderr, "squares %d: tables %ld queries %ld\n", q, gT[q].load(), gQ[q].load()); } } gReport;
 }  // namespace vr

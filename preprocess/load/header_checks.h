@@ -16,7 +16,8 @@ void checkNiftiHeader(const std::filesystem::path& path);
 void checkNrrdFile(const std::filesystem::path& path);
 
 // OpenVDB (.vdb), versions 222 to 224: the header, the file's metadata, the grid descriptors and each grid's
-// metadata hold no length beyond the end of the file (OpenVDB allocates whatever length they state).
+// metadata and transform type hold no length beyond the end of the file (OpenVDB allocates whatever length they
+// state).
 void checkVdbFile(const std::filesystem::path& path);
 
 // VTK XML image data (.vti): a WholeExtent within memory whose first point data array the file can hold (at the

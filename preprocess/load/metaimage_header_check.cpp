@@ -106,7 +106,8 @@ void checkMetaImageHeader(const fs::path& path) {
     const std::string& dataFile = value("ElementDataFile");
     if (dataFile.empty()) throw fail("ElementDataFile is empty");
     if (dataFile.starts_with("LIST") || dataFile.find('%') != std::string::npos)
-        throw fail("ElementDataFile \"" + dataFile.substr(0, 40) + "\": lists and patterns of data files are not supported");
+        throw fail("ElementDataFile \"" + dataFile.substr(0, 40) +
+                   "\": lists and patterns of data files are not supported");
     const bool local = dataFile == "LOCAL" || dataFile == "Local" || dataFile == "local";
     const fs::path data = local ? path : path.parent_path() / dataFile;
     std::error_code ec;

@@ -62,7 +62,10 @@ void checkNrrdFile(const fs::path& path) {
         if (lineNumber == 1 || line[0] == '#') continue;
         const auto colon = line.find(": ");
         if (colon == std::string::npos || line.find(":=") == colon) continue;  // not a field ("key:=value" pairs)
-        const std::string key = trim(line.substr(0, colon));
+        // Keys as vtkNrrdReader matches them: a leading space makes another key (" type" left it without a type,
+        // on which it looped forever: found by fuzz_nrrd).
+        std::string key = line.substr(0, colon);
+        key.erase(key.find_last_not_of(" \t") + 1);
         if (!fields.emplace(key, trim(line.substr(colon + 2))).second)
             throw fail("the field \"" + key + "\" appears twice (header line " + std::to_string(lineNumber) + ")");
         // vtkNrrdReader reads per-axis fields with the dimension it has seen so far (a sizes line before the
@@ -81,7 +84,8 @@ void checkNrrdFile(const fs::path& path) {
     // these four fields.
     for (const char* key : {"type", "dimension", "sizes", "encoding"})
         if (!fields.contains(key))
-            throw fail(std::string("no \"") + key + "\" field (a NRRD header needs type, dimension, sizes and encoding)");
+            throw fail(std::string("no \"") + key +
+                       "\" field (a NRRD header needs type, dimension, sizes and encoding)");
     std::istringstream dimensionText(fields["dimension"]);
     int dimension = 0;
     if (!(dimensionText >> dimension) || !(dimensionText >> std::ws).eof() || dimension < 1 || dimension > 16)

@@ -1,7 +1,8 @@
 // OpenVDB file checks before openvdb::io::File reads it: OpenVDB allocates every length-prefixed string and metadata
 // value at the length the file states (std::string(size, ' '): up to 4 GiB, zero-filled, for a 100-byte file; found
-// by fuzz_vdb in GridDescriptor::read and MetaMap::readMeta). The header, the file's metadata, the grid descriptors
-// and each grid's own metadata are walked as OpenVDB reads them, each length checked against the bytes left.
+// by fuzz_vdb in GridDescriptor::read, MetaMap::readMeta and Transform::read). The header, the file's metadata, the
+// grid descriptors and each grid's metadata and transform type are walked as OpenVDB reads them, each length
+// checked against the bytes left. The trees are not: a length inside one is left to the allocator.
 #include <array>
 #include <cctype>
 #include <cstdint>
@@ -22,7 +23,7 @@ namespace {
 // Reads the file as OpenVDB does, refusing any length beyond its end.
 class VdbWalker {
 public:
-    VdbWalker(const fs::path& path) : path_(path), in_(path, std::ios::binary) {
+    explicit VdbWalker(const fs::path& path) : path_(path), in_(path, std::ios::binary) {
         if (!in_) throw fileError(path.string(), "cannot open");
         std::error_code ec;
         size_ = fs::file_size(path, ec);
@@ -35,7 +36,8 @@ public:
     std::uint64_t left() { return size_ - std::min<std::uint64_t>(size_, std::uint64_t(in_.tellg())); }
     void seek(std::int64_t at, const char* what) {
         if (at < 0 || std::uint64_t(at) > size_)
-            throw fail(std::string(what) + " at byte " + std::to_string(at) + ", beyond its " + std::to_string(size_) + " bytes");
+            throw fail(std::string(what) + " at byte " + std::to_string(at) + ", beyond its " + std::to_string(size_) +
+                       " bytes");
         in_.seekg(at);
     }
     template <typename T>
@@ -44,18 +46,19 @@ public:
         if (!in_.read(reinterpret_cast<char*>(&value), sizeof value)) throw fail(std::string("it ends in ") + what);
         return value;
     }
-    void skip(std::uint64_t bytes, const std::string& what) {
+    void require(std::uint64_t bytes, const std::string& what) {
         if (bytes > left())
             throw fail(what + " of " + std::to_string(bytes) + " bytes, more than the " + std::to_string(left()) +
                        " bytes left");
+    }
+    void skip(std::uint64_t bytes, const std::string& what) {
+        require(bytes, what);
         in_.seekg(std::streamoff(bytes), std::ios::cur);
     }
     // openvdb::readString: a uint32 length and the characters.
     std::string string(const char* what) {
         const std::uint32_t length = read<std::uint32_t>(what);
-        if (length > left())
-            throw fail(std::string(what) + " of " + std::to_string(length) + " bytes, more than the " +
-                       std::to_string(left()) + " bytes left");
+        require(length, what);
         std::string text(length, '\0');
         in_.read(text.data(), length);
         return text;
@@ -80,6 +83,13 @@ public:
         }
     }
 
+    // Archive::readGrid up to the tree: the compression flags, the metadata and the transform's type name.
+    void gridHead() {
+        read<std::uint32_t>("a grid's compression flags");
+        metadata("a grid's metadata");
+        string("a grid's transform type");
+    }
+
 private:
     fs::path path_;
     std::ifstream in_;
@@ -100,12 +110,15 @@ void checkVdbFile(const fs::path& path) {
     const bool gridOffsets = file.read<char>("the header") != 0;
     std::array<char, 36> uuid;
     for (char& c : uuid) c = file.read<char>("the UUID");
-    for (std::size_t i = 0; i < uuid.size(); ++i)
-        if (i == 8 || i == 13 || i == 18 || i == 23 ? uuid[i] != '-' : !std::isxdigit(static_cast<unsigned char>(uuid[i])))
+    for (std::size_t i = 0; i < uuid.size(); ++i) {
+        const bool hyphen = i == 8 || i == 13 || i == 18 || i == 23;
+        if (hyphen ? uuid[i] != '-' : !std::isxdigit(static_cast<unsigned char>(uuid[i])))
             throw file.fail("a malformed UUID in the header");
+    }
     file.metadata("the file's metadata");
 
-    // File::open: the grid count and, with grid offsets, each GridDescriptor::read followed by a seek to its end.
+    // File::open: the grid count and each GridDescriptor::read, followed by a seek to its end (or, in a stream
+    // without grid offsets, by the grid itself).
     const std::int32_t grids = file.read<std::int32_t>("the grid count");
     if (grids < 0) throw file.fail("a grid count of " + std::to_string(grids));
     struct Place {
@@ -120,18 +133,16 @@ void checkVdbFile(const fs::path& path) {
         file.read<std::int64_t>("a grid descriptor");  // where its buffers begin
         const std::int64_t end = file.read<std::int64_t>("a grid descriptor");
         if (!gridOffsets) {  // a stream: the first grid follows its descriptor, and its tree is not walked here
-            file.read<std::uint32_t>("a grid's compression flags");
-            file.metadata("a grid's metadata");
+            file.gridHead();
             return;
         }
         places.push_back({grid, end});
         file.seek(end, "a grid ending");
     }
-    // Archive::readGrid: the grid's compression flags, then its metadata.
+    // Each grid's head, where OpenVDB seeks to read it.
     for (const Place& p : places) {
         file.seek(p.grid, "a grid");
-        file.read<std::uint32_t>("a grid's compression flags");
-        file.metadata("a grid's metadata");
+        file.gridHead();
     }
 }
 

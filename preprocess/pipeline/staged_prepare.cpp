@@ -47,12 +47,12 @@ void StagedPreparation::invalidateFrom(PrepStage stage) {
             [[fallthrough]];
         case PrepStage::Classify:
             classifiedWith_.reset();
-            if (!prepared_.classified.sigma.empty())  // its memory serves the next classification
+            if (!prepared_.classified.sigma.empty())  // its memory serves the next classification (likewise below)
                 spareClassified_ = std::exchange(prepared_.classified, {});
             [[fallthrough]];
         case PrepStage::Segment:
             segmentedWith_.reset();
-            prepared_.regions = {};
+            if (!prepared_.regions.label.empty()) spareRegions_ = std::exchange(prepared_.regions, {});
             [[fallthrough]];
         case PrepStage::Fields:
             fieldsWith_.reset();
@@ -90,8 +90,10 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
     }
     if (last >= PrepStage::Segment &&
         (!segmentedWith_ || !sameSegmentation(*segmentedWith_, options.segmentation))) {
-        run(PrepStage::Segment, "segment",
-            [&](std::vector<StageTime>&) { prepared_.regions = segment(prepared_.classified, options.segmentation); });
+        run(PrepStage::Segment, "segment", [&](std::vector<StageTime>&) {
+            segment(prepared_.classified, options.segmentation, spareRegions_);
+            prepared_.regions = std::exchange(spareRegions_, {});
+        });
         segmentedWith_ = options.segmentation;
         prepared_.meta.segmentation = options.segmentation;
     }

@@ -41,8 +41,8 @@ public:
     const Volume& volume() const { return volume_; }
 
 private:
-    // Discards the results of `stage` and of every stage after it (the classification's arrays are kept aside for
-    // the next classification to reuse: no fresh pages to fault in).
+    // Discards the results of `stage` and of every stage after it (the classification's and the regions' arrays
+    // are kept aside for the next run of their stage to reuse: no fresh pages to fault in).
     void invalidateFrom(PrepStage stage);
     // Runs `work` as `stage` (named `name` in the times), counting and timing it.
     template <typename Work>
@@ -51,7 +51,9 @@ private:
     std::filesystem::path input_;  // empty for a volume given in memory
     Volume volume_;
     PreparedVolume prepared_;
-    ClassifiedVolume spareClassified_;  // an invalidated classification, whose arrays the next one reuses
+    // Invalidated results, whose arrays the next run of their stage reuses.
+    ClassifiedVolume spareClassified_;
+    Regions spareRegions_;
     // The options each stage last ran with; empty when it has no valid result.
     std::optional<RawOptions> loadedWith_;
     std::optional<ClassifyParams> classifiedWith_;

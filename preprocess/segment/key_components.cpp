@@ -96,11 +96,10 @@ void uniteComponents(std::vector<uint32_t>& parent, const Vec3i& dims, const Reg
 
 }  // namespace
 
-Regions labelKeyComponents(const Vec3i& dims, const RegionKeyer& keyer) {
+void labelKeyComponents(const Vec3i& dims, const RegionKeyer& keyer, Regions& regions) {
     const std::size_t n = voxelCount(dims);
     if (n >= std::numeric_limits<uint32_t>::max())
         throw InputError("segmentation: " + std::to_string(n) + " voxels; at most 2^32 - 1 are supported");
-    Regions regions;
     regions.dims = dims;
     std::vector<uint32_t>& parent = regions.label;  // the parents become the labels in the last pass
     parent.resize(n);
@@ -117,7 +116,6 @@ Regions labelKeyComponents(const Vec3i& dims, const RegionKeyer& keyer) {
         parent[i] = p == i ? count++ : parent[p];
     }
     regions.count = count;
-    return regions;
 }
 
 }  // namespace vr

@@ -6,7 +6,8 @@
 namespace vr {
 
 // 6-connected components of voxels with equal keys, labelled 0..count-1 in the order of their first voxel
-// (x fastest), so the labels do not depend on how the work was split. Needs fewer than 2^32 voxels.
-Regions labelKeyComponents(const Vec3i& dims, const RegionKeyer& keyer);
+// (x fastest), so the labels do not depend on how the work was split, into `regions` (the memory of its labels is
+// reused). Needs fewer than 2^32 voxels.
+void labelKeyComponents(const Vec3i& dims, const RegionKeyer& keyer, Regions& regions);
 
 }  // namespace vr

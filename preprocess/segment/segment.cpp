@@ -7,14 +7,19 @@
 
 namespace vr {
 
-Regions segment(const ClassifiedVolume& classified, const SegmentationParams& params) {
+void segment(const ClassifiedVolume& classified, const SegmentationParams& params, Regions& regions) {
     const std::size_t n = classified.grid.voxels();
     if (n == 0 || classified.sigma.size() != n || classified.colour.size() != n ||
         (classified.hasNormals() && classified.normal.size() != n))
         throw InputError("segmentation: the classified volume is empty or its arrays do not match its dimensions");
     const RegionKeyer keyer(classified, params);
-    Regions regions = labelKeyComponents(classified.grid.dims, keyer);
+    labelKeyComponents(classified.grid.dims, keyer, regions);
     if (params.trilinear) splitBorderVoxels(regions);
+}
+
+Regions segment(const ClassifiedVolume& classified, const SegmentationParams& params) {
+    Regions regions;
+    segment(classified, params, regions);
     return regions;
 }
 

@@ -12,5 +12,8 @@ namespace vr {
 // 26-neighbourhood touches another region are regions of one voxel. Labels 0..count-1 in first-voxel order.
 // Throws InputError for negative or NaN thresholds or an inconsistent classified volume.
 Regions segment(const ClassifiedVolume& classified, const SegmentationParams& params);
+// The same into `regions`, reusing the memory of its labels: a segmentation of the same size then takes no fresh
+// pages. On a throw `regions` is left in an unspecified state.
+void segment(const ClassifiedVolume& classified, const SegmentationParams& params, Regions& regions);
 
 }  // namespace vr

@@ -222,15 +222,14 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
 
     // One pass per sign pattern of the view's rays on the split axes, each over the bricks in its front-to-back
     // order; a ray runs in its own pass only.
-    const unsigned splitAxes = volume.bricks().splitAxes();
-    std::vector<unsigned> passes;
+    const unsigned splitAxes = volume.bricks().splitAxes(), octants = viewOctants(camera);
+    std::vector<std::pair<unsigned, std::vector<int>>> passes;  // (signs, bricks front to back)
     for (int oct = 0; oct < kOctants; ++oct) {
         const unsigned signs = unsigned(oct) & splitAxes;
-        if ((viewOctants(camera) >> oct & 1) && std::find(passes.begin(), passes.end(), signs) == passes.end())
-            passes.push_back(signs);
+        if ((octants >> oct & 1) &&
+            std::none_of(passes.begin(), passes.end(), [&](const auto& pass) { return pass.first == signs; }))
+            passes.emplace_back(signs, volume.bricks().frontToBack(signs));
     }
-    std::vector<std::pair<unsigned, std::vector<int>>> dispatches;  // (signs, bricks in order)
-    for (unsigned signs : passes) dispatches.emplace_back(signs, volume.bricks().frontToBack(signs));
 
     RenderResult result;
     result.image = Image(camera.width, camera.height);
@@ -250,15 +249,15 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                 cmd.writeTimestamp(S::eTopOfPipe, *queries_, 0);
                 cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipe);
                 tile.firstDispatch = 1;
-                for (std::size_t pass = 0; pass < dispatches.size(); ++pass) {
-                    const auto& [signs, order] = dispatches[pass];
+                for (std::size_t pass = 0; pass < passes.size(); ++pass) {
+                    const auto& [signs, order] = passes[pass];
                     for (std::size_t i = 0; i < order.size(); ++i) {
                         const Brick& b = bricks[order[i]];
                         for (int a = 0; a < 3; ++a) {
                             tile.brickLo[a] = b.lo[a], tile.brickHi[a] = b.hi[a];
                             tile.imageLo[a] = b.imageLo[a], tile.imageDims[a] = b.imageDims[a];
                         }
-                        tile.lastDispatch = pass + 1 == dispatches.size() && i + 1 == order.size();
+                        tile.lastDispatch = pass + 1 == passes.size() && i + 1 == order.size();
                         tile.passAxes = int(splitAxes), tile.passSigns = int(signs);
                         cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout_, 0,
                                                *sets[order[i]], {});
