@@ -150,14 +150,21 @@ void run(const std::string& name, const Regions& r, int repeat) {
 }  // namespace
 
 int main(int argc, char** argv) try {
-    std::printf("threads: %d (TBB)\n", tbb::info::default_concurrency());
     std::vector<std::string> args(argv + 1, argv + argc);
+    if (!args.empty() && (args[0] == "--help" || args[0] == "-h")) {
+        std::printf("usage: fields_bench [--repeat N] [N | NXxNYxNZ | DATASET.raw.gz ...]\n"
+                    "  N, NXxNYxNZ: constant and random-blocky regions of that size (default: 128 256)\n"
+                    "  DATASET.raw.gz: a file of the datasets folder, classified with its manifest TF\n"
+                    "  --repeat N: keep the fastest of N runs of every build\n");
+        return 0;
+    }
     int repeat = 1;
     if (args.size() >= 2 && args[0] == "--repeat") {
         repeat = std::max(1, std::atoi(args[1].c_str()));
         args.erase(args.begin(), args.begin() + 2);
     }
     if (args.empty()) args = {"128", "256"};
+    std::printf("threads: %d (TBB)\n", tbb::info::default_concurrency());
     for (const std::string& arg : args) {
         if (arg.find(".raw") != std::string::npos) {
             run(arg.substr(0, arg.find('_', arg.find('_') + 1)), datasetRegions(arg), repeat);

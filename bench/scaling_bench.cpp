@@ -157,8 +157,10 @@ int main(int argc, char** argv) {
     vr::PrepareOptions options;
     options.segmentation = {0.05, 10, true, false};
     app.add_flag("--short", shortMode, "64^3 and 128^3 only, one run: a few seconds (CTest)");
-    app.add_option("--sizes", edges, "edges N of the N^3 volumes")->delimiter(',')->capture_default_str();
-    app.add_option("--runs", runs, "runs per size (medians are printed)")->capture_default_str();
+    app.add_option("--sizes", edges, "edges N of the N^3 volumes")->delimiter(',')->check(CLI::Range(2, 1600))
+        ->capture_default_str();
+    app.add_option("--runs", runs, "runs per size (medians are printed)")->check(CLI::PositiveNumber)
+        ->capture_default_str();
     app.add_option("--real", real, "raw dataset of MANIFEST.tsv resampled to each size")->capture_default_str();
     app.add_option("--phantom", phantom, "engine or shells")->check(CLI::IsMember({"engine", "shells"}))
         ->capture_default_str();

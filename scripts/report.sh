@@ -42,8 +42,13 @@ mkdir -p "$out"
 start=$SECONDS
 timings=""
 
-# CPU seconds (user + system) of every finished child process so far: what a step costs whatever shares the machine.
-cpu_now() { times | awk 'NR == 2 { s = 0; for (i = 1; i <= 2; ++i) { split($i, t, /[ms]/); s += t[1] * 60 + t[2] } printf "%.0f", s }'; }
+# Sets cpu to the CPU seconds (user + system) of every finished child process so far: what a step costs whatever
+# shares the machine. The builtin `times` must run in this shell (a subshell would report its own children).
+cpu_now() {
+  times >"$out/.times"
+  cpu=$(awk 'NR == 2 { s = 0; for (i = 1; i <= 2; ++i) { split($i, t, /[ms]/); s += t[1] * 60 + t[2] } printf "%.0f", s }' \
+    "$out/.times")
+}
 
 wanted() {  # wanted NAME: whether ONLY is empty or NAME starts with one of its prefixes
   [[ -z $only ]] && return 0
@@ -55,7 +60,8 @@ wanted() {  # wanted NAME: whether ONLY is empty or NAME starts with one of its 
 sweep() {  # sweep NAME FILE TF SPACING DIMS ("X Y Z")
   local name=$1 file=$2 tf=$3 spacing=$4 dims=$5 factor=1 swept=$5
   local voxels t0=$SECONDS c0
-  c0=$(cpu_now)
+  cpu_now
+  c0=$cpu
   voxels=$(awk '{ print $1 * $2 * $3 }' <<<"$dims")
   if ((voxels >= big_voxels && downsample > 1)); then
     factor=$downsample
@@ -65,7 +71,8 @@ sweep() {  # sweep NAME FILE TF SPACING DIMS ("X Y Z")
   echo "+ volsweep $name (T_o $to, T_a $ta, downsample $factor)" >&2
   "$volsweep" "$file" --tf "$tf" --spacing "$spacing" --name "$name" --to "$to" --ta "$ta" --views "$views" \
     --size "$size" --downsample "$factor" -o "$out" "${resume[@]}" </dev/null >/dev/null
-  timings+="| $name | $(tr ' ' x <<<"$dims") | $(tr ' ' x <<<"$swept") | $((SECONDS - t0)) | $(($(cpu_now) - c0)) |"$'\n'
+  cpu_now
+  timings+="| $name | $(tr ' ' x <<<"$dims") | $(tr ' ' x <<<"$swept") | $((SECONDS - t0)) | $((cpu - c0)) |"$'\n'
   echo "  $name: $((SECONDS - t0)) s" >&2
 }
 
@@ -73,7 +80,8 @@ sweep() {  # sweep NAME FILE TF SPACING DIMS ("X Y Z")
 # T_o = T_a = 0 on the full-size volume, at their image size and views, in the report section NAME_unshaded.
 peers_of() {  # peers_of NAME FILE TF SPACING
   local name=$1 file=$2 tf=$3 spacing=$4 t0=$SECONDS c0
-  c0=$(cpu_now)
+  cpu_now
+  c0=$cpu
   if ! BUILD_DIR=$build PEER_LIST=$peer_list bash scripts/peers.sh "$(basename "$file")" "$peer_views" \
     "$peer_size" "$out/peers/$name" </dev/null >&2; then
     echo "report.sh: scripts/peers.sh failed on $name: the report has no peers for it" >&2
@@ -81,7 +89,8 @@ peers_of() {  # peers_of NAME FILE TF SPACING
   fi
   "$volsweep" "$file" --tf "$tf" --spacing "$spacing" --name "${name}_unshaded" --no-shading --to 0 --ta 0 \
     --views "$peer_views" --size "$peer_size" -o "$out" --peers "$out/peers/$name" "${resume[@]}" </dev/null >/dev/null
-  timings+="| ${name}_unshaded + peers (${peer_size}) | | | $((SECONDS - t0)) | $(($(cpu_now) - c0)) |"$'\n'
+  cpu_now
+  timings+="| ${name}_unshaded + peers (${peer_size}) | | | $((SECONDS - t0)) | $((cpu - c0)) |"$'\n'
 }
 
 # Every headerless raw dataset of the manifest, with its spacing (the first three numbers) and transfer function.
@@ -106,7 +115,8 @@ fi
 
 "$volsweep" --report-only -o "$out" >/dev/null
 total=$((SECONDS - start))
-cpu=$(cpu_now)
+cpu_now
+rm -f "$out/.times"
 device=$(vulkaninfo --summary 2>/dev/null | awk -F'= ' '/deviceName/ { print $2; exit }' || true)
 cat >>"$out/report.md" <<MD
 ## This run (scripts/report.sh)
@@ -122,16 +132,17 @@ their sections).
 ${peer_views} views on the full-size volumes, compared in the NAME_unshaded sections with our unshaded casters at
 T_o = T_a = 0, same size, views and sample distance.
 
-**Why these sizes (the 30-minute budget on 2 cores with lavapipe).** Where the time goes, measured: per setting,
-segmentation and the three fields cost about 0.4 CPU-us per voxel (teapot, 11.7 M voxels: about 4.5 CPU-s); per
-256x256 view the primitive caster costs about 0.45 s, PC about 0.3 s, ACD and EACD 0.02-0.05 s; the volume is
-uploaded once per setting, not per render. The primitive caster reads no regions or fields, so its images and
-times do not depend on the thresholds: it is rendered once per view (the reference), not at every setting, and
-PC is then the largest render cost. Over the 12 volumes at full size the 30 settings would cost about 50 CPU-s
-each (25 of them preprocessing), some 25 minutes on an idle machine: too close to the budget. Box-averaging the
-five volumes of 7 M voxels or more by 2 per axis makes the preprocessing 8 times cheaper there, which brings the
-sweeps to about 15 minutes; the peers at 512x512 on the three CT volumes take about 4 minutes more. Larger
-images or more views scale the render part (about half of the total) linearly.
+**Why these sizes (the 30-minute budget on 2 cores with lavapipe).** Measured on this machine: the 30-setting
+sweep of headsq (0.38 M voxels, 4 views of 256x256) cost 93 CPU-s while the primitive caster was rendered at every
+setting and 45 CPU-s now that its renders are the reference's (it reads no regions or fields: its images and times
+do not depend on the thresholds); PC is then three quarters of the render time, ACD and EACD a tenth each. On the
+full-size teapot (11.7 M voxels) a setting costs about 7.5 CPU-s, two thirds of it segmentation and the fields,
+which grow with the voxels; the volume is uploaded once per setting, not per render. At full size the twelve
+volumes would cost about 50 CPU-s per setting, 25 minutes of the budget on an idle machine for the sweeps alone.
+Box-averaging the five volumes of 7 M voxels or more by 2 per axis (8 times fewer voxels to segment and build
+fields for) brings the sweeps to about 30 CPU-s per setting (15 minutes at most); the peers and our 512x512
+renders on the three CT volumes add 1-2 minutes each. Larger images or more views scale the render part linearly.
+The table below gives this run's seconds per dataset; "Where the time went" above splits them by stage and caster.
 
 | dataset | dims | swept at | seconds | CPU seconds |
 |---|---|---|---:|---:|

@@ -186,8 +186,9 @@ int runSweep(const SweepOptions& o) {
     const std::vector<std::pair<double, double>> settings = pendingSettings(o, dataset, csv);
 
     // Load and classify once; per setting the staged preparation re-runs only segmentation and the fields.
-    StagedPreparation staged = o.downsample > 1 ? StagedPreparation(downsample(loadVolume(o.input, o.raw), o.downsample))
-                                                : StagedPreparation(o.input);
+    StagedPreparation staged = o.downsample > 1
+                                   ? StagedPreparation(downsample(loadVolume(o.input, o.raw), o.downsample))
+                                   : StagedPreparation(o.input);
     PrepareOptions options = prepareOptions(o);
     const PreparedVolume& p = loadClassified(staged, options, dataset, settings.size());
     fs::create_directories(images);

@@ -177,9 +177,9 @@ TEST(LoadFuzzRegressions, VdbBoundingBoxBeyondIntRange) {
 }
 
 // Length-prefixed strings and metadata values of up to 4 GiB in a file of a few KiB (found by fuzz_vdb): OpenVDB
-// allocates, and zero-fills, what they state (GridDescriptor::read, MetaMap::readMeta, Transform::read), and a grid
-// ending beyond the file let it read a zipped block's length of 0x3030300000000 bytes. The loader walks these before
-// OpenVDB reads them.
+// allocates, and zero-fills, what they state (GridDescriptor::read, MetaMap::readMeta, Transform::read,
+// DelayedLoadMetadata::readValue), and a grid ending beyond the file let it read a zipped block's length of
+// 0x3030300000000 bytes. The loader walks these before OpenVDB reads them.
 TEST(LoadFuzzRegressions, VdbLengthsBeyondTheFile) {
     const std::size_t bound = std::size_t(64) << 20;
     expectRefused(kRegressions / "vdb" / "grid_name_of_4gib.vdb", bound);
@@ -188,6 +188,22 @@ TEST(LoadFuzzRegressions, VdbLengthsBeyondTheFile) {
     expectRefused(kRegressions / "vdb" / "grid_metadata_of_1gib.vdb", bound);
     expectRefused(kRegressions / "vdb" / "zipped_length_beyond_the_file.vdb", bound);
     expectRefused(kRegressions / "vdb" / "transform_type_of_4gib.vdb", bound);
+    expectRefused(kRegressions / "vdb" / "delayed_load_count_of_4g.vdb", bound);
+}
+
+// An int32 grid whose zipped values overflow a heap buffer inside OpenVDB (io::unzipFromStream, found by fuzz_vdb):
+// the loader reads only the metadata of grids that are not float grids, never their trees.
+TEST(LoadFuzzRegressions, VdbTreesOfOtherGridsAreNotRead) {
+    expectRefused(kRegressions / "vdb" / "int_tree_overflowing_unzip.vdb");
+}
+
+// Still open (found by fuzz_vdb): float grids' trees that OpenVDB reads for over a minute, whose zipped values
+// overflow a heap buffer inside it (io::unzipFromStream via readCompressedValues), or whose zipped length (8 GiB) it
+// allocates. Refusing them needs the tree walked before OpenVDB reads it, as the loader walks the file's header.
+TEST(LoadFuzzRegressions, DISABLED_VdbFloatTreesOpenVdbMishandles) {
+    expectRefused(kRegressions / "vdb" / "float_tree_read_for_a_minute.vdb");
+    expectRefused(kRegressions / "vdb" / "float_tree_overflowing_unzip.vdb");
+    expectRefused(kRegressions / "vdb" / "float_tree_zipped_length_of_8gib.vdb", std::size_t(1) << 30);
 }
 
 // A length field deep in a grid's tree that OpenVDB allocates from without a check (0x7469736e65640000 bytes): the

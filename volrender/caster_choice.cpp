@@ -108,10 +108,12 @@ CasterChoice chooseCaster(const json& s, const CasterDemand& d) {
         const double leap = meanLeap(leaps, caster, d);
         if (fieldBytes <= 0 || leap <= 0) continue;  // not in the file
         // PC has one field for every direction; ACD and EACD upload the octants the view's rays have.
-        estimates.push_back({caster, std::max(leap, step), caster == Caster::PC ? fieldBytes : fieldBytes * octants / kOctants});
+        const double uploaded = caster == Caster::PC ? fieldBytes : fieldBytes * octants / kOctants;
+        estimates.push_back({caster, std::max(leap, step), uploaded});
     }
     for (Estimate& e : estimates)
-        e.cost = double(d.pixels) * rayVoxels / e.leap * iterationWeight(e.caster) + e.bytes / kBytesPerIteration / views;
+        e.cost = double(d.pixels) * rayVoxels / e.leap * iterationWeight(e.caster) +
+                 e.bytes / kBytesPerIteration / views;
 
     const Estimate* best = &*std::min_element(estimates.begin(), estimates.end(),
                                               [](const Estimate& a, const Estimate& b) { return a.cost < b.cost; });

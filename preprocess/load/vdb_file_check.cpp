@@ -6,6 +6,7 @@
 #include <array>
 #include <cctype>
 #include <cstdint>
+#include <climits>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -65,8 +66,8 @@ public:
     }
 
     // MetaMap::readMeta: a count, then name, type name and (Metadata::read) a uint32 size and the value. Fixed-size
-    // types read their own size whatever the stated one; strings, unknown types and the delayed-load table (which
-    // holds its own counts) take the stated size.
+    // types read their own size whatever the stated one; strings, unknown types and the delayed-load table (after
+    // its own lengths are checked) take the stated size.
     void metadata(const char* where) {
         static const std::map<std::string, std::uint32_t> fixed{
             {"bool", 1},   {"int32", 4},  {"int64", 8},  {"float", 4},  {"double", 8}, {"vec2i", 8},
@@ -77,10 +78,30 @@ public:
             string(where);
             const std::string type = string(where);
             const std::uint32_t stated = read<std::uint32_t>(where);
+            const std::string what = std::string(where) + " value of type \"" + type.substr(0, 40) + "\"";
+            require(stated, what);
             const auto known = fixed.find(type);
-            skip(known != fixed.end() ? known->second : stated,
-                 std::string(where) + " value of type \"" + type.substr(0, 40) + "\"");
+            if (type == "__delayedload" && stated > 0) {
+                const auto start = in_.tellg();
+                delayedLoad(stated, where);
+                in_.seekg(start);  // OpenVDB skips what it did not read, up to the stated size
+            }
+            skip(known != fixed.end() ? known->second : stated, what);
         }
+    }
+
+    // DelayedLoadMetadata::readValue: a count of leaf buffers, then a mask byte and a 64-bit size per buffer, each
+    // array either blosc-compressed (a uint32 length and the bytes, allocated at that length) or raw (length 0, then
+    // count values). The count is bounded by what the stated size could decompress to (at most 1032 to 1).
+    void delayedLoad(std::uint32_t stated, const char* where) {
+        const std::uint64_t count = read<std::uint32_t>(where);
+        const std::string what = std::string(where) + ": delayed-load metadata";
+        if (double(count) * 9 > double(stated) * 1032)
+            throw fail(what + " for " + std::to_string(count) + " buffers in " + std::to_string(stated) + " bytes");
+        const std::uint32_t maskBytes = read<std::uint32_t>(where);
+        skip(maskBytes > 0 ? maskBytes : count, what);
+        const std::uint32_t sizeBytes = read<std::uint32_t>(where);
+        if (sizeBytes != UINT32_MAX) skip(sizeBytes > 0 ? sizeBytes : count * 8, what);
     }
 
     // Archive::readGrid up to the tree: the compression flags, the metadata and the transform's type name.

@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <bit>
 #include <chrono>
 #include <sstream>
 
@@ -67,28 +68,23 @@ std::size_t bytesOf(const std::vector<T>& v) {
 
 DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
                                 std::vector<StageTime>& stages) {
-    DistanceFields f;
-    f.dims = regions.dims;
-    if (kinds & kFieldPC) {
-        Stage pc(stages, "pc");
-        f.pc = buildPC(regions);
-        pc.done();
-    }
-    if (kinds & (kFieldACD | kFieldEACD)) {
-        Stage acd(stages, "acd", kOctants);
-        for (int o = 0; o < kOctants; ++o) {
-            f.acd[o] = buildACD(regions, o);
-            acd.advance();
-        }
-        acd.done();
-    }
+    // One call builds them all, sharing the axial runs and the ACDs: each field is timed from the end of the one
+    // before (ACD first, then PC from the ACDs, then EACD).
+    const unsigned built = (kinds & kFieldEACD ? kinds | kFieldACD : kinds) & (kFieldPC | kFieldACD | kFieldEACD);
+    ProgressBar bar("fields", std::popcount(built));
+    StageClock clock;
+    DistanceFields f = buildFields(regions, kinds, [&](FieldKind kind) {
+        stages.push_back(clock.stop(kind == kFieldPC ? "pc" : kind == kFieldACD ? "acd" : "eacd"));
+        bar.advance();
+        clock = StageClock();
+    });
     if (kinds & kFieldEACD) {
-        Stage eacd(stages, "eacd");
-        f.eacd = buildEACD(regions, f.acd);
-        quantiseEACD(f, eacdCode);  // memory, file and device then hold the same boxes
-        eacd.done();
+        quantiseEACD(f, eacdCode);  // memory, file and device then hold the same boxes; counted in the eacd stage
+        const StageTime quantise = clock.stop("eacd");
+        stages.back().seconds += quantise.seconds;
+        stages.back().cpuSeconds += quantise.cpuSeconds;
     }
-    if (!(kinds & kFieldACD)) f.acd = {};  // built only for EACD
+    bar.finish();
     return f;
 }
 

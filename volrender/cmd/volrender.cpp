@@ -165,7 +165,8 @@ int run(const Flags& f) {
         const vr::CasterChoice c = autoCaster(f, view, settings);
         settings.caster = c.caster;
         choice = c.reason;
-        std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(c.caster).data(), choice.c_str());
+        std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(c.caster).data(),
+                     choice.c_str());
     }
     const vr::PreparedVolume prepared = vr::readPrepared(f.prepared, fieldsFor(settings.caster), settings.shading);
 
