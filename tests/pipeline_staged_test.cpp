@@ -67,7 +67,7 @@ TEST(StagedPreparation, EachChangeReRunsOnlyTheStagesAfterIt) {
     PrepareOptions o = headOptions();
     const PreparedVolume& p = staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()),
-              (std::vector<std::string>{"load", "classify", "segment", "pc", "acd", "eacd"}));
+              (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd"}));
     expectSameAsFresh(staged, p, o);
 
     // The same options again: nothing runs.
@@ -78,7 +78,7 @@ TEST(StagedPreparation, EachChangeReRunsOnlyTheStagesAfterIt) {
     o.segmentation.opacityThreshold = 0.2;
     o.segmentation.trilinear = true;
     staged.prepare(o);
-    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "pc", "acd", "eacd"}));
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
     expectSameAsFresh(staged, p, o);
 
     // Other fields only: the fields only.
@@ -117,7 +117,7 @@ TEST(StagedPreparation, StopsAtTheStageAskedFor) {
     EXPECT_EQ(staged.volume().values.size(), voxelCount({64, 64, 93}));  // kept for the next classification
 
     staged.prepare(o);
-    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "pc", "acd", "eacd"}));
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
     // Asking for fewer stages keeps the later results while they are valid ...
     staged.prepare(o, PrepStage::Segment);
     EXPECT_TRUE(staged.lastStages().empty());
@@ -135,7 +135,7 @@ TEST(StagedPreparation, StopsAtTheStageAskedFor) {
     o.raw.spacing = Vec3d{1, 1, 1};
     staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()),
-              (std::vector<std::string>{"load", "classify", "segment", "pc", "acd", "eacd"}));
+              (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd"}));
     expectSameAsFresh(staged, p, o);
 }
 
@@ -147,7 +147,7 @@ TEST(StagedPreparation, AVolumeInMemoryIsNeverLoaded) {
     o.classify.transferFunction = loadTransferFunction(test::datasetsDir() / "sim.tf.json");
     o.segmentation = {0.1, 20, true, true};
     const PreparedVolume& p = staged.prepare(o);
-    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "pc", "acd", "eacd"}));
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
     EXPECT_EQ(p.meta.source, engine.source);
     const ClassifiedVolume c = classify(engine, o.classify);
     EXPECT_EQ(p.classified.sigma, c.sigma);
@@ -157,7 +157,7 @@ TEST(StagedPreparation, AVolumeInMemoryIsNeverLoaded) {
     EXPECT_EQ(p.fields.pc, buildTimedFields(p.regions, kFieldPC, o.eacdCode, times).pc);
     o.classify.normals = false;
     staged.prepare(o);
-    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "pc", "acd", "eacd"}));
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
     EXPECT_FALSE(p.classified.hasNormals());
     EXPECT_EQ(staged.runs(PrepStage::Load), 0);
 }
@@ -170,7 +170,7 @@ TEST(StagedPreparation, AStageThatThrowsRunsAgainNextTime) {
     bad.segmentation.opacityThreshold = -1;
     EXPECT_THROW(staged.prepare(bad), InputError);
     EXPECT_TRUE(staged.prepare(o).regions.label.size() == voxelCount({64, 64, 93}));
-    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "pc", "acd", "eacd"}));
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
     expectSameAsFresh(staged, staged.prepare(o), o);
 
     StagedPreparation missing(test::datasetsDir() / "no_such_volume_8x8x8_uint8.raw.gz");

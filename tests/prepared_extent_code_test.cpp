@@ -90,8 +90,9 @@ TEST(ExtentCode, Joint8KeepsItsLevelsAndTheLargestBoxOfItsTable) {
         const Extents e{uint8_t(extent(rng)), uint8_t(extent(rng) % (trial % 3 ? 40 : 255) + 1), uint8_t(extent(rng))};
         const Extents q = quantiseExtents(ExtentCode::Joint8, e);
         const int volume = q[0] * q[1] * q[2];
-        for (const Extents& b : boxes)
+        for (const Extents& b : boxes) {
             if (b[0] <= e[0] && b[1] <= e[1] && b[2] <= e[2]) ASSERT_LE(b[0] * b[1] * b[2], volume);
+        }
     }
 }
 

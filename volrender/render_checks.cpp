@@ -51,8 +51,8 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) 
 void checkRenderSettings(const GridGeometry& grid, bool segmentedForTrilinear, const RenderSettings& s) {
     if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
         throw InputError("--step " + std::to_string(s.stepVoxels) + ": the step must be a positive number of voxels");
+    requireLatticeFits(grid, s.stepVoxels);  // first: an absurd spacing is named as such, not as a tiny step
     requireSamplesWithinCap(grid, s);
-    requireLatticeFits(grid, s.stepVoxels);
     if (!(s.ert > 0 && s.ert <= 1))
         throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
     if (s.lightDirection && !(length(*s.lightDirection) > 0 && std::isfinite(length(*s.lightDirection))))

@@ -21,7 +21,7 @@ struct PrepareOptions {
 };
 
 struct StageTime {
-    std::string stage;   // load, classify, segment, pc, acd, eacd, write
+    std::string stage;   // load, classify, segment, acd, pc, eacd, write
     double seconds;      // wall time
     double cpuSeconds;   // CPU time of the whole process (all threads) meanwhile: steadier on a shared machine
 };
@@ -52,7 +52,7 @@ PrepareResult prepareVolume(const std::filesystem::path& input, const PrepareOpt
 PrepareResult prepareFile(const std::filesystem::path& input, const std::filesystem::path& output,
                           const PrepareOptions& options);
 
-// The fields of `kinds` (a FieldKind mask) as prepareVolume builds them, each timed into `stages` (pc, acd, eacd).
+// The fields of `kinds` (a FieldKind mask) as prepareVolume builds them, each timed into `stages` (acd, pc, eacd: PC is the minimum over the ACDs).
 DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
                                 std::vector<StageTime>& stages);
 

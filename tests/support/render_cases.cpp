@@ -176,6 +176,8 @@ CaseCount spanOpacityGrid(const RenderFn& render, const CaseOptions& options) {
                 if (stepsEverySample && samples > options.maxSteppedSamples) continue;
                 RenderSettings s = unshaded(dt, 1.0);
                 s.caster = c;
+                // 1e7 samples across one voxel: the volume's diagonal would need more than the default cap allows.
+                s.maxIterationsPerRay = std::max<long long>(s.maxIterationsPerRay, 2 * n);
                 const RenderResult r = render(p, cam, s);
                 ++count.renders;
                 ++count.rays;
