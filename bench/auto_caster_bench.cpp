@@ -14,6 +14,7 @@
 #include "preprocess/pipeline/prepare.h"
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
+#include "sweep/order_statistics.h"
 #include "volrender/caster_choice.h"
 #include "volrender/vulkan/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
@@ -32,11 +33,6 @@ struct Scene {
     fs::path tf;
 };
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n == 0 ? 0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Orthographic views from three sides and one perspective view: the octants and projections auto must handle.
 std::vector<ViewParams> benchViews(int size, int count) {

@@ -17,6 +17,8 @@
 #include "preprocess/pipeline/prepare.h"
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
+#include "sweep/metrics/rmse.h"
+#include "sweep/order_statistics.h"
 #include "volrender/vulkan/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -26,23 +28,7 @@ using namespace vr;
 
 constexpr ExtentCode kCodes[] = {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8};
 
-// PSNR of the displayed RGB (clamped to [0,1]) of b against a; +inf when equal.
-double psnr(const Image& a, const Image& b) {
-    double sum = 0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-        if (i % 4 == 3) continue;
-        const double d = std::clamp(a.rgba[i], 0.f, 1.f) - std::clamp(b.rgba[i], 0.f, 1.f);
-        sum += d * d;
-        ++n;
-    }
-    return sum == 0 ? INFINITY : 10 * std::log10(double(n) / sum);
-}
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 struct CodeRun {
     double iterations = 0, deviceMs = 0, deviceBytesPerVoxel = 0;
@@ -128,7 +114,7 @@ int main(int argc, char** argv) {
                         run.iterations += std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0) /
                                           double(r.iterations.size()) / views;
                         if (code == ExtentCode::Exact) reference.push_back(r.image);
-                        run.worstPsnr = std::min(run.worstPsnr, psnr(reference[v], r.image));
+                        run.worstPsnr = std::min(run.worstPsnr, difference(reference[v], r.image).psnr());
                     }
                     run.orbit = clock.stop("orbit");
                     run.deviceMs = median(ms);

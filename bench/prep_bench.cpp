@@ -14,18 +14,15 @@
 #include "core/prepared_file.h"
 #include "preprocess/pipeline/prepare.h"
 #include "support/datasets.h"
+#include "sweep/order_statistics.h"
 
 namespace {
 namespace fs = std::filesystem;
+using vr::median;
 
 const std::vector<std::string> kStages = {"load", "classify", "segment", "pc", "acd", "eacd", "write", "read"};
 const std::vector<std::string> kChunks = {"sigma", "colour", "normal", "labels", "pc", "acd", "eacd"};
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 

@@ -16,6 +16,8 @@
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
+#include "sweep/metrics/rmse.h"
+#include "sweep/order_statistics.h"
 #include "volrender/vulkan/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -61,23 +63,7 @@ PreparedVolume prepare(const ClassifiedVolume& classified, double to, double ta)
     return p;
 }
 
-// PSNR of the displayed RGB (clamped to [0,1]) of b against a; +inf when equal.
-double psnr(const Image& a, const Image& b) {
-    double sum = 0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-        if (i % 4 == 3) continue;
-        const double d = std::clamp(a.rgba[i], 0.f, 1.f) - std::clamp(b.rgba[i], 0.f, 1.f);
-        sum += d * d;
-        ++n;
-    }
-    return sum == 0 ? INFINITY : 10 * std::log10(double(n) / sum);
-}
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 }  // namespace
 
@@ -142,7 +128,7 @@ int main(int argc, char** argv) {
                         iterations += std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0) /
                                       double(r.iterations.size()) / views;
                         if (reference.size() < std::size_t(views)) reference.push_back(r.image);
-                        psnrs.push_back(psnr(reference[v], r.image));
+                        psnrs.push_back(difference(reference[v], r.image).psnr());
                     }
                     const double t = median(ms);
                     if (c == Caster::Primitive) primitiveMs = t, primitiveIterations = iterations;

@@ -18,19 +18,16 @@
 #include "datasets/phantoms.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
+#include "sweep/order_statistics.h"
 
 namespace {
 namespace fs = std::filesystem;
+using vr::median;
 using vr::Vec3i;
 
 const std::vector<std::string> kStages = {"classify", "segment", "pc", "acd", "eacd"};
 const std::vector<std::string> kScenarios = {"full", "threshold change", "TF change"};
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Source position of destination voxel i when n voxels are resampled to m over the same extent (centres aligned).
 struct Tap {

@@ -12,6 +12,7 @@
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
+#include "support/render_cases.h"
 #include "volrender/cpu_renderer.h"
 #include "volrender/vulkan/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
@@ -19,7 +20,7 @@
 namespace vr {
 namespace {
 
-constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+using test::kCasters;
 
 VulkanContext& context() {
     static VulkanContext ctx(VulkanOptions{-1, true});  // validation on in every test
@@ -106,13 +107,7 @@ std::vector<Dataset> phantoms() {
 }
 
 ViewParams view(double az, double el, Projection projection = Projection::Orthographic) {
-    ViewParams v;
-    v.projection = projection;
-    v.azimuthDeg = az;
-    v.elevationDeg = el;
-    v.width = 64;
-    v.height = 48;
-    return v;
+    return test::orbitView(az, el, 64, 48, projection);
 }
 
 RenderSettings settings(Caster caster, bool shading = true, bool trilinear = false) {

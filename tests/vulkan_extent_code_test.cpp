@@ -9,6 +9,7 @@
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
+#include "support/render_cases.h"
 #include "volrender/cpu_renderer.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -38,13 +39,7 @@ PreparedVolume prepare(const Volume& volume, const std::string& tf, double to, d
 }
 
 ViewParams view(double az, double el, Projection projection = Projection::Orthographic) {
-    ViewParams v;
-    v.projection = projection;
-    v.azimuthDeg = az;
-    v.elevationDeg = el;
-    v.width = 64;
-    v.height = 48;
-    return v;
+    return test::orbitView(az, el, 64, 48, projection);
 }
 
 // Every code on the device against the CPU reference on the same coded volume, in orthographic and perspective

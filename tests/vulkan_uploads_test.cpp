@@ -19,7 +19,7 @@
 namespace vr {
 namespace {
 
-constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+using test::kCasters;
 
 VulkanContext& context() {
     static VulkanContext ctx(VulkanOptions{-1, true});  // validation on in every test
@@ -66,14 +66,7 @@ PreparedVolume prepare(const Volume& volume, double to, double ta, bool trilinea
 }
 
 ViewParams view(double az, double el, Projection projection = Projection::Orthographic, double fov = 30) {
-    ViewParams v;
-    v.projection = projection;
-    v.azimuthDeg = az;
-    v.elevationDeg = el;
-    v.fovDeg = fov;
-    v.width = 32;
-    v.height = 24;
-    return v;
+    return test::orbitView(az, el, 32, 24, projection, fov);
 }
 
 RenderSettings settings(Caster caster, bool shading, bool trilinear = false) {

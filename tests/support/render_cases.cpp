@@ -16,9 +16,21 @@
 #include "preprocess/segment/segment.h"
 
 namespace vr::test {
+
+ViewParams orbitView(double azimuthDeg, double elevationDeg, int width, int height, Projection projection,
+                     double fovDeg) {
+    ViewParams v;
+    v.projection = projection;
+    v.azimuthDeg = azimuthDeg;
+    v.elevationDeg = elevationDeg;
+    v.fovDeg = fovDeg;
+    v.width = width;
+    v.height = height;
+    return v;
+}
+
 namespace {
 
-constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
 constexpr Caster kLeaping[] = {Caster::PC, Caster::ACD, Caster::EACD};
 
 std::string casterText(Caster c) { return std::string(casterName(c)); }

@@ -15,6 +15,12 @@ namespace vr::test {
 
 using RenderFn = std::function<RenderResult(const PreparedVolume&, const Camera&, const RenderSettings&)>;
 
+inline constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+
+// A view of the orbit around the volume, of width x height pixels.
+ViewParams orbitView(double azimuthDeg, double elevationDeg, int width, int height,
+                     Projection projection = Projection::Orthographic, double fovDeg = 30);
+
 struct VoxelClass {
     double alpha;  // opacity per reference step
     Vec3d colour;
