@@ -21,7 +21,8 @@ void findWidestAxes(OctantBatch& batch) {
             forEachLane(range.size(), [&, at = range.begin()](std::size_t i, auto t) {
                 const std::size_t v = at + i;
                 const auto x = load(ex + v, t), y = load(ey + v, t), z = load(ez + v, t);
-                const auto yWins = y > x, best = select(yWins, y, x);
+                const auto yWins = y > x;  // a mask: its own declaration (its type is not the bytes' type)
+                const auto best = select(yWins, y, x);
                 const auto zWins = z > best;
                 store(widest + v, select(zWins, splat(2, t), select(yWins, splat(1, t), splat(0, t))));
                 store(longest + v, select(zWins, z, best));
