@@ -15,7 +15,8 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
 start=$(date +%s)
 CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVR_SANITIZE=ON >/dev/null
-# The tests and what they run (volprep, volrender); benchmarks are left out: timing sanitized code tells nothing.
+# The tests and what they run (volprep, volrender); benchmarks (and their short CTest runs, label bench) are left
+# out: timing sanitized code tells nothing.
 tests=$(cmake --build build-asan --target help | grep -o '^[a-z0-9_]*_test' | sort -u)
 cmake --build build-asan -j "$(nproc)" --target $tests
 built=$(date +%s)
@@ -24,6 +25,6 @@ status=0
 # The Vulkan loader unloads Mesa's lavapipe driver before LeakSanitizer looks, which then sees the driver's global
 # allocations as leaked from an "<unknown module>". Preloading the driver keeps it mapped (and them reachable).
 lavapipe=$(find /usr/lib -name libvulkan_lvp.so -print -quit)
-LD_PRELOAD=$lavapipe ctest --output-on-failure -j "$(nproc)" --timeout 900 "$@" || status=$?
+LD_PRELOAD=$lavapipe ctest --output-on-failure -j "$(nproc)" --timeout 900 -LE bench "$@" || status=$?
 echo "sanitize.sh: build $((built - start)) s, tests $(($(date +%s) - built)) s"
 exit $status

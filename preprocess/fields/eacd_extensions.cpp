@@ -26,9 +26,10 @@ struct WalkScratch {
     std::array<std::vector<uint8_t>, 4> edgeBefore, widestBefore, longestBefore, extBefore;
 };
 
-// Local slice t of a per-octant array, or its kept plane for kSlabBefore.
+// Local slice t of a per-octant array, its kept plane for kSlabBefore, null for kBorder (nothing to read there).
 const uint8_t* sliceOf(const std::vector<uint8_t>& local, const std::vector<uint8_t>& before, const Slab& slab, int t) {
-    return t == kSlabBefore ? before.data() : local.data() + t * slab.pitch;
+    if (t == kBorder) return nullptr;
+    return t == kSlabBefore ? before.data() : local.data() + std::size_t(t) * slab.pitch;
 }
 
 // Keeps local slice t of `local` in `before`.

@@ -39,10 +39,12 @@ void splitBorderVoxels(Regions& regions) {
         for (int z = zs.begin(); z != zs.end(); ++z) {
             if (z + 1 < d.z) uniformSquares(regions, z + 1, triples, above);
             const uint32_t* l = &regions.label[linearIndex(d, 0, 0, z)];
+            const uint32_t* lBelow = z > 0 ? l - slice : l;  // read only when the slice exists
+            const uint32_t* lAbove = z + 1 < d.z ? l + slice : l;
             uint8_t* b = &border[linearIndex(d, 0, 0, z)];
             for (std::size_t j = 0; j < slice; ++j)
-                b[j] = !(here[j] && (z == 0 || (below[j] && l[j - slice] == l[j])) &&
-                         (z + 1 == d.z || (above[j] && l[j + slice] == l[j])));
+                b[j] = !(here[j] && (z == 0 || (below[j] && lBelow[j] == l[j])) &&
+                         (z + 1 == d.z || (above[j] && lAbove[j] == l[j])));
             std::swap(below, here);
             std::swap(here, above);
         }
