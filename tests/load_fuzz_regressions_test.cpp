@@ -84,6 +84,19 @@ TEST(LoadFuzzRegressions, DicomEmptyElementValues) {
     expectRefused(kRegressions / "dicom" / "empty_rescale_slope");
 }
 
+// VTK's DICOMParser reads on past the pixel data to the end of the file: an empty Columns there reaches its
+// callback as null (SEGV, found by CI's fuzzing), an empty SeriesInstanceUID becomes std::string(nullptr).
+TEST(LoadFuzzRegressions, DicomEmptyElementsAfterThePixelData) {
+    expectRefused(kRegressions / "dicom" / "columns_empty_after_pixel_data");
+    expectRefused(kRegressions / "dicom" / "empty_series_uid_after_pixel_data");
+}
+
+// vtkDICOMImageReader sizes the volume from one slice and copies each slice whole into it: a later, larger slice
+// overflowed it (SEGV).
+TEST(LoadFuzzRegressions, DicomSlicesOfDifferentSizes) {
+    expectRefused(kRegressions / "dicom" / "slices_of_different_sizes");
+}
+
 // vtkNrrdReader reports nothing when raw or ASCII data end early: the missing voxels would be uninitialised memory.
 TEST(LoadFuzzRegressions, NrrdDataShorterThanTheSizes) {
     expectRefused(kRegressions / "nrrd" / "raw_data_too_short.nrrd");

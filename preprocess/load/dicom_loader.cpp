@@ -2,6 +2,7 @@
 #include <vtkDICOMImageReader.h>
 #include <vtkNew.h>
 
+#include <optional>
 #include <string>
 
 #include "core/errors.h"
@@ -22,12 +23,20 @@ Volume loadDicomSeries(const fs::path& folder) {
     VtkReadErrors errors;
     // The reader's own test, the one it applies to each file of the folder; it would only say it found no slices.
     int files = 0, dicomFiles = 0;
+    std::optional<DicomSliceLayout> layout;
     for (const auto& entry : fs::directory_iterator(folder))
         if (entry.is_regular_file()) {
             ++files;
             if (reader->CanReadFile(entry.path().c_str()) == 0) continue;
             ++dicomFiles;
-            checkDicomFile(entry.path());  // each slice the reader will parse, before it does
+            // Each slice the reader will parse, before it does. The reader sizes the volume from one slice and
+            // copies every slice whole into it: a larger slice would overflow it.
+            const DicomSliceLayout slice = checkDicomFile(entry.path());
+            if (layout && slice != *layout)
+                throw fileError(entry.path().string(),
+                                "invalid DICOM series: this slice's rows, columns, samples or bits allocated differ "
+                                "from the other slices'");
+            layout = slice;
         }
     if (dicomFiles == 0)
         throw fileError(folder.string(), "folder holds no DICOM files (" + std::to_string(files) +

@@ -32,9 +32,17 @@ void checkVtkLegacyFile(const std::filesystem::path& path);
 // holds that decompress to that length.
 void checkMetaImageHeader(const std::filesystem::path& path);
 
-// One DICOM file of a series: a DICM preamble, explicit or implicit VR little-endian elements that parse, non-empty
-// transfer syntax and rescale values, and pixel data at least rows x columns x bits allocated long.
-void checkDicomFile(const std::filesystem::path& path);
+// The image layout of one DICOM slice, as VTK's DICOM reader will copy it.
+struct DicomSliceLayout {
+    std::uint64_t rows, columns, bitsAllocated, samples;
+    bool operator==(const DicomSliceLayout&) const = default;
+};
+
+// One DICOM file of a series, walked element by element as VTK's DICOMParser walks it: a DICM magic, explicit or
+// implicit VR little-endian transfer syntax, elements inside the file, non-empty values for the elements VTK's
+// callbacks parse, 8 or 16 bits allocated, and one pixel data element, after the layout elements, at least rows x
+// columns x samples x bits allocated long. Returns that layout.
+DicomSliceLayout checkDicomFile(const std::filesystem::path& path);
 
 // How data are packed: what gzread reads (gzip members, or plain bytes without the gzip magic) or what MetaIO
 // inflates (zlib or gzip).
