@@ -28,17 +28,17 @@ void storeRayState(uint i, RayState s) {
     rayState[i].flags = s.flags;
 }
 
-bool inBrick(ivec3 v) { return all(greaterThanEqual(v, T.brickLo.xyz)) && all(lessThanEqual(v, T.brickHi.xyz)); }
+bool inBrick(ivec3 v) { return all(greaterThanEqual(v, uBrickLo)) && all(lessThanEqual(v, uBrickHi)); }
 
 bool rayInPass(int oct) { return (oct & T.passAxes) == T.passSigns; }
 
 // Texel of a global voxel in this brick's classified and normal images.
-ivec3 brickTexel(ivec3 v) { return v - T.imageLo.xyz; }
+ivec3 brickTexel(ivec3 v) { return v - uImageLo; }
 
 // Texel of a global voxel in slab `slot` of this brick's field image (ACD / EACD stack octants along z).
 ivec3 fieldTexel(ivec3 v, int slot) {
     ivec3 t = brickTexel(v);
-    return ivec3(t.xy, slot * T.imageDims.z + t.z);
+    return ivec3(t.xy, slot * uSlabDepth + t.z);
 }
 
 #endif

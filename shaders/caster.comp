@@ -68,7 +68,11 @@ SampleValue trilinearSample(dvec3 p) {
 }
 
 void main() {
-    ivec2 local = ivec2(gl_GlobalInvocationID.xy);
+    copyUniforms();
+    // llvmpipe runs the 8 invocations of a row of this 8x8 workgroup as one SIMD batch, for as long as its
+    // slowest ray takes: each batch takes a 4x2 block of pixels, whose rays stay closer together than an 8x1 row's.
+    uvec2 l = gl_LocalInvocationID.xy;
+    ivec2 local = ivec2(gl_WorkGroupID.xy * 8u + uvec2((l.x & 3u) | ((l.y & 1u) << 2), (l.y & ~1u) | (l.x >> 2)));
     if (any(greaterThanEqual(local, T.tileSize))) return;
     ivec2 pixel = T.tileOrigin + local;
     uint outIndex = uint(local.y * T.tileSize.x + local.x);
@@ -96,11 +100,11 @@ void main() {
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
     bool mine = rayInPass(oct) && k < kCount && inBrick(sampleVoxel(g, latticeT(iv, k)));
     if (!mine && T.firstDispatch == 0 && T.lastDispatch == 0) return;
-    for (double n = 1.0LF; mine && !failed && k < kCount && alpha < P.ert; k += n) {
+    for (double n = 1.0LF; mine && !failed && k < kCount && alpha < uErt; k += n) {
         double t = latticeT(iv, k);
         ivec3 v = sampleVoxel(g, t);
         if (!inBrick(v)) break;
-        if (++iterations > P.maxIterations) {
+        if (++iterations > uMaxIterations) {
             failed = true;
             break;
         }
@@ -123,7 +127,7 @@ void main() {
         wanted = min(wanted, samplesToTermination(alpha, s.sigma));
         n = leapCount(g, iv, k, kCount, wanted, box);
 
-        double spanAlpha = spanOpacity(s.sigma, n * P.dt);
+        double spanAlpha = spanOpacity(s.sigma, n * uDt);
         if (spanAlpha > 0.0LF) {
             vec3 shaded = SHADING ? shade(s.colour, s.normal, toEye, toLight) : s.colour;
             precise double w = (1.0LF - alpha) * spanAlpha;
@@ -139,9 +143,10 @@ void main() {
     int probe = 0;
     for (double i = 0.0LF; i < P.loopProbe; i += 1.0LF) ++probe;
     uint flags = state.flags | (probe < 2 ? kCutShort : 0u);
-    if (T.lastDispatch != 0 && k < kCount && alpha < P.ert) failed = true;  // in no pass: a bug
+    if (T.lastDispatch != 0 && k < kCount && alpha < uErt) failed = true;  // in no pass: a bug
     if (failed) flags |= kFailed;
-    storeRayState(outIndex, RayState(dvec4(colour, alpha), k, samples, iterations, flags));
+    // The next brick's dispatch reads this state; after the last one, nothing does.
+    if (T.lastDispatch == 0) storeRayState(outIndex, RayState(dvec4(colour, alpha), k, samples, iterations, flags));
 
     outColour[outIndex] = vec4(vec3(colour + dvec3(P.background.rgb) * (1.0LF - alpha)), float(alpha));
     outIterations[outIndex] = iterations | flags;

@@ -38,4 +38,24 @@ layout(push_constant) uniform Tile {
     int passSigns;     // ... are passSigns (the bricks come in an order they all cross them in)
 } T;
 
+// The members the casters' loop reads, copied once per invocation by copyUniforms(): llvmpipe (Mesa 22)
+// reads a block member as a gather over the invocations of its SIMD batch, every time the shader reads it.
+double uDt, uErt;
+ivec3 uDims, uBrickLo, uBrickHi, uImageLo;
+int uSlabDepth;  // texels of one slab of the brick's images along z
+uint uMaxIterations;
+vec4 uMaterial;
+
+void copyUniforms() {
+    uDt = P.dt;
+    uErt = P.ert;
+    uDims = P.dims.xyz;
+    uBrickLo = T.brickLo.xyz;
+    uBrickHi = T.brickHi.xyz;
+    uImageLo = T.imageLo.xyz;
+    uSlabDepth = T.imageDims.z;
+    uMaxIterations = P.maxIterations;
+    uMaterial = P.material;
+}
+
 #endif

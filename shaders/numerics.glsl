@@ -1,4 +1,4 @@
-// exp, log, expm1 and log1p in double, which GLSL lacks (it has exp/log in float only; ALGORITHMS.md
+// log, expm1 and log1p in double, which GLSL lacks (it has exp/log in float only; ALGORITHMS.md
 // section 6). The casters accumulate opacity in double so that early ray termination decides exactly as the
 // CPU reference does: in float, opacity near the threshold is off by 1e-7 and flips whether one more sample
 // is composited. Small arguments are evaluated by series that involve no cancellation. Tested against the
@@ -8,10 +8,10 @@
 
 const double kLn2Hi = 6.93147180369123816490e-01LF;  // fdlibm's split of ln 2: k * kLn2Hi is exact
 const double kLn2Lo = 1.90821492927058770002e-10LF;
+const double kInvLn2 = 1.44269504088896338700e+00LF;  // 1 / ln 2, rounded: only picks k
 
-// 1/n! for n = 0..16 and 1/k for odd k = 1..35: the series' coefficients.
-const double kInverseFactorial[17] = double[17](
-    1.0LF,
+// The series' coefficients: 1/n! for n = 1..16 (expm1) and 1/k for odd k = 1..31 (atanh).
+const double kInverseFactorial[16] = double[16](
     1.0LF,
     0.5LF,
     0.16666666666666666LF,
@@ -28,7 +28,7 @@ const double kInverseFactorial[17] = double[17](
     1.1470745597729725e-11LF,
     7.647163731819816e-13LF,
     4.779477332387385e-14LF);
-const double kInverseOdd[18] = double[18](
+const double kInverseOdd[16] = double[16](
     1.0LF,
     0.3333333333333333LF,
     0.2LF,
@@ -44,32 +44,26 @@ const double kInverseOdd[18] = double[18](
     0.04LF,
     0.037037037037037035LF,
     0.034482758620689655LF,
-    0.03225806451612903LF,
-    0.030303030303030304LF,
-    0.02857142857142857LF);
+    0.03225806451612903LF);
 
-// exp(x) - 1 for |x| <= 0.5: Taylor series to x^16 (truncation below 2e-18 relative).
-double expm1Series(double x) {
-    double p = kInverseFactorial[16];
-    for (int n = 15; n >= 1; --n) p = p * x + kInverseFactorial[n];
-    return p * x;
+// c[0] + c[1] x + ... + c[15] x^15 by Estrin's scheme: pairs, then pairs of pairs, so the chain of dependent
+// operations is 4 multiply-adds deep instead of Horner's 15. llvmpipe runs one batch of rays at a time, and
+// each caster iteration waits for this chain (twice: the termination count's log, then the span's expm1).
+double series16(double c[16], double x) {
+    double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
+    double a0 = (c[0] + c[1] * x) + (c[2] + c[3] * x) * x2;
+    double a1 = (c[4] + c[5] * x) + (c[6] + c[7] * x) * x2;
+    double a2 = (c[8] + c[9] * x) + (c[10] + c[11] * x) * x2;
+    double a3 = (c[12] + c[13] * x) + (c[14] + c[15] * x) * x2;
+    return (a0 + a1 * x4) + (a2 + a3 * x4) * x8;
 }
 
-// 2 atanh(z) = log((1 + z) / (1 - z)) for |z| <= 1/3: odd series to z^35 (truncation below 2e-18 relative).
-double atanh2Series(double z) {
-    double z2 = z * z;
-    double p = kInverseOdd[17];
-    for (int i = 16; i >= 0; --i) p = p * z2 + kInverseOdd[i];
-    return 2.0LF * z * p;
-}
+// exp(x) - 1 for |x| <= 0.5: Taylor series to x^16 (truncation below 2e-19 relative).
+double expm1Series(double x) { return series16(kInverseFactorial, x) * x; }
 
-double vrExp(double x) {
-    if (x < -746.0LF) return 0.0LF;
-    if (x > 709.78LF) return 1.0LF / 0.0LF;
-    double k = floor(x / (kLn2Hi + kLn2Lo) + 0.5LF);
-    double r = (x - k * kLn2Hi) - k * kLn2Lo;  // |r| <= 0.35
-    return ldexp(1.0LF + expm1Series(r), int(k));
-}
+// 2 atanh(z) = log((1 + z) / (1 - z)) by its odd series to z^31: truncation below 2e-17 relative for
+// |z| <= 1/3 (log1p), below 1e-25 for |z| <= 0.172 (log).
+double atanh2Series(double z) { return 2.0LF * z * series16(kInverseOdd, z * z); }
 
 // log(y) for y > 0: y = m 2^e with m in [sqrt(1/2), sqrt(2)), log m = 2 atanh((m - 1) / (m + 1)).
 double vrLog(double y) {
@@ -84,10 +78,18 @@ double vrLog(double y) {
     return double(e) * kLn2Hi + (double(e) * kLn2Lo + atanh2Series((m - 1.0LF) / (m + 1.0LF)));
 }
 
-// exp(x) - 1; beyond |x| <= 0.5, exp(x) - 1 loses at most a factor 2.6 of exp's accuracy.
+// exp(x) - 1 from one series: for |x| <= 0.5 the series of x itself (no cancellation), beyond it
+// exp(x) - 1 with x = k ln 2 + r, |r| <= 0.35, which loses at most a factor 2.6 of exp's accuracy. llvmpipe
+// runs both sides of every branch, so the two cases share the series rather than each having its own.
 double vrExpm1(double x) {
-    if (abs(x) <= 0.5LF) return expm1Series(x);
-    return vrExp(x) - 1.0LF;
+    bool direct = abs(x) <= 0.5LF;
+    double k = direct ? 0.0LF : floor(x * kInvLn2 + 0.5LF);
+    double r = direct ? x : (x - k * kLn2Hi) - k * kLn2Lo;
+    double p = expm1Series(r);
+    if (direct) return p;
+    if (x < -746.0LF) return -1.0LF;
+    if (x > 709.78LF) return 1.0LF / 0.0LF;
+    return ldexp(1.0LF + p, int(k)) - 1.0LF;
 }
 
 // log(1 + x); for -0.5 <= x <= 1, log1p(x) = 2 atanh(x / (2 + x)) with |x / (2 + x)| <= 1/3.

@@ -48,11 +48,11 @@ RayInterval intersectGrid(GridRay r) {
     double t0 = 0.0LF, t1 = kInfinity;
     for (int a = 0; a < 3; ++a) {
         if (r.d[a] == 0.0LF) {
-            if (!(r.o[a] >= 0.0LF && r.o[a] < double(P.dims[a]))) return RayInterval(0.0LF, 0.0LF);
+            if (!(r.o[a] >= 0.0LF && r.o[a] < double(uDims[a]))) return RayInterval(0.0LF, 0.0LF);
             continue;
         }
         precise double ta = (0.0LF - r.o[a]) / r.d[a];
-        precise double tb = (double(P.dims[a]) - r.o[a]) / r.d[a];
+        precise double tb = (double(uDims[a]) - r.o[a]) / r.d[a];
         if (ta > tb) {
             double s = ta;
             ta = tb;
@@ -68,14 +68,14 @@ RayInterval intersectGrid(GridRay r) {
 bool intervalEmpty(RayInterval iv) { return !(iv.tEntry < iv.tExit); }
 
 double latticeT(RayInterval iv, double k) {
-    precise double t = iv.tEntry + k * P.dt;
+    precise double t = iv.tEntry + k * uDt;
     return t;
 }
 
 // Samples with t_k < tExit, exactly as the comparison decides.
 double latticeCount(RayInterval iv) {
     if (intervalEmpty(iv)) return 0.0LF;
-    precise double q = (iv.tExit - iv.tEntry) / P.dt;
+    precise double q = (iv.tExit - iv.tEntry) / uDt;
     double k = max(1.0LF, ceil(q));
     while (k > 1.0LF && latticeT(iv, k - 1.0LF) >= iv.tExit) k -= 1.0LF;
     while (latticeT(iv, k) < iv.tExit) k += 1.0LF;
@@ -83,7 +83,7 @@ double latticeCount(RayInterval iv) {
 }
 
 ivec3 floorVoxel(dvec3 p) { return ivec3(floor(p)); }
-ivec3 clampVoxel(ivec3 v) { return clamp(v, ivec3(0), P.dims.xyz - 1); }
+ivec3 clampVoxel(ivec3 v) { return clamp(v, ivec3(0), uDims - 1); }
 ivec3 sampleVoxel(GridRay r, double t) { return clampVoxel(floorVoxel(rayAt(r, t))); }
 
 int rayOctant(GridRay r) { return int(r.d.x < 0.0LF) | (int(r.d.y < 0.0LF) << 1) | (int(r.d.z < 0.0LF) << 2); }
@@ -109,7 +109,7 @@ VoxelBox octantBox(ivec3 v, int oct, ivec3 ext) {
 
 double pcLeapSamples(int r, GridRay ray) {
     double speed = max(max(abs(ray.d.x), abs(ray.d.y)), abs(ray.d.z));
-    precise double q = double(r) / (P.dt * speed);
+    precise double q = double(r) / (uDt * speed);
     return max(1.0LF, 1.0LF + floor(q));
 }
 
@@ -126,7 +126,7 @@ double boxExitT(GridRay ray, ivec3 v, int oct, ivec3 ext) {
 }
 
 double boxLeapSamples(double tBoxExit, double t) {
-    precise double q = (tBoxExit - t) / P.dt;
+    precise double q = (tBoxExit - t) / uDt;
     return max(1.0LF, ceil(q));
 }
 
@@ -138,7 +138,7 @@ double trilinearLeapSamples(double wanted, VoxelBox box) { return box.lo == box.
 // rounding put outside the box or the volume. Always >= 1.
 double leapCount(GridRay ray, RayInterval iv, double k, double kCount, double wanted, VoxelBox box) {
     double n = floor(min(wanted, kCount - k));
-    VoxelBox volume = VoxelBox(ivec3(0), P.dims.xyz - 1);
+    VoxelBox volume = VoxelBox(ivec3(0), uDims - 1);
     while (n > 1.0LF) {
         ivec3 last = floorVoxel(rayAt(ray, latticeT(iv, k + n - 1.0LF)));
         if (boxContains(box, last) && boxContains(volume, last)) break;

@@ -10,9 +10,9 @@ double spanOpacity(double sigma, double len) { return -vrExpm1(-sigma * len); }
 
 // Samples until primitive stepping would reach ert inside a span of extinction sigma (+inf: never).
 double samplesToTermination(double alpha, double sigma) {
-    if (alpha >= P.ert) return 1.0LF;
+    if (alpha >= uErt) return 1.0LF;
     if (sigma <= 0.0LF) return kInfinity;
-    precise double q = vrLog((1.0LF - alpha) / (1.0LF - P.ert)) / (sigma * P.dt);
+    precise double q = vrLog((1.0LF - alpha) / (1.0LF - uErt)) / (sigma * uDt);
     return max(1.0LF, ceil(q));
 }
 
@@ -27,9 +27,9 @@ vec3 shade(vec3 colour, vec3 normal, vec3 toEye, vec3 toLight) {
     float highlight = 0.0;
     if (!isFlat && nl > 0.0) {
         vec3 reflected = n * (2.0 * nl) - toLight;
-        highlight = pow(max(0.0, dot(reflected, toEye)), P.material.w);
+        highlight = pow(max(0.0, dot(reflected, toEye)), uMaterial.w);
     }
-    return colour * (P.material.x + P.material.y * diffuse) + vec3(P.material.z * highlight);
+    return colour * (uMaterial.x + uMaterial.y * diffuse) + vec3(uMaterial.z * highlight);
 }
 
 #endif

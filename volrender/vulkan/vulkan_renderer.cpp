@@ -67,7 +67,7 @@ CasterParams makeParams(const GridGeometry& grid, const Camera& camera, const Re
 }  // namespace
 
 VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const ImageLimits& limits)
-    : ctx_(ctx), tileSize_(tileSize), limits_(limits) {
+    : ctx_(ctx), tileSize_(tileSize != kAutoTile ? tileSize : ctx.info().type == "cpu" ? 512 : 128), limits_(limits) {
     const vk::raii::Device& device = ctx.device();
     pool_ = vk::raii::CommandPool(device, vk::CommandPoolCreateInfo({}, ctx.queueFamily()));
 

@@ -16,8 +16,10 @@ namespace vr {
 class VulkanRenderer {
 public:
     // Tiles of tileSize x tileSize pixels are separate submits, so no dispatch runs long enough to trip a
-    // GPU watchdog. `limits` lowers the device's image limits (tests force bricks with it).
-    explicit VulkanRenderer(const VulkanContext& ctx, int tileSize = 128, const ImageLimits& limits = {});
+    // GPU watchdog; kAutoTile: 128, or 512 on a CPU device (no watchdog; each submit costs llvmpipe a
+    // thread-pool round). `limits` lowers the device's image limits (tests force bricks with it).
+    static constexpr int kAutoTile = 0;
+    explicit VulkanRenderer(const VulkanContext& ctx, int tileSize = kAutoTile, const ImageLimits& limits = {});
 
     // Uploads a prepared volume once for many renders (see GpuVolume); a volume too large for one image is split
     // into bricks. Throws InputError when the prepared volume lacks what `contents` asks for.
