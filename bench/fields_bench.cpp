@@ -3,7 +3,7 @@
 // Usage: fields_bench [--repeat N] [N | NXxNYxNZ | DATASET.raw.gz ...]   (default: 128 256, i.e. 128^3 and 256^3)
 // Per volume: the shared path (buildFields' steps: axial runs, the 8 ACDs, PC from them, the 8 EACDs on the same
 // runs) and the stand-alone builders (buildPC, buildACD per octant, buildEACD), wall and CPU seconds each: the
-// fastest of N runs (default 1).
+// fastest of N runs (default 1); and a checksum of each field.
 #include <tbb/info.h>
 
 #include <algorithm>
@@ -87,6 +87,13 @@ Regions datasetRegions(const std::string& file) {
     return segment(vr::classify(loadVolume(dir / file), classify), SegmentationParams{});
 }
 
+// FNV-1a of bytes, continuing from h: a checksum printed beside the times, so that a faster builder can be checked
+// against the last one on volumes too large for the brute-force tests.
+uint64_t fnv1a(const uint8_t* bytes, std::size_t n, uint64_t h = 14695981039346656037ull) {
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+    return h;
+}
+
 // Times f() `repeat` times and keeps the fastest (wall and CPU), for a machine shared with others.
 template <typename F>
 std::string fastest(int repeat, F f) {
@@ -129,14 +136,23 @@ void run(const std::string& name, const Regions& r, int repeat) {
     std::printf("  stand-alone: PC %s   ACD x8 %s   EACD x8 %s\n", alonePCTime.c_str(), aloneACDTime.c_str(),
                 aloneEACDTime.c_str());
     if (alonePC != pc) std::printf("  ERROR: buildPC differs from pcFromACD\n");
+    uint64_t acdSum = fnv1a(nullptr, 0), eacdSum = acdSum;
+    for (int o = 0; o < kOctants; ++o) {
+        acdSum = fnv1a(acd[o].data(), acd[o].size(), acdSum);
+        eacdSum = fnv1a(eacd[o].data()->data(), 3 * eacd[o].size(), eacdSum);
+    }
+    std::printf("  checksums:   labels %016llx   PC %016llx   ACD %016llx   EACD %016llx\n",
+                (unsigned long long)fnv1a(reinterpret_cast<const uint8_t*>(r.label.data()), 4 * r.label.size()),
+                (unsigned long long)fnv1a(pc.data(), pc.size()), (unsigned long long)acdSum,
+                (unsigned long long)eacdSum);
 
     // Mean guaranteed leap from a sample in each voxel, in voxels of the max norm (the farthest a sample in v can
     // move and stay in the box): PC r; ACD k - 1; EACD ext_a - 1 along axis a and min_a ext_a - 1 along the
     // diagonal; for a ray along +x and one along (+1, +1, +1), both in octant 0.
-    double pcSum = 0, acdSum = 0, eacdX = 0, eacdDiagonal = 0;
+    double pcSum = 0, acdLeaps = 0, eacdX = 0, eacdDiagonal = 0;
     for (std::size_t v = 0; v < pc.size(); ++v) {
         pcSum += pc[v];
-        acdSum += acd[0][v] - 1;
+        acdLeaps += acd[0][v] - 1;
         const auto& e = eacd[0][v];
         eacdX += e[0] - 1;
         eacdDiagonal += std::min({e[0], e[1], e[2]}) - 1;
@@ -144,7 +160,7 @@ void run(const std::string& name, const Regions& r, int repeat) {
     const double n = double(pc.size());
     std::printf("  mean leap (voxels): along +x  PC %.2f  ACD %.2f  EACD %.2f;  along (1,1,1)  PC %.2f  ACD %.2f  "
                 "EACD %.2f\n",
-                pcSum / n, acdSum / n, eacdX / n, pcSum / n, acdSum / n, eacdDiagonal / n);
+                pcSum / n, acdLeaps / n, eacdX / n, pcSum / n, acdLeaps / n, eacdDiagonal / n);
 }
 
 }  // namespace

@@ -268,6 +268,22 @@ TEST(FieldsBuild, BuildFieldsReportsEachFieldOnceInOrder) {
     EXPECT_EQ(order(0), V());
 }
 
+TEST(FieldsBuild, CodedEACDIsTheExactOneQuantised) {
+    // Large regions, so that extents reach past the codes' exact values (Log16 above 16, Joint8 above 2).
+    std::mt19937 rng(17);
+    const Regions r = blockyRegions({70, 45, 38}, 6, 3, rng);
+    const DistanceFields exact = buildFields(r, kFieldPC | kFieldEACD);
+    for (ExtentCode code : {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8}) {
+        SCOPED_TRACE(std::string(extentCodeName(code)));
+        DistanceFields rounded = exact;
+        quantiseEACD(rounded, code);
+        const DistanceFields coded = buildFields(r, kFieldPC | kFieldEACD, code, [](FieldKind) {});
+        EXPECT_EQ(coded.eacdCode, code);
+        EXPECT_EQ(coded.pc, exact.pc);
+        for (int o = 0; o < kOctants; ++o) ASSERT_EQ(coded.eacd[o], rounded.eacd[o]) << "octant " << o;
+    }
+}
+
 TEST(FieldsBuild, SharedRunsGiveTheSameFieldsAsTheStandAloneBuilders) {
     for (const auto& [name, r] : smallVolumes()) {
         SCOPED_TRACE(name);

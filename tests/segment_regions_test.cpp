@@ -262,6 +262,19 @@ TEST(Segment, LabelsAreTheComponentsOfEqualKeysOnEveryShape) {
         }
 }
 
+TEST(Segment, LabelsAreTheComponentsOfEqualKeysAcrossSlabs) {
+    // Enough slices for every thread's slabs of slices: components span slabs and are joined at their seams.
+    const Vec3i dims{70, 50, 41};
+    for (int values : {2, 5}) {
+        const ClassifiedVolume c = patchyClassified(dims, unsigned(values), values);
+        const SegmentationParams p{0.05, 10, true, false};
+        const RegionKeyer key(c, p);
+        const Regions plain = segment(c, p);
+        expectCompactFirstVoxelOrder(plain, dims);
+        EXPECT_EQ(plain.label, floodFill(dims, [&](auto a, auto b) { return key(a) == key(b); }).label);
+    }
+}
+
 TEST(Segment, IntoUsedRegionsEqualsFresh) {
     Regions reused = segment(patchyClassified({9, 8, 7}, 1, 3), SegmentationParams{});
     for (Vec3i dims : {Vec3i{4, 6, 5}, Vec3i{9, 8, 7}, Vec3i{9, 8, 7}})

@@ -66,6 +66,11 @@ ACDFields buildACDs(const Regions& regions) {
 DistanceFields buildFields(const Regions& regions, unsigned kinds) { return buildFields(regions, kinds, [](FieldKind) {}); }
 
 DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::function<void(FieldKind)>& done) {
+    return buildFields(regions, kinds, ExtentCode::Exact, done);
+}
+
+DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
+                           const std::function<void(FieldKind)>& done) {
     DistanceFields f;
     f.dims = regions.dims;
     const bool pc = kinds & kFieldPC, acd = kinds & (kFieldACD | kFieldEACD);
@@ -84,7 +89,8 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::fu
         done(kFieldPC);
     }
     if (kinds & kFieldEACD) {
-        f.eacd = buildEACD(runs, acds);
+        f.eacd = buildEACD(runs, acds, eacdCode);
+        f.eacdCode = eacdCode;
         done(kFieldEACD);
     }
     if (kinds & kFieldACD) f.acd = std::move(acds);

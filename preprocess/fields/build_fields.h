@@ -31,7 +31,9 @@ std::array<EACDField, kOctants> buildEACD(const Regions& regions, const ACDField
 // The same builders on axial runs shared between them (each run field is computed once).
 std::vector<uint8_t> buildACD(AxialRuns& runs, int octant);
 ACDFields buildACDs(AxialRuns& runs);
-std::array<EACDField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd);
+// code: every extent rounded down to that code as it is stored (quantiseExtents; Exact leaves them as built).
+std::array<EACDField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd,
+                                          ExtentCode code = ExtentCode::Exact);
 
 // kinds: a mask of FieldKind. EACD needs ACD internally; ACD is kept only when asked for. The fastest way to get
 // several fields: the runs, ACDs and PC are shared.
@@ -39,5 +41,9 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds);
 // The same, calling done(kind) as each field is finished, so that a caller can time them: ACD first (with the axial
 // runs; also when it is built only for EACD), then PC (alone when only PC is asked for), then EACD.
 DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::function<void(FieldKind)>& done);
+// The same with the EACD rounded down to eacdCode as it is built (fields.eacdCode records it): what
+// quantiseEACD(buildFields(regions, kinds), eacdCode) gives, without a second pass over the extents.
+DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
+                           const std::function<void(FieldKind)>& done);
 
 }  // namespace vr

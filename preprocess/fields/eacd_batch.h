@@ -15,7 +15,6 @@ namespace vr {
 class ByteVolume {
 public:
     void allocate(std::size_t voxels) { bytes_ = std::make_unique_for_overwrite<uint8_t[]>(voxels); }
-    void release() { bytes_.reset(); }
     uint8_t* data() { return bytes_.get(); }
     const uint8_t* data() const { return bytes_.get(); }
 
@@ -28,9 +27,23 @@ private:
 // widest[o][v] is the axis step 1 extends (the first with the largest extent), longest[o][v] its extent.
 struct OctantBatch {
     std::vector<int> octants;
+    // Volumes of the octants done, for the next batch: the same memory again, already mapped.
+    std::vector<ByteVolume> spare;
     std::array<const std::vector<uint8_t>*, kOctants> acd{};
     std::array<std::array<ByteVolume, 3>, kOctants> ext;
     std::array<ByteVolume, kOctants> widest, longest;
+
+    // A volume of `voxels` bytes: a spare one (all have the same size) or a new one.
+    ByteVolume take(std::size_t voxels) {
+        if (spare.empty()) {
+            ByteVolume v;
+            v.allocate(voxels);
+            return v;
+        }
+        ByteVolume v = std::move(spare.back());
+        spare.pop_back();
+        return v;
+    }
 
     std::vector<int> withSign(int axis, int sign) const {
         std::vector<int> out;

@@ -23,32 +23,24 @@ void RectMin::reserveLevels(int count) {
     if (table_.size() < std::size_t(count) * plane_) table_.resize(std::size_t(count) * plane_);
 }
 
-void RectMin::build(const Levels& levels) {
-    int levelsU = 0, levelsW = 1;
-    for (int i = 0; i < int(levels.size()); ++i)
-        if (levels[i]) {
-            levelsU = i + 1;
-            levelsW = std::max(levelsW, int(std::bit_width(levels[i])));
-        }
+void RectMin::buildStrips(int maxLenU, int maxLenW) {
+    const int levelsU = levelCount(maxLenU, nu_), levelsW = levelCount(maxLenW, nw_);
     squares_ = false;
-    levelsW_ = levelsW;
-    reserveLevels(std::max(levelsU, 1) * levelsW);
-    // Level (i, 0) from (i-1, 0): two windows of 2^(i-1) along u.
+    levelsU_ = levelsU;
+    reserveLevels(levelsU + levelsW - 1);
+    // Level i along u from i - 1: two strips of 2^(i-1).
     for (int i = 1; i < levelsU; ++i) {
         const int half = 1 << (i - 1), width = nu_ - (1 << i) + 1;
-        const uint8_t* src = level(i - 1, 0);
-        uint8_t* dst = level(i, 0);
+        const uint8_t* src = level(i - 1);
+        uint8_t* dst = level(i);
         for (int w = 0; w < nw_; ++w) minOfRows(src + at(0, w), src + at(half, w), dst + at(0, w), width);
     }
-    // Level (i, j) from (i, j-1): two windows of 2^(j-1) along w, up to the highest j asked for with this i.
-    for (int i = 0; i < levelsU; ++i) {
-        const int width = nu_ - (1 << i) + 1;
-        for (int j = 1; j < int(std::bit_width(levels[i])); ++j) {
-            const int half = 1 << (j - 1), height = nw_ - (1 << j) + 1;
-            const uint8_t* src = level(i, j - 1);
-            uint8_t* dst = level(i, j);
-            for (int w = 0; w < height; ++w) minOfRows(src + at(0, w), src + at(0, w + half), dst + at(0, w), width);
-        }
+    // Level j along w from j - 1: whole rows, two strips of 2^(j-1).
+    for (int j = 1; j < levelsW; ++j) {
+        const int half = 1 << (j - 1), height = nw_ - (1 << j) + 1;
+        const uint8_t* src = level(j == 1 ? 0 : levelsU + j - 2);
+        uint8_t* dst = level(levelsU + j - 1);
+        minOfRows(src, src + at(0, half), dst, height * nu_);
     }
 }
 
@@ -59,8 +51,8 @@ void RectMin::buildSquares(int maxLen) {
     // Level (i, i) from (i-1, i-1): four windows of 2^(i-1).
     for (int i = 1; i < levels; ++i) {
         const int half = 1 << (i - 1), width = nu_ - (1 << i) + 1, height = nw_ - (1 << i) + 1;
-        const uint8_t* src = level(i - 1, i - 1);
-        uint8_t* dst = level(i, i);
+        const uint8_t* src = level(i - 1);
+        uint8_t* dst = level(i);
         for (int w = 0; w < height; ++w)
             minOfRows(src + at(0, w), src + at(half, w), src + at(0, w + half), src + at(half, w + half),
                       dst + at(0, w), width);

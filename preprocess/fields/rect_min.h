@@ -1,4 +1,5 @@
-// Minimum of a 2D byte image over any axis-aligned rectangle in O(1): a 2D sparse table.
+// Minimum of a 2D byte image over an axis-aligned rectangle: sparse tables of squares (O(1) a square) or of 1D
+// strips (O(shorter side) a rectangle).
 #pragma once
 #include <algorithm>
 #include <array>
@@ -10,36 +11,48 @@ namespace vr {
 
 class RectMin {
 public:
-    // The image to build from: nu x nw bytes, u fastest. Fill it, then call build() or buildSquares().
+    // The image to build from: nu x nw bytes, u fastest. Fill it, then call buildStrips() or buildSquares().
     uint8_t* resize(int nu, int nw);
-    // Level pairs (i, j) (a rectangle of lenU x lenW needs i = floor(log2 lenU), j = floor(log2 lenW)): bit j of
-    // [i]. A rectangle query needs one pair, so only those asked for (and the chains to them) are built.
-    using Levels = std::array<uint16_t, 16>;
-    static void addLevels(Levels& levels, int lenU, int lenW) {
-        levels[std::bit_width(unsigned(lenU)) - 1] |= uint16_t(1u << (std::bit_width(unsigned(lenW)) - 1));
-    }
-    // Tables for the rectangles of the level pairs in `levels`, all inside the image.
-    void build(const Levels& levels);
+    // Tables for any rectangle of lenU x lenW whose longer side is at most the longest asked for in its direction:
+    // along u up to maxLenU (for lenW <= lenU), along w up to maxLenW (for lenW > lenU). 1D tables (strips of 2^i
+    // along one axis) rather than all 2D levels: a query then walks its shorter side, which costs less than
+    // building dozens of 2D levels for the few voxels of a slice that query.
+    void buildStrips(int maxLenU, int maxLenW);
     // Tables for squares only, up to maxLen: a few levels instead of their square.
     void buildSquares(int maxLen);
     // Minimum over [u0, u0 + lenU) x [w0, w0 + lenW), inside the image, for a rectangle the last build made tables
-    // for (its level pair; after buildSquares, lenU == lenW <= maxLen). A plain value, so that hot loops keep it in
-    // registers.
+    // for. A plain value, so that hot loops keep it in registers.
     class Query {
     public:
         uint8_t operator()(int u0, int w0, int lenU, int lenW) const {
-            const int i = std::bit_width(unsigned(lenU)) - 1, j = std::bit_width(unsigned(lenW)) - 1;
-            const uint8_t* t = table_ + std::size_t(squares_ ? i : i * levelsW_ + j) * plane_;
-            const std::size_t r0 = std::size_t(w0) * nu_ + u0, du = lenU - (1 << i);
-            const std::size_t r1 = std::size_t(w0 + lenW - (1 << j)) * nu_ + u0;
-            return std::min(std::min(t[r0], t[r0 + du]), std::min(t[r1], t[r1 + du]));
+            if (squares_) {  // four squares of 2^i in the corners
+                const int i = std::bit_width(unsigned(lenU)) - 1;
+                const uint8_t* t = table_ + std::size_t(i) * plane_;
+                const std::size_t r0 = std::size_t(w0) * nu_ + u0, d = lenU - (1 << i);
+                const std::size_t r1 = r0 + d * nu_;
+                return std::min(std::min(t[r0], t[r0 + d]), std::min(t[r1], t[r1 + d]));
+            }
+            uint8_t m = 255;
+            if (lenW <= lenU) {  // each row of the rectangle: two strips of 2^i along u
+                const int i = std::bit_width(unsigned(lenU)) - 1;
+                const uint8_t* t = table_ + std::size_t(i) * plane_ + std::size_t(w0) * nu_ + u0;
+                const std::size_t du = lenU - (1 << i);
+                for (int w = 0; w < lenW; ++w, t += nu_) m = std::min(m, std::min(t[0], t[du]));
+                return m;
+            }
+            // Each column: two strips of 2^j along w.
+            const int j = std::bit_width(unsigned(lenW)) - 1;
+            const uint8_t* t = table_ + std::size_t(j ? levelsU_ + j - 1 : 0) * plane_ + std::size_t(w0) * nu_ + u0;
+            const uint8_t* t1 = t + std::size_t(lenW - (1 << j)) * nu_;
+            for (int u = 0; u < lenU; ++u) m = std::min(m, std::min(t[u], t1[u]));
+            return m;
         }
 
     private:
         friend class RectMin;
         const uint8_t* table_;
         std::size_t nu_, plane_;
-        int levelsW_;
+        int levelsU_;
         bool squares_;
     };
     Query query() const {
@@ -47,24 +60,23 @@ public:
         q.table_ = table_.data();
         q.nu_ = std::size_t(nu_);
         q.plane_ = plane_;
-        q.levelsW_ = levelsW_;
+        q.levelsU_ = levelsU_;
         q.squares_ = squares_;
         return q;
     }
 
 private:
     std::size_t at(int u, int w) const { return std::size_t(w) * nu_ + u; }
-    // Level (i, j) holds, at (u, w), the minimum over [u, u + 2^i) x [w, w + 2^j) where that lies inside.
-    // Square tables store level (i, i) at index i (as Query does).
-    std::size_t levelOffset(int i, int j) const { return std::size_t(squares_ ? i : i * levelsW_ + j) * plane_; }
-    const uint8_t* level(int i, int j) const { return table_.data() + levelOffset(i, j); }
-    uint8_t* level(int i, int j) { return table_.data() + levelOffset(i, j); }
+    // Strip tables: level i (i < levelsU_) holds, at (u, w), the minimum over [u, u + 2^i) x {w} where that lies
+    // inside; level levelsU_ + j - 1 (j >= 1) the minimum over {u} x [w, w + 2^j). Square tables: level i the
+    // minimum over [u, u + 2^i) x [w, w + 2^i). Level 0 is the image.
+    uint8_t* level(int index) { return table_.data() + std::size_t(index) * plane_; }
     void reserveLevels(int count);
 
-    int nu_ = 0, nw_ = 0, levelsW_ = 1;
+    int nu_ = 0, nw_ = 0, levelsU_ = 1;
     bool squares_ = false;
     std::size_t plane_ = 0;
-    std::vector<uint8_t> table_;  // level (0, 0), the image, first
+    std::vector<uint8_t> table_;  // level 0, the image, first
 };
 
 }  // namespace vr
