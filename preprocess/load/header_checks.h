@@ -15,9 +15,10 @@ void checkNiftiHeader(const std::filesystem::path& path);
 // values; gzip data that decompress to that length.
 void checkNrrdFile(const std::filesystem::path& path);
 
-// OpenVDB (.vdb), versions 222 to 224: the header, the file's metadata, the grid descriptors and each grid's
-// metadata and transform type hold no length beyond the end of the file (OpenVDB allocates whatever length they
-// state).
+// OpenVDB (.vdb), versions 222 to 224, walked as OpenVDB 10 reads it: the header, the file's metadata, the grid
+// descriptors, each grid's metadata and transform, and every float grid's tree hold no length or count beyond the
+// end of the file (OpenVDB allocates, reads or loops over whatever they state), and each tree node's values are the
+// size the node holds.
 void checkVdbFile(const std::filesystem::path& path);
 
 // VTK XML image data (.vti): a WholeExtent within memory whose first point data array the file can hold (at the

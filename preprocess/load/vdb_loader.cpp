@@ -3,6 +3,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <mutex>
 
@@ -41,6 +42,22 @@ Volume loadVdb(const std::filesystem::path& path) {
 
     Volume v;
     v.grid.dims = checkVoxelBudget(path, extent(0), extent(1), extent(2), sizeof(float));
+    // OpenVDB's CoordBBox arithmetic (the midpoint of a box copyToDense splits) overflows int beyond 2^30.
+    for (int a = 0; a < 3; ++a)
+        if (box.min()[a] < -(1 << 30) || box.max()[a] >= (1 << 30))
+            throw fail("float grid '" + grid->getName() + "' has active voxels beyond index 2^30 (at " +
+                       std::to_string(box.min()[a]) + " to " + std::to_string(box.max()[a]) + ")");
+    // Memory follows the data in the file, as for the other formats. Active tiles (a constant for up to 4096^3
+    // voxels in 17 bytes) and a few voxels far apart let a file of a few KiB describe a box of gigabytes (found by
+    // fuzz_vdb), where stored voxels take bytes (a leaf of 512 with one active voxel about 140): beyond 16 Mi voxels,
+    // a grid's box may hold at most 256 voxels per byte of the file.
+    const std::uint64_t voxels = std::uint64_t(v.grid.dims.x) * v.grid.dims.y * v.grid.dims.z;
+    std::error_code ec;
+    const std::uint64_t fileBytes = std::filesystem::file_size(path, ec);  // checkVdbFile read it: no error
+    if (voxels > std::max<std::uint64_t>(std::uint64_t(16) << 20, fileBytes * 256))
+        throw fail("float grid '" + grid->getName() + "' densifies to " + std::to_string(voxels) +
+                   " voxels, more than 256 per byte of its " + std::to_string(fileBytes) +
+                   "-byte file (active tiles or voxels far apart)");
     v.sourceType = ScalarType::Float32;
     // VDB voxel centres lie at integer index coordinates, so the grid corner is half a voxel before the centre of
     // the bounding box's first voxel. Only the transform's scale and translation are kept (no rotation).
