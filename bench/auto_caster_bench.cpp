@@ -1,16 +1,19 @@
 // --caster auto against the fixed casters (issue 6): on every raw dataset of the shared MANIFEST.tsv and the
-// synthetic phantoms, the median device ms over a few views of each fixed caster and of auto's choice per view
-// (volrender/caster_choice.h, from the statistics volprep stores), and auto's ratio to the fastest fixed caster
-// (target: at most 1.10). Prints a Markdown table. --short: one tiny dataset at 64x64 (CTest, label bench).
+// synthetic phantoms, each fixed caster's time for a few views (device ms of the renders, sum over views of the
+// median over repeats, plus the wall ms of uploading its field once) with its mean loop iterations per pixel,
+// auto's one choice for the views (volrender/caster_choice.h, from the statistics volprep stores) and its ratio to
+// the fastest fixed caster (target: at most 1.10), the run-to-run spread of the fastest fixed caster (the noise
+// the ratio sits in), and a least-squares fit of the choice model's constants to the renders (re-run it when the
+// shader loop or the device changes). Prints a Markdown table. --short: one tiny dataset at 64x64 (CTest).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <functional>
 #include <map>
 
 #include "datasets/phantoms.h"
 #include "preprocess/classify/classify.h"
-#include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/prepare.h"
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
@@ -86,30 +89,46 @@ std::vector<Scene> scenes(const std::vector<std::string>& prefixes, int phantomS
     return out;
 }
 
-// Classify, segment and build every field at one setting, with the statistics volprep would store.
-PreparedVolume prepare(const Volume& volume, const fs::path& tf, double to, double ta) {
+// Classify, segment and build every field at one setting, with the statistics volprep would store (timed: the
+// ray probe's cost is part of every preparation).
+PreparedVolume prepare(const Volume& volume, const fs::path& tf, double to, double ta, StageTime& statistics) {
     PreparedVolume p;
     ClassifyParams cp;
     cp.transferFunction = loadTransferFunction(tf);
     p.classified = classify(volume, cp);
     p.meta.segmentation = {to, ta, true, false};
     p.regions = segment(p.classified, p.meta.segmentation);
-    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
+    std::vector<StageTime> stages;
+    p.fields = buildTimedFields(p.regions, kFieldPC | kFieldACD | kFieldEACD, kDefaultExtentCode, stages);
+    const StageClock clock;
     p.meta.statistics = preparedStatistics(p, {});
+    statistics = clock.stop("statistics");
     return p;
 }
 
+constexpr uint32_t kIterationMask = 0x3fffffffu;  // the renderer's flags sit above the count
+
 struct Timings {
-    std::map<Caster, std::vector<double>> fixed;  // device ms per (view, repeat)
-    std::vector<double> autoMs;
-    std::map<Caster, int> chosen;                 // auto's choices over the views
-    std::vector<std::string> reasons;             // auto's estimates per view
+    // [caster][view][repeat]: device ms, and mean loop iterations per pixel (the same every repeat).
+    std::map<Caster, std::vector<std::vector<double>>> ms;
+    std::map<Caster, std::vector<double>> iterations;
+    std::map<Caster, double> fieldBytes;     // device bytes of the caster's field for the views
+    double uploadNsPerByte = 0;              // wall time of uploading a field byte (median)
+    std::map<Caster, double> fieldUploadMs;  // fieldBytes x uploadNsPerByte
+    CasterChoice chosen;                     // auto's one choice for all the views, as volrender makes it
 };
 
+// Wall ms and bytes of uploading what one caster needs for the views: the classified volume, normals, its field.
+std::pair<double, double> upload(VulkanRenderer& renderer, const PreparedVolume& p, Caster c, unsigned octants) {
+    const StageClock clock;
+    const GpuVolume volume = renderer.upload(p, {{c}, true, octants});
+    return {1e3 * clock.stop("upload").seconds, double(volume.uploadedBytes())};
+}
+
 // Every view `repeats` times, the fixed casters taking turns within a view (in a rotating order) so that a busy
-// machine slows them alike; one warm-up frame per caster first. Auto's render of a view IS the render of the
-// caster it chose (the choice is a few operations on the statistics), so its time per view is that render's:
-// rendering it again would only add the machine's noise to the comparison.
+// machine slows them alike; one warm-up frame per caster first. Auto's choice is made once for all the views
+// (their octants, one upload shared by them), and its time IS that of the caster it chose (the choice is a few
+// operations on the statistics): rendering it again would only add the machine's noise to the comparison.
 Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::vector<ViewParams>& views, int repeats,
                 double step) {
     Timings t;
@@ -121,31 +140,94 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
         cameras.push_back(Camera::fit(p.classified.grid, v));
         contents.octants |= viewOctants(cameras.back());
     }
+    const CasterDemand demand{contents.octants,
+                              (long long)views.front().width * views.front().height, step, int(views.size())};
+    t.chosen = chooseCaster(p.meta.statistics, demand);
+
+    // The fields' uploads: what a caster adds to the classified volume and normals every caster uploads. On a
+    // shared machine one upload's wall time scatters more than a small field takes, so the rate is measured on the
+    // biggest fields (ACD, EACD), each timed back to back with primitive's upload, and the median rate over them
+    // and the repeats prices every field's exact bytes.
+    std::vector<double> rates;  // ns per field byte
+    for (int r = 0; r < repeats; ++r)
+        for (Caster c : {Caster::ACD, Caster::EACD}) {
+            const auto [primitiveMs, primitiveBytes] = upload(renderer, p, Caster::Primitive, contents.octants);
+            const auto [ms, bytes] = upload(renderer, p, c, contents.octants);
+            t.fieldBytes[c] = bytes - primitiveBytes;
+            rates.push_back(1e6 * (ms - primitiveMs) / t.fieldBytes[c]);
+        }
+    t.uploadNsPerByte = std::max(0.0, median(rates));
+    t.fieldBytes[Caster::Primitive] = 0;
+    t.fieldBytes[Caster::PC] = double(p.fields.pc.size());  // one byte a voxel for every direction
+    for (Caster c : kFixed) t.fieldUploadMs[c] = 1e-6 * t.uploadNsPerByte * t.fieldBytes[c];
+
     const GpuVolume volume = renderer.upload(p, contents);  // once for every caster and view
     for (Caster c : kFixed) {
         s.caster = c;
         renderer.render(volume, cameras.front(), s);
+        t.ms[c].assign(views.size(), {});
     }
     int turn = 0;
     for (int r = 0; r < repeats; ++r)
-        for (std::size_t i = 0; i < views.size(); ++i) {
-            const ViewParams& v = views[i];
-            const Camera& camera = cameras[i];
-            const CasterDemand demand{v.projection, camera.forward, viewOctants(camera),
-                                      (long long)v.width * v.height, step, int(views.size())};
-            const CasterChoice choice = chooseCaster(p.meta.statistics, demand);
-            if (r == 0) {
-                ++t.chosen[choice.caster];
-                t.reasons.push_back(choice.reason);
-            }
+        for (std::size_t i = 0; i < views.size(); ++i, ++turn)
             for (int k = 0; k < 4; ++k) {
                 s.caster = kFixed[(k + turn) % 4];
-                t.fixed[s.caster].push_back(renderer.render(volume, camera, s).deviceMilliseconds);
-                if (s.caster == choice.caster) t.autoMs.push_back(t.fixed[s.caster].back());
+                const RenderResult result = renderer.render(volume, cameras[i], s);
+                t.ms[s.caster][i].push_back(result.deviceMilliseconds);
+                if (r > 0) continue;
+                double sum = 0;
+                for (uint32_t n : result.iterations) sum += n & kIterationMask;
+                t.iterations[s.caster].push_back(sum / double(result.iterations.size()));
             }
-            ++turn;
-        }
     return t;
+}
+
+// A caster's time for the views: the sum over views of the median over repeats.
+double total(const std::vector<std::vector<double>>& perView) {
+    double sum = 0;
+    for (const auto& repeats : perView) sum += median(repeats);
+    return sum;
+}
+
+// Run-to-run spread of a caster: (max - min) / median of its per-repeat sums over the views.
+double spread(const std::vector<std::vector<double>>& perView) {
+    std::vector<double> sums(perView.front().size(), 0.0);
+    for (const auto& repeats : perView)
+        for (std::size_t r = 0; r < repeats.size(); ++r) sums[r] += repeats[r];
+    const auto [lo, hi] = std::minmax_element(sums.begin(), sums.end());
+    return (*hi - *lo) / median(sums);
+}
+
+// One render's time against the model's terms: ns per pixel = ray + iterations x (the caster's ns per iteration).
+struct RenderSample {
+    Caster caster;
+    double iterations;  // per pixel
+    double nsPerPixel;
+};
+
+// Least squares of the relative error of ns per pixel = kRayNs + iterations x iterationNs(caster) over the
+// renders (normal equations of 5 unknowns: the ray's ns, then one per caster in kFixed order).
+std::array<double, 5> fitModel(const std::vector<RenderSample>& samples) {
+    constexpr int n = 5;
+    std::array<std::array<double, n + 1>, n> m{};  // [A^T A | A^T b]
+    for (const RenderSample& r : samples) {
+        std::array<double, n> row{1, 0, 0, 0, 0};
+        row[1 + int(r.caster)] = r.iterations;
+        for (double& x : row) x /= r.nsPerPixel;  // relative: each render weighs alike
+        for (int i = 0; i < n; ++i) {
+            for (int j = 0; j < n; ++j) m[i][j] += row[i] * row[j];
+            m[i][n] += row[i];
+        }
+    }
+    for (int i = 0; i < n; ++i)  // Gauss-Jordan; the matrix is symmetric positive definite
+        for (int k = 0; k < n; ++k) {
+            if (k == i) continue;
+            const double f = m[k][i] / m[i][i];
+            for (int j = i; j <= n; ++j) m[k][j] -= f * m[i][j];
+        }
+    std::array<double, n> x{};
+    for (int i = 0; i < n; ++i) x[i] = m[i][n] / m[i][i];
+    return x;
 }
 
 }  // namespace
@@ -185,46 +267,81 @@ int main(int argc, char** argv) {
         VulkanRenderer renderer(ctx);
         const std::vector<ViewParams> views = benchViews(size, viewCount);
         std::printf("Device: %s. %dx%d, %zu views (ortho az 30 el 20, persp az 120 el 15, ortho az 200 el -25, "
-                    "ortho az 0 el 0: the first %zu), %d repeat(s), step %g voxel, Phong headlight. Median device "
-                    "ms over views x repeats; auto picks per view from the prepared statistics, its time per view "
-                    "is that of the caster it picked.\n\n",
+                    "ortho az 0 el 0: the first %zu), %d repeat(s), step %g voxel, Phong headlight. Per caster: "
+                    "device ms of the renders (sum over views of the median over repeats) + wall ms of uploading "
+                    "its field once for the views (its bytes x the row's median ns per byte), and mean iterations "
+                    "per pixel. Auto chooses once for the views, as volrender does for an orbit; its ms are those "
+                    "of its choice.\n\n",
                     ctx.info().name.c_str(), size, size, views.size(), views.size(), repeats, step);
-        std::printf("| dataset | voxels | T_o, T_a | regions | primitive | PC | ACD | EACD | auto (choices) | "
-                    "auto / fastest |\n|---|---:|---|---:|---:|---:|---:|---:|---|---:|\n");
+        std::printf("| dataset | voxels | T_o, T_a | regions | primitive | PC | ACD | EACD | fastest | auto | "
+                    "auto / fastest | renders only | spread |\n"
+                    "|---|---:|---|---:|---:|---:|---:|---:|---|---|---:|---:|---:|\n");
         double worst = 0;
         int within = 0, rows = 0;
+        std::vector<double> spreads;
+        std::vector<RenderSample> renderSamples;             // every caster's renders, per row
+        std::vector<double> perByte;                         // wall ns per field byte uploaded, per row
         for (const Scene& scene : scenes(datasets, phantomSize)) {
             const Volume volume = scene.load();
             for (std::size_t k = 0; k < to.size(); ++k) {
-                const PreparedVolume p = prepare(volume, scene.tf, to[k], ta[k]);
+                StageTime statistics;
+                const PreparedVolume p = prepare(volume, scene.tf, to[k], ta[k], statistics);
                 const Timings t = measure(renderer, p, views, repeats, step);
-                double fastest = INFINITY;
+                std::map<Caster, double> renders, totals;
+                Caster fastest = Caster::Primitive, fastestRenders = Caster::Primitive;
                 std::string cells;
                 for (Caster c : kFixed) {
-                    const double ms = median(t.fixed.at(c));
-                    fastest = std::min(fastest, ms);
-                    char cell[32];
-                    std::snprintf(cell, sizeof cell, " %.1f |", ms);
+                    renders[c] = total(t.ms.at(c));
+                    totals[c] = renders[c] + t.fieldUploadMs.at(c);
+                    if (totals[c] < totals[fastest]) fastest = c;
+                    if (renders[c] < renders[fastestRenders]) fastestRenders = c;
+                    double iterations = 0;
+                    for (double n : t.iterations.at(c)) iterations += n * size * size;
+                    renderSamples.push_back({c, iterations / (views.size() * size * size),
+                                             renders[c] * 1e6 / (views.size() * size * size)});
+                    char cell[64];
+                    std::snprintf(cell, sizeof cell, " %.1f + %.1f (%.1f) |", renders[c], t.fieldUploadMs.at(c),
+                                  iterations / double(views.size() * size * size));
                     cells += cell;
                 }
-                std::string choices;
-                for (const auto& [c, n] : t.chosen)
-                    choices += (choices.empty() ? "" : " ") + std::string(casterName(c)) + "x" + std::to_string(n);
-                const double autoMs = median(t.autoMs), ratio = autoMs / fastest;
+                perByte.push_back(t.uploadNsPerByte);
+                const Caster chosen = t.chosen.caster;
+                const double ratio = totals[chosen] / totals[fastest];
+                spreads.push_back(spread(t.ms.at(fastest)));
                 worst = std::max(worst, ratio);
                 within += ratio <= kTarget;
                 ++rows;
-                std::printf("| %s | %zu | %g, %g | %u |%s %.1f (%s) | %.2f%s |\n", scene.name.c_str(),
-                            scene.voxels, to[k], ta[k], p.regions.count, cells.c_str(), autoMs,
-                            choices.c_str(), ratio, ratio <= kTarget ? "" : " **over**");
-                if (explain)
-                    for (std::size_t v = 0; v < t.reasons.size(); ++v)
-                        std::printf("|  | view %zu: %s |||||||||\n", v, t.reasons[v].c_str());
+                std::printf("| %s | %zu | %g, %g | %u |%s %s %.1f | %s %.1f | %.2f%s | %.2f | %.0f %% |\n",
+                            scene.name.c_str(), scene.voxels, to[k], ta[k], p.regions.count, cells.c_str(),
+                            casterName(fastest).data(), totals[fastest], casterName(chosen).data(), totals[chosen],
+                            ratio, ratio <= kTarget ? "" : " **over**", renders[chosen] / renders[fastestRenders],
+                            100 * spreads.back());
+                if (explain) {
+                    std::printf("|  | statistics with the ray probe: %.0f ms wall, %.0f ms CPU; %s |||||||||||\n",
+                                1e3 * statistics.seconds, 1e3 * statistics.cpuSeconds, t.chosen.reason.c_str());
+                    for (std::size_t v = 0; v < views.size(); ++v) {
+                        std::printf("|  | view %zu measured:", v);
+                        for (Caster c : kFixed)
+                            std::printf(" %s %.1f it, %.1f ms;", casterName(c).data(), t.iterations.at(c)[v],
+                                        median(t.ms.at(c)[v]));
+                        std::printf(" |||||||||||\n");
+                    }
+                }
                 std::fflush(stdout);
             }
         }
         std::printf("\nauto within %.0f %% of the fastest fixed caster on %d of %d rows; worst ratio %.2f.\n",
                     (kTarget - 1) * 100, within, rows, worst);
+        std::printf("Run-to-run spread of the fastest fixed caster ((max - min) / median of its per-repeat sums over "
+                    "the views): median %.0f %%, largest %.0f %%.\n",
+                    100 * median(spreads), 100 * *std::max_element(spreads.begin(), spreads.end()));
+        if (rows >= 10) {  // 5 unknowns: fewer rows leave the ray's ns ill-determined
+            const std::array<double, 5> fit = fitModel(renderSamples);
+            std::printf("Fit of the renders, device ns per pixel = ray + iterations x per-iteration "
+                        "(caster_choice.cpp's kRayNs and iterationNs): ray %.0f;", fit[0]);
+            for (Caster c : kFixed) std::printf(" %s %.0f;", casterName(c).data(), fit[1 + int(c)]);
+        }
+        std::printf("\nWall ns per field byte uploaded (median over rows): %.2f.\n", median(perByte));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "auto_caster_bench: %s\n", e.what());
         return 1;

@@ -1,5 +1,8 @@
-// --caster auto's choice (volrender/caster_choice.h) on hand-made statistics of the form preparedStatistics writes.
+// --caster auto's choice (volrender/caster_choice.h) on hand-made statistics of the form preparedStatistics writes:
+// per caster and octant, the ray probe's mean leaps and single-sample iterations per pixel at step 0.5.
 #include <gtest/gtest.h>
+
+#include <map>
 
 #include "core/distance_fields.h"
 #include "volrender/caster_choice.h"
@@ -8,81 +11,111 @@ namespace vr {
 namespace {
 using json = nlohmann::json;
 
-// Statistics of a 256^3 volume: PC radius, ACD edge and EACD extents alike in every octant; a field is absent
-// (no bytes, no leaps) when its leap is 0.
-json statistics(double pcRadius, double acdEdge, std::array<double, 3> eacdExtent, double voxels = 256.0 * 256 * 256) {
-    json s{{"voxels", voxels}, {"regions", 1000}, {"meanRegionSize", voxels / 1000}};
-    json leaps = json::object(), bytes{{"sigma", 4 * voxels}, {"colour", 12 * voxels}};
-    if (pcRadius > 0) {
-        leaps["pcMeanRadius"] = pcRadius;
-        bytes["pc"] = voxels;
+// Iterations per pixel of one caster in every octant: leaps (several samples each) and single samples.
+struct Counts {
+    double leaps = 0, singles = 0;
+};
+
+// Statistics of a 256^3 volume whose probe found `counts` for the casters named (the others' fields absent: no
+// counts, no bytes). Field bytes as volprep stores them: PC 1, ACD 8 and EACD 24 per voxel.
+json statistics(const std::map<std::string, Counts>& counts, double voxels = 256.0 * 256 * 256) {
+    const std::map<std::string, double> bytesPerVoxel{{"pc", 1}, {"acd", 8}, {"eacd", 24}};
+    json s{{"voxels", voxels}, {"bytes", {{"sigma", 4 * voxels}, {"colour", 12 * voxels}}}};
+    json probe{{"stepVoxels", 0.5}, {"ert", 0.99}, {"raysPerSide", 32}, {"casters", json::object()}};
+    for (const auto& [name, c] : counts) {
+        probe["casters"][name] = {{"leaps", std::vector<double>(kOctants, c.leaps)},
+                                  {"singleSamples", std::vector<double>(kOctants, c.singles)}};
+        if (name != "primitive") s["bytes"][name] = bytesPerVoxel.at(name) * voxels;
     }
-    if (acdEdge > 0) {
-        leaps["acdMeanEdge"] = json(std::vector<double>(kOctants, acdEdge));
-        bytes["acd"] = 8 * voxels;
-    }
-    if (eacdExtent[0] > 0) {
-        leaps["eacdMeanExtent"] = json(std::vector<std::array<double, 3>>(kOctants, eacdExtent));
-        bytes["eacd"] = 24 * voxels;
-    }
-    s["leaps"] = leaps;
-    s["bytes"] = bytes;
+    s["rayProbe"] = probe;
     return s;
 }
 
 CasterDemand ortho(Vec3d direction = {0, 0, -1}) {
     CasterDemand d;
-    d.direction = direction;
     d.octants = 1u << octantOf(direction.x, direction.y, direction.z);
     return d;
 }
 
-TEST(CasterChoice, NoStatisticsOrNoFieldsGivesPrimitive) {
+TEST(CasterChoice, NoProbeGivesPrimitiveAndSaysSo) {
     EXPECT_EQ(chooseCaster(json::object(), ortho()).caster, Caster::Primitive);
     EXPECT_EQ(chooseCaster(json(nullptr), ortho()).caster, Caster::Primitive);
-    EXPECT_EQ(chooseCaster(statistics(0, 0, {0, 0, 0}), ortho()).caster, Caster::Primitive);
+    // A file from before the probe: mean leaps only.
+    const json old{{"voxels", 1e6}, {"leaps", {{"pcMeanRadius", 8}}}, {"bytes", {{"pc", 1e6}}}};
+    const CasterChoice c = chooseCaster(old, ortho());
+    EXPECT_EQ(c.caster, Caster::Primitive);
+    EXPECT_NE(c.reason.find("older volprep"), std::string::npos) << c.reason;
+    // Malformed counts are not trusted either.
+    json bad = statistics({{"primitive", {0, 500}}, {"acd", {10, 5}}});
+    bad["rayProbe"]["casters"]["primitive"]["leaps"] = json::array({1, 2});
+    EXPECT_EQ(chooseCaster(bad, ortho()).caster, Caster::Primitive);
 }
 
-TEST(CasterChoice, TakesTheLongestLeapAmongTheFieldsPresent) {
-    EXPECT_EQ(chooseCaster(statistics(6, 0, {0, 0, 0}), ortho()).caster, Caster::PC);
-    EXPECT_EQ(chooseCaster(statistics(6, 12, {0, 0, 0}), ortho()).caster, Caster::ACD);
-    EXPECT_EQ(chooseCaster(statistics(6, 12, {30, 30, 30}), ortho()).caster, Caster::EACD);
-    // A PC radius near 0 leaps no further than a step and pays for its fetches: primitive, not PC.
-    EXPECT_EQ(chooseCaster(statistics(0.05, 0, {0, 0, 0}), ortho()).caster, Caster::Primitive);
+TEST(CasterChoice, TakesTheFewestWeightedIterationsAmongTheFieldsPresent) {
+    const Counts primitive{0, 500}, pc{40, 200}, acd{30, 60}, eacd{20, 40};
+    EXPECT_EQ(chooseCaster(statistics({{"primitive", primitive}}), ortho()).caster, Caster::Primitive);
+    EXPECT_EQ(chooseCaster(statistics({{"primitive", primitive}, {"pc", pc}}), ortho()).caster, Caster::PC);
+    EXPECT_EQ(chooseCaster(statistics({{"primitive", primitive}, {"pc", pc}, {"acd", acd}}), ortho()).caster,
+              Caster::ACD);
+    EXPECT_EQ(chooseCaster(statistics({{"primitive", primitive}, {"pc", pc}, {"acd", acd}, {"eacd", eacd}}),
+                           ortho()).caster,
+              Caster::EACD);
+    // A field the file lacks is no candidate, however few its counts.
+    json s = statistics({{"primitive", primitive}, {"acd", acd}, {"eacd", eacd}});
+    s["bytes"].erase("eacd");
+    EXPECT_EQ(chooseCaster(s, ortho()).caster, Caster::ACD);
 }
 
-TEST(CasterChoice, LeapsShorterThanTheStepCountAsOneStep) {
-    // Every caster moves at least one step per iteration: a step longer than EACD's extents leaves it no longer
-    // leaps than ACD's, at a dearer iteration.
+TEST(CasterChoice, APcIterationMustSaveMoreThanItCosts) {
+    // Opaque data: every ray ends after a few samples, and a PC iteration costs more than a primitive sample.
+    EXPECT_EQ(chooseCaster(statistics({{"primitive", {0, 100}}, {"pc", {0, 90}}}), ortho()).caster,
+              Caster::Primitive);
+    EXPECT_EQ(chooseCaster(statistics({{"primitive", {0, 100}}, {"pc", {10, 40}}}), ortho()).caster, Caster::PC);
+}
+
+TEST(CasterChoice, OnlySingleSampleIterationsFollowTheStep) {
+    // ACD's iterations are leaps, EACD's are fewer but mostly single samples: at the probe's step EACD wins; at a
+    // quarter of it, its single samples quadruple and ACD wins.
+    const json s = statistics({{"primitive", {0, 400}}, {"acd", {60, 0}}, {"eacd", {10, 30}}});
     CasterDemand d = ortho();
-    EXPECT_EQ(chooseCaster(statistics(2, 3, {6, 6, 6}), d).caster, Caster::EACD);
-    d.stepVoxels = 8;
-    EXPECT_EQ(chooseCaster(statistics(2, 3, {6, 6, 6}), d).caster, Caster::ACD);
+    EXPECT_EQ(chooseCaster(s, d).caster, Caster::EACD);
+    d.stepVoxels = 0.125;
+    EXPECT_EQ(chooseCaster(s, d).caster, Caster::ACD);
+    // At eight times the step primitive takes 50 iterations, and no caster more than it.
+    d.stepVoxels = 4;
+    const std::string reason = chooseCaster(s, d).reason;
+    EXPECT_NE(reason.find("primitive 50.0,"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("acd 50.0,"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("eacd 13.8,"), std::string::npos) << reason;
 }
 
-TEST(CasterChoice, EacdNoLongerThanAcdGivesTheLeanerAcd) {
-    // EACD's extents equal ACD's edge: the same iterations for three times the bytes.
-    EXPECT_EQ(chooseCaster(statistics(4, 10, {10, 10, 10}), ortho()).caster, Caster::ACD);
-    EXPECT_EQ(chooseCaster(statistics(4, 10, {10.2, 10.2, 10.2}), ortho()).caster, Caster::ACD);
-}
-
-TEST(CasterChoice, EacdLeapDependsOnTheViewDirection) {
-    // Boxes long in x and y, thin in z: a view along z leaves them after 2 voxels, a view along x after 40.
-    const json s = statistics(1.5, 2.5, {40, 40, 2.5});
-    EXPECT_EQ(chooseCaster(s, ortho({0, 0, -1})).caster, Caster::ACD);
-    EXPECT_EQ(chooseCaster(s, ortho({1, 0, 0})).caster, Caster::EACD);
+TEST(CasterChoice, NearTiesGoToTheLeanerField) {
+    // EACD estimated 1 % cheaper than ACD: not worth three times the bytes; a fifth cheaper: worth them. (Long rays,
+    // so that the cost per ray does not count.)
+    const double perAcdIteration = iterationNanoseconds(Caster::ACD) / iterationNanoseconds(Caster::EACD);
+    auto eacdAt = [&](double fraction) {
+        return chooseCaster(statistics({{"primitive", {0, 1e5}}, {"acd", {1000, 0}},
+                                        {"eacd", {1000 * perAcdIteration * fraction, 0}}}),
+                            ortho())
+            .caster;
+    };
+    EXPECT_EQ(eacdAt(0.99), Caster::ACD);
+    EXPECT_EQ(eacdAt(0.8), Caster::EACD);
 }
 
 TEST(CasterChoice, OnlyTheViewsOctantsCount) {
-    json s = statistics(0.5, 1, {1, 1, 1});                // every voxel a region of its own, but long ACD
-    s["leaps"]["acdMeanEdge"][0] = 40;                       // leaps in octant 0 (+x +y +z) and long EACD
-    s["leaps"]["eacdMeanExtent"][7] = json({40, 40, 40});    // leaps in octant 7 (-x -y -z)
+    json s = statistics({{"primitive", {0, 500}}, {"acd", {100, 300}}, {"eacd", {100, 300}}});
+    s["rayProbe"]["casters"]["acd"]["singleSamples"][0] = 10;   // few iterations in octant 0 (+x +y +z)
+    s["rayProbe"]["casters"]["eacd"]["singleSamples"][7] = 10;  // and in octant 7 (-x -y -z)
     EXPECT_EQ(chooseCaster(s, ortho({1, 1, 1})).caster, Caster::ACD);
     EXPECT_EQ(chooseCaster(s, ortho({-1, -1, -1})).caster, Caster::EACD);
+    // Elsewhere they leap alike, and 400 leaping iterations cost more than 500 samples.
+    EXPECT_EQ(chooseCaster(s, ortho({1, -1, 1})).caster, Caster::Primitive);
 }
 
 TEST(CasterChoice, ATinyImageDoesNotPayForAHugeUpload) {
-    const json s = statistics(8, 20, {40, 40, 40}, 512.0 * 512 * 512);
+    const json s = statistics({{"primitive", {0, 1000}}, {"pc", {100, 200}}, {"acd", {50, 20}}, {"eacd", {30, 10}}},
+                              512.0 * 512 * 512);
     CasterDemand d = ortho();
     d.views = 100;  // an orbit sharing one upload
     EXPECT_EQ(chooseCaster(s, d).caster, Caster::EACD);
@@ -92,20 +125,21 @@ TEST(CasterChoice, ATinyImageDoesNotPayForAHugeUpload) {
 }
 
 TEST(CasterChoice, PerspectiveUploadsEveryOctantItsRaysHave) {
-    // A slightly longer EACD leap pays for one octant's bytes, not for all eight: then ACD (a third of the bytes).
-    const json s = statistics(8, 20, {60, 60, 60}, 512.0 * 512 * 512);
+    // EACD's fewer iterations pay for one octant's bytes, not for all eight: then ACD (a third of the bytes).
+    const json s = statistics({{"primitive", {0, 1000}}, {"acd", {60, 20}}, {"eacd", {40, 10}}}, 512.0 * 512 * 512);
     CasterDemand d = ortho();
     d.pixels = 1024 * 1024;
     EXPECT_EQ(chooseCaster(s, d).caster, Caster::EACD);
-    d.projection = Projection::Perspective;
     d.octants = 0xff;
     EXPECT_EQ(chooseCaster(s, d).caster, Caster::ACD);
 }
 
 TEST(CasterChoice, SaysWhy) {
-    // Every candidate with its estimated leap and relative cost.
-    const CasterChoice c = chooseCaster(statistics(6, 12, {30, 30, 30}), ortho());
-    for (const char* caster : {"primitive 0.50, 1.000", "pc 6.50,", "acd 11.50,", "eacd 29.50,"})
+    // Every candidate with its estimated iterations per pixel and relative cost.
+    const CasterChoice c =
+        chooseCaster(statistics({{"primitive", {0, 500}}, {"pc", {40, 200}}, {"acd", {30, 60}}, {"eacd", {20, 40}}}),
+                     ortho());
+    for (const char* caster : {"primitive 500.0, 1.000", "pc 240.0,", "acd 90.0,", "eacd 60.0,"})
         EXPECT_NE(c.reason.find(caster), std::string::npos) << c.reason;
 }
 

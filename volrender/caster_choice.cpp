@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cmath>
 #include <cstdio>
-#include <limits>
 #include <vector>
 
 #include "core/distance_fields.h"
@@ -15,26 +13,33 @@ using json = nlohmann::json;
 
 namespace {
 
-// Cost of one loop iteration relative to the primitive caster's sample, measured on lavapipe
-// (bench/auto_caster_bench: the checkerboard and noise phantoms, where every voxel is a region and every caster
-// but PC takes about one iteration per voxel): a leaping caster integrates and shades a span once, in closed
-// form, where the primitive caster does so at every sample; PC pays its field fetch on top of sampling where its
-// radius is 0; EACD's extents cost about 10 % more per iteration than ACD's one byte.
-double iterationWeight(Caster c) {
-    switch (c) {
-        case Caster::Primitive: return 1.0;
-        case Caster::PC: return 1.2;
-        case Caster::ACD: return 0.3;
-        case Caster::EACD: return 0.33;
-    }
-    return 1.0;
-}
-
-// Uploading this many bytes costs about one primitive sample on lavapipe (~100-200 ns per sample on 2 cores
-// against ~1 ns per byte copied): a field pays off only when it saves more work than its bytes.
-constexpr double kBytesPerIteration = 128;
-// Casters whose estimates lie within this fraction of the cheapest are a tie: the one with less to upload wins
-// (the estimate from mean leaps is not finer than this).
+// The model: a render costs pixels x (a fixed cost per ray + iterations per pixel x the caster's time per
+// iteration), plus the upload of its field, shared by the views. Iterations per pixel come from the ray probe
+// volprep stores (rayProbe in preparedStatistics): a per-octant count on the renderer's own lattice, early ray
+// termination included, so the only constants are the times below. They are few on purpose, and the only thing
+// to re-measure when the shader loop or the device changes: bench/auto_caster_bench prints the data to fit them.
+struct CasterCost {
+    Caster caster;
+    const char* name;    // in the statistics' rayProbe and bytes
+    double iterationNs;  // device time of one loop iteration
+};
+// Lavapipe on this project's 2-core machine: least squares of device ms = pixels x (kRayNs + iterations x
+// iterationNs) over bench/auto_caster_bench's 136 renders (34 rows x 4 casters: the shared datasets and the
+// phantoms, T = 0 and 0.02/10, 256x256, 4 views); the fit leaves ~20 % rms, about the machine's own scatter. A
+// leaping iteration adds a field fetch, a box exit and the leap's bounds check to the sample; EACD also decodes its
+// extents (three table look-ups), which costs 6 % over ACD in the fit of the real volumes of 3 M voxels and more,
+// where the time matters (15 % over all renders: the phantoms' rays of one or two iterations pull it up).
+constexpr double kRayNs = 130;
+constexpr std::array<CasterCost, 4> kCasters{{{Caster::Primitive, "primitive", 52},
+                                              {Caster::PC, "pc", 65},
+                                              {Caster::ACD, "acd", 75},
+                                              {Caster::EACD, "eacd", 80}}};
+// Wall time to upload one byte of a field (staging copy and image upload): a field pays off only when it saves
+// more iterations than its bytes cost. The bench measured 1.6 ns on volumes under 1.3 M voxels, 2 ns on 2 M and
+// 5 to 6 ns on 3 to 17 M (paging in the staging memory); this middle value errs by at most 2x either way.
+constexpr double kUploadNsPerByte = 3;
+// Casters whose estimates lie within this fraction of the cheapest are a tie, which the one with less to upload
+// wins: the probe samples 16 x 16 rays per octant, and the constants above are not finer than this.
 constexpr double kTie = 0.05;
 
 double number(const json& j, const char* key) {
@@ -42,78 +47,66 @@ double number(const json& j, const char* key) {
     return it != j.end() && it->is_number() ? it->get<double>() : 0.0;
 }
 
-// A uniform ray meets voxels in proportion to how long it stays in them, so a mean over voxels overstates its
-// mean leap; the estimates below are still ordered as the casters' leaps are (EACD >= ACD per axis).
+// Mean over the demanded octants of a probe's per-octant array; -1 when the array is missing or malformed.
+double octantMean(const json& probe, const char* key, unsigned octants) {
+    const auto it = probe.find(key);
+    if (it == probe.end() || !it->is_array() || it->size() != kOctants) return -1;
+    double sum = 0;
+    for (int o = 0; o < kOctants; ++o) {
+        if (!(octants >> o & 1)) continue;
+        if (!(*it)[std::size_t(o)].is_number()) return -1;
+        sum += (*it)[std::size_t(o)].get<double>();
+    }
+    return sum / std::popcount(octants & 0xffu);
+}
+
 struct Estimate {
-    Caster caster;
-    double leap;   // voxels per iteration
-    double bytes;  // field bytes uploaded for the views
+    const CasterCost* caster;
+    double iterations;  // per pixel
+    double bytes;       // field bytes uploaded for the views
     double cost = 0;
 };
 
-// How far a ray along unit `d` goes from a point at the middle of a voxel's face to the far side of a box of
-// extents e (voxels) starting at that voxel: the nearest exit, min over axes of (e_a - 1/2) / |d_a|.
-double boxLeap(const std::array<double, 3>& e, const Vec3d& d) {
-    double leap = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a)
-        if (std::abs(d[a]) > 1e-9) leap = std::min(leap, (e[a] - 0.5) / std::abs(d[a]));
-    return std::isfinite(leap) ? leap : 0;
-}
-
-// Mean leap of one caster over the demanded octants; 0 when the file lacks the field's statistics.
-double meanLeap(const json& leaps, Caster c, const CasterDemand& d) {
-    const Vec3d dir = d.direction / std::max(length(d.direction), 1e-300);
-    if (c == Caster::PC) {  // a cube of radius r centred on the voxel: r + 1/2 from its middle
-        const double r = number(leaps, "pcMeanRadius");
-        return r > 0 ? boxLeap({r + 1, r + 1, r + 1}, dir) : 0;
-    }
-    const char* key = c == Caster::ACD ? "acdMeanEdge" : "eacdMeanExtent";
-    const auto field = leaps.find(key);
-    if (field == leaps.end() || !field->is_array() || field->size() != kOctants) return 0;
-    double sum = 0;
-    int n = 0;
-    for (int o = 0; o < kOctants; ++o) {
-        if (!(d.octants >> o & 1)) continue;
-        const json& v = (*field)[std::size_t(o)];
-        if (c == Caster::ACD && v.is_number()) {
-            const double k = v.get<double>();
-            sum += boxLeap({k, k, k}, dir);
-        } else if (c == Caster::EACD && v.is_array() && v.size() == 3) {
-            sum += boxLeap({v[0].get<double>(), v[1].get<double>(), v[2].get<double>()}, dir);
-        }
-        ++n;
-    }
-    return n ? sum / n : 0;
-}
-
 }  // namespace
 
+double iterationNanoseconds(Caster caster) {
+    for (const CasterCost& c : kCasters)
+        if (c.caster == caster) return c.iterationNs;
+    return kCasters.front().iterationNs;
+}
+
 CasterChoice chooseCaster(const json& s, const CasterDemand& d) {
-    const json leaps = s.contains("leaps") ? s["leaps"] : json::object();
-    const json bytes = s.contains("bytes") ? s["bytes"] : json::object();
-    const double voxels = number(s, "voxels");
-    if (voxels <= 0 || !d.octants)
-        return {Caster::Primitive, "the prepared file has no statistics to choose from: primitive reads no field"};
+    const json probe = s.is_object() && s.contains("rayProbe") ? s["rayProbe"] : json::object();
+    const json bytes = s.is_object() && s.contains("bytes") ? s["bytes"] : json::object();
+    const json casters = probe.contains("casters") ? probe["casters"] : json::object();
+    const double probeStep = number(probe, "stepVoxels");
+    const unsigned octants = d.octants & 0xffu;
+    if (probeStep <= 0 || !casters.contains("primitive") || !octants)
+        return {Caster::Primitive, "the prepared file has no ray probe (prepared by an older volprep: prepare it "
+                                   "again for auto to choose): primitive reads no field"};
 
-    // Ray length in voxels: the mean chord of a cube of this many voxels is about its edge.
-    const double rayVoxels = std::cbrt(voxels);
-    const double step = std::max(d.stepVoxels, 1e-6);
-    const int octants = std::popcount(d.octants & 0xffu);
-    const double views = std::max(d.views, 1);
-
-    std::vector<Estimate> estimates{{Caster::Primitive, step, 0}};
-    const std::pair<Caster, const char*> fields[] = {{Caster::PC, "pc"}, {Caster::ACD, "acd"}, {Caster::EACD, "eacd"}};
-    for (const auto& [caster, name] : fields) {
-        const double fieldBytes = number(bytes, name);
-        const double leap = meanLeap(leaps, caster, d);
-        if (fieldBytes <= 0 || leap <= 0) continue;  // not in the file
+    // Iterations that leapt several samples do not depend on the step; those that took one sample (small regions,
+    // opaque tissue, the primitive caster) grow as the step shrinks. No caster takes more than primitive's.
+    const double stepScale = probeStep / std::max(d.stepVoxels, 1e-6);
+    std::vector<Estimate> estimates;
+    for (const CasterCost& c : kCasters) {
+        const json counts = casters.contains(c.name) ? casters[c.name] : json();
+        if (!counts.is_object()) continue;
+        const double leaps = octantMean(counts, "leaps", octants);
+        const double singles = octantMean(counts, "singleSamples", octants);
+        const double fieldBytes = number(bytes, c.name);
+        if (leaps < 0 || singles < 0 || (c.caster != Caster::Primitive && fieldBytes <= 0)) continue;
+        double iterations = leaps + singles * stepScale;
+        if (!estimates.empty()) iterations = std::min(iterations, estimates.front().iterations);
         // PC has one field for every direction; ACD and EACD upload the octants the view's rays have.
-        const double uploaded = caster == Caster::PC ? fieldBytes : fieldBytes * octants / kOctants;
-        estimates.push_back({caster, std::max(leap, step), uploaded});
+        const double uploaded = c.caster == Caster::PC ? fieldBytes : fieldBytes * std::popcount(octants) / kOctants;
+        estimates.push_back({&c, iterations, uploaded});
     }
+    if (estimates.empty() || estimates.front().caster->caster != Caster::Primitive)
+        return {Caster::Primitive, "the prepared file's ray probe has no primitive count: primitive reads no field"};
     for (Estimate& e : estimates)
-        e.cost = double(d.pixels) * rayVoxels / e.leap * iterationWeight(e.caster) +
-                 e.bytes / kBytesPerIteration / views;
+        e.cost = double(d.pixels) * (kRayNs + e.iterations * e.caster->iterationNs) +
+                 e.bytes * kUploadNsPerByte / std::max(d.views, 1);
 
     const Estimate* best = &*std::min_element(estimates.begin(), estimates.end(),
                                               [](const Estimate& a, const Estimate& b) { return a.cost < b.cost; });
@@ -121,17 +114,17 @@ CasterChoice chooseCaster(const json& s, const CasterDemand& d) {
     for (const Estimate& e : estimates)
         if (e.cost <= tie && e.bytes < best->bytes) best = &e;
 
-    // Every candidate's leap and cost relative to the primitive caster's, so that a choice can be checked.
-    std::string reason = "estimated voxels per iteration and cost relative to primitive (with " +
-                         std::to_string(d.views) + " view(s) sharing the upload):";
+    // Every candidate's iterations per pixel and cost relative to the primitive caster's, so a choice can be checked.
+    std::string reason = "estimated iterations per pixel and cost relative to primitive (" + std::to_string(d.views) +
+                         " view(s) sharing the upload):";
     for (const Estimate& e : estimates) {
         char part[96];
-        std::snprintf(part, sizeof part, " %s %.2f, %.3f;", std::string(casterName(e.caster)).c_str(), e.leap,
+        std::snprintf(part, sizeof part, " %s %.1f, %.3f;", e.caster->name, e.iterations,
                       e.cost / estimates.front().cost);
         reason += part;
     }
     reason.pop_back();
-    return {best->caster, reason};
+    return {best->caster->caster, reason};
 }
 
 }  // namespace vr

@@ -11,6 +11,7 @@
 #include "core/prepared_file.h"
 #include "core/progress.h"
 #include "preprocess/fields/build_fields.h"
+#include "preprocess/pipeline/ray_probe.h"
 #include "preprocess/segment/segment.h"
 
 namespace vr {
@@ -73,17 +74,12 @@ DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCo
     const unsigned built = (kinds & kFieldEACD ? kinds | kFieldACD : kinds) & (kFieldPC | kFieldACD | kFieldEACD);
     ProgressBar bar("fields", std::popcount(built));
     StageClock clock;
-    DistanceFields f = buildFields(regions, kinds, [&](FieldKind kind) {
+    // The EACD is rounded down to eacdCode as it is built: memory, file and device then hold the same boxes.
+    DistanceFields f = buildFields(regions, kinds, eacdCode, [&](FieldKind kind) {
         stages.push_back(clock.stop(kind == kFieldPC ? "pc" : kind == kFieldACD ? "acd" : "eacd"));
         bar.advance();
         clock = StageClock();
     });
-    if (kinds & kFieldEACD) {
-        quantiseEACD(f, eacdCode);  // memory, file and device then hold the same boxes; counted in the eacd stage
-        const StageTime quantise = clock.stop("eacd");
-        stages.back().seconds += quantise.seconds;
-        stages.back().cpuSeconds += quantise.cpuSeconds;
-    }
     bar.finish();
     return f;
 }
@@ -132,6 +128,7 @@ json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& s
         leaps["eacdMeanExtent"] = extents;
     }
     s["leaps"] = leaps;
+    s["rayProbe"] = rayProbe(p);
 
     std::size_t acd = 0, eacd = 0;
     for (int o = 0; o < kOctants; ++o) {

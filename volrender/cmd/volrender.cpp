@@ -138,12 +138,11 @@ unsigned fieldsFor(vr::Caster c) {
 // read once the caster is known).
 vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s) {
     const vr::PreparedVolume header = vr::readPrepared(f.prepared, 0, false);
-    vr::CasterDemand d{view.projection, {}, 0, (long long)view.width * view.height, s.stepVoxels, f.views};
+    vr::CasterDemand d{0, (long long)view.width * view.height, s.stepVoxels, f.views};
     for (int i = 0; i < f.views; ++i) {
         view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
         view.elevationDeg = f.elevation;
         const vr::Camera camera = vr::Camera::fit(header.classified.grid, view);
-        if (i == 0) d.direction = camera.forward;
         d.octants |= vr::viewOctants(camera);
     }
     return vr::chooseCaster(header.meta.statistics, d);

@@ -1,0 +1,16 @@
+// The ray probe behind --caster auto (volrender/caster_choice.h), stored in the prepared file's statistics.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include "core/prepared_volume.h"
+
+namespace vr {
+
+// Per octant and per caster the fields allow, the mean loop iterations per pixel of the CPU reference renderer
+// (the casters' own loop: lattice, leaps, early ray termination; nearest sampling, unshaded) over small
+// orthographic views whose directions spread over the octant's solid angle, split into iterations that leap
+// several samples ("leaps", independent of the step) and single samples ("singleSamples", which grow as the step
+// shrinks). Form: {"stepVoxels", "ert", "views", "casters": {NAME: {"leaps": [8], "singleSamples": [8]}}}.
+nlohmann::json rayProbe(const PreparedVolume& prepared);
+
+}  // namespace vr
