@@ -156,8 +156,17 @@ std::vector<Extents> decodeExtentField(ExtentCode code, const uint8_t* bytes, st
 void quantiseEACD(DistanceFields& fields, ExtentCode code) {
     fields.eacdCode = code;
     if (code == ExtentCode::Exact) return;
+    // Both codes round each axis on its own (see encodeExtents): one 256-entry table per axis.
+    std::array<std::array<uint8_t, 256>, 3> round;
+    for (int v = 0; v < 256; ++v) {
+        const Extents q = quantiseExtents(code, {uint8_t(v), uint8_t(v), uint8_t(v)});
+        for (int a = 0; a < 3; ++a) round[std::size_t(a)][std::size_t(v)] = q[std::size_t(a)];
+    }
     for (auto& octant : fields.eacd)
-        forEachVoxel(octant.size(), [&](std::size_t i) { octant[i] = quantiseExtents(code, octant[i]); });
+        forEachVoxel(octant.size(), [&](std::size_t i) {
+            Extents& e = octant[i];
+            e = {round[0][e[0]], round[1][e[1]], round[2][e[2]]};
+        });
 }
 
 }  // namespace vr
