@@ -82,8 +82,8 @@ CasterChoice chooseCaster(const json& s, const CasterDemand& d) {
     const double probeStep = number(probe, "stepVoxels");
     const unsigned octants = d.octants & 0xffu;
     if (probeStep <= 0 || !casters.contains("primitive") || !octants)
-        return {Caster::Primitive, "the prepared file has no ray probe (prepared by an older volprep: prepare it "
-                                   "again for auto to choose): primitive reads no field"};
+        return {Caster::Primitive, "the prepared file has no ray probe (prepared by an older volprep, or rays too "
+                                   "long to probe): primitive reads no field"};
 
     // Iterations that leapt several samples do not depend on the step; those that took one sample (small regions,
     // opaque tissue, the primitive caster) grow as the step shrinks. No caster takes more than primitive's.

@@ -128,7 +128,7 @@ json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& s
         leaps["eacdMeanExtent"] = extents;
     }
     s["leaps"] = leaps;
-    s["rayProbe"] = rayProbe(p);
+    if (json probe = rayProbe(p); !probe.is_null()) s["rayProbe"] = std::move(probe);
 
     std::size_t acd = 0, eacd = 0;
     for (int o = 0; o < kOctants; ++o) {

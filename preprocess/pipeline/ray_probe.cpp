@@ -17,6 +17,9 @@ using json = nlohmann::json;
 namespace {
 
 constexpr int kViewsPerOctant = 16, kViewPixels = 4;  // 16 views of 4 x 4 rays: 256 rays per octant
+// Samples across the volume at half the default step above which rays are too long to probe (2^17: at most
+// 2^28 iterations per caster; real volumes of 512^3 take about 3500).
+constexpr double kMaxProbeSamples = 0x1p17;
 constexpr std::array<std::pair<Caster, const char*>, 4> kProbed{
     {{Caster::Primitive, "primitive"}, {Caster::PC, "pc"}, {Caster::ACD, "acd"}, {Caster::EACD, "eacd"}}};
 
@@ -59,6 +62,8 @@ double meanIterations(const PreparedVolume& p, Caster c, int oct, double stepVox
 
 json rayProbe(const PreparedVolume& p) {
     const RenderSettings defaults;
+    const GridGeometry& grid = p.classified.grid;
+    if (length(grid.extent()) / (defaults.stepVoxels / 2 * grid.smallestSpacing()) > kMaxProbeSamples) return json();
     json probe{{"stepVoxels", defaults.stepVoxels}, {"ert", defaults.ert}, {"views", kViewsPerOctant}};
     for (const auto& [caster, name] : kProbed) {
         if (!hasField(p.fields, caster)) continue;

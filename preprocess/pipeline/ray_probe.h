@@ -10,7 +10,8 @@ namespace vr {
 // (the casters' own loop: lattice, leaps, early ray termination; nearest sampling, unshaded) over small
 // orthographic views whose directions spread over the octant's solid angle, split into iterations that leap
 // several samples ("leaps", independent of the step) and single samples ("singleSamples", which grow as the step
-// shrinks). Form: {"stepVoxels", "ert", "views", "casters": {NAME: {"leaps": [8], "singleSamples": [8]}}}.
+// shrinks). Form: {"stepVoxels", "ert", "views", "casters": {NAME: {"leaps": [8], "singleSamples": [8]}}}; null
+// for a volume whose rays are too long to probe (spacings far apart: more than 2^17 samples across).
 nlohmann::json rayProbe(const PreparedVolume& prepared);
 
 }  // namespace vr
