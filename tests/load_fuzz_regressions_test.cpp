@@ -121,6 +121,13 @@ TEST(LoadFuzzRegressions, NrrdKeyAfterASpace) {
     expectRefused(kRegressions / "nrrd" / "type_key_after_a_space.nrrd");
 }
 
+// A header without a blank line whose last line has no line break: vtkNrrdReader rereads that line forever
+// (std::getline keeps it once the stream has ended). Found by CI's fuzzing (timeouts).
+TEST(LoadFuzzRegressions, NrrdLastHeaderLineWithoutALineBreak) {
+    expectRefused(kRegressions / "nrrd" / "last_header_line_without_line_break.nrrd");
+    expectRefused(kRegressions / "nrrd" / "unknown_type_last_line_without_line_break.nrrd");
+}
+
 // Likewise vtkStructuredPointsReader, ASCII and binary, when POINT_DATA promises more values than the file holds.
 TEST(LoadFuzzRegressions, LegacyVtkDataShorterThanThePoints) {
     expectRefused(kRegressions / "vtk_legacy" / "ascii_data_too_short.vtk");

@@ -80,6 +80,17 @@ void checkNrrdFile(const fs::path& path) {
     }
     const std::streamoff headerEnd = in.eof() ? -1 : std::streamoff(in.tellg());
     if (lineNumber == 0) throw fail("the file is empty");
+    // vtkNrrdReader parses the first 4 MiB - 1 bytes up to their first blank line, else all of them. A last line
+    // without a line break it rereads forever (std::getline leaves the line as it was once the stream has ended:
+    // found by fuzz_nrrd), and a header cut at 4 MiB is one.
+    constexpr std::streamoff kVtkHeaderBytes = 0x400000 - 1;
+    in.clear();
+    const std::streamoff fileBytes = in.seekg(0, std::ios::end).tellg();
+    char last = '\n';
+    if (headerEnd < 0 && fileBytes > 0) in.seekg(-1, std::ios::end).get(last);
+    if ((headerEnd < 0 ? fileBytes : headerEnd) > kVtkHeaderBytes)
+        throw fail("the header is longer than the 4 MiB VTK's reader reads");
+    if (last != '\n') throw fail("the header's last line has no line break");
     // vtkNrrdReader reads through a null stream (SEGV) when dimension or sizes are missing; the format requires
     // these four fields.
     for (const char* key : {"type", "dimension", "sizes", "encoding"})
