@@ -63,6 +63,9 @@ const fs::path kRegressions = fs::path(__FILE__).parent_path().parent_path() / "
     std::_Exit(1);
 }
 
+// What refusing a small file may allocate at once (the readers' own buffers): far below what its header claims.
+constexpr std::size_t kSmallInputAllocation = std::size_t(64) << 20;
+
 // In a child process, so that a crash or a hang fails this test alone.
 void expectRefused(const fs::path& input, std::size_t maxAllocation = std::size_t(1) << 40) {
     ASSERT_TRUE(fs::exists(input)) << input;
@@ -180,7 +183,7 @@ TEST(LoadFuzzRegressions, MetaImageGarbledCompressionAndDataFile) {
 // A 24-byte .raw.gz whose name claims 512x512x512 uint16 (256 MiB): the loader allocated the claimed size before
 // decompressing anything (found with -malloc_limit_mb). Memory must follow the data actually there.
 TEST(LoadFuzzRegressions, GzipRawAllocatesOnlyWhatItDecompresses) {
-    expectRefused(kRegressions / "raw" / "claims_512x512x512_uint16.raw.gz", std::size_t(64) << 20);
+    expectRefused(kRegressions / "raw" / "claims_512x512x512_uint16.raw.gz", kSmallInputAllocation);
 }
 
 // Two active voxels 2^20 apart: densifying their bounding box needs 4 PiB, which the loader asked the allocator for
@@ -203,17 +206,16 @@ TEST(LoadFuzzRegressions, VdbBoundingBoxBeyondIntRange) {
 // DelayedLoadMetadata::readValue), and a grid ending beyond the file let it read a zipped block's length of
 // 0x3030300000000 bytes. The loader walks these before OpenVDB reads them.
 TEST(LoadFuzzRegressions, VdbLengthsBeyondTheFile) {
-    const std::size_t bound = std::size_t(64) << 20;
-    expectRefused(kRegressions / "vdb" / "grid_name_of_4gib.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "instance_parent_name_of_4gib.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "metadata_value_of_4gib.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "grid_metadata_of_1gib.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "zipped_length_beyond_the_file.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "transform_type_of_4gib.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "delayed_load_count_of_4g.vdb", bound);
+    expectRefused(kRegressions / "vdb" / "grid_name_of_4gib.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "instance_parent_name_of_4gib.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "metadata_value_of_4gib.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "grid_metadata_of_1gib.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "zipped_length_beyond_the_file.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "transform_type_of_4gib.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "delayed_load_count_of_4g.vdb", kSmallInputAllocation);
     // Delayed-load arrays longer than their metadata's stated size: OpenVDB reads on past it, and the next metadata
     // name's length (1.8 GiB) came from the middle of the arrays.
-    expectRefused(kRegressions / "vdb" / "delayed_load_longer_than_stated.vdb", bound);
+    expectRefused(kRegressions / "vdb" / "delayed_load_longer_than_stated.vdb", kSmallInputAllocation);
 }
 
 // An int32 grid whose zipped values overflow a heap buffer inside OpenVDB (io::unzipFromStream, found by fuzz_vdb):
@@ -227,18 +229,17 @@ TEST(LoadFuzzRegressions, VdbTreesOfOtherGridsAreNotRead) {
 // into the node's buffer (a heap overflow in io::unzipFromStream, via readCompressedValues), and zipped lengths of
 // 8 GiB and 0x7469736e65640000 bytes it allocates. The loader walks the float trees before OpenVDB reads them.
 TEST(LoadFuzzRegressions, VdbFloatTreesOpenVdbMishandles) {
-    const std::size_t bound = std::size_t(64) << 20;
-    expectRefused(kRegressions / "vdb" / "float_tree_read_for_a_minute.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "float_tree_overflowing_unzip.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "float_tree_raw_values_beyond_the_node.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "float_tree_zipped_length_of_8gib.vdb", bound);
-    expectRefused(kRegressions / "vdb" / "absurd_length_field.vdb", bound);
+    expectRefused(kRegressions / "vdb" / "float_tree_read_for_a_minute.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "float_tree_overflowing_unzip.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "float_tree_raw_values_beyond_the_node.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "float_tree_zipped_length_of_8gib.vdb", kSmallInputAllocation);
+    expectRefused(kRegressions / "vdb" / "absurd_length_field.vdb", kSmallInputAllocation);
 }
 
 // Active tiles in a float tree of 13 KiB whose bounding box densifies to 6 GiB (found by fuzz_vdb): within this
 // machine's memory, but not backed by the file (preprocess/load/vdb_loader.cpp: at most 256 voxels per byte).
 TEST(LoadFuzzRegressions, VdbSparseGridDensifyingToGigabytes) {
-    expectRefused(kRegressions / "vdb" / "float_tree_active_box_of_6gib.vdb", std::size_t(64) << 20);
+    expectRefused(kRegressions / "vdb" / "float_tree_active_box_of_6gib.vdb", kSmallInputAllocation);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "volrender/cpu_renderer.h"
@@ -20,8 +21,7 @@ constexpr int kViewsPerOctant = 16, kViewPixels = 4;  // 16 views of 4 x 4 rays:
 // Samples across the volume at half the default step above which rays are too long to probe (2^17: at most
 // 2^28 iterations per caster; real volumes of 512^3 take about 3500).
 constexpr double kMaxProbeSamples = 0x1p17;
-constexpr std::array<std::pair<Caster, const char*>, 4> kProbed{
-    {{Caster::Primitive, "primitive"}, {Caster::PC, "pc"}, {Caster::ACD, "acd"}, {Caster::EACD, "eacd"}}};
+constexpr std::array<Caster, 4> kProbed{Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
 
 bool hasField(const DistanceFields& f, Caster c) {
     return c == Caster::Primitive || (c == Caster::PC && f.hasPC()) || (c == Caster::ACD && f.hasACD()) ||
@@ -65,7 +65,7 @@ json rayProbe(const PreparedVolume& p) {
     const GridGeometry& grid = p.classified.grid;
     if (length(grid.extent()) / (defaults.stepVoxels / 2 * grid.smallestSpacing()) > kMaxProbeSamples) return json();
     json probe{{"stepVoxels", defaults.stepVoxels}, {"ert", defaults.ert}, {"views", kViewsPerOctant}};
-    for (const auto& [caster, name] : kProbed) {
+    for (const Caster caster : kProbed) {
         if (!hasField(p.fields, caster)) continue;
         json leaps = json::array(), singles = json::array();
         for (int oct = 0; oct < kOctants; ++oct) {
@@ -78,7 +78,7 @@ json rayProbe(const PreparedVolume& p) {
             leaps.push_back(atStep - single);
             singles.push_back(single);
         }
-        probe["casters"][name] = {{"leaps", leaps}, {"singleSamples", singles}};
+        probe["casters"][std::string(casterName(caster))] = {{"leaps", leaps}, {"singleSamples", singles}};
     }
     return probe;
 }
