@@ -116,6 +116,7 @@ struct Timings {
     double uploadNsPerByte = 0;              // wall time of uploading a field byte (median)
     std::map<Caster, double> fieldUploadMs;  // fieldBytes x uploadNsPerByte
     CasterChoice chosen;                     // auto's one choice for all the views, as volrender makes it
+    std::vector<std::string> viewEstimates;  // auto's estimates for each view alone (--explain)
 };
 
 // Wall ms and bytes of uploading what one caster needs for the views: the classified volume, normals, its field.
@@ -136,13 +137,20 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
     s.stepVoxels = step;
     std::vector<Camera> cameras;
     GpuVolumeContents contents{{std::begin(kFixed), std::end(kFixed)}, s.shading, 0};
+    CasterDemand demand{0, {}, (long long)views.front().width * views.front().height, step};
     for (const ViewParams& v : views) {
         cameras.push_back(Camera::fit(p.classified.grid, v));
-        contents.octants |= viewOctants(cameras.back());
+        const unsigned octants = viewOctants(cameras.back());
+        contents.octants |= octants;
+        demand.views.push_back(viewDirectionClasses(cameras.back(), octants));
     }
-    const CasterDemand demand{contents.octants,
-                              (long long)views.front().width * views.front().height, step, int(views.size())};
+    demand.octants = contents.octants;
     t.chosen = chooseCaster(p.meta.statistics, demand);
+    for (unsigned classes : demand.views) {
+        CasterDemand one = demand;
+        one.views = {classes};
+        t.viewEstimates.push_back(chooseCaster(p.meta.statistics, one).reason);
+    }
 
     // The fields' uploads: what a caster adds to the classified volume and normals every caster uploads. On a
     // shared machine one upload's wall time scatters more than a small field takes, so the rate is measured on the
@@ -324,7 +332,7 @@ int main(int argc, char** argv) {
                         for (Caster c : kFixed)
                             std::printf(" %s %.1f it, %.1f ms;", casterName(c).data(), t.iterations.at(c)[v],
                                         median(t.ms.at(c)[v]));
-                        std::printf(" |||||||||||\n");
+                        std::printf(" %s |||||||||||\n", t.viewEstimates[v].c_str());
                     }
                 }
                 std::fflush(stdout);

@@ -1,5 +1,5 @@
 // --caster auto's choice (volrender/caster_choice.h) on hand-made statistics of the form preparedStatistics writes:
-// per caster and octant, the ray probe's mean leaps and single-sample iterations per pixel at step 0.5.
+// per caster and direction class, the ray probe's mean leaps and single-sample iterations per pixel at step 0.5.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -11,7 +11,7 @@ namespace vr {
 namespace {
 using json = nlohmann::json;
 
-// Iterations per pixel of one caster in every octant: leaps (several samples each) and single samples.
+// Iterations per pixel of one caster in every direction class: leaps (several samples each) and single samples.
 struct Counts {
     double leaps = 0, singles = 0;
 };
@@ -23,8 +23,8 @@ json statistics(const std::map<std::string, Counts>& counts, double voxels = 256
     json s{{"voxels", voxels}, {"bytes", {{"sigma", 4 * voxels}, {"colour", 12 * voxels}}}};
     json probe{{"stepVoxels", 0.5}, {"ert", 0.99}, {"raysPerSide", 32}, {"casters", json::object()}};
     for (const auto& [name, c] : counts) {
-        probe["casters"][name] = {{"leaps", std::vector<double>(kOctants, c.leaps)},
-                                  {"singleSamples", std::vector<double>(kOctants, c.singles)}};
+        probe["casters"][name] = {{"leaps", std::vector<double>(kDirectionClasses, c.leaps)},
+                                  {"singleSamples", std::vector<double>(kDirectionClasses, c.singles)}};
         if (name != "primitive") s["bytes"][name] = bytesPerVoxel.at(name) * voxels;
     }
     s["rayProbe"] = probe;
@@ -34,6 +34,7 @@ json statistics(const std::map<std::string, Counts>& counts, double voxels = 256
 CasterDemand ortho(Vec3d direction = {0, 0, -1}) {
     CasterDemand d;
     d.octants = 1u << octantOf(direction.x, direction.y, direction.z);
+    d.views = {1u << directionClassOf(direction)};
     return d;
 }
 
@@ -45,10 +46,15 @@ TEST(CasterChoice, NoProbeGivesPrimitiveAndSaysSo) {
     const CasterChoice c = chooseCaster(old, ortho());
     EXPECT_EQ(c.caster, Caster::Primitive);
     EXPECT_NE(c.reason.find("older volprep"), std::string::npos) << c.reason;
-    // Malformed counts are not trusted either.
+    // Malformed counts are not trusted either, nor a probe of per-octant counts (the first probe's form).
     json bad = statistics({{"primitive", {0, 500}}, {"acd", {10, 5}}});
     bad["rayProbe"]["casters"]["primitive"]["leaps"] = json::array({1, 2});
     EXPECT_EQ(chooseCaster(bad, ortho()).caster, Caster::Primitive);
+    json perOctant = statistics({{"primitive", {0, 500}}, {"acd", {10, 5}}});
+    for (const char* caster : {"primitive", "acd"})
+        for (const char* key : {"leaps", "singleSamples"})
+            perOctant["rayProbe"]["casters"][caster][key] = std::vector<double>(kOctants, 10.0);
+    EXPECT_EQ(chooseCaster(perOctant, ortho()).caster, Caster::Primitive);
 }
 
 TEST(CasterChoice, TakesTheFewestWeightedIterationsAmongTheFieldsPresent) {
@@ -103,24 +109,41 @@ TEST(CasterChoice, NearTiesGoToTheLeanerField) {
     EXPECT_EQ(eacdAt(0.8), Caster::EACD);
 }
 
-TEST(CasterChoice, OnlyTheViewsOctantsCount) {
+TEST(CasterChoice, OnlyTheViewsDirectionClassesCount) {
     json s = statistics({{"primitive", {0, 500}}, {"acd", {100, 300}}, {"eacd", {100, 300}}});
-    s["rayProbe"]["casters"]["acd"]["singleSamples"][0] = 10;   // few iterations in octant 0 (+x +y +z)
-    s["rayProbe"]["casters"]["eacd"]["singleSamples"][7] = 10;  // and in octant 7 (-x -y -z)
+    s["rayProbe"]["casters"]["acd"]["singleSamples"][octantClass(0)] = 10;   // few iterations in +x +y +z
+    s["rayProbe"]["casters"]["eacd"]["singleSamples"][octantClass(7)] = 10;  // and in -x -y -z
+    s["rayProbe"]["casters"]["eacd"]["singleSamples"][directionClass(0, 0, -1)] = 10;  // and along -z
     EXPECT_EQ(chooseCaster(s, ortho({1, 1, 1})).caster, Caster::ACD);
     EXPECT_EQ(chooseCaster(s, ortho({-1, -1, -1})).caster, Caster::EACD);
-    // Elsewhere they leap alike, and 400 leaping iterations cost more than 500 samples.
+    EXPECT_EQ(chooseCaster(s, ortho({0, 0, -1})).caster, Caster::EACD);
+    // Elsewhere they leap alike, and 400 leaping iterations cost more than 500 samples: off the axis too, though
+    // the view's octant (+x +y -z) holds the axis.
     EXPECT_EQ(chooseCaster(s, ortho({1, -1, 1})).caster, Caster::Primitive);
+    EXPECT_EQ(chooseCaster(s, ortho({0.1, 0, -1})).caster, Caster::Primitive);
+    // A view whose rays span octants 0 and 7 (perspective) averages them: ACD and EACD 255 iterations each, a tie
+    // the leaner ACD wins.
+    CasterDemand both = ortho({1, 1, 1});
+    both.octants = 1u | 1u << 7;
+    both.views = {1u << octantClass(0) | 1u << octantClass(7)};
+    EXPECT_EQ(chooseCaster(s, both).caster, Caster::ACD);
+    // Views are averaged: one along -z (EACD 110) and one in +x +y +z (ACD 110, EACD 400).
+    CasterDemand two = ortho({0, 0, -1});
+    two.octants |= 1u;
+    two.views.push_back(1u << octantClass(0));
+    const std::string reason = chooseCaster(s, two).reason;
+    EXPECT_NE(reason.find("acd 255.0,"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("eacd 255.0,"), std::string::npos) << reason;
 }
 
 TEST(CasterChoice, ATinyImageDoesNotPayForAHugeUpload) {
     const json s = statistics({{"primitive", {0, 1000}}, {"pc", {100, 200}}, {"acd", {50, 20}}, {"eacd", {30, 10}}},
                               512.0 * 512 * 512);
     CasterDemand d = ortho();
-    d.views = 100;  // an orbit sharing one upload
+    d.views.assign(100, d.views.front());  // an orbit sharing one upload
     EXPECT_EQ(chooseCaster(s, d).caster, Caster::EACD);
     d.pixels = 16;  // 4x4 pixels: rendering costs less than uploading any field
-    d.views = 1;
+    d.views.resize(1);
     EXPECT_EQ(chooseCaster(s, d).caster, Caster::Primitive);
 }
 

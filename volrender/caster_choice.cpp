@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 #include "core/distance_fields.h"
@@ -15,9 +16,10 @@ namespace {
 
 // The model: a render costs pixels x (a fixed cost per ray + iterations per pixel x the caster's time per
 // iteration), plus the upload of its field, shared by the views. Iterations per pixel come from the ray probe
-// volprep stores (rayProbe in preparedStatistics): a per-octant count on the renderer's own lattice, early ray
-// termination included, so the only constants are the times below. They are few on purpose, and the only thing
-// to re-measure when the shader loop or the device changes: bench/auto_caster_bench prints the data to fit them.
+// volprep stores (rayProbe in preparedStatistics): a count per direction class (axis, plane quadrant, octant) on
+// the renderer's own lattice, early ray termination included, so the only constants are the times below. They are
+// few on purpose, and the only thing to re-measure when the shader loop or the device changes:
+// bench/auto_caster_bench prints the data to fit them.
 struct CasterCost {
     Caster caster;
     const char* name;    // in the statistics' rayProbe and bytes
@@ -47,17 +49,25 @@ double number(const json& j, const char* key) {
     return it != j.end() && it->is_number() ? it->get<double>() : 0.0;
 }
 
-// Mean over the demanded octants of a probe's per-octant array; -1 when the array is missing or malformed.
-double octantMean(const json& probe, const char* key, unsigned octants) {
+// A probe's per-class array (kDirectionClasses numbers); empty when missing or malformed (an older file's
+// per-octant arrays included).
+std::vector<double> classCounts(const json& probe, const char* key) {
     const auto it = probe.find(key);
-    if (it == probe.end() || !it->is_array() || it->size() != kOctants) return -1;
-    double sum = 0;
-    for (int o = 0; o < kOctants; ++o) {
-        if (!(octants >> o & 1)) continue;
-        if (!(*it)[std::size_t(o)].is_number()) return -1;
-        sum += (*it)[std::size_t(o)].get<double>();
+    if (it == probe.end() || !it->is_array() || it->size() != kDirectionClasses) return {};
+    std::vector<double> out;
+    for (const json& x : *it) {
+        if (!x.is_number()) return {};
+        out.push_back(x.get<double>());
     }
-    return sum / std::popcount(octants & 0xffu);
+    return out;
+}
+
+// Mean over the classes of mask `classes` of a per-class array.
+double classMean(const std::vector<double>& counts, unsigned classes) {
+    double sum = 0;
+    for (int c = 0; c < kDirectionClasses; ++c)
+        if (classes >> c & 1) sum += counts[std::size_t(c)];
+    return sum / std::popcount(classes);
 }
 
 struct Estimate {
@@ -81,6 +91,9 @@ CasterChoice chooseCaster(const json& s, const CasterDemand& d) {
     const json casters = probe.contains("casters") ? probe["casters"] : json::object();
     const double probeStep = number(probe, "stepVoxels");
     const unsigned octants = d.octants & 0xffu;
+    const unsigned anyClass = (1u << kDirectionClasses) - 1 - (1u << kNoDirection);
+    if (d.views.empty() || std::any_of(d.views.begin(), d.views.end(), [&](unsigned v) { return !v || v & ~anyClass; }))
+        throw std::invalid_argument("chooseCaster: no views, or a view without direction classes");
     if (probeStep <= 0 || !casters.contains("primitive") || !octants)
         return {Caster::Primitive, "the prepared file has no ray probe (prepared by an older volprep, or rays too "
                                    "long to probe): primitive reads no field"};
@@ -89,24 +102,28 @@ CasterChoice chooseCaster(const json& s, const CasterDemand& d) {
     // opaque tissue, the primitive caster) grow as the step shrinks. No caster takes more than primitive's.
     const double stepScale = probeStep / std::max(d.stepVoxels, 1e-6);
     std::vector<Estimate> estimates;
+    std::vector<double> primitivePerView;
     for (const CasterCost& c : kCasters) {
         const json counts = casters.contains(c.name) ? casters[c.name] : json();
-        if (!counts.is_object()) continue;
-        const double leaps = octantMean(counts, "leaps", octants);
-        const double singles = octantMean(counts, "singleSamples", octants);
+        if (!counts.is_object() || (c.caster != Caster::Primitive && primitivePerView.empty())) continue;
+        const std::vector<double> leaps = classCounts(counts, "leaps"), singles = classCounts(counts, "singleSamples");
         const double fieldBytes = number(bytes, c.name);
-        if (leaps < 0 || singles < 0 || (c.caster != Caster::Primitive && fieldBytes <= 0)) continue;
-        double iterations = leaps + singles * stepScale;
-        if (!estimates.empty()) iterations = std::min(iterations, estimates.front().iterations);
+        if (leaps.empty() || singles.empty() || (c.caster != Caster::Primitive && fieldBytes <= 0)) continue;
+        double iterations = 0;  // per pixel, mean over the views
+        for (std::size_t v = 0; v < d.views.size(); ++v) {
+            double perView = classMean(leaps, d.views[v]) + classMean(singles, d.views[v]) * stepScale;
+            if (c.caster == Caster::Primitive) primitivePerView.push_back(perView);
+            iterations += std::min(perView, primitivePerView[v]) / double(d.views.size());
+        }
         // PC has one field for every direction; ACD and EACD upload the octants the view's rays have.
         const double uploaded = c.caster == Caster::PC ? fieldBytes : fieldBytes * std::popcount(octants) / kOctants;
         estimates.push_back({&c, iterations, uploaded});
     }
     if (estimates.empty() || estimates.front().caster->caster != Caster::Primitive)
         return {Caster::Primitive, "the prepared file's ray probe has no primitive count: primitive reads no field"};
+    const double views = double(d.views.size());
     for (Estimate& e : estimates)
-        e.cost = double(d.pixels) * (kRayNs + e.iterations * e.caster->iterationNs) +
-                 e.bytes * kUploadNsPerByte / std::max(d.views, 1);
+        e.cost = double(d.pixels) * (kRayNs + e.iterations * e.caster->iterationNs) + e.bytes * kUploadNsPerByte / views;
 
     const Estimate* best = &*std::min_element(estimates.begin(), estimates.end(),
                                               [](const Estimate& a, const Estimate& b) { return a.cost < b.cost; });
@@ -115,7 +132,7 @@ CasterChoice chooseCaster(const json& s, const CasterDemand& d) {
         if (e.cost <= tie && e.bytes < best->bytes) best = &e;
 
     // Every candidate's iterations per pixel and cost relative to the primitive caster's, so a choice can be checked.
-    std::string reason = "estimated iterations per pixel and cost relative to primitive (" + std::to_string(d.views) +
+    std::string reason = "estimated iterations per pixel and cost relative to primitive (" + std::to_string(d.views.size()) +
                          " view(s) sharing the upload):";
     for (const Estimate& e : estimates) {
         char part[96];

@@ -11,51 +11,124 @@
 #include <vector>
 
 #include "volrender/cpu_renderer.h"
+#include "volrender/direction_class.h"
 
 namespace vr {
 using json = nlohmann::json;
 
 namespace {
 
-constexpr int kViewsPerOctant = 16, kViewPixels = 4;  // 16 views of 4 x 4 rays: 256 rays per octant
+// Views of 4 x 4 rays per class: more for the octants (every perspective view and most orthographic ones draw on
+// them, and their directions spread over a solid angle) than for a plane's quadrant or an axis.
+constexpr int kViewPixels = 4;
+constexpr int kOctantViews = 16, kQuadrantViews = 6, kAxisViews = 8;
 // Samples across the volume at half the default step above which rays are too long to probe (2^17: at most
 // 2^28 iterations per caster; real volumes of 512^3 take about 3500).
 constexpr double kMaxProbeSamples = 0x1p17;
-constexpr std::array<Caster, 4> kProbed{Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+constexpr std::array<Caster, 3> kLeaping{Caster::PC, Caster::ACD, Caster::EACD};
 
 bool hasField(const DistanceFields& f, Caster c) {
     return c == Caster::Primitive || (c == Caster::PC && f.hasPC()) || (c == Caster::ACD && f.hasACD()) ||
            (c == Caster::EACD && f.hasEACD());
 }
 
-// View `j` of octant `oct`: a direction from a Kronecker sequence (the plastic number's R2), uniform in the
-// cosine of its angle to the xz plane and in azimuth, so uniform over the octant's solid angle; as the view
-// angles of Camera::fit (forward = -(sin az cos el, sin el, cos az cos el)).
-ViewParams probeView(int oct, int j) {
-    const double y = std::fmod(0.5 + j * 0.7548776662466927, 1.0);
-    const double phi = std::fmod(0.5 + j * 0.5698402909980532, 1.0) * std::numbers::pi / 2;
-    const double xz = std::sqrt(1 - y * y);
-    const Vec3d d{octantSign(oct, 0) * xz * std::sin(phi), octantSign(oct, 1) * y,
-                  octantSign(oct, 2) * xz * std::cos(phi)};
-    ViewParams v;
-    v.width = v.height = kViewPixels;
-    v.azimuthDeg = std::atan2(-d.x, -d.z) * 180 / std::numbers::pi;
-    v.elevationDeg = std::asin(-d.y) * 180 / std::numbers::pi;
-    return v;
+double fraction(double x) { return x - std::floor(x); }
+
+// Radical inverse of j in base b: the Halton sequence.
+double radicalInverse(int j, int b) {
+    double r = 0, f = 1.0 / b;
+    for (; j > 0; j /= b, f /= b) r += f * (j % b);
+    return r;
 }
 
-// Mean iterations per pixel of caster c over octant oct's views at a step.
-double meanIterations(const PreparedVolume& p, Caster c, int oct, double stepVoxels) {
+struct ProbeView {
+    int directionClass;
+    Vec3d direction;  // unit, its zero components exactly 0
+    double jitterX, jitterY;  // offset of the pixel lattice, in pixels: [-0.5, 0.5)
+};
+
+// View `j` of class c. Octants: directions from a Kronecker sequence (the plastic number's R2), uniform in the
+// cosine of their angle to the xz plane and in azimuth, so uniform over the octant's solid angle. Quadrants:
+// uniform in angle. Each view's 4 x 4 pixel lattice is shifted by a Halton offset, so that the views together
+// sample the image plane finely (one unshifted 4 x 4 lattice misses the centre, where rays are longest).
+ProbeView probeView(int c, int j) {
+    const Vec3i s{classSign(c, 0), classSign(c, 1), classSign(c, 2)};
+    const int zeros = (s.x == 0) + (s.y == 0) + (s.z == 0);
+    Vec3d d{double(s.x), double(s.y), double(s.z)};
+    if (zeros == 0) {
+        const double y = fraction(0.5 + j * 0.7548776662466927);
+        const double phi = fraction(0.5 + j * 0.5698402909980532) * std::numbers::pi / 2;
+        const double xz = std::sqrt(1 - y * y);
+        d = Vec3d{s.x * xz * std::sin(phi), s.y * y, s.z * xz * std::cos(phi)};
+    } else if (zeros == 1) {
+        const double phi = fraction(0.5 + j * 0.6180339887498949) * std::numbers::pi / 2;
+        const int a = s.x == 0 ? 1 : 0, b = s.z == 0 ? 1 : 2;  // the two nonzero axes
+        d = Vec3d{0, 0, 0};
+        d[a] = s[a] * std::cos(phi);
+        d[b] = s[b] * std::sin(phi);
+    }
+    return {c, d, radicalInverse(j + 1, 2) - 0.5, radicalInverse(j + 1, 3) - 0.5};
+}
+
+// An orthographic camera of kViewPixels^2 rays looking along the view's direction at the whole volume (the
+// bounding sphere fits the image, as Camera::fit), its pixel lattice shifted by the view's jitter.
+Camera probeCamera(const GridGeometry& grid, const ProbeView& v) {
+    ViewParams fitted;
+    fitted.width = fitted.height = kViewPixels;
+    Camera cam = Camera::fit(grid, fitted);
+    cam.forward = v.direction;
+    // Any up perpendicular to the direction: the mean over the image does not depend on the roll.
+    const Vec3d axis = std::abs(v.direction.y) < 0.9 ? Vec3d{0, 1, 0} : Vec3d{1, 0, 0};
+    cam.up = normalize(axis - v.direction * dot(axis, v.direction));
+    cam.right = cross(cam.forward, cam.up);
+    const double pixel = 2 * cam.halfHeight / kViewPixels;
+    cam.eye = grid.centre() - v.direction * length(grid.extent()) + cam.right * (v.jitterX * pixel) +
+              cam.up * (v.jitterY * pixel);
+    return cam;
+}
+
+std::vector<ProbeView> probeViews() {
+    std::vector<ProbeView> views;
+    for (int c = 0; c < kDirectionClasses; ++c) {
+        if (c == kNoDirection) continue;
+        const int zeros = (classSign(c, 0) == 0) + (classSign(c, 1) == 0) + (classSign(c, 2) == 0);
+        const int count = zeros == 0 ? kOctantViews : zeros == 1 ? kQuadrantViews : kAxisViews;
+        for (int j = 0; j < count; ++j) views.push_back(probeView(c, j));
+    }
+    return views;
+}
+
+// Per direction class (index kNoDirection: 0), the mean per pixel of caster c's loop iterations and of the
+// lattice samples they stood for.
+struct ClassMeans {
+    std::vector<double> iterations, samples;
+};
+
+ClassMeans meanIterations(const PreparedVolume& p, const std::vector<ProbeView>& views, Caster c,
+                          double stepVoxels) {
     RenderSettings s;
     s.caster = c;
     s.stepVoxels = stepVoxels;
     s.shading = false;
-    std::array<double, kViewsPerOctant> perView{};
-    tbb::parallel_for(0, kViewsPerOctant, [&](int j) {
-        const RenderResult r = renderCpu(p, Camera::fit(p.classified.grid, probeView(oct, j)), s);
-        perView[j] = std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0);
+    std::vector<std::array<double, 2>> perView(views.size());
+    tbb::parallel_for(std::size_t(0), views.size(), [&](std::size_t i) {
+        const RenderResult r = renderCpu(p, probeCamera(p.classified.grid, views[i]), s);
+        perView[i] = {std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0),
+                      std::accumulate(r.samples.begin(), r.samples.end(), 0.0)};
     });
-    return std::accumulate(perView.begin(), perView.end(), 0.0) / (kViewsPerOctant * kViewPixels * kViewPixels);
+    ClassMeans m{std::vector<double>(kDirectionClasses, 0.0), std::vector<double>(kDirectionClasses, 0.0)};
+    std::vector<double> rays(kDirectionClasses, 0.0);
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const auto c = std::size_t(views[i].directionClass);
+        m.iterations[c] += perView[i][0];
+        m.samples[c] += perView[i][1];
+        rays[c] += kViewPixels * kViewPixels;
+    }
+    for (std::size_t c = 0; c < rays.size(); ++c) {
+        m.iterations[c] /= std::max(rays[c], 1.0);
+        m.samples[c] /= std::max(rays[c], 1.0);
+    }
+    return m;
 }
 
 }  // namespace
@@ -64,22 +137,30 @@ json rayProbe(const PreparedVolume& p) {
     const RenderSettings defaults;
     const GridGeometry& grid = p.classified.grid;
     if (length(grid.extent()) / (defaults.stepVoxels / 2 * grid.smallestSpacing()) > kMaxProbeSamples) return json();
-    json probe{{"stepVoxels", defaults.stepVoxels}, {"ert", defaults.ert}, {"views", kViewsPerOctant}};
-    for (const Caster caster : kProbed) {
+    const std::vector<ProbeView> views = probeViews();
+    json probe{{"stepVoxels", defaults.stepVoxels},
+               {"ert", defaults.ert},
+               {"views", {{"octant", kOctantViews}, {"quadrant", kQuadrantViews}, {"axis", kAxisViews}}}};
+    // The primitive caster takes one iteration per lattice sample a leaping caster's iterations stand for (the
+    // same until termination at thresholds 0, and close to it above): no need to run it, its rays being the
+    // longest. Only a file without fields, where auto has nothing to choose, probes it.
+    std::vector<double> primitive;
+    for (const Caster caster : kLeaping) {
         if (!hasField(p.fields, caster)) continue;
-        json leaps = json::array(), singles = json::array();
-        for (int oct = 0; oct < kOctants; ++oct) {
-            // At the default step I = L + S, at half of it L + 2 S: single samples double, leaps stay. The
-            // primitive caster takes single samples only.
-            const double atStep = meanIterations(p, caster, oct, defaults.stepVoxels);
-            const double atHalf = caster == Caster::Primitive ? 2 * atStep
-                                                              : meanIterations(p, caster, oct, defaults.stepVoxels / 2);
-            const double single = std::clamp(atHalf - atStep, 0.0, atStep);
-            leaps.push_back(atStep - single);
-            singles.push_back(single);
+        // At the default step I = L + S, at half of it L + 2 S: single samples double, leaps stay.
+        const ClassMeans atStep = meanIterations(p, views, caster, defaults.stepVoxels);
+        const ClassMeans atHalf = meanIterations(p, views, caster, defaults.stepVoxels / 2);
+        std::vector<double> leaps(kDirectionClasses), singles(kDirectionClasses);
+        for (std::size_t c = 0; c < leaps.size(); ++c) {
+            singles[c] = std::clamp(atHalf.iterations[c] - atStep.iterations[c], 0.0, atStep.iterations[c]);
+            leaps[c] = atStep.iterations[c] - singles[c];
         }
         probe["casters"][std::string(casterName(caster))] = {{"leaps", leaps}, {"singleSamples", singles}};
+        if (primitive.empty()) primitive = atStep.samples;
     }
+    if (primitive.empty()) primitive = meanIterations(p, views, Caster::Primitive, defaults.stepVoxels).iterations;
+    probe["casters"]["primitive"] = {{"leaps", std::vector<double>(kDirectionClasses, 0.0)},
+                                     {"singleSamples", primitive}};
     return probe;
 }
 

@@ -6,12 +6,14 @@
 
 namespace vr {
 
-// Per octant and per caster the fields allow, the mean loop iterations per pixel of the CPU reference renderer
-// (the casters' own loop: lattice, leaps, early ray termination; nearest sampling, unshaded) over small
-// orthographic views whose directions spread over the octant's solid angle, split into iterations that leap
-// several samples ("leaps", independent of the step) and single samples ("singleSamples", which grow as the step
-// shrinks). Form: {"stepVoxels", "ert", "views", "casters": {NAME: {"leaps": [8], "singleSamples": [8]}}}; null
-// for a volume whose rays are too long to probe (spacings far apart: more than 2^17 samples across).
+// Per direction class (volrender/direction_class.h: the 8 octants, 12 plane quadrants and 6 axes) and per caster
+// the fields allow, the mean loop iterations per pixel of the CPU reference renderer (the casters' own loop:
+// lattice, leaps, early ray termination; nearest sampling, unshaded) over small orthographic views along
+// directions of the class, split into iterations that leap several samples ("leaps", independent of the step)
+// and single samples ("singleSamples", which grow as the step shrinks). Form: {"stepVoxels", "ert", "views":
+// {"octant", "quadrant", "axis"}, "casters": {NAME: {"leaps": [27], "singleSamples": [27]}}}, indexed by class
+// (entry 13 unused, 0); null for a volume whose rays are too long to probe (spacings far apart: more than 2^17
+// samples across).
 nlohmann::json rayProbe(const PreparedVolume& prepared);
 
 }  // namespace vr

@@ -138,12 +138,14 @@ unsigned fieldsFor(vr::Caster c) {
 // read once the caster is known).
 vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s) {
     const vr::PreparedVolume header = vr::readPrepared(f.prepared, 0, false);
-    vr::CasterDemand d{0, (long long)view.width * view.height, s.stepVoxels, f.views};
+    vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (int i = 0; i < f.views; ++i) {
         view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
         view.elevationDeg = f.elevation;
         const vr::Camera camera = vr::Camera::fit(header.classified.grid, view);
-        d.octants |= vr::viewOctants(camera);
+        const unsigned octants = vr::viewOctants(camera);
+        d.octants |= octants;
+        d.views.push_back(vr::viewDirectionClasses(camera, octants));
     }
     return vr::chooseCaster(header.meta.statistics, d);
 }
