@@ -11,6 +11,7 @@
 # (space-separated dataset name prefixes, e.g. "cranium_ct vtk_headsq_ct phantom"), PEERS (dataset prefixes for
 # the peers, default the CT volumes "boston_teapot cranium_ct vtk_headsq_ct"; "" for none), PEER_SIZE (512x512),
 # PEER_VIEWS (4), PEER_LIST (the peers run, default vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render),
+# UNSHADED_TO (T_o values of the unshaded full-size sweep beside the peers, default 0,0.01,0.02,0.05,0.1),
 # RESUME=1 (keep OUTDIR and skip the settings already in its sweep.csv).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,6 +30,7 @@ peers=${PEERS-boston_teapot cranium_ct vtk_headsq_ct}
 peer_size=${PEER_SIZE:-512x512}
 peer_views=${PEER_VIEWS:-4}
 peer_list=${PEER_LIST:-vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render}
+unshaded_to=${UNSHADED_TO:-0,0.01,0.02,0.05,0.1}
 phantom_dims=128x128x128
 
 bash scripts/install-deps.sh gnuplot-nox
@@ -76,8 +78,9 @@ sweep() {  # sweep NAME FILE TF SPACING DIMS ("X Y Z")
   echo "  $name: $((SECONDS - t0)) s" >&2
 }
 
-# The peers render without shading (scripts/peers.sh): they are compared with our unshaded casters at
-# T_o = T_a = 0 on the full-size volume, at their image size and views, in the report section NAME_unshaded.
+# The peers render without shading (scripts/peers.sh): they are compared with our unshaded casters on the
+# full-size volume, at their image size and views, in the report section NAME_unshaded, which also sweeps T_o
+# (unshaded regions are segmented without normals, so T_a does not apply).
 peers_of() {  # peers_of NAME FILE TF SPACING
   local name=$1 file=$2 tf=$3 spacing=$4 t0=$SECONDS c0
   cpu_now
@@ -87,7 +90,8 @@ peers_of() {  # peers_of NAME FILE TF SPACING
     echo "report.sh: scripts/peers.sh failed on $name: the report has no peers for it" >&2
     return 0
   fi
-  "$volsweep" "$file" --tf "$tf" --spacing "$spacing" --name "${name}_unshaded" --no-shading --to 0 --ta 0 \
+  "$volsweep" "$file" --tf "$tf" --spacing "$spacing" --name "${name}_unshaded" --no-shading --to "$unshaded_to" \
+    --ta 0 \
     --views "$peer_views" --size "$peer_size" -o "$out" --peers "$out/peers/$name" "${resume[@]}" </dev/null >/dev/null
   cpu_now
   timings+="| ${name}_unshaded + peers (${peer_size}) | | | $((SECONDS - t0)) | $((cpu - c0)) |"$'\n'
@@ -130,7 +134,8 @@ their sections).
 
 **Peers:** ${peer_list} (scripts/peers.sh, unshaded as they render) on: ${peers:-none}, at ${peer_size} with
 ${peer_views} views on the full-size volumes, compared in the NAME_unshaded sections with our unshaded casters at
-T_o = T_a = 0, same size, views and sample distance.
+T_o = T_a = 0, same size, views and sample distance. Those sections also sweep T_o {${unshaded_to}}: without
+shading the regions are segmented without normals (T_a does not apply), as volprep --no-normals does.
 
 **Why these sizes (the 30-minute budget on 2 cores with lavapipe).** Measured on this machine: the 30-setting
 sweep of headsq (0.38 M voxels, 4 views of 256x256) cost 93 CPU-s while the primitive caster was rendered at every
