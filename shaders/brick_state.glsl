@@ -30,7 +30,7 @@ void storeRayState(uint i, RayState s) {
 
 bool inBrick(ivec3 v) { return all(greaterThanEqual(v, uBrickLo)) && all(lessThanEqual(v, uBrickHi)); }
 
-bool rayInPass(int oct) { return (oct & T.passAxes) == T.passSigns; }
+bool rayInPass(int oct) { return (oct & uPassAxes) == uPassSigns; }
 
 // Texel of a global voxel in this brick's classified and normal images.
 ivec3 brickTexel(ivec3 v) { return v - uImageLo; }

@@ -6,12 +6,18 @@
 // when thresholds are 0).
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_ARB_gpu_shader_int64 : require
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(constant_id = 0) const int CASTER = 0;  // 0 primitive, 1 PC, 2 ACD, 3 EACD
 layout(constant_id = 1) const bool TRILINEAR = false;
 layout(constant_id = 2) const bool SHADING = true;
+// false: the volume is one brick, rendered in one dispatch per tile, so no ray state is carried (llvmpipe would
+// run the state's loads and stores, lane by lane, even where a uniform condition turns them off).
+layout(constant_id = 4) const bool BRICKED = true;
+// The camera's projection: llvmpipe would compute both cameras' rays for every pixel.
+layout(constant_id = 5) const bool PERSPECTIVE = false;
 const int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
 
 #include "caster_params.glsl"
@@ -20,12 +26,14 @@ const int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
 #include "brick_state.glsl"
 #include "extent_code.glsl"
 
-layout(set = 0, binding = 1) uniform sampler3D classified;  // rgb colour, a: extinction sigma
+// A storage image (see isStorageVolume in volrender/vulkan/gpu_buffer.h): llvmpipe loads it more cheaply.
+layout(set = 0, binding = 1, rgba32f) uniform readonly image3D classified;  // rgb colour, a: extinction sigma
 layout(set = 0, binding = 2) uniform sampler3D normals;     // xyz: unit normal or 0 (flat); shading only
 layout(set = 0, binding = 3) uniform usampler3D field;      // PC: r; ACD: r per octant slab; EACD: rgb, or r coded
-layout(set = 0, binding = 4, std430) writeonly buffer OutColour { vec4 outColour[]; };
-layout(set = 0, binding = 5, std430) writeonly buffer OutIterations { uint outIterations[]; };
-layout(set = 0, binding = 6, std430) writeonly buffer OutSamples { uvec2 outSamples[]; };
+// Per pixel: the colour's four floats, two to a word, then the samples and the iteration count (with its flags).
+// One store of four 64-bit words: llvmpipe stores a buffer lane by lane and word by word, which made three outputs
+// of seven 32-bit words a seventh of a leaping caster's time.
+layout(set = 0, binding = 4, std430) writeonly buffer OutPixels { u64vec4 outPixel[]; };
 
 // Set in an iteration count: the ray hit the cap, needed an octant that was not uploaded or was in no pass over
 // the bricks (a bug); the driver ended the loops early.
@@ -40,7 +48,7 @@ struct SampleValue {
 };
 
 SampleValue nearestSample(ivec3 v) {
-    vec4 c = texelFetch(classified, brickTexel(v), 0);
+    vec4 c = imageLoad(classified, brickTexel(v));
     SampleValue s = SampleValue(double(c.a), c.rgb, vec3(0.0));
     if (SHADING) s.normal = texelFetch(normals, brickTexel(v), 0).xyz;
     return s;
@@ -57,7 +65,7 @@ SampleValue trilinearSample(dvec3 p) {
         ivec3 u = clampVoxel(base + bit);
         dvec3 w3 = mix(1.0LF - f, f, bvec3(bit));
         precise double w = w3.x * w3.y * w3.z;
-        vec4 cs = texelFetch(classified, brickTexel(u), 0);
+        vec4 cs = imageLoad(classified, brickTexel(u));
         s.sigma += w * double(cs.a);
         s.colour += cs.rgb * float(w);
         if (SHADING) s.normal += texelFetch(normals, brickTexel(u), 0).xyz * float(w);
@@ -73,21 +81,24 @@ void main() {
     // slowest ray takes: each batch takes a 4x2 block of pixels, whose rays stay closer together than an 8x1 row's.
     uvec2 l = gl_LocalInvocationID.xy;
     ivec2 local = ivec2(gl_WorkGroupID.xy * 8u + uvec2((l.x & 3u) | ((l.y & 1u) << 2), (l.y & ~1u) | (l.x >> 2)));
-    if (any(greaterThanEqual(local, T.tileSize))) return;
-    ivec2 pixel = T.tileOrigin + local;
-    uint outIndex = uint(local.y * T.tileSize.x + local.x);
+    if (any(greaterThanEqual(local, uTileSize))) return;
+    ivec2 pixel = uTileOrigin + local;
+    uint outIndex = uint(local.y * uTileSize.x + local.x);
 
     dvec3 direction;
     GridRay g = cameraGridRay(double(pixel.x) + 0.5LF, double(pixel.y) + 0.5LF, direction);
     RayInterval iv = intersectGrid(g);
     double kCount = latticeCount(iv);
     int oct = rayOctant(g);
-    int slot = P.octantSlot[oct >> 2][oct & 3];
+    // Selected, not indexed: llvmpipe reads an array at a varying index lane by lane.
+    ivec4 slots = oct < 4 ? uOctantSlot[0] : uOctantSlot[1];
+    int slot = (oct & 1) == 0 ? ((oct & 2) == 0 ? slots.x : slots.z) : ((oct & 2) == 0 ? slots.y : slots.w);
     vec3 toEye = -vec3(direction);
-    vec3 toLight = P.light.w != 0.0 ? P.light.xyz : toEye;
+    vec3 toLight = uLight.w != 0.0 ? uLight.xyz : toEye;
 
     bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0.0LF;
-    RayState state = T.firstDispatch != 0
+    bool firstDispatch = !BRICKED || uFirstDispatch != 0, lastDispatch = !BRICKED || uLastDispatch != 0;
+    RayState state = firstDispatch
                          ? RayState(dvec4(0.0LF), 0.0LF, 0.0LF, 0u, missingOctant ? kFailed : 0u)
                          : loadRayState(outIndex);
     dvec3 colour = state.composite.rgb;
@@ -98,12 +109,12 @@ void main() {
     double k = state.k;
     // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
-    bool mine = rayInPass(oct) && k < kCount && inBrick(sampleVoxel(g, latticeT(iv, k)));
-    if (!mine && T.firstDispatch == 0 && T.lastDispatch == 0) return;
+    bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, latticeT(iv, k)))));
+    if (!mine && !firstDispatch && !lastDispatch) return;
     for (double n = 1.0LF; mine && !failed && k < kCount && alpha < uErt; k += n) {
         double t = latticeT(iv, k);
         ivec3 v = sampleVoxel(g, t);
-        if (!inBrick(v)) break;
+        if (BRICKED && !inBrick(v)) break;
         if (++iterations > uMaxIterations) {
             failed = true;
             break;
@@ -141,15 +152,13 @@ void main() {
     // in all of them, which would silently shorten a long ray. A loop whose trip count (2) the compiler cannot
     // know runs short afterwards exactly when that happened.
     int probe = 0;
-    for (double i = 0.0LF; i < P.loopProbe; i += 1.0LF) ++probe;
+    for (double i = 0.0LF; i < uLoopProbe; i += 1.0LF) ++probe;
     uint flags = state.flags | (probe < 2 ? kCutShort : 0u);
-    if (T.lastDispatch != 0 && k < kCount && alpha < uErt) failed = true;  // in no pass: a bug
+    if (lastDispatch && k < kCount && alpha < uErt) failed = true;  // in no pass: a bug
     if (failed) flags |= kFailed;
     // The next brick's dispatch reads this state; after the last one, nothing does.
-    if (T.lastDispatch == 0) storeRayState(outIndex, RayState(dvec4(colour, alpha), k, samples, iterations, flags));
+    if (!lastDispatch) storeRayState(outIndex, RayState(dvec4(colour, alpha), k, samples, iterations, flags));
 
-    outColour[outIndex] = vec4(vec3(colour + dvec3(P.background.rgb) * (1.0LF - alpha)), float(alpha));
-    outIterations[outIndex] = iterations | flags;
-    double high = floor(samples / 4294967296.0LF);
-    outSamples[outIndex] = uvec2(uint(samples - high * 4294967296.0LF), uint(high));
+    uvec4 rgba = floatBitsToUint(vec4(vec3(colour + dvec3(uBackground.rgb) * (1.0LF - alpha)), float(alpha)));
+    outPixel[outIndex] = u64vec4(packUint2x32(rgba.xy), packUint2x32(rgba.zw), uint64_t(samples), iterations | flags);
 }

@@ -16,7 +16,7 @@ layout(set = 0, binding = 0, std140) uniform Params {
     double loopProbe;  // 2: trip count of the loop that detects a driver's loop limit (caster.comp)
     ivec4 dims;        // voxels per axis
     ivec2 imageSize;   // width, height
-    int perspective;   // 1: perspective camera
+    int unused;        // (the projection is the PERSPECTIVE specialization constant of caster.comp)
     uint maxIterations;
     ivec4 octantSlot[2];  // ACD/EACD: z-slab of each octant in the field image, -1 when not uploaded
     vec4 light;        // xyz: unit direction toward the light; w = 1 when set, 0 for a headlight
@@ -38,24 +38,47 @@ layout(push_constant) uniform Tile {
     int passSigns;     // ... are passSigns (the bricks come in an order they all cross them in)
 } T;
 
-// The members the casters' loop reads, copied once per invocation by copyUniforms(): llvmpipe (Mesa 22)
-// reads a block member as a gather over the invocations of its SIMD batch, every time the shader reads it.
-double uDt, uErt;
+// Every member the casters read, copied once per invocation by copyUniforms() before anything else: llvmpipe
+// (Mesa 22) reads a block member as a gather over the invocations of its SIMD batch, every time the shader reads
+// it, once control flow may differ between them (after the early return of pixels outside the tile).
+dvec3 uEye, uForward, uRight, uUp, uGridOrigin, uSpacing;
+double uHalfHeight, uDt, uErt, uLoopProbe;
 ivec3 uDims, uBrickLo, uBrickHi, uImageLo;
+ivec2 uImageSize, uTileOrigin, uTileSize;
 int uSlabDepth;  // texels of one slab of the brick's images along z
+int uFirstDispatch, uLastDispatch, uPassAxes, uPassSigns;
+ivec4 uOctantSlot[2];
 uint uMaxIterations;
-vec4 uMaterial;
+vec4 uLight, uMaterial, uBackground;
 
 void copyUniforms() {
+    uEye = P.eye.xyz;
+    uForward = P.forward.xyz;
+    uRight = P.right.xyz;
+    uUp = P.up.xyz;
+    uGridOrigin = P.gridOrigin.xyz;
+    uSpacing = P.spacing.xyz;
+    uHalfHeight = P.halfHeight;
     uDt = P.dt;
     uErt = P.ert;
+    uLoopProbe = P.loopProbe;
     uDims = P.dims.xyz;
+    uImageSize = P.imageSize;
+    uMaxIterations = P.maxIterations;
+    uOctantSlot = P.octantSlot;
+    uLight = P.light;
+    uMaterial = P.material;
+    uBackground = P.background;
+    uTileOrigin = T.tileOrigin;
+    uTileSize = T.tileSize;
     uBrickLo = T.brickLo.xyz;
     uBrickHi = T.brickHi.xyz;
     uImageLo = T.imageLo.xyz;
     uSlabDepth = T.imageDims.z;
-    uMaxIterations = P.maxIterations;
-    uMaterial = P.material;
+    uFirstDispatch = T.firstDispatch;
+    uLastDispatch = T.lastDispatch;
+    uPassAxes = T.passAxes;
+    uPassSigns = T.passSigns;
 }
 
 #endif

@@ -18,23 +18,23 @@ struct RayInterval {
 
 // Camera::ray() for the pixel centre (px, py), then toGridRay().
 GridRay cameraGridRay(double px, double py, out dvec3 worldDirection) {
-    precise double aspect = double(P.imageSize.x) / double(P.imageSize.y);
-    precise double u = (2.0LF * px / double(P.imageSize.x) - 1.0LF) * P.halfHeight * aspect;
-    precise double v = (1.0LF - 2.0LF * py / double(P.imageSize.y)) * P.halfHeight;
+    precise double aspect = double(uImageSize.x) / double(uImageSize.y);
+    precise double u = (2.0LF * px / double(uImageSize.x) - 1.0LF) * uHalfHeight * aspect;
+    precise double v = (1.0LF - 2.0LF * py / double(uImageSize.y)) * uHalfHeight;
     precise dvec3 origin, direction;
-    if (P.perspective == 0) {
-        origin = P.eye.xyz + P.right.xyz * u + P.up.xyz * v;
-        direction = P.forward.xyz;
+    if (!PERSPECTIVE) {  // the including shader's specialization constant (caster.comp)
+        origin = uEye + uRight * u + uUp * v;
+        direction = uForward;
     } else {
-        precise dvec3 w = P.forward.xyz + P.right.xyz * u + P.up.xyz * v;
+        precise dvec3 w = uForward + uRight * u + uUp * v;
         precise double len = sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
-        origin = P.eye.xyz;
+        origin = uEye;
         direction = w / len;
     }
     worldDirection = direction;
     GridRay r;
-    r.o = (origin - P.gridOrigin.xyz) / P.spacing.xyz;
-    r.d = direction / P.spacing.xyz;
+    r.o = (origin - uGridOrigin) / uSpacing;
+    r.d = direction / uSpacing;
     return r;
 }
 
@@ -43,25 +43,25 @@ dvec3 rayAt(GridRay r, double t) {
     return p;
 }
 
-// Slab test; an axis with d_a == 0 never limits t, and the ray must then lie in 0 <= o_a < N_a.
+// Slab test; an axis with d_a == 0 never limits t, and the ray must then lie in 0 <= o_a < N_a. Written out per
+// axis without a loop or an early return: llvmpipe neither unrolls a loop that returns nor skips the code after a
+// return, and it runs every loop's body for all invocations of a SIMD batch.
+void clipSlab(double o, double d, int n, inout double t0, inout double t1, inout bool outside) {
+    precise double ta = (0.0LF - o) / d;
+    precise double tb = (double(n) - o) / d;
+    bool parallel = d == 0.0LF;
+    outside = outside || (parallel && !(o >= 0.0LF && o < double(n)));
+    t0 = parallel ? t0 : max(t0, min(ta, tb));
+    t1 = parallel ? t1 : min(t1, max(ta, tb));
+}
+
 RayInterval intersectGrid(GridRay r) {
     double t0 = 0.0LF, t1 = kInfinity;
-    for (int a = 0; a < 3; ++a) {
-        if (r.d[a] == 0.0LF) {
-            if (!(r.o[a] >= 0.0LF && r.o[a] < double(uDims[a]))) return RayInterval(0.0LF, 0.0LF);
-            continue;
-        }
-        precise double ta = (0.0LF - r.o[a]) / r.d[a];
-        precise double tb = (double(uDims[a]) - r.o[a]) / r.d[a];
-        if (ta > tb) {
-            double s = ta;
-            ta = tb;
-            tb = s;
-        }
-        t0 = max(t0, ta);
-        t1 = min(t1, tb);
-    }
-    if (!(t0 < t1)) return RayInterval(0.0LF, 0.0LF);
+    bool outside = false;
+    clipSlab(r.o.x, r.d.x, uDims.x, t0, t1, outside);
+    clipSlab(r.o.y, r.d.y, uDims.y, t0, t1, outside);
+    clipSlab(r.o.z, r.d.z, uDims.z, t0, t1, outside);
+    if (outside || !(t0 < t1)) return RayInterval(0.0LF, 0.0LF);
     return RayInterval(t0, t1);
 }
 

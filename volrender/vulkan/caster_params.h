@@ -11,7 +11,7 @@ struct CasterParams {
     double halfHeight, dt, ert, loopProbe;  // loopProbe: 2 (see shaders/caster.comp)
     int32_t dims[4];
     int32_t imageSize[2];
-    int32_t perspective;
+    int32_t unused;  // the projection is a specialization constant of the pipeline
     uint32_t maxIterations;
     int32_t octantSlot[8];
     float light[4];

@@ -1,5 +1,8 @@
 #include "volrender/vulkan/gpu_buffer.h"
 
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
@@ -29,15 +32,35 @@ DeviceBuffer::DeviceBuffer(const VulkanContext& ctx, vk::DeviceSize bytes, vk::B
 
 namespace {
 
-constexpr vk::ImageUsageFlags kVolumeUsage = vk::ImageUsageFlagBits::eSampled | vk::ImageUsageFlagBits::eTransferDst;
+// Fresh host memory is faulted in page by page as it is first written: for a 100 MB volume some 25,000 faults,
+// which took longer than the copy itself. Transparent huge pages, where the kernel grants them on request, take
+// 512 times fewer. A hint only: where it is refused nothing changes.
+void adviseHugePages(void* data, std::size_t bytes) {
+    const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE)), begin = reinterpret_cast<uintptr_t>(data);
+    const uintptr_t lo = (begin + page - 1) & ~(page - 1), hi = (begin + bytes) & ~(page - 1);
+    if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);
+}
+
+vk::ImageUsageFlags volumeUsage(vk::Format format) {
+    return (isStorageVolume(format) ? vk::ImageUsageFlagBits::eStorage : vk::ImageUsageFlagBits::eSampled) |
+           vk::ImageUsageFlagBits::eTransferDst;
+}
 
 vk::ImageCreateInfo volumeImageInfo(const Vec3i& dims, vk::Format format) {
     return vk::ImageCreateInfo({}, vk::ImageType::e3D, format,
                                vk::Extent3D(uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)), 1, 1,
-                               vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal, kVolumeUsage);
+                               vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal, volumeUsage(format));
 }
 
 }  // namespace
+
+bool isStorageVolume(vk::Format format) {
+    return format == vk::Format::eR32G32B32A32Sfloat;
+}
+
+vk::ImageLayout volumeLayout(vk::Format format) {
+    return isStorageVolume(format) ? vk::ImageLayout::eGeneral : vk::ImageLayout::eShaderReadOnlyOptimal;
+}
 
 std::size_t formatBytes(vk::Format format) {
     switch (format) {
@@ -56,7 +79,8 @@ bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format,
     if (limits.maxDimension > 0) maxDimension = std::min(maxDimension, limits.maxDimension);
     vk::ImageFormatProperties format3d;
     try {
-        format3d = gpu.getImageFormatProperties(format, vk::ImageType::e3D, vk::ImageTiling::eOptimal, kVolumeUsage);
+        format3d = gpu.getImageFormatProperties(format, vk::ImageType::e3D, vk::ImageTiling::eOptimal,
+                                                volumeUsage(format));
     } catch (const vk::FormatNotSupportedError&) {
         return false;
     }
@@ -81,7 +105,12 @@ bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format,
 
 VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
                          const void* texels, std::size_t texelBytes)
-    : bytes_(texelBytes) {
+    : VolumeImage(ctx, pool, dims, format, texelBytes,
+                  [&](uint8_t* to) { std::memcpy(to, texels, texelBytes); }) {}
+
+VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
+                         std::size_t texelBytes, const TexelWriter& write)
+    : format_(format), bytes_(texelBytes) {
     vk::Extent3D extent(uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z));
     auto limits = ctx.physicalDevice().getProperties().limits;
     if (std::max({extent.width, extent.height, extent.depth}) > limits.maxImageDimension3D)
@@ -90,13 +119,19 @@ VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& 
                                  std::to_string(limits.maxImageDimension3D));
     image_ = vk::raii::Image(ctx.device(), volumeImageInfo(dims, format));
     auto req = image_.getMemoryRequirements();
-    memory_ = vk::raii::DeviceMemory(
-        ctx.device(),
-        vk::MemoryAllocateInfo(req.size, ctx.memoryType(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal)));
+    const uint32_t type = ctx.memoryType(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal);
+    memory_ = vk::raii::DeviceMemory(ctx.device(), vk::MemoryAllocateInfo(req.size, type));
     image_.bindMemory(*memory_, 0);
+    // A CPU device's memory is host memory, first written by the copy below.
+    const vk::MemoryPropertyFlags flags = ctx.physicalDevice().getMemoryProperties().memoryTypes[type].propertyFlags;
+    if (ctx.info().type == "cpu" && (flags & vk::MemoryPropertyFlagBits::eHostVisible)) {
+        adviseHugePages(memory_.mapMemory(0, req.size), req.size);
+        memory_.unmapMemory();
+    }
 
     HostBuffer staging(ctx, texelBytes, vk::BufferUsageFlagBits::eTransferSrc);
-    std::memcpy(staging.data(), texels, texelBytes);
+    adviseHugePages(staging.data(), texelBytes);
+    write(static_cast<uint8_t*>(staging.data()));
     vk::ImageSubresourceRange range(vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1);
     submitAndWait(ctx, pool, [&](const vk::raii::CommandBuffer& cmd) {
         using A = vk::AccessFlagBits;
@@ -109,7 +144,7 @@ VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& 
                                  {0, 0, 0}, extent);
         cmd.copyBufferToImage(*staging.buffer(), *image_, vk::ImageLayout::eTransferDstOptimal, copy);
         vk::ImageMemoryBarrier toRead(A::eTransferWrite, A::eShaderRead, vk::ImageLayout::eTransferDstOptimal,
-                                      vk::ImageLayout::eShaderReadOnlyOptimal, VK_QUEUE_FAMILY_IGNORED,
+                                      volumeLayout(format), VK_QUEUE_FAMILY_IGNORED,
                                       VK_QUEUE_FAMILY_IGNORED, *image_, range);
         cmd.pipelineBarrier(S::eTransfer, S::eComputeShader, {}, {}, {}, toRead);
     });

@@ -2,6 +2,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "core/vec3.h"
 #include "volrender/vulkan/vulkan_context.h"
@@ -42,24 +43,40 @@ struct ImageLimits {
     vk::DeviceSize maxTexelBytes = 0;  // texels x their bytes (without the driver's padding: the same on every device)
 };
 
+// The classified volume (RGBA32F) is a storage image, which the casters read with imageLoad: llvmpipe's texelFetch
+// looks up a mip level's offset and strides lane by lane, which made the classified volume's fetch a third of a
+// leaping caster's time. The normals (RGBA16_SNORM: a storage format only with shaderStorageImageExtendedFormats)
+// and the fields (whose formats vary with the caster and the code) stay sampled images.
+bool isStorageVolume(vk::Format format);
+// The layout a volume image is in once uploaded: general for a storage image, shader-read-only otherwise.
+vk::ImageLayout volumeLayout(vk::Format format);
+
 // Bytes of one texel of the formats volume images use.
 std::size_t formatBytes(vk::Format format);
 
 // Whether a device-local 3D image of this extent and format can be created and allocated in one piece.
 bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format, const ImageLimits& limits);
 
-// A 3D image in device-local memory, filled once from host texels and then only read (texelFetch).
+// A 3D image in device-local memory, filled once from host texels and then only read (texelFetch, or imageLoad for
+// a storage image).
 class VolumeImage {
 public:
+    // Writes the image's texelBytes bytes of texels (x fastest, then y, then z) into its staging memory.
+    using TexelWriter = std::function<void(uint8_t* to)>;
+
     VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
                 const void* texels, std::size_t texelBytes);
+    VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
+                std::size_t texelBytes, const TexelWriter& write);
     const vk::raii::ImageView& view() const { return view_; }
+    vk::Format format() const { return format_; }
     std::size_t bytes() const { return bytes_; }  // texel bytes uploaded
 
 private:
     vk::raii::Image image_{nullptr};
     vk::raii::DeviceMemory memory_{nullptr};
     vk::raii::ImageView view_{nullptr};
+    vk::Format format_;
     std::size_t bytes_ = 0;
 };
 

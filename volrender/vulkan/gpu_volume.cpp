@@ -1,39 +1,34 @@
 #include "volrender/vulkan/gpu_volume.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
+
+#include <tbb/parallel_for.h>
 
 #include "volrender/render_checks.h"
 
 namespace vr {
 namespace {
 
-// One image of the whole volume, waiting for the brick plan that every image of the volume fits.
+// One image of the whole volume, waiting for the brick plan that every image of the volume fits. Its texels are
+// written row by row straight into each brick's staging memory: a copy of the whole image first, in fresh memory,
+// cost more than the upload itself (page faults on every new page, then a second copy).
 struct WholeImage {
     std::vector<std::unique_ptr<VolumeImage>>* bricks;
     const char* name;
-    Vec3i extent;  // z: slabs x the volume's z
+    int slabs;  // z-slabs of the volume's depth stacked in the image (ACD / EACD: one per octant)
     vk::Format format;
-    std::vector<uint8_t> texels;
+    // Writes `count` texels of slab `slab`, from voxel `first` (a linear index) along x, to `to`.
+    std::function<void(int slab, std::size_t first, int count, uint8_t* to)> row;
 };
 
-// The texels of one brick's box from every z-slab of a whole image, stacked along z as the whole image stacks them.
-std::vector<uint8_t> cropBrick(const WholeImage& whole, const Vec3i& dims, const Brick& b) {
-    const int slabs = whole.extent.z / dims.z;
-    const std::size_t texel = whole.texels.size() / (std::size_t(whole.extent.x) * whole.extent.y * whole.extent.z);
-    const std::size_t row = std::size_t(b.imageDims.x) * texel;
-    std::vector<uint8_t> out(row * b.imageDims.y * b.imageDims.z * slabs);
-    uint8_t* to = out.data();
-    for (int s = 0; s < slabs; ++s)
-        for (int z = 0; z < b.imageDims.z; ++z)
-            for (int y = 0; y < b.imageDims.y; ++y, to += row) {
-                const std::size_t from =
-                    linearIndex(whole.extent, b.imageLo.x, b.imageLo.y + y, s * dims.z + b.imageLo.z + z);
-                std::memcpy(to, whole.texels.data() + from * texel, row);
-            }
-    return out;
+// A normal component as RGBA16_SNORM holds it: std::lround(clamp(x, -1, 1) * 32767) without the library call (a
+// float of magnitude <= 32767 plus 0.5 is exact in double, and the conversion truncates toward zero).
+int16_t snorm16(float x) {
+    const double v = std::clamp(x, -1.f, 1.f) * 32767.f;
+    return int16_t(v + (v < 0 ? -0.5 : 0.5));
 }
 
 // EACD texels: exact extents in RGB (A unused), or the code that the shader decodes through its table.
@@ -65,77 +60,94 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     segmentedForTrilinear_ = prepared.meta.segmentation.trilinear;
     const ClassifiedVolume& cv = prepared.classified;
     const Vec3i dims = cv.grid.dims;
-    const std::size_t voxels = cv.grid.voxels();
     std::vector<WholeImage> wholes;
-    auto upload = [&](Bricked& bricks, const char* name, Vec3i extent, vk::Format format, const void* data,
-                      std::size_t bytes) {
-        const auto* begin = static_cast<const uint8_t*>(data);
-        wholes.push_back({&bricks, name, extent, format, std::vector<uint8_t>(begin, begin + bytes)});
-    };
 
-    std::vector<float> rgbaSigma(voxels * 4);
-    for (std::size_t i = 0; i < voxels; ++i) {
-        std::memcpy(&rgbaSigma[i * 4], cv.colour[i].data(), 3 * sizeof(float));
-        rgbaSigma[i * 4 + 3] = cv.sigma[i];
-    }
-    upload(classified_, "classified", dims, vk::Format::eR32G32B32A32Sfloat, rgbaSigma.data(),
-           rgbaSigma.size() * sizeof(float));
-    rgbaSigma = {};
-
+    wholes.push_back({&classified_, "classified", 1, vk::Format::eR32G32B32A32Sfloat,
+                      [&cv](int, std::size_t first, int count, uint8_t* to) {
+                          for (std::size_t i = first; i < first + count; ++i, to += 16) {
+                              std::memcpy(to, cv.colour[i].data(), 3 * sizeof(float));
+                              std::memcpy(to + 12, &cv.sigma[i], sizeof(float));
+                          }
+                      }});
     if (shading) {
         // 16-bit snorm: the quantisation (1.5e-5) moves the shade by far less than the test tolerance.
-        std::vector<int16_t> packed(voxels * 4, 0);
-        for (std::size_t i = 0; i < voxels; ++i)
-            for (int a = 0; a < 3; ++a)
-                packed[i * 4 + a] = int16_t(std::lround(std::clamp(cv.normal[i][a], -1.f, 1.f) * 32767.f));
-        upload(normals_, "normals", dims, vk::Format::eR16G16B16A16Snorm, packed.data(), packed.size() * 2);
+        wholes.push_back({&normals_, "normals", 1, vk::Format::eR16G16B16A16Snorm,
+                          [&cv](int, std::size_t first, int count, uint8_t* to) {
+                              for (std::size_t i = first; i < first + count; ++i, to += 8) {
+                                  int16_t packed[4] = {0, 0, 0, 0};
+                                  for (int a = 0; a < 3; ++a) packed[a] = snorm16(cv.normal[i][a]);
+                                  std::memcpy(to, packed, sizeof(packed));
+                              }
+                          }});
     }
 
     const DistanceFields& f = prepared.fields;
+    const bool octantFields = std::any_of(contents.casters.begin(), contents.casters.end(),
+                                          [](Caster c) { return c == Caster::ACD || c == Caster::EACD; });
+    std::vector<int> octantOfSlot;
+    for (int oct = 0; oct < kOctants; ++oct)
+        if (octantFields && (octants & (1u << oct))) {
+            slot_[oct] = int(octantOfSlot.size());
+            octantOfSlot.push_back(oct);
+        }
     for (Caster caster : contents.casters) {
         if (caster == Caster::PC)
-            upload(fields_[int(caster)], "pc", dims, vk::Format::eR8Uint, f.pc.data(), f.pc.size());
-        if (caster == Caster::ACD || caster == Caster::EACD) {
-            const bool eacd = caster == Caster::EACD;
-            std::vector<uint8_t> slabs;
-            int slots = 0;
-            for (int oct = 0; oct < kOctants; ++oct) {
-                if (!(octants & (1u << oct))) continue;
-                slot_[oct] = slots++;
-                if (eacd && f.eacdCode == ExtentCode::Exact)
-                    for (const auto& e : f.eacd[oct]) slabs.insert(slabs.end(), {e[0], e[1], e[2], uint8_t(0)});
-                else if (eacd) {
-                    const std::vector<uint8_t> coded = encodeExtentField(f.eacdCode, f.eacd[oct]);
-                    slabs.insert(slabs.end(), coded.begin(), coded.end());
-                } else
-                    slabs.insert(slabs.end(), f.acd[oct].begin(), f.acd[oct].end());
-            }
-            const Vec3i extent{dims.x, dims.y, dims.z * slots};
-            upload(fields_[int(caster)], eacd ? "eacd" : "acd", extent,
-                   eacd ? eacdFormat(f.eacdCode) : vk::Format::eR8Uint, slabs.data(), slabs.size());
-        }
+            wholes.push_back({&fields_[int(caster)], "pc", 1, vk::Format::eR8Uint,
+                              [&f](int, std::size_t first, int count, uint8_t* to) {
+                                  std::memcpy(to, f.pc.data() + first, count);
+                              }});
+        if (caster == Caster::ACD)
+            wholes.push_back({&fields_[int(caster)], "acd", int(octantOfSlot.size()), vk::Format::eR8Uint,
+                              [&f, &octantOfSlot](int slab, std::size_t first, int count, uint8_t* to) {
+                                  std::memcpy(to, f.acd[octantOfSlot[slab]].data() + first, count);
+                              }});
+        if (caster == Caster::EACD && f.eacdCode == ExtentCode::Exact)
+            wholes.push_back({&fields_[int(caster)], "eacd", int(octantOfSlot.size()), vk::Format::eR8G8B8A8Uint,
+                              [&f, &octantOfSlot](int slab, std::size_t first, int count, uint8_t* to) {
+                                  const Extents* e = f.eacd[octantOfSlot[slab]].data() + first;
+                                  for (int i = 0; i < count; ++i, to += 4)
+                                      to[0] = e[i][0], to[1] = e[i][1], to[2] = e[i][2], to[3] = 0;
+                              }});
+        else if (caster == Caster::EACD)  // the bytes of encodeExtentField, row by row
+            wholes.push_back({&fields_[int(caster)], "eacd", int(octantOfSlot.size()), eacdFormat(f.eacdCode),
+                              [&f, &octantOfSlot](int slab, std::size_t first, int count, uint8_t* to) {
+                                  const std::size_t bytes = extentCodeBytes(f.eacdCode);
+                                  const Extents* e = f.eacd[octantOfSlot[slab]].data() + first;
+                                  for (int i = 0; i < count; ++i, to += bytes) {
+                                      const uint16_t c = encodeExtents(f.eacdCode, e[i]);
+                                      std::memcpy(to, &c, bytes);  // little-endian, as encodeExtentField
+                                  }
+                              }});
     }
 
     // One plan for every image: the bricks of the ACD / EACD images are as many slabs deep.
     int zSlabs = 1;
-    for (const WholeImage& w : wholes) zSlabs = std::max(zSlabs, w.extent.z / dims.z);
+    for (const WholeImage& w : wholes) zSlabs = std::max(zSlabs, w.slabs);
     bricks_ = planBricks(dims, zSlabs, [&](const Vec3i& brick) {
         for (const WholeImage& w : wholes)
-            if (!imageFits(ctx, {brick.x, brick.y, brick.z * (w.extent.z / dims.z)}, w.format, limits)) return false;
+            if (!imageFits(ctx, {brick.x, brick.y, brick.z * w.slabs}, w.format, limits)) return false;
         return true;
     });
     const std::vector<Brick>& bricks = bricks_.bricks();
-    for (WholeImage& w : wholes) {
-        const int slabs = w.extent.z / dims.z;
+    for (const WholeImage& w : wholes) {
+        const std::size_t texel = formatBytes(w.format);
         for (std::size_t i = 0; i < bricks.size(); ++i) {
             const Brick& b = bricks[i];
-            const Vec3i extent{b.imageDims.x, b.imageDims.y, b.imageDims.z * slabs};
-            const std::vector<uint8_t> texels = bricks.size() == 1 ? std::vector<uint8_t>() : cropBrick(w, dims, b);
-            const std::vector<uint8_t>& from = bricks.size() == 1 ? w.texels : texels;
-            w.bricks->push_back(std::make_unique<VolumeImage>(ctx, pool, extent, w.format, from.data(), from.size()));
-            uploads_.push_back({w.name, from.size(), int(i)});
+            const Vec3i extent{b.imageDims.x, b.imageDims.y, b.imageDims.z * w.slabs};
+            const std::size_t row = texel * b.imageDims.x;
+            const std::size_t bytes = row * b.imageDims.y * extent.z;
+            // The brick's box from every slab, stacked along z as the whole image stacks them; slices in parallel.
+            auto write = [&](uint8_t* to) {
+                tbb::parallel_for(0, extent.z, [&](int sz) {
+                    const int s = sz / b.imageDims.z, z = b.imageLo.z + sz % b.imageDims.z;
+                    uint8_t* slice = to + std::size_t(sz) * b.imageDims.y * row;
+                    for (int y = 0; y < b.imageDims.y; ++y)
+                        w.row(s, linearIndex(dims, b.imageLo.x, b.imageLo.y + y, z), b.imageDims.x, slice + y * row);
+                });
+            };
+            w.bricks->push_back(std::make_unique<VolumeImage>(ctx, pool, extent, w.format, bytes, write));
+            uploads_.push_back({w.name, bytes, int(i)});
         }
-        w.texels = {};
     }
 }
 

@@ -18,11 +18,17 @@ namespace vr {
 namespace {
 
 enum Binding : uint32_t {
-    kParams, kClassified, kNormals, kField, kOutColour, kOutIterations, kOutSamples,
+    kParams, kClassified, kNormals, kField, kOutPixels,
     kRayState = 7,    // shaders/brick_state.glsl
     kExtentTable = 8  // shaders/extent_code.glsl
 };
 constexpr vk::DeviceSize kRayStateBytes = 64;  // RayState of shaders/brick_state.glsl (std430)
+// OutPixel of shaders/caster.comp: the colour's four floats, then the samples and the iteration count.
+struct OutPixel {
+    float colour[4];
+    uint64_t samples, iterations;
+};
+static_assert(sizeof(OutPixel) == 32);
 // Set in an iteration count by the shader (shaders/caster.comp): the ray hit the cap, needed an octant that was
 // not uploaded or was in no pass over the bricks; the driver ended the shader's loops early.
 constexpr uint32_t kFailed = 0x80000000u, kCutShort = 0x40000000u;
@@ -47,7 +53,6 @@ CasterParams makeParams(const GridGeometry& grid, const Camera& camera, const Re
     for (int a = 0; a < 3; ++a) p.dims[a] = grid.dims[a];
     p.imageSize[0] = camera.width;
     p.imageSize[1] = camera.height;
-    p.perspective = camera.projection == Projection::Perspective;
     p.maxIterations = uint32_t(std::clamp<long long>(s.maxIterationsPerRay, 1, kCutShort - 1));
     p.loopProbe = 2;
     std::copy(slots.begin(), slots.end(), p.octantSlot);
@@ -74,10 +79,9 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     using T = vk::DescriptorType;
     const auto compute = vk::ShaderStageFlagBits::eCompute;
     std::vector<vk::DescriptorSetLayoutBinding> bindings{
-        {kParams, T::eUniformBuffer, 1, compute},          {kClassified, T::eCombinedImageSampler, 1, compute},
+        {kParams, T::eUniformBuffer, 1, compute},  {kClassified, T::eStorageImage, 1, compute},
         {kNormals, T::eCombinedImageSampler, 1, compute},  {kField, T::eCombinedImageSampler, 1, compute},
-        {kOutColour, T::eStorageBuffer, 1, compute},       {kOutIterations, T::eStorageBuffer, 1, compute},
-        {kOutSamples, T::eStorageBuffer, 1, compute},     {kExtentTable, T::eUniformBuffer, 1, compute},
+        {kOutPixels, T::eStorageBuffer, 1, compute},       {kExtentTable, T::eUniformBuffer, 1, compute},
         {kRayState, T::eStorageBuffer, 1, compute}};
     setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     vk::PushConstantRange push(compute, 0, sizeof(TilePush));
@@ -102,16 +106,20 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     unusedField_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, vk::Format::eR8Uint, &zeroField, 1);
 }
 
-const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode) {
+const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode,
+                                                   bool bricked, bool perspective) {
     // Only the EACD caster reads the code: the others share one pipeline whatever the volume's code.
-    const auto key = std::make_tuple(caster, trilinear, shading, caster == Caster::EACD ? eacdCode : ExtentCode::Exact);
+    const auto key = std::make_tuple(caster, trilinear, shading,
+                                     caster == Caster::EACD ? eacdCode : ExtentCode::Exact, bricked, perspective);
     auto it = pipelines_.find(key);
     if (it != pipelines_.end()) return it->second;
     // Booleans are 32-bit VkBool32 in specialization data.
-    const uint32_t values[4] = {uint32_t(caster), trilinear ? 1u : 0u, shading ? 1u : 0u, uint32_t(std::get<3>(key))};
-    const std::array<vk::SpecializationMapEntry, 4> entries{
-        vk::SpecializationMapEntry(0, 0, 4), vk::SpecializationMapEntry(1, 4, 4), vk::SpecializationMapEntry(2, 8, 4),
-        vk::SpecializationMapEntry(3, 12, 4)};  // 3: EACD_CODE (shaders/extent_code.glsl)
+    const uint32_t values[6] = {uint32_t(caster), trilinear ? 1u : 0u, shading ? 1u : 0u, uint32_t(std::get<3>(key)),
+                                bricked ? 1u : 0u, perspective ? 1u : 0u};
+    const std::array<vk::SpecializationMapEntry, 6> entries{
+        vk::SpecializationMapEntry(0, 0, 4),   vk::SpecializationMapEntry(1, 4, 4),
+        vk::SpecializationMapEntry(2, 8, 4),   vk::SpecializationMapEntry(3, 12, 4),  // EACD_CODE (extent_code.glsl)
+        vk::SpecializationMapEntry(4, 16, 4),  vk::SpecializationMapEntry(5, 20, 4)};  // BRICKED, PERSPECTIVE
     vk::SpecializationInfo spec(entries, vk::ArrayProxyNoTemporaries<const uint32_t>(values));
     vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *shader_, "main", &spec);
     vk::raii::Pipeline p(ctx_.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *pipelineLayout_));
@@ -163,8 +171,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                             const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
-    const vk::raii::Pipeline& pipe =
-        pipeline(settings.caster, settings.trilinear, settings.shading, volume.eacdCode());
+    const vk::raii::Pipeline& pipe = pipeline(settings.caster, settings.trilinear, settings.shading, volume.eacdCode(),
+                                              volume.bricks().bricks().size() > 1,
+                                              camera.projection == Projection::Perspective);
 
     using B = vk::BufferUsageFlagBits;
     HostBuffer params(ctx_, sizeof(CasterParams), B::eUniformBuffer);
@@ -173,30 +182,27 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     HostBuffer extentTable(ctx_, sizeof(ExtentTable), B::eUniformBuffer);  // decodes coded EACD (extent_code.glsl)
     std::memcpy(extentTable.data(), extentDecodeTable(volume.eacdCode()).data(), sizeof(ExtentTable));
     const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
-    HostBuffer colour(ctx_, tilePixels * 16, B::eStorageBuffer);
-    HostBuffer iterations(ctx_, tilePixels * 4, B::eStorageBuffer);
-    HostBuffer samples(ctx_, tilePixels * 8, B::eStorageBuffer);
+    HostBuffer out(ctx_, tilePixels * sizeof(OutPixel), B::eStorageBuffer);
     DeviceBuffer rayState(ctx_, tilePixels * kRayStateBytes, B::eStorageBuffer);
 
     // One descriptor set per brick: its images, the rest shared.
     const std::vector<Brick>& bricks = volume.bricks().bricks();
     const uint32_t brickCount = uint32_t(bricks.size());
-    std::array<vk::DescriptorPoolSize, 3> sizes{
+    std::array<vk::DescriptorPoolSize, 4> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 3 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 4 * brickCount)};
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 2 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 2 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
         vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, brickCount, sizes));
     const std::vector<vk::DescriptorSetLayout> layouts(brickCount, *setLayout_);
     vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo(*descriptorPool, layouts));
     auto imageInfo = [&](const VolumeImage& image) {
-        return vk::DescriptorImageInfo(*sampler_, *image.view(), vk::ImageLayout::eShaderReadOnlyOptimal);
+        return vk::DescriptorImageInfo(*sampler_, *image.view(), volumeLayout(image.format()));
     };
-    const vk::DescriptorBufferInfo buffers[5] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*colour.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*iterations.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*samples.buffer(), 0, VK_WHOLE_SIZE},
+    const vk::DescriptorBufferInfo buffers[3] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*out.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*rayState.buffer(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo table(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
     for (uint32_t b = 0; b < brickCount; ++b) {
@@ -209,13 +215,11 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
         using T = vk::DescriptorType;
         std::vector<vk::WriteDescriptorSet> writes{
             {set, kParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
-            {set, kClassified, 0, 1, T::eCombinedImageSampler, &images[0]},
+            {set, kClassified, 0, 1, T::eStorageImage, &images[0]},
             {set, kNormals, 0, 1, T::eCombinedImageSampler, &images[1]},
             {set, kField, 0, 1, T::eCombinedImageSampler, &images[2]},
-            {set, kOutColour, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
-            {set, kOutIterations, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
-            {set, kOutSamples, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
-            {set, kRayState, 0, 1, T::eStorageBuffer, nullptr, &buffers[4]},
+            {set, kOutPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
+            {set, kRayState, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
             {set, kExtentTable, 0, 1, T::eUniformBuffer, nullptr, &table}};
         device.updateDescriptorSets(writes, {});
     }
@@ -281,28 +285,28 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                 result.deviceMilliseconds +=
                     double((stamps[1] - stamps[0]) & timestampMask_) * timestampPeriodNs_ * 1e-6;
             }
-            const auto* c = static_cast<const float*>(colour.data());
-            const auto* it = static_cast<const uint32_t*>(iterations.data());
-            const auto* sm = static_cast<const uint32_t*>(samples.data());
+            const auto* pixelsOut = static_cast<const OutPixel*>(out.data());
             for (int ly = 0; ly < tile.size[1]; ++ly) {
                 for (int lx = 0; lx < tile.size[0]; ++lx) {
                     const std::size_t local = std::size_t(ly) * tile.size[0] + lx;
                     const int px = x0 + lx, py = y0 + ly;
-                    const std::size_t out = std::size_t(py) * camera.width + px;
-                    if (it[local] & kCutShort)
+                    const std::size_t index = std::size_t(py) * camera.width + px;
+                    const OutPixel& o = pixelsOut[local];
+                    const uint32_t iterations = uint32_t(o.iterations);  // with the shader's flags
+                    if (iterations & kCutShort)
                         throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) + " caster: " +
                                                  ctx_.info().name + " ended the shader's loops before the ray at pixel (" +
                                                  std::to_string(px) + ", " + std::to_string(py) +
                                                  ") was done (llvmpipe allows 65535 loop iterations per shader "
                                                  "invocation); render with the CPU reference or a hardware device");
-                    if (it[local] & kFailed)
+                    if (iterations & kFailed)
                         throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) +
                                                  " caster: the ray at pixel (" + std::to_string(px) + ", " +
                                                  std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
                                                  "pass (a bug)");
-                    std::memcpy(result.image.pixel(px, py), c + local * 4, 4 * sizeof(float));
-                    result.iterations[out] = it[local];
-                    result.samples[out] = uint64_t(sm[local * 2]) | (uint64_t(sm[local * 2 + 1]) << 32);
+                    std::memcpy(result.image.pixel(px, py), o.colour, sizeof(o.colour));
+                    result.iterations[index] = iterations;
+                    result.samples[index] = o.samples;
                 }
             }
         }

@@ -39,7 +39,9 @@ public:
 
 private:
     RenderResult renderOnDevice(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
-    const vk::raii::Pipeline& pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode);
+    // bricked: the volume is split into bricks, whose dispatches carry each ray's state to the next.
+    const vk::raii::Pipeline& pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode, bool bricked,
+                                       bool perspective);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
     auto deviceErrors(Work&& work) -> decltype(work());
@@ -55,7 +57,7 @@ private:
     vk::raii::QueryPool queries_{nullptr};
     double timestampPeriodNs_ = 0;  // 0: the queue has no timestamps
     uint64_t timestampMask_ = 0;
-    std::map<std::tuple<Caster, bool, bool, ExtentCode>, vk::raii::Pipeline> pipelines_;
+    std::map<std::tuple<Caster, bool, bool, ExtentCode, bool, bool>, vk::raii::Pipeline> pipelines_;
     // Bound where a variant reads nothing (normals without shading, field for primitive): never sampled.
     std::unique_ptr<VolumeImage> unusedNormals_, unusedField_;
     std::vector<UploadedResource> uploads_;
