@@ -3,6 +3,8 @@
 // threshold change (segmentation and fields) and a transfer-function change (classification too). For a
 // synthetic phantom made at each size and a real volume resampled (trilinear) to each size. Prints Markdown
 // tables with nanoseconds per voxel, so that linear growth reads as a flat column. One size is alive at a time.
+// --checksums prints FNV-1a checksums of every array the scenarios make (classification, labels, fields), so that
+// a faster stage can be checked bit for bit.
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -13,6 +15,7 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <utility>
 
 #include "core/errors.h"
 #include "datasets/phantoms.h"
@@ -78,6 +81,31 @@ struct SizeResult {
     uint32_t regions = 0;
 };
 
+// FNV-1a of the bytes of `v`, continuing from h.
+constexpr uint64_t kFnvBasis = 14695981039346656037ull;
+template <typename T>
+uint64_t fnv1a(const std::vector<T>& v, uint64_t h = kFnvBasis) {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(v.data());
+    for (std::size_t i = 0; i < v.size() * sizeof(T); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+    return h;
+}
+
+// Checksums of every array of a full preparation, so that a faster stage can be checked bit for bit.
+void printChecksums(const std::string& name, int edge, const vr::PreparedVolume& p) {
+    uint64_t acd = kFnvBasis, eacd = kFnvBasis;
+    for (int o = 0; o < vr::kOctants; ++o) {
+        acd = fnv1a(p.fields.acd[o], acd);
+        eacd = fnv1a(p.fields.eacd[o], eacd);
+    }
+    std::fprintf(stderr,
+                 "%s %d^3 checksums: sigma %016llx colour %016llx normal %016llx labels %016llx PC %016llx "
+                 "ACD %016llx EACD %016llx\n",
+                 name.c_str(), edge, (unsigned long long)fnv1a(p.classified.sigma),
+                 (unsigned long long)fnv1a(p.classified.colour), (unsigned long long)fnv1a(p.classified.normal),
+                 (unsigned long long)fnv1a(p.regions.label), (unsigned long long)fnv1a(p.fields.pc),
+                 (unsigned long long)acd, (unsigned long long)eacd);
+}
+
 void record(SizeResult& r, const std::string& scenario, const vr::StagedPreparation& staged,
             const vr::StageTime& total) {
     for (const vr::StageTime& t : staged.lastStages()) {
@@ -89,15 +117,17 @@ void record(SizeResult& r, const std::string& scenario, const vr::StagedPreparat
 }
 
 // The three scenarios on one volume, `runs` times: a fresh preparation, then a new T_o, then a new TF (every
-// opacity scaled by 0.8).
-SizeResult benchSize(const std::string& name, const vr::Volume& volume, const vr::PrepareOptions& base, int runs) {
+// opacity scaled by 0.8). While a run is timed, its preparation holds the only copy of the volume, as volprep's
+// does (a second one took 0.5 GB more at 512^3, where fresh pages cost more as the footprint grows).
+SizeResult benchSize(const std::string& name, vr::Volume volume, const vr::PrepareOptions& base, int runs,
+                     bool checksums) {
     SizeResult r{name, volume.grid.dims.x, {}, {}, 0};
     vr::PrepareOptions thresholdChanged = base;
     thresholdChanged.segmentation.opacityThreshold *= 2;
     vr::PrepareOptions tfChanged = thresholdChanged;
     for (auto& p : tfChanged.classify.transferFunction->opacity) p.opacity *= 0.8;
     for (int run = 0; run < runs; ++run) {
-        vr::StagedPreparation staged(volume);
+        vr::StagedPreparation staged(std::move(volume));
         const std::pair<std::string, const vr::PrepareOptions*> steps[] = {
             {"full", &base}, {"threshold change", &thresholdChanged}, {"TF change", &tfChanged}};
         for (const auto& [scenario, options] : steps) {
@@ -105,7 +135,9 @@ SizeResult benchSize(const std::string& name, const vr::Volume& volume, const vr
             const vr::PreparedVolume& p = staged.prepare(*options);
             record(r, scenario, staged, clock.stop("total"));
             if (scenario == "full") r.regions = p.regions.count;
+            if (checksums && run == 0) printChecksums(name + " " + scenario, r.edge, p);
         }
+        volume = staged.volume();  // for the next run
     }
     std::fprintf(stderr, "%s %d^3:", name.c_str(), r.edge);  // the figures so far, should a long run be cut short
     for (const auto& s : kScenarios)
@@ -146,11 +178,11 @@ vr::test::DatasetEntry findDataset(const std::string& file) {
 
 int main(int argc, char** argv) {
     CLI::App app{"Preprocessing time per stage against volume size (64^3 .. 512^3): full, threshold change, TF change"};
-    bool shortMode = false;
+    bool shortMode = false, checksums = false;
     std::vector<int> edges{64, 128, 256, 512};
     int runs = 3;
     std::string real = "vispy_mri_head_256x256x256_uint8.raw.gz";
-    std::string phantom = "engine";
+    std::string phantom = "engine", volumes = "both";
     vr::PrepareOptions options;
     options.segmentation = {0.05, 10, true, false};
     app.add_flag("--short", shortMode, "64^3 and 128^3 only, one run: a few seconds (CTest)");
@@ -161,9 +193,12 @@ int main(int argc, char** argv) {
     app.add_option("--real", real, "raw dataset of MANIFEST.tsv resampled to each size")->capture_default_str();
     app.add_option("--phantom", phantom, "engine or shells")->check(CLI::IsMember({"engine", "shells"}))
         ->capture_default_str();
+    app.add_option("--volumes", volumes, "which to time: the phantom, the real volume or both")
+        ->check(CLI::IsMember({"both", "phantom", "real"}))->capture_default_str();
     app.add_option("--to", options.segmentation.opacityThreshold, "T_o (a threshold change doubles it)")
         ->capture_default_str();
     app.add_option("--ta", options.segmentation.angleThresholdDeg, "T_a, degrees")->capture_default_str();
+    app.add_flag("--checksums", checksums, "print checksums of every array each scenario's first run makes");
     CLI11_PARSE(app, argc, argv);
     if (shortMode) edges = {64, 128}, runs = 1;
 
@@ -186,13 +221,13 @@ int main(int argc, char** argv) {
         std::vector<SizeResult> results;
         for (int n : edges) {
             const Vec3i dims{n, n, n};
-            {
-                const vr::Volume v = phantom == "shells" ? vr::shellsPhantom(dims) : vr::enginePhantom(dims);
-                results.push_back(benchSize("phantom " + phantom, v, phantomOptions, runs));
+            if (volumes != "real") {
+                results.push_back(benchSize("phantom " + phantom,
+                                            phantom == "shells" ? vr::shellsPhantom(dims) : vr::enginePhantom(dims),
+                                            phantomOptions, runs, checksums));
             }
-            {
-                const vr::Volume v = resample(source, dims);
-                results.push_back(benchSize(realName, v, realOptions, runs));
+            if (volumes != "phantom") {
+                results.push_back(benchSize(realName, resample(source, dims), realOptions, runs, checksums));
             }
         }
         std::stable_sort(results.begin(), results.end(),

@@ -30,12 +30,22 @@ void toRadius(std::vector<uint8_t>& minACD) {
 }  // namespace
 
 std::vector<uint8_t> pcFromACD(const ACDFields& acd) {
-    std::vector<uint8_t> pc = acd[0];
-    for (int o = 1; o < kOctants; ++o) {
-        if (acd[o].size() != pc.size()) throw std::invalid_argument("pcFromACD: the octants differ in size");
-        lowerToACDInParallel(pc, acd[o]);
+    std::array<const uint8_t*, kOctants> from;
+    for (int o = 0; o < kOctants; ++o) {
+        if (acd[o].size() != acd[0].size()) throw std::invalid_argument("pcFromACD: the octants differ in size");
+        from[o] = acd[o].data();
     }
-    toRadius(pc);
+    // One parallel pass over the eight: a copy, seven lowerings and a serial pass to the radius moved 2.7 times the
+    // bytes.
+    std::vector<uint8_t> pc(acd[0].size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pc.size(), 1 << 16), [&](const auto& r) {
+        forEachLane(r.size(), [&, at = r.begin()](std::size_t i, auto t) {
+            const std::size_t v = at + i;
+            auto m = load(from[0] + v, t);
+            for (int o = 1; o < kOctants; ++o) m = minOf(m, load(from[o] + v, t));
+            store(pc.data() + v, decltype(m)(m - splat(1, t)));  // every ACD is >= 1
+        });
+    });
     return pc;
 }
 

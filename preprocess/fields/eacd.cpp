@@ -2,7 +2,6 @@
 // (step 1, eacd_extensions.cpp), then along the better of the two others (step 2, ibid.; step 3 here picks it).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_for_each.h>
 
 #include <bit>
 #include <cstring>
@@ -84,8 +83,8 @@ void chooseBoxes(const OctantBatch& batch, int o, const Rounding& round, EACDFie
     });
 }
 
-// EACD of `octants`. The planar extents take 5 bytes per voxel and octant while the batch is built; a batch reuses
-// the volumes the batch before it left in batch.spare.
+// EACD of `octants` into their outputs, already sized. The planar extents take 5 bytes per voxel and octant while
+// the batch is built; a batch reuses the volumes the batch before it left in batch.spare.
 void buildBatch(AxialRuns& runs, OctantBatch& batch, const std::vector<int>& octants,
                 const std::array<const std::vector<uint8_t>*, kOctants>& acd,
                 const std::array<EACDField*, kOctants>& out, ExtentCode code) {
@@ -100,12 +99,10 @@ void buildBatch(AxialRuns& runs, OctantBatch& batch, const std::vector<int>& oct
         batch.widest[o] = batch.take(voxels);
         batch.longest[o] = batch.take(voxels);
     }
-    for (int a = 0; a < 3; ++a) cubeExtensions(runs, batch, a);
+    cubeExtensions(runs, batch);
     findWidestAxes(batch);
-    for (int b = 0; b < 3; ++b) boxExtensions(runs, batch, b);
+    boxExtensions(runs, batch);
     const Rounding round = roundingTables(code);
-    // The outputs are zeroed (and their pages mapped) on both threads: alone, that was a serial tenth of a second.
-    tbb::parallel_for_each(octants, [&](int o) { out[o]->resize(voxels); });
     for (int o : octants) {
         chooseBoxes(batch, o, round, *out[o]);
         for (auto& slot : batch.ext[o]) batch.spare.push_back(std::move(slot));
@@ -125,6 +122,7 @@ EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int
     outs[octant] = &out;
     AxialRuns runs(regions);
     OctantBatch batch;
+    out.resize(acd.size());
     buildBatch(runs, batch, {octant}, acds, outs, ExtentCode::Exact);
     return out;
 }
@@ -142,11 +140,14 @@ std::array<EACDField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd,
         acds[o] = &acd[o];
         outs[o] = &out[o];
     }
-    // Four batches of two opposite octants, so that the two run directions of every axis keep both threads busy;
-    // 10 bytes of working memory per voxel. (Batches of four, sharing each table by two octants, took as long:
-    // what the tables saved, mapping twice the memory cost.)
+    // The outputs are zeroed (and their pages mapped) first, on both threads: one at a time, that was serial.
+    tbb::parallel_for(0, kOctants, [&](int o) { out[o].resize(acd[o].size()); });
+    // One octant at a time: 5 bytes of working memory per voxel (0.7 GB at 512^3, where the footprint makes fresh
+    // pages dear). The three walks of a step run at once and the x walk takes about as long as the y and z walks
+    // together, so both threads stay busy. (Batches of two opposite octants took as long, with twice the memory;
+    // batches of four, sharing each table by two octants, too: what the tables saved, mapping the memory cost.)
     OctantBatch batch;
-    for (int o : {0, 3, 5, 6}) buildBatch(runs, batch, {o, 7 - o}, acds, outs, code);
+    for (int o = 0; o < kOctants; ++o) buildBatch(runs, batch, {o}, acds, outs, code);
     return out;
 }
 

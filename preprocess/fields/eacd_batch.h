@@ -7,6 +7,7 @@
 
 #include "core/distance_fields.h"
 #include "preprocess/fields/axial_runs.h"
+#include "preprocess/fields/rect_min.h"
 
 namespace vr {
 
@@ -22,6 +23,18 @@ private:
     std::unique_ptr<uint8_t[]> bytes_;
 };
 
+// Working memory of one run direction's walk (eacd_extensions.cpp). Across x, the slab's copies: its runs and, per
+// octant of that direction, its inputs (ACD edge k; step 2: widest axis and its extent) and its extension along the
+// walked axis (ext); the *Before planes keep the slice done last in the slab before (the neighbour of this slab's
+// first). Across y or z the walk reads and writes the volumes themselves. Per octant in any case, each voxel's face
+// to query in the current slice (lenU x lenW; lenU = 0 for none, where ext is 0 until the query fills it).
+struct WalkScratch {
+    RectMin table;
+    std::vector<uint8_t> runs;
+    std::array<std::vector<uint8_t>, 4> edge, widest, longest, ext, lenU, lenW;
+    std::array<std::vector<uint8_t>, 4> edgeBefore, widestBefore, longestBefore, extBefore;
+};
+
 // The octants built together. Their extents live in planar byte arrays while being built (ext[o][a][v]: each
 // step reads and writes whole slots, so one byte per voxel moves instead of three) and are interleaved at the end.
 // widest[o][v] is the axis step 1 extends (the first with the largest extent), longest[o][v] its extent.
@@ -32,6 +45,8 @@ struct OctantBatch {
     std::array<const std::vector<uint8_t>*, kOctants> acd{};
     std::array<std::array<ByteVolume, 3>, kOctants> ext;
     std::array<ByteVolume, kOctants> widest, longest;
+    // Per walk (x, y, z toward +, then toward -): kept for every batch (no fresh pages each time).
+    std::array<WalkScratch, 6> scratch;
 
     // A volume of `voxels` bytes: a spare one (all have the same size) or a new one.
     ByteVolume take(std::size_t voxels) {
@@ -53,9 +68,9 @@ struct OctantBatch {
     }
 };
 
-// Step 1, along axis a: ext[o][a] = the extension along a of the ACD cube of every octant of the batch.
-void cubeExtensions(AxialRuns& runs, OctantBatch& batch, int a);
-// Step 2, along axis b: ext[o][b] = the extension along b of the box that step 1 extended along widest[o].
-void boxExtensions(AxialRuns& runs, OctantBatch& batch, int b);
+// Step 1, along every axis a: ext[o][a] = the extension along a of the ACD cube of every octant of the batch.
+void cubeExtensions(AxialRuns& runs, OctantBatch& batch);
+// Step 2, along every axis b: ext[o][b] = the extension along b of the box that step 1 extended along widest[o].
+void boxExtensions(AxialRuns& runs, OctantBatch& batch);
 
 }  // namespace vr
