@@ -27,21 +27,18 @@ struct CasterCost {
 };
 // Lavapipe on this project's 2-core machine: least squares of device ms = pixels x (kRayNs + iterations x
 // iterationNs) over bench/auto_caster_bench's 136 renders (34 rows x 4 casters: the shared datasets and the
-// phantoms, T = 0 and 0.02/10, 256x256, 4 views); the fit leaves ~20 % rms, about the machine's own scatter. A
-// leaping iteration adds a field fetch, a box exit and the leap's bounds check to the sample; EACD also decodes its
-// extents (three table look-ups), which costs 6 % over ACD in the fit of the real volumes of 3 M voxels and more,
-// where the time matters (15 % over all renders: the phantoms' rays of one or two iterations pull it up).
-constexpr double kRayNs = 130;
-constexpr std::array<CasterCost, 4> kCasters{{{Caster::Primitive, "primitive", 52},
-                                              {Caster::PC, "pc", 65},
-                                              {Caster::ACD, "acd", 75},
-                                              {Caster::EACD, "eacd", 80}}};
-// Wall time to upload one byte of a field (staging copy and image upload): a field pays off only when it saves
-// more iterations than its bytes cost. The bench measured 1.6 ns on volumes under 1.3 M voxels, 2 ns on 2 M and
-// 5 to 6 ns on 3 to 17 M (paging in the staging memory); this middle value errs by at most 2x either way.
-constexpr double kUploadNsPerByte = 3;
+// phantoms, T = 0 and 0.02/10, 256x256, 4 views), after session 4's shader changes. A leaping iteration adds a
+// field fetch, a box exit and the leap's bounds check to the sample; EACD also decodes its extents.
+constexpr double kRayNs = 38;
+constexpr std::array<CasterCost, 4> kCasters{{{Caster::Primitive, "primitive", 11},
+                                              {Caster::PC, "pc", 15},
+                                              {Caster::ACD, "acd", 17},
+                                              {Caster::EACD, "eacd", 20}}};
+// Wall time to upload one byte of a field (staging written row by row, then the image copy): a field pays off only
+// when it saves more iterations than its bytes cost. The bench's median over its rows.
+constexpr double kUploadNsPerByte = 0.66;
 // Casters whose estimates lie within this fraction of the cheapest are a tie, which the one with less to upload
-// wins: the probe samples 16 x 16 rays per octant, and the constants above are not finer than this.
+// wins: the probe samples a few hundred rays per direction class, and the constants above are not finer than this.
 constexpr double kTie = 0.05;
 
 double number(const json& j, const char* key) {
