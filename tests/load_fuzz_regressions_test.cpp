@@ -206,16 +206,13 @@ TEST(LoadFuzzRegressions, VdbBoundingBoxBeyondIntRange) {
 // DelayedLoadMetadata::readValue), and a grid ending beyond the file let it read a zipped block's length of
 // 0x3030300000000 bytes. The loader walks these before OpenVDB reads them.
 TEST(LoadFuzzRegressions, VdbLengthsBeyondTheFile) {
-    expectRefused(kRegressions / "vdb" / "grid_name_of_4gib.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "instance_parent_name_of_4gib.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "metadata_value_of_4gib.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "grid_metadata_of_1gib.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "zipped_length_beyond_the_file.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "transform_type_of_4gib.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "delayed_load_count_of_4g.vdb", kSmallInputAllocation);
-    // Delayed-load arrays longer than their metadata's stated size: OpenVDB reads on past it, and the next metadata
-    // name's length (1.8 GiB) came from the middle of the arrays.
-    expectRefused(kRegressions / "vdb" / "delayed_load_longer_than_stated.vdb", kSmallInputAllocation);
+    // The last: delayed-load arrays longer than their metadata's stated size: OpenVDB reads on past it, and the
+    // next metadata name's length (1.8 GiB) came from the middle of the arrays.
+    for (const char* file : {"grid_name_of_4gib.vdb", "instance_parent_name_of_4gib.vdb", "metadata_value_of_4gib.vdb",
+                             "grid_metadata_of_1gib.vdb", "zipped_length_beyond_the_file.vdb",
+                             "transform_type_of_4gib.vdb", "delayed_load_count_of_4g.vdb",
+                             "delayed_load_longer_than_stated.vdb"})
+        expectRefused(kRegressions / "vdb" / file, kSmallInputAllocation);
 }
 
 // An int32 grid whose zipped values overflow a heap buffer inside OpenVDB (io::unzipFromStream, found by fuzz_vdb):
@@ -229,11 +226,10 @@ TEST(LoadFuzzRegressions, VdbTreesOfOtherGridsAreNotRead) {
 // into the node's buffer (a heap overflow in io::unzipFromStream, via readCompressedValues), and zipped lengths of
 // 8 GiB and 0x7469736e65640000 bytes it allocates. The loader walks the float trees before OpenVDB reads them.
 TEST(LoadFuzzRegressions, VdbFloatTreesOpenVdbMishandles) {
-    expectRefused(kRegressions / "vdb" / "float_tree_read_for_a_minute.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "float_tree_overflowing_unzip.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "float_tree_raw_values_beyond_the_node.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "float_tree_zipped_length_of_8gib.vdb", kSmallInputAllocation);
-    expectRefused(kRegressions / "vdb" / "absurd_length_field.vdb", kSmallInputAllocation);
+    for (const char* file : {"float_tree_read_for_a_minute.vdb", "float_tree_overflowing_unzip.vdb",
+                             "float_tree_raw_values_beyond_the_node.vdb", "float_tree_zipped_length_of_8gib.vdb",
+                             "absurd_length_field.vdb"})
+        expectRefused(kRegressions / "vdb" / file, kSmallInputAllocation);
 }
 
 // Active tiles in a float tree of 13 KiB whose bounding box densifies to 6 GiB (found by fuzz_vdb): within this
