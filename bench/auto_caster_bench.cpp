@@ -19,7 +19,6 @@
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"
 #include "volrender/caster_choice.h"
-#include "volrender/vulkan/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace {
@@ -140,11 +139,9 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
     CasterDemand demand{0, {}, (long long)views.front().width * views.front().height, step};
     for (const ViewParams& v : views) {
         cameras.push_back(Camera::fit(p.classified.grid, v));
-        const unsigned octants = viewOctants(cameras.back());
-        contents.octants |= octants;
-        demand.views.push_back(viewDirectionClasses(cameras.back(), octants));
+        demand.addView(cameras.back());
     }
-    demand.octants = contents.octants;
+    contents.octants = demand.octants;
     t.chosen = chooseCaster(p.meta.statistics, demand);
     for (unsigned classes : demand.views) {
         CasterDemand one = demand;

@@ -13,7 +13,7 @@
 #include "sweep/peer_comparison.h"
 #include "sweep/sweep_row.h"
 #include "volrender/camera.h"
-#include "volrender/vulkan/view_octants.h"
+#include "volrender/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {

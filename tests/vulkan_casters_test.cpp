@@ -14,7 +14,7 @@
 #include "support/datasets.h"
 #include "support/render_cases.h"
 #include "volrender/cpu_renderer.h"
-#include "volrender/vulkan/view_octants.h"
+#include "volrender/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {

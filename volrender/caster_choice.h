@@ -11,13 +11,17 @@
 
 namespace vr {
 
-// The views to render, which share one upload of the field. Default: one orthographic view along -z.
+// The views to render, which share one upload of the field.
 struct CasterDemand {
-    unsigned octants = 1u << 4;  // ray octants the views have (viewOctants): the ACD / EACD octants uploaded
-    std::vector<unsigned> views{1u << directionClass(0, 0, -1)};  // per view, the ray probe's direction classes
-                                                                   // its rays fall in (viewDirectionClasses)
+    unsigned octants = 0;          // ray octants the views have (viewOctants): the ACD / EACD octants uploaded
+    std::vector<unsigned> views;   // per view, the ray probe's direction classes its rays fall in
     long long pixels = 512 * 512;  // per view
     double stepVoxels = 0.5;
+
+    void addView(const Camera& camera) {
+        octants |= viewOctants(camera);
+        views.push_back(viewDirectionClasses(camera));
+    }
 };
 
 struct CasterChoice {

@@ -6,6 +6,7 @@
 #pragma once
 #include "core/distance_fields.h"
 #include "volrender/camera.h"
+#include "volrender/view_octants.h"
 
 namespace vr {
 
@@ -25,10 +26,11 @@ inline int directionClassOf(const Vec3d& d) {
 }
 
 // Bit c set for each class the probe's counts for a view are taken from: an orthographic view's one direction;
-// a perspective view's rays lie in general position, so the classes of its octants (`octants`: viewOctants).
-inline unsigned viewDirectionClasses(const Camera& camera, unsigned octants) {
+// a perspective view's rays lie in general position, so the classes of its octants (viewOctants).
+inline unsigned viewDirectionClasses(const Camera& camera) {
     if (camera.projection == Projection::Orthographic) return 1u << directionClassOf(camera.forward);
     unsigned classes = 0;
+    const unsigned octants = viewOctants(camera);
     for (int oct = 0; oct < kOctants; ++oct)
         if (octants >> oct & 1) classes |= 1u << octantClass(oct);
     return classes;

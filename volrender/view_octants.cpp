@@ -1,4 +1,4 @@
-#include "volrender/vulkan/view_octants.h"
+#include "volrender/view_octants.h"
 
 #include <cmath>
 #include <vector>

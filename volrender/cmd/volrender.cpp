@@ -17,7 +17,7 @@
 #include "volrender/caster_choice.h"
 #include "volrender/cmd/render_stats.h"
 #include "volrender/cpu_renderer.h"
-#include "volrender/vulkan/view_octants.h"
+#include "volrender/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace {
@@ -142,10 +142,7 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
     for (int i = 0; i < f.views; ++i) {
         view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
         view.elevationDeg = f.elevation;
-        const vr::Camera camera = vr::Camera::fit(header.classified.grid, view);
-        const unsigned octants = vr::viewOctants(camera);
-        d.octants |= octants;
-        d.views.push_back(vr::viewDirectionClasses(camera, octants));
+        d.addView(vr::Camera::fit(header.classified.grid, view));
     }
     return vr::chooseCaster(header.meta.statistics, d);
 }

@@ -12,7 +12,7 @@
 #include "volrender/render_checks.h"
 #include "volrender/span.h"
 #include "volrender/vulkan/caster_params.h"
-#include "volrender/vulkan/view_octants.h"
+#include "volrender/view_octants.h"
 
 namespace vr {
 namespace {
