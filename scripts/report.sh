@@ -4,13 +4,13 @@
 # our casters on every CT dataset, into one folder: sweep.csv, report.md, plots/, strips/, images/, peers/.
 #   scripts/report.sh [OUTDIR]            (default out/sweep)
 # Sized for 30 minutes on this 2-core machine with lavapipe (the "This run" section of the report says why):
-# 256x256 images, 4 views; volumes of BIG_VOXELS voxels or more are swept box-averaged by DOWNSAMPLE per axis;
-# the peers at 512x512 (4 views) on the full-size CT volumes.
-# Environment: BUILD_DIR (default build), VIEWS (4), SIZE (256x256), TO and TA (the grid, comma-separated; default
+# 256x256 images, an 8-view orbit (the default); volumes of BIG_VOXELS voxels or more are swept
+# box-averaged by DOWNSAMPLE per axis; the peers at 512x512 (the same 8 views) on the full-size CT volumes.
+# Environment: BUILD_DIR (default build), VIEWS (8), SIZE (256x256), TO and TA (the grid, comma-separated; default
 # the 0,0.005,0.01,0.02,0.05,0.1 x 0,1,3,10,20), BIG_VOXELS (4000000), DOWNSAMPLE (2), ONLY
 # (space-separated dataset name prefixes, e.g. "cranium_ct vtk_headsq_ct phantom"), PEERS (dataset prefixes for
 # the peers, default the CT volumes "boston_teapot cranium_ct vtk_headsq_ct"; "" for none), PEER_SIZE (512x512),
-# PEER_VIEWS (4), PEER_LIST (the peers run, default vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render),
+# PEER_VIEWS (8), PEER_LIST (the peers run, default vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render),
 # UNSHADED_TO (T_o values of the unshaded full-size sweep beside the peers, default 0,0.01,0.02,0.05,0.1),
 # RESUME=1 (keep OUTDIR and skip the settings already in its sweep.csv).
 set -euo pipefail
@@ -19,7 +19,7 @@ root=$PWD
 datasets=${VR_DATASETS_DIR:-$root/../shared/datasets}
 build=${BUILD_DIR:-build}
 out=${1:-out/sweep}
-views=${VIEWS:-4}
+views=${VIEWS:-8}
 size=${SIZE:-256x256}
 to=${TO:-0,0.005,0.01,0.02,0.05,0.1}
 ta=${TA:-0,1,3,10,20}
@@ -28,7 +28,7 @@ downsample=${DOWNSAMPLE:-2}
 only=${ONLY:-}
 peers=${PEERS-boston_teapot cranium_ct vtk_headsq_ct}
 peer_size=${PEER_SIZE:-512x512}
-peer_views=${PEER_VIEWS:-4}
+peer_views=${PEER_VIEWS:-8}
 peer_list=${PEER_LIST:-vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render}
 unshaded_to=${UNSHADED_TO:-0,0.01,0.02,0.05,0.1}
 phantom_dims=128x128x128
