@@ -16,7 +16,6 @@ layout(set = 0, binding = 0, std140) uniform Params {
     double loopProbe;  // 2: trip count of the loop that detects a driver's loop limit (caster.comp)
     ivec4 dims;        // voxels per axis
     ivec2 imageSize;   // width, height
-    int unused;        // (the projection is the PERSPECTIVE specialization constant of caster.comp)
     uint maxIterations;
     ivec4 octantSlot[2];  // ACD/EACD: z-slab of each octant in the field image, -1 when not uploaded
     vec4 light;        // xyz: unit direction toward the light; w = 1 when set, 0 for a headlight

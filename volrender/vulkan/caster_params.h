@@ -11,8 +11,8 @@ struct CasterParams {
     double halfHeight, dt, ert, loopProbe;  // loopProbe: 2 (see shaders/caster.comp)
     int32_t dims[4];
     int32_t imageSize[2];
-    int32_t unused;  // the projection is a specialization constant of the pipeline
     uint32_t maxIterations;
+    int32_t padding;  // std140 starts the array below on 16 bytes
     int32_t octantSlot[8];
     float light[4];
     float material[4];
