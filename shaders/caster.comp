@@ -26,10 +26,14 @@ const int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
 #include "brick_state.glsl"
 #include "extent_code.glsl"
 
-// A storage image (see isStorageVolume in volrender/vulkan/gpu_buffer.h): llvmpipe loads it more cheaply.
+// Storage images (volrender/vulkan/gpu_buffer.h): llvmpipe loads them more cheaply than texelFetch.
 layout(set = 0, binding = 1, rgba32f) uniform readonly image3D classified;  // rgb colour, a: extinction sigma
-layout(set = 0, binding = 2) uniform sampler3D normals;     // xyz: unit normal or 0 (flat); shading only
-layout(set = 0, binding = 3) uniform usampler3D field;      // PC: r; ACD: r per octant slab; EACD: rgb, or r coded
+layout(set = 0, binding = 2, rgba16_snorm) uniform readonly image3D normals;  // xyz: unit normal or 0 (flat)
+// The field, bound by its format (a storage image is read in the format it declares): PC, ACD and joint8 EACD in
+// R8 (PC: r; ACD: r per octant slab), log16 EACD in R16, exact EACD in RGBA8 (rgb); the other two are unused.
+layout(set = 0, binding = 3, r8ui) uniform readonly uimage3D field8;
+layout(set = 0, binding = 5, r16ui) uniform readonly uimage3D field16;
+layout(set = 0, binding = 6, rgba8ui) uniform readonly uimage3D fieldRGBA8;
 // Per pixel: the colour's four floats, two to a word, then the samples and the iteration count (with its flags).
 // One store of four 64-bit words: llvmpipe stores a buffer lane by lane and word by word, which made three outputs
 // of seven 32-bit words a seventh of a leaping caster's time.
@@ -47,10 +51,16 @@ struct SampleValue {
     vec3 normal;
 };
 
+uvec4 loadField(ivec3 texel) {
+    if (CASTER == kEACD && EACD_CODE == kLog16) return imageLoad(field16, texel);
+    if (CASTER == kEACD && EACD_CODE == kExact) return imageLoad(fieldRGBA8, texel);
+    return imageLoad(field8, texel);
+}
+
 SampleValue nearestSample(ivec3 v) {
     vec4 c = imageLoad(classified, brickTexel(v));
     SampleValue s = SampleValue(double(c.a), c.rgb, vec3(0.0));
-    if (SHADING) s.normal = texelFetch(normals, brickTexel(v), 0).xyz;
+    if (SHADING) s.normal = imageLoad(normals, brickTexel(v)).xyz;
     return s;
 }
 
@@ -68,7 +78,7 @@ SampleValue trilinearSample(dvec3 p) {
         vec4 cs = imageLoad(classified, brickTexel(u));
         s.sigma += w * double(cs.a);
         s.colour += cs.rgb * float(w);
-        if (SHADING) s.normal += texelFetch(normals, brickTexel(u), 0).xyz * float(w);
+        if (SHADING) s.normal += imageLoad(normals, brickTexel(u)).xyz * float(w);
     }
     float len = length(s.normal);
     s.normal = len > kFlatNormalLength ? s.normal / len : vec3(0.0);
@@ -124,11 +134,11 @@ void main() {
         double wanted = 1.0LF;
         VoxelBox box = VoxelBox(v, v);
         if (CASTER == kPC) {
-            int r = int(texelFetch(field, brickTexel(v), 0).r);
+            int r = int(loadField(brickTexel(v)).r);
             wanted = pcLeapSamples(r, g);
             box = chebyshevBall(v, r);
         } else if (CASTER == kACD || CASTER == kEACD) {
-            uvec4 f = texelFetch(field, fieldTexel(v, slot), 0);
+            uvec4 f = loadField(fieldTexel(v, slot));
             // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
             ivec3 ext = CASTER == kACD ? max(ivec3(1), ivec3(f.r)) : decodeExtents(f);
             box = octantBox(v, oct, ext);

@@ -41,26 +41,15 @@ void adviseHugePages(void* data, std::size_t bytes) {
     if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);
 }
 
-vk::ImageUsageFlags volumeUsage(vk::Format format) {
-    return (isStorageVolume(format) ? vk::ImageUsageFlagBits::eStorage : vk::ImageUsageFlagBits::eSampled) |
-           vk::ImageUsageFlagBits::eTransferDst;
-}
+constexpr vk::ImageUsageFlags kVolumeUsage = vk::ImageUsageFlagBits::eStorage | vk::ImageUsageFlagBits::eTransferDst;
 
 vk::ImageCreateInfo volumeImageInfo(const Vec3i& dims, vk::Format format) {
     return vk::ImageCreateInfo({}, vk::ImageType::e3D, format,
                                vk::Extent3D(uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)), 1, 1,
-                               vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal, volumeUsage(format));
+                               vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal, kVolumeUsage);
 }
 
 }  // namespace
-
-bool isStorageVolume(vk::Format format) {
-    return format == vk::Format::eR32G32B32A32Sfloat;
-}
-
-vk::ImageLayout volumeLayout(vk::Format format) {
-    return isStorageVolume(format) ? vk::ImageLayout::eGeneral : vk::ImageLayout::eShaderReadOnlyOptimal;
-}
 
 std::size_t formatBytes(vk::Format format) {
     switch (format) {
@@ -80,7 +69,7 @@ bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format,
     vk::ImageFormatProperties format3d;
     try {
         format3d = gpu.getImageFormatProperties(format, vk::ImageType::e3D, vk::ImageTiling::eOptimal,
-                                                volumeUsage(format));
+                                                kVolumeUsage);
     } catch (const vk::FormatNotSupportedError&) {
         return false;
     }
@@ -144,7 +133,7 @@ VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& 
                                  {0, 0, 0}, extent);
         cmd.copyBufferToImage(*staging.buffer(), *image_, vk::ImageLayout::eTransferDstOptimal, copy);
         vk::ImageMemoryBarrier toRead(A::eTransferWrite, A::eShaderRead, vk::ImageLayout::eTransferDstOptimal,
-                                      volumeLayout(format), VK_QUEUE_FAMILY_IGNORED,
+                                      kVolumeLayout, VK_QUEUE_FAMILY_IGNORED,
                                       VK_QUEUE_FAMILY_IGNORED, *image_, range);
         cmd.pipelineBarrier(S::eTransfer, S::eComputeShader, {}, {}, {}, toRead);
     });

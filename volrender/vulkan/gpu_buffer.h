@@ -43,13 +43,10 @@ struct ImageLimits {
     vk::DeviceSize maxTexelBytes = 0;  // texels x their bytes (without the driver's padding: the same on every device)
 };
 
-// The classified volume (RGBA32F) is a storage image, which the casters read with imageLoad: llvmpipe's texelFetch
-// looks up a mip level's offset and strides lane by lane, which made the classified volume's fetch a third of a
-// leaping caster's time. The normals (RGBA16_SNORM: a storage format only with shaderStorageImageExtendedFormats)
-// and the fields (whose formats vary with the caster and the code) stay sampled images.
-bool isStorageVolume(vk::Format format);
-// The layout a volume image is in once uploaded: general for a storage image, shader-read-only otherwise.
-vk::ImageLayout volumeLayout(vk::Format format);
+// Every volume image (classified, normals, fields) is a storage image, which the casters read with imageLoad:
+// llvmpipe's texelFetch looks up a mip level's offset and strides lane by lane, which made the classified volume's
+// fetch a third of a leaping caster's time. Once uploaded it stays in this layout.
+constexpr vk::ImageLayout kVolumeLayout = vk::ImageLayout::eGeneral;
 
 // Bytes of one texel of the formats volume images use.
 std::size_t formatBytes(vk::Format format);
@@ -57,8 +54,7 @@ std::size_t formatBytes(vk::Format format);
 // Whether a device-local 3D image of this extent and format can be created and allocated in one piece.
 bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format, const ImageLimits& limits);
 
-// A 3D image in device-local memory, filled once from host texels and then only read (texelFetch, or imageLoad for
-// a storage image).
+// A 3D image in device-local memory, filled once from host texels and then only read (imageLoad).
 class VolumeImage {
 public:
     // Writes the image's texelBytes bytes of texels (x fastest, then y, then z) into its staging memory.

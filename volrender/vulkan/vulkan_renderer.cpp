@@ -19,9 +19,12 @@ namespace {
 
 enum Binding : uint32_t {
     kParams, kClassified, kNormals, kField, kOutPixels,
-    kRayState = 7,    // shaders/brick_state.glsl
-    kExtentTable = 8  // shaders/extent_code.glsl
+    kField16, kFieldRGBA8,  // the field by its format (shaders/caster.comp): kField holds R8
+    kRayState,              // shaders/brick_state.glsl
+    kExtentTable            // shaders/extent_code.glsl
 };
+constexpr vk::Format kFieldFormats[3] = {vk::Format::eR8Uint, vk::Format::eR16Uint, vk::Format::eR8G8B8A8Uint};
+constexpr Binding kFieldBindings[3] = {kField, kField16, kFieldRGBA8};
 constexpr vk::DeviceSize kRayStateBytes = 64;  // RayState of shaders/brick_state.glsl (std430)
 // OutPixel of shaders/caster.comp: the colour's four floats, then the samples and the iteration count.
 struct OutPixel {
@@ -79,31 +82,28 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     using T = vk::DescriptorType;
     const auto compute = vk::ShaderStageFlagBits::eCompute;
     std::vector<vk::DescriptorSetLayoutBinding> bindings{
-        {kParams, T::eUniformBuffer, 1, compute},  {kClassified, T::eStorageImage, 1, compute},
-        {kNormals, T::eCombinedImageSampler, 1, compute},  {kField, T::eCombinedImageSampler, 1, compute},
-        {kOutPixels, T::eStorageBuffer, 1, compute},       {kExtentTable, T::eUniformBuffer, 1, compute},
+        {kParams, T::eUniformBuffer, 1, compute},   {kClassified, T::eStorageImage, 1, compute},
+        {kNormals, T::eStorageImage, 1, compute},   {kField, T::eStorageImage, 1, compute},
+        {kField16, T::eStorageImage, 1, compute},   {kFieldRGBA8, T::eStorageImage, 1, compute},
+        {kOutPixels, T::eStorageBuffer, 1, compute}, {kExtentTable, T::eUniformBuffer, 1, compute},
         {kRayState, T::eStorageBuffer, 1, compute}};
     setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     vk::PushConstantRange push(compute, 0, sizeof(TilePush));
     vk::DescriptorSetLayout layout = *setLayout_;
     pipelineLayout_ = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, layout, push));
     shader_ = vk::raii::ShaderModule(device, vk::ShaderModuleCreateInfo({}, caster_spv));
-    // texelFetch ignores filtering; nearest keeps the sampler trivially valid for integer formats.
-    sampler_ = vk::raii::Sampler(
-        device, vk::SamplerCreateInfo({}, vk::Filter::eNearest, vk::Filter::eNearest, vk::SamplerMipmapMode::eNearest,
-                                      vk::SamplerAddressMode::eClampToEdge, vk::SamplerAddressMode::eClampToEdge,
-                                      vk::SamplerAddressMode::eClampToEdge));
     queries_ = vk::raii::QueryPool(device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
     const uint32_t validBits = ctx.physicalDevice().getQueueFamilyProperties()[ctx.queueFamily()].timestampValidBits;
     if (validBits > 0) {
         timestampPeriodNs_ = ctx.physicalDevice().getProperties().limits.timestampPeriod;
         timestampMask_ = validBits >= 64 ? ~uint64_t(0) : (uint64_t(1) << validBits) - 1;
     }
-    const int16_t zeroNormal[4] = {0, 0, 0, 0};
-    const uint8_t zeroField = 0;
+    const uint8_t zeros[8] = {};
     unusedNormals_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, vk::Format::eR16G16B16A16Snorm,
-                                                   zeroNormal, sizeof(zeroNormal));
-    unusedField_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, vk::Format::eR8Uint, &zeroField, 1);
+                                                   zeros, formatBytes(vk::Format::eR16G16B16A16Snorm));
+    for (int i = 0; i < 3; ++i)
+        unusedFields_[i] = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kFieldFormats[i], zeros,
+                                                         formatBytes(kFieldFormats[i]));
 }
 
 const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode,
@@ -188,10 +188,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     // One descriptor set per brick: its images, the rest shared.
     const std::vector<Brick>& bricks = volume.bricks().bricks();
     const uint32_t brickCount = uint32_t(bricks.size());
-    std::array<vk::DescriptorPoolSize, 4> sizes{
+    std::array<vk::DescriptorPoolSize, 3> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 2 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 5 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 2 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
@@ -199,7 +198,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const std::vector<vk::DescriptorSetLayout> layouts(brickCount, *setLayout_);
     vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo(*descriptorPool, layouts));
     auto imageInfo = [&](const VolumeImage& image) {
-        return vk::DescriptorImageInfo(*sampler_, *image.view(), volumeLayout(image.format()));
+        return vk::DescriptorImageInfo(nullptr, *image.view(), kVolumeLayout);
     };
     const vk::DescriptorBufferInfo buffers[3] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*out.buffer(), 0, VK_WHOLE_SIZE},
@@ -209,18 +208,20 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
         const vk::DescriptorSet set = *sets[b];
         const VolumeImage* normals = volume.normals(int(b));
         const VolumeImage* field = volume.field(settings.caster, int(b));
-        const vk::DescriptorImageInfo images[3] = {imageInfo(volume.classified(int(b))),
-                                                   imageInfo(normals ? *normals : *unusedNormals_),
-                                                   imageInfo(field ? *field : *unusedField_)};
+        const vk::DescriptorImageInfo images[2] = {imageInfo(volume.classified(int(b))),
+                                                   imageInfo(normals ? *normals : *unusedNormals_)};
+        vk::DescriptorImageInfo fields[3];
+        for (int i = 0; i < 3; ++i)
+            fields[i] = imageInfo(field && field->format() == kFieldFormats[i] ? *field : *unusedFields_[i]);
         using T = vk::DescriptorType;
         std::vector<vk::WriteDescriptorSet> writes{
             {set, kParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
             {set, kClassified, 0, 1, T::eStorageImage, &images[0]},
-            {set, kNormals, 0, 1, T::eCombinedImageSampler, &images[1]},
-            {set, kField, 0, 1, T::eCombinedImageSampler, &images[2]},
+            {set, kNormals, 0, 1, T::eStorageImage, &images[1]},
             {set, kOutPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
             {set, kRayState, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
             {set, kExtentTable, 0, 1, T::eUniformBuffer, nullptr, &table}};
+        for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
         device.updateDescriptorSets(writes, {});
     }
 

@@ -53,13 +53,13 @@ private:
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout pipelineLayout_{nullptr};
     vk::raii::ShaderModule shader_{nullptr};
-    vk::raii::Sampler sampler_{nullptr};
     vk::raii::QueryPool queries_{nullptr};
     double timestampPeriodNs_ = 0;  // 0: the queue has no timestamps
     uint64_t timestampMask_ = 0;
     std::map<std::tuple<Caster, bool, bool, ExtentCode, bool, bool>, vk::raii::Pipeline> pipelines_;
-    // Bound where a variant reads nothing (normals without shading, field for primitive): never sampled.
-    std::unique_ptr<VolumeImage> unusedNormals_, unusedField_;
+    // Bound where a variant reads nothing (normals without shading, the field for primitive, the field bindings of
+    // the other formats): never read.
+    std::unique_ptr<VolumeImage> unusedNormals_, unusedFields_[3];
     std::vector<UploadedResource> uploads_;
 };
 
