@@ -144,9 +144,12 @@ void main() {
             box = octantBox(v, oct, ext);
             wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t);
         }
-        if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
-        wanted = min(wanted, samplesToTermination(alpha, s.sigma));
-        n = leapCount(g, iv, k, kCount, wanted, box);
+        // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap check.
+        if (CASTER != kPrimitive) {
+            if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
+            wanted = min(wanted, samplesToTermination(alpha, s.sigma));
+            n = leapCount(g, iv, k, kCount, wanted, box);
+        }
 
         double spanAlpha = spanOpacity(s.sigma, n * uDt);
         if (spanAlpha > 0.0LF) {

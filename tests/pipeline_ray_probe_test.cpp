@@ -48,7 +48,9 @@ TEST(RayProbe, CountsEveryDirectionClassOfEveryCasterTheFieldsAllow) {
             EXPECT_GE(leaps, 0);
             EXPECT_GE(singles, 0);
             EXPECT_GT(leaps + singles, 0) << "class " << k;
-            if (std::string(caster) == "primitive") EXPECT_EQ(leaps, 0);
+            if (std::string(caster) == "primitive") {
+                EXPECT_EQ(leaps, 0);
+            }
             // No caster iterates more often than the primitive caster samples.
             EXPECT_LE(leaps + singles, double(probe["casters"]["primitive"]["singleSamples"][k]) + 1e-9);
         }

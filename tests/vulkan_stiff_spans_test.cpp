@@ -28,9 +28,9 @@ void reportClean(const char* family, const test::CaseCount& n) {
     EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
 }
 
-// llvmpipe ends a shader after 65535 loop iterations in all, about 3,000 fetches of a ray: there, rays asking
-// primitive or PC stepping for more samples are left to the CPU test (and to the test below); a hardware device
-// runs them all.
+// llvmpipe ends a shader after 65535 loop iterations in all, about 3,000 fetches of a ray that checks its leaps
+// (a loop per fetch): there, rays asking primitive or PC stepping for more samples are left to the CPU test (and
+// to the test below); a hardware device runs them all.
 test::CaseOptions options() {
     test::CaseOptions o;
     if (context().info().name.find("llvmpipe") != std::string::npos) o.maxSteppedSamples = 2000;
@@ -49,8 +49,8 @@ TEST(VulkanStiffSpans, HugeRegionMatchesTheClosedForm) {
     reportClean("huge region", test::hugeRegionAgainstTheClosedForm(kVulkan, options()));
 }
 
-// 64,000 samples stepped one by one along one ray. A driver that ends loops on its own (llvmpipe) must make the
-// render fail, never return a ray cut short (it used to: 3,449 samples and a wrong image); others render it all.
+// 64,000 samples stepped one by one along one ray. Where a driver ends loops on its own (llvmpipe) the render must
+// fail or finish, never return a ray cut short (it used to: 3,449 samples and a wrong image).
 TEST(VulkanStiffSpans, RayLongerThanTheDriverLoopLimitIsAnErrorOrComplete) {
     const int m = 1000;
     const PreparedVolume p = test::syntheticPrepared({{1, 1, m}, {1, 1, 1}, {0, 0, 0}}, 1.0, [](const Vec3i&) {
@@ -61,20 +61,22 @@ TEST(VulkanStiffSpans, RayLongerThanTheDriverLoopLimitIsAnErrorOrComplete) {
     s.shading = false;
     s.stepVoxels = 1.0 / 64;
     s.ert = 1;
+    int cutShort = 0;
     for (Caster c : {Caster::Primitive, Caster::PC}) {
         s.caster = c;
-        if (options().maxSteppedSamples < 64 * m) {
-            try {
-                kVulkan(p, cam, s);
-                ADD_FAILURE() << casterName(c) << ": rendered a ray the driver cannot finish";
-            } catch (const std::runtime_error& e) {
-                EXPECT_NE(std::string(e.what()).find("ended the shader's loops"), std::string::npos) << e.what();
-            }
-        } else {
+        try {
             const RenderResult r = kVulkan(p, cam, s);
             EXPECT_EQ(r.samples[0], uint64_t(64 * m)) << casterName(c);
             EXPECT_NEAR(r.image.pixel(0, 0)[3], -std::expm1(-double(p.classified.sigma[0]) * m), 1e-5);
+        } catch (const std::runtime_error& e) {
+            ++cutShort;
+            EXPECT_NE(std::string(e.what()).find("ended the shader's loops"), std::string::npos) << e.what();
         }
+    }
+    // llvmpipe counts every loop's iterations, so the PC caster (whose leap check is a loop) cannot finish there:
+    // the limit's detection is exercised.
+    if (options().maxSteppedSamples < 64 * m) {
+        EXPECT_GT(cutShort, 0);
     }
     // A leaping caster crosses the same region in a few fetches and finishes on any driver.
     s.caster = Caster::EACD;

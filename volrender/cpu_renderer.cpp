@@ -136,9 +136,12 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     break;
                 }
             }
-            if (settings.trilinear) wanted = trilinearLeapSamples(wanted, box);
-            wanted = std::min(wanted, samplesToTermination(acc.alpha, s.sigma, dt, settings.ert));
-            n = leapCount(g, iv, dt, k, kCount, wanted, box, dims);
+            // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap check.
+            if (settings.caster != Caster::Primitive) {
+                if (settings.trilinear) wanted = trilinearLeapSamples(wanted, box);
+                wanted = std::min(wanted, samplesToTermination(acc.alpha, s.sigma, dt, settings.ert));
+                n = leapCount(g, iv, dt, k, kCount, wanted, box, dims);
+            }
 
             const double spanAlpha = spanOpacity(s.sigma, double(n) * dt);
             if (spanAlpha > 0)
