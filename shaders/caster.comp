@@ -109,10 +109,11 @@ void main() {
     bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0.0LF;
     bool firstDispatch = !BRICKED || uFirstDispatch != 0, lastDispatch = !BRICKED || uLastDispatch != 0;
     RayState state = firstDispatch
-                         ? RayState(dvec4(0.0LF), 0.0LF, 0.0LF, 0u, missingOctant ? kFailed : 0u)
+                         ? RayState(dvec4(0.0LF), 0.0LF, 0.0LF, 0.0LF, 0u, missingOctant ? kFailed : 0u)
                          : loadRayState(outIndex);
     dvec3 colour = state.composite.rgb;
     double alpha = state.composite.a;
+    precise double depth = state.depth;
     uint iterations = state.iterations;
     double samples = state.samples;
     bool failed = (state.flags & kFailed) != 0u;
@@ -147,16 +148,18 @@ void main() {
         // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap check.
         if (CASTER != kPrimitive) {
             if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
-            wanted = min(wanted, samplesToTermination(alpha, s.sigma));
+            wanted = min(wanted, samplesToTermination(depth, s.sigma));
             n = leapCount(g, iv, k, kCount, wanted, box);
         }
 
-        double spanAlpha = spanOpacity(s.sigma, n * uDt);
+        precise double length = n * uDt;
+        double spanAlpha = spanOpacity(s.sigma, length);
         if (spanAlpha > 0.0LF) {
             vec3 shaded = SHADING ? shade(s.colour, s.normal, toEye, toLight) : s.colour;
             precise double w = (1.0LF - alpha) * spanAlpha;
             colour += dvec3(shaded) * w;
             alpha += w;
+            if (CASTER != kPrimitive) depth += s.sigma * length;  // for the termination count only
         }
         samples += n;
     }
@@ -170,7 +173,7 @@ void main() {
     if (lastDispatch && k < kCount && alpha < uErt) failed = true;  // in no pass: a bug
     if (failed) flags |= kFailed;
     // The next brick's dispatch reads this state; after the last one, nothing does.
-    if (!lastDispatch) storeRayState(outIndex, RayState(dvec4(colour, alpha), k, samples, iterations, flags));
+    if (!lastDispatch) storeRayState(outIndex, RayState(dvec4(colour, alpha), k, samples, depth, iterations, flags));
 
     uvec4 rgba = floatBitsToUint(vec4(vec3(colour + dvec3(uBackground.rgb) * (1.0LF - alpha)), float(alpha)));
     outPixel[outIndex] = u64vec4(packUint2x32(rgba.xy), packUint2x32(rgba.zw), uint64_t(samples), iterations | flags);

@@ -13,6 +13,7 @@ layout(set = 0, binding = 0, std140) uniform Params {
     double halfHeight; // Camera::halfHeight
     double dt;         // step in world units
     double ert;        // early ray termination threshold
+    double ertDepth;   // the optical depth where opacity reaches ert (volrender/span.h terminationDepth)
     double loopProbe;  // 2: trip count of the loop that detects a driver's loop limit (caster.comp)
     ivec4 dims;        // voxels per axis
     ivec2 imageSize;   // width, height
@@ -41,7 +42,7 @@ layout(push_constant) uniform Tile {
 // (Mesa 22) reads a block member as a gather over the invocations of its SIMD batch, every time the shader reads
 // it, once control flow may differ between them (after the early return of pixels outside the tile).
 dvec3 uEye, uForward, uRight, uUp, uGridOrigin, uSpacing;
-double uHalfHeight, uDt, uErt, uLoopProbe;
+double uHalfHeight, uDt, uErt, uErtDepth, uLoopProbe;
 ivec3 uDims, uBrickLo, uBrickHi, uImageLo;
 ivec2 uImageSize, uTileOrigin, uTileSize;
 int uSlabDepth;  // texels of one slab of the brick's images along z
@@ -60,6 +61,7 @@ void copyUniforms() {
     uHalfHeight = P.halfHeight;
     uDt = P.dt;
     uErt = P.ert;
+    uErtDepth = P.ertDepth;
     uLoopProbe = P.loopProbe;
     uDims = P.dims.xyz;
     uImageSize = P.imageSize;

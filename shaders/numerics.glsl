@@ -1,8 +1,8 @@
-// log, expm1 and log1p in double, which GLSL lacks (it has exp/log in float only; ALGORITHMS.md
-// section 6). The casters accumulate opacity in double so that early ray termination decides exactly as the
-// CPU reference does: in float, opacity near the threshold is off by 1e-7 and flips whether one more sample
-// is composited. Small arguments are evaluated by series that involve no cancellation. Tested against the
-// C library by numerics_test.comp.
+// expm1 in double, which GLSL lacks (it has exp in float only; ALGORITHMS.md section 6). The casters accumulate
+// opacity in double so that early ray termination decides exactly as the CPU reference does: in float, opacity
+// near the threshold is off by 1e-7 and flips whether one more sample is composited. Small arguments are
+// evaluated by a series that involves no cancellation. Tested against the C library by numerics_test.comp. (No
+// log is needed: the termination count works on the optical depth, whose threshold the host computes.)
 #ifndef VR_NUMERICS_GLSL
 #define VR_NUMERICS_GLSL
 
@@ -10,7 +10,7 @@ const double kLn2Hi = 6.93147180369123816490e-01LF;  // fdlibm's split of ln 2: 
 const double kLn2Lo = 1.90821492927058770002e-10LF;
 const double kInvLn2 = 1.44269504088896338700e+00LF;  // 1 / ln 2, rounded: only picks k
 
-// The series' coefficients: 1/n! for n = 1..16 (expm1) and 1/k for odd k = 1..31 (atanh).
+// The series' coefficients: 1/n! for n = 1..16.
 const double kInverseFactorial[16] = double[16](
     1.0LF,
     0.5LF,
@@ -28,27 +28,9 @@ const double kInverseFactorial[16] = double[16](
     1.1470745597729725e-11LF,
     7.647163731819816e-13LF,
     4.779477332387385e-14LF);
-const double kInverseOdd[16] = double[16](
-    1.0LF,
-    0.3333333333333333LF,
-    0.2LF,
-    0.14285714285714285LF,
-    0.1111111111111111LF,
-    0.09090909090909091LF,
-    0.07692307692307693LF,
-    0.06666666666666667LF,
-    0.058823529411764705LF,
-    0.05263157894736842LF,
-    0.047619047619047616LF,
-    0.043478260869565216LF,
-    0.04LF,
-    0.037037037037037035LF,
-    0.034482758620689655LF,
-    0.03225806451612903LF);
-
 // c[0] + c[1] x + ... + c[15] x^15 by Estrin's scheme: pairs, then pairs of pairs, so the chain of dependent
 // operations is 4 multiply-adds deep instead of Horner's 15. llvmpipe runs one batch of rays at a time, and
-// each caster iteration waits for this chain (twice: the termination count's log, then the span's expm1).
+// each caster iteration waits for this chain (the span's expm1).
 double series16(double c[16], double x) {
     double x2 = x * x, x4 = x2 * x2, x8 = x4 * x4;
     double a0 = (c[0] + c[1] * x) + (c[2] + c[3] * x) * x2;
@@ -60,23 +42,6 @@ double series16(double c[16], double x) {
 
 // exp(x) - 1 for |x| <= 0.5: Taylor series to x^16 (truncation below 2e-19 relative).
 double expm1Series(double x) { return series16(kInverseFactorial, x) * x; }
-
-// 2 atanh(z) = log((1 + z) / (1 - z)) by its odd series to z^31: truncation below 2e-17 relative for
-// |z| <= 1/3 (log1p), below 1e-25 for |z| <= 0.172 (log).
-double atanh2Series(double z) { return 2.0LF * z * series16(kInverseOdd, z * z); }
-
-// log(y) for y > 0: y = m 2^e with m in [sqrt(1/2), sqrt(2)), log m = 2 atanh((m - 1) / (m + 1)).
-double vrLog(double y) {
-    if (!(y > 0.0LF)) return y == 0.0LF ? -1.0LF / 0.0LF : 0.0LF / 0.0LF;
-    if (isinf(y)) return y;
-    int e;
-    double m = frexp(y, e);
-    if (m < 0.70710678118654752440LF) {
-        m *= 2.0LF;
-        e -= 1;
-    }
-    return double(e) * kLn2Hi + (double(e) * kLn2Lo + atanh2Series((m - 1.0LF) / (m + 1.0LF)));
-}
 
 // exp(x) - 1 from one series: for |x| <= 0.5 the series of x itself (no cancellation), beyond it
 // exp(x) - 1 with x = k ln 2 + r, |r| <= 0.35, which loses at most a factor 2.6 of exp's accuracy. llvmpipe
@@ -90,12 +55,6 @@ double vrExpm1(double x) {
     if (x < -746.0LF) return -1.0LF;
     if (x > 709.78LF) return 1.0LF / 0.0LF;
     return ldexp(1.0LF + p, int(k)) - 1.0LF;
-}
-
-// log(1 + x); for -0.5 <= x <= 1, log1p(x) = 2 atanh(x / (2 + x)) with |x / (2 + x)| <= 1/3.
-double vrLog1p(double x) {
-    if (x >= -0.5LF && x <= 1.0LF) return atanh2Series(x / (2.0LF + x));
-    return vrLog(1.0LF + x);
 }
 
 #endif

@@ -1,4 +1,4 @@
-// Evaluates vrExpm1 and vrLog1p over a buffer of arguments so the host can compare them with the C library.
+// Evaluates vrExpm1 over a buffer of arguments so the host can compare it with the C library.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "numerics.glsl"
@@ -6,12 +6,10 @@
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0, std430) readonly buffer Args { double x[]; };
 layout(set = 0, binding = 1, std430) writeonly buffer Expm1 { double expm1Out[]; };
-layout(set = 0, binding = 2, std430) writeonly buffer Log1p { double log1pOut[]; };
 layout(push_constant) uniform Count { uint count; };
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= count) return;
     expm1Out[i] = vrExpm1(x[i]);
-    log1pOut[i] = vrLog1p(x[i]);
 }

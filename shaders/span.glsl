@@ -8,12 +8,13 @@
 // 1 - exp(-sigma L) without cancellation for tiny sigma L; exactly 1 for an opaque span.
 double spanOpacity(double sigma, double len) { return -vrExpm1(-sigma * len); }
 
-// Samples until primitive stepping would reach ert inside a span of extinction sigma (+inf: never).
-double samplesToTermination(double alpha, double sigma) {
-    if (alpha >= uErt) return 1.0LF;
-    if (sigma <= 0.0LF) return kInfinity;
-    precise double q = vrLog((1.0LF - alpha) / (1.0LF - uErt)) / (sigma * uDt);
-    return max(1.0LF, ceil(q));
+const double kTerminationSlack = 1.0LF - 1e-9LF;
+
+// Samples until primitive stepping would reach ert inside a span of extinction sigma, from the optical depth
+// (+inf: never).
+double samplesToTermination(double depth, double sigma) {
+    precise double q = (uErtDepth - depth) / (sigma * uDt) * kTerminationSlack;
+    return sigma <= 0.0LF ? kInfinity : max(1.0LF, ceil(q));
 }
 
 // Two-sided Phong with one directional light; a flat voxel (zero normal) gets ambient + diffuse with the view

@@ -48,9 +48,10 @@ TEST(SpanOpacity, OpaqueIsClampedFiniteAndSaturates) {
     EXPECT_EQ(float(a), 1.0f);                  // what the image stores
     EXPECT_EQ(spanOpacity(sigma, 1.0), 1.0);   // two reference steps are 1 exactly in double
     Accumulator acc;
-    acc.composite({1, 1, 1}, a);
+    acc.composite({1, 1, 1}, a, sigma * 0.5);
     EXPECT_GE(acc.alpha, 0.99);                // the ray terminates
-    EXPECT_EQ(samplesToTermination(0, sigma, 0.5, 0.99), 1.0);
+    EXPECT_GE(acc.depth, terminationDepth(0.99));
+    EXPECT_EQ(samplesToTermination(0, sigma, 0.5, terminationDepth(0.99)), 1.0);
 }
 
 TEST(Accumulator, SpansFactorize) {
@@ -58,32 +59,39 @@ TEST(Accumulator, SpansFactorize) {
     const Vec3d c{0.2, 0.5, 0.9};
     const double sigma = 0.37, dt = 0.25;
     Accumulator steps, span;
-    steps.composite({0.1, 0.1, 0.1}, 0.3);
-    span.composite({0.1, 0.1, 0.1}, 0.3);
-    for (int i = 0; i < 17; ++i) steps.composite(c, spanOpacity(sigma, dt));
-    span.composite(c, spanOpacity(sigma, 17 * dt));
+    steps.composite({0.1, 0.1, 0.1}, 0.3, -std::log1p(-0.3));
+    span.composite({0.1, 0.1, 0.1}, 0.3, -std::log1p(-0.3));
+    for (int i = 0; i < 17; ++i) steps.composite(c, spanOpacity(sigma, dt), sigma * dt);
+    span.composite(c, spanOpacity(sigma, 17 * dt), sigma * 17 * dt);
     EXPECT_NEAR(steps.alpha, span.alpha, 1e-15);
+    EXPECT_NEAR(steps.depth, span.depth, 1e-15);
+    EXPECT_NEAR(span.depth, -std::log1p(-span.alpha), 1e-15);
     for (int a = 0; a < 3; ++a) EXPECT_NEAR(steps.colour[a], span.colour[a], 1e-15);
 }
 
 TEST(Termination, SpanStopsWhereSamplesWould) {
     // alpha 0.5 per sample from A = 0: 1 - 0.5^7 = 0.992 is the first >= 0.99.
-    const double dt = 0.5, sigma = extinctionFromOpacity(0.5, dt);
-    EXPECT_EQ(samplesToTermination(0, sigma, dt, 0.99), 7.0);
-    EXPECT_EQ(samplesToTermination(0.995, sigma, dt, 0.99), 1.0);
-    EXPECT_EQ(samplesToTermination(0.2, 0, dt, 0.99), kInf);
+    const double dt = 0.5, sigma = extinctionFromOpacity(0.5, dt), ertDepth = terminationDepth(0.99);
+    EXPECT_EQ(samplesToTermination(0, sigma, dt, ertDepth), 7.0);
+    EXPECT_EQ(samplesToTermination(-std::log1p(-0.995), sigma, dt, ertDepth), 1.0);
+    EXPECT_EQ(samplesToTermination(0.2, 0, dt, ertDepth), kInf);
+    EXPECT_EQ(samplesToTermination(0.2, sigma, dt, terminationDepth(1.0)), kInf);  // ert = 1: never
     for (double alpha0 : {0.0, 0.3, 0.9})
         for (double a : {1e-6, 0.01, 0.2, 0.7}) {
             const double s = extinctionFromOpacity(a, dt);
             Accumulator acc;
             acc.alpha = alpha0;
+            acc.depth = -std::log1p(-alpha0);
             int m = 0;
             while (acc.alpha < 0.99) {
-                acc.composite({1, 1, 1}, spanOpacity(s, dt));
+                acc.composite({1, 1, 1}, spanOpacity(s, dt), s * dt);
                 ++m;
             }
-            EXPECT_EQ(samplesToTermination(alpha0, s, dt, 0.99), double(m)) << alpha0 << " " << a;
+            EXPECT_EQ(samplesToTermination(-std::log1p(-alpha0), s, dt, ertDepth), double(m)) << alpha0 << " " << a;
         }
+    // Exactly on the threshold: alpha 1/2 per sample reaches ert = 1 - 2^-k at sample k, never one later.
+    for (int k = 1; k <= 20; ++k)
+        EXPECT_EQ(samplesToTermination(0, sigma, dt, terminationDepth(1 - std::ldexp(1.0, -k))), double(k)) << k;
 }
 
 TEST(Shading, FlatTwoSidedAndFinite) {

@@ -80,7 +80,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const ClassifiedVolume& cv = prepared.classified;
     const DistanceFields& fields = prepared.fields;
     const Vec3i dims = cv.grid.dims;
-    const double dt = settings.stepVoxels * cv.grid.smallestSpacing();
+    const double dt = settings.stepVoxels * cv.grid.smallestSpacing(), ertDepth = terminationDepth(settings.ert);
     const Sampler sampler(cv, settings.shading);
     const std::optional<Vec3d> light =
         settings.lightDirection ? std::optional<Vec3d>(normalize(*settings.lightDirection)) : std::nullopt;
@@ -139,13 +139,14 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap check.
             if (settings.caster != Caster::Primitive) {
                 if (settings.trilinear) wanted = trilinearLeapSamples(wanted, box);
-                wanted = std::min(wanted, samplesToTermination(acc.alpha, s.sigma, dt, settings.ert));
+                wanted = std::min(wanted, samplesToTermination(acc.depth, s.sigma, dt, ertDepth));
                 n = leapCount(g, iv, dt, k, kCount, wanted, box, dims);
             }
 
-            const double spanAlpha = spanOpacity(s.sigma, double(n) * dt);
+            const double length = double(n) * dt, spanAlpha = spanOpacity(s.sigma, length);
             if (spanAlpha > 0)
-                acc.composite(settings.shading ? shade(s.colour, s.normal, toEye, toLight) : s.colour, spanAlpha);
+                acc.composite(settings.shading ? shade(s.colour, s.normal, toEye, toLight) : s.colour, spanAlpha,
+                              s.sigma * length);
             samples += uint64_t(n);
         }
 

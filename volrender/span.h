@@ -15,25 +15,37 @@ namespace vr {
 // gives exactly 1.
 inline double spanOpacity(double sigma, double length) { return -std::expm1(-sigma * length); }
 
-// Front-to-back accumulation of premultiplied colour C and opacity A.
+// Front-to-back accumulation of premultiplied colour C and opacity A, and of the optical depth behind A.
 struct Accumulator {
     Vec3d colour{0, 0, 0};
     double alpha = 0;
+    double depth = 0;  // sum of sigma L over the spans: -ln(1 - A) up to rounding
 
-    void composite(const Vec3d& shaded, double spanAlpha) {
+    // spanDepth: sigma L of the span; spanAlpha = spanOpacity(sigma, L).
+    void composite(const Vec3d& shaded, double spanAlpha, double spanDepth) {
         const double w = (1 - alpha) * spanAlpha;
         colour += shaded * w;
         alpha += w;
+        depth += spanDepth;
     }
 };
 
-// Early ray termination belongs to the samples, not to the spans: a span of n samples stops at the sample
-// after which primitive stepping would have stopped (the first m with 1 - (1 - A) exp(-sigma dt m) >= ert), so
-// every caster terminates where the primitive one does. Returns +inf when the span never reaches ert.
-inline double samplesToTermination(double alpha, double sigma, double dt, double ert) {
-    if (alpha >= ert) return 1;
+// The optical depth at which the opacity reaches ert, -ln(1 - ert): +inf for ert = 1 (no early termination).
+inline double terminationDepth(double ert) { return -std::log1p(-ert); }
+
+// A termination count this close above an integer (relative) is taken as that integer.
+constexpr double kTerminationSlack = 1 - 1e-9;
+
+// Early ray termination belongs to the samples, not to the spans: a span of n samples stops at the sample after
+// which primitive stepping would have stopped, the first m with depth + sigma dt m >= terminationDepth(ert), so
+// every caster terminates where the primitive one does (A < ert decides, in every caster's loop). From the depth,
+// not from A: a division where a log was, which was most of a leaping caster's iteration on lavapipe. Rounding
+// may leave the count a hair above an integer; it is rounded down: a span one sample short costs one more
+// iteration, one sample too long would composite a sample that primitive stepping never takes. Returns +inf when
+// the span never reaches ert.
+inline double samplesToTermination(double depth, double sigma, double dt, double ertDepth) {
     if (sigma <= 0) return std::numeric_limits<double>::infinity();
-    return std::max(1.0, std::ceil(std::log((1 - alpha) / (1 - ert)) / (sigma * dt)));
+    return std::max(1.0, std::ceil((ertDepth - depth) / (sigma * dt) * kTerminationSlack));
 }
 
 // Phong with one directional light; material constants shared with the GPU.

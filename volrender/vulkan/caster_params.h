@@ -8,8 +8,8 @@ namespace vr {
 struct CasterParams {
     double eye[4], forward[4], right[4], up[4];
     double gridOrigin[4], spacing[4];
-    double halfHeight, dt, ert, loopProbe;  // loopProbe: 2 (see shaders/caster.comp)
-    int32_t dims[4];
+    double halfHeight, dt, ert, ertDepth, loopProbe;  // ertDepth: terminationDepth(ert); loopProbe: 2 (caster.comp)
+    alignas(16) int32_t dims[4];  // std140: an ivec4 starts on 16 bytes
     int32_t imageSize[2];
     uint32_t maxIterations;
     int32_t padding;  // std140 starts the array below on 16 bytes
@@ -19,10 +19,10 @@ struct CasterParams {
     float background[4];
 };
 static_assert(offsetof(CasterParams, halfHeight) == 192);
-static_assert(offsetof(CasterParams, dims) == 224);
-static_assert(offsetof(CasterParams, octantSlot) == 256);
-static_assert(offsetof(CasterParams, light) == 288);
-static_assert(sizeof(CasterParams) == 336);
+static_assert(offsetof(CasterParams, dims) == 240);
+static_assert(offsetof(CasterParams, octantSlot) == 272);
+static_assert(offsetof(CasterParams, light) == 304);
+static_assert(sizeof(CasterParams) == 352);
 
 // One dispatch: a tile, one brick, one pass (the Tile block of shaders/caster_params.glsl).
 struct TilePush {

@@ -69,6 +69,7 @@ CasterParams makeParams(const GridGeometry& grid, const Camera& camera, const Re
     p.background[0] = float(s.background.x), p.background[1] = float(s.background.y);
     p.background[2] = float(s.background.z);
     p.ert = s.ert;
+    p.ertDepth = terminationDepth(s.ert);
     return p;
 }
 
