@@ -1,5 +1,6 @@
-// The face-minimum tables of the EACD walk (preprocess/fields/rect_min.h): every rectangle a build covers gives
-// the brute-force minimum, on random images of several shapes, for both strip orientations and for squares.
+// The face-minimum tables of the EACD walk (preprocess/fields/rect_min.h): every rectangle gives the brute-force
+// minimum whatever levels a build made, on random images of several shapes, for both strip orientations and for
+// squares; and the levels a LevelPlan asks for.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -52,38 +53,58 @@ TEST(FieldsRectMin, StripsGiveEveryRectangleTheyCover) {
     }
 }
 
-TEST(FieldsRectMin, StripsBuiltForShorterRectanglesOnlyGiveThose) {
-    // Tables along u up to 6 (for rectangles no taller than wide) and along w up to 3 (for taller ones): a later
-    // build with fewer levels must not read levels of an earlier, larger one.
+TEST(FieldsRectMin, ShorterStripsGiveEveryRectangleToo) {
+    // Tables along u up to 6 and along w up to 3 (or 1 and 1, or 2 and 4): a rectangle longer than its strips takes
+    // several of them, and a later build with fewer levels must not read levels of an earlier, larger one.
     std::mt19937 rng(6);
     const Image image = randomImage(33, 20, rng);
     RectMin table = tableOf(image);
     table.buildStrips(33, 20);
-    std::copy(image.bytes.begin(), image.bytes.end(), table.resize(image.nu, image.nw));
-    table.buildStrips(6, 3);
-    const RectMin::Query query = table.query();
-    for (int w0 = 0; w0 < image.nw; ++w0)
-        for (int u0 = 0; u0 < image.nu; ++u0)
-            for (int lw = 1; w0 + lw <= image.nw && lw <= 6; ++lw)
-                for (int lu = 1; u0 + lu <= image.nu && lu <= 6; ++lu) {
-                    if (lw <= lu ? lu > 6 : lw > 3) continue;
-                    ASSERT_EQ(query(u0, w0, lu, lw), image.minOver(u0, w0, lu, lw));
-                }
+    for (const auto& [maxU, maxW] : {std::pair{6, 3}, std::pair{1, 1}, std::pair{2, 4}}) {
+        std::copy(image.bytes.begin(), image.bytes.end(), table.resize(image.nu, image.nw));
+        table.buildStrips(maxU, maxW);
+        const RectMin::Query query = table.query();
+        for (int w0 = 0; w0 < image.nw; ++w0)
+            for (int u0 = 0; u0 < image.nu; ++u0)
+                for (int lw = 1; w0 + lw <= image.nw; ++lw)
+                    for (int lu = 1; u0 + lu <= image.nu; ++lu)
+                        ASSERT_EQ(query(u0, w0, lu, lw), image.minOver(u0, w0, lu, lw))
+                            << maxU << " x " << maxW << ": " << lu << "x" << lw << " at (" << u0 << ", " << w0 << ")";
+    }
 }
 
-TEST(FieldsRectMin, SquaresUpToTheLargestBuilt) {
+TEST(FieldsRectMin, SquaresUpToAnyLargestBuilt) {
     std::mt19937 rng(7);
     for (const auto& [nu, nw] : kShapes) {
         const Image image = randomImage(nu, nw, rng);
         RectMin table = tableOf(image);
-        const int largest = std::min(nu, nw);
-        table.buildSquares(largest);
-        const RectMin::Query query = table.query();
-        for (int w0 = 0; w0 < nw; ++w0)
-            for (int u0 = 0; u0 < nu; ++u0)
-                for (int k = 1; u0 + k <= nu && w0 + k <= nw; ++k)
-                    ASSERT_EQ(query(u0, w0, k, k), image.minOver(u0, w0, k, k));
+        // Up to the largest square, and up to 1 and 3 (longer squares then take several).
+        for (const int largest : {std::min(nu, nw), 1, 3}) {
+            std::copy(image.bytes.begin(), image.bytes.end(), table.resize(nu, nw));
+            table.buildSquares(largest);
+            const RectMin::Query query = table.query();
+            for (int w0 = 0; w0 < nw; ++w0)
+                for (int u0 = 0; u0 < nu; ++u0)
+                    for (int k = 1; u0 + k <= nu && w0 + k <= nw; ++k)
+                        ASSERT_EQ(query(u0, w0, k, k), image.minOver(u0, w0, k, k)) << largest;
+        }
     }
+}
+
+TEST(FieldsRectMin, LevelPlanBuildsWhatTheQueriesAreWorth) {
+    constexpr std::size_t kPixels = 256 * 256;
+    EXPECT_EQ(LevelPlan(false).longest(kPixels), 0);  // no query: no table
+    // One long face reads a strip per voxel rather than build 7 levels for it; thousands of them pay for the levels.
+    LevelPlan few(false), many(false), squares(true);
+    few.add(200, 3);
+    EXPECT_EQ(few.longest(kPixels), 1);
+    for (int q = 0; q < 5000; ++q) many.add(200, 3);
+    EXPECT_EQ(many.longest(kPixels), 128);
+    // A 6 x 6 square costs 4 reads with tables up to 4, 9 with 2, 36 with none: 2 levels pay off only for many.
+    squares.add(6, 6);
+    EXPECT_EQ(squares.longest(kPixels), 1);
+    for (int q = 0; q < 20000; ++q) squares.add(6, 6);
+    EXPECT_EQ(squares.longest(kPixels), 4);
 }
 
 }  // namespace

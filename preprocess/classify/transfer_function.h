@@ -46,7 +46,7 @@ struct SampledTransferFunction {
     std::array<float, 3> colourAt(double f) const;
     // Index of the sample at or below f, and the weight of the next one (inline: classification calls it per voxel).
     void locate(double f, std::size_t& i, double& w) const {
-        const double t = (f - lo) / step;
+        const double t = step == 1 ? f - lo : (f - lo) / step;  // the same value: integer volumes skip a division
         const std::size_t last = opacity.size() - 1;
         if (!(t > 0)) {  // also NaN
             i = 0, w = 0;

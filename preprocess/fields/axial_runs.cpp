@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cstring>
+
 #include "core/distance_fields.h"
 #include "preprocess/fields/byte_rows.h"
 #include "preprocess/fields/scan_order.h"
@@ -10,14 +12,56 @@ namespace vr {
 
 namespace {
 
-// One x-row of runs along x, scanned toward -sign: each voxel extends its neighbour's run (a serial chain).
+#if defined(__SSE2__)
+// Lane k gets lane k + sign * kLanes (the voxels scanned before it), 0 where that is outside the 16.
+template <int kSign, int kLanes>
+__m128i fromScannedBefore(__m128i v) {
+    return kSign < 0 ? _mm_slli_si128(v, kLanes) : _mm_srli_si128(v, kLanes);
+}
+
+// One log step of the segmented count: r += r of kLanes before where no run starts in between; `joined` (no run
+// starts in the lanes up to there, within the 16) widens likewise, with the lanes that have none before them.
+template <int kSign, int kLanes>
+void countStep(__m128i& r, __m128i& joined) {
+    const __m128i ones = _mm_set1_epi8(-1), edge = _mm_xor_si128(ones, fromScannedBefore<kSign, kLanes>(ones));
+    r = _mm_adds_epu8(r, _mm_and_si128(joined, fromScannedBefore<kSign, kLanes>(r)));
+    joined = _mm_and_si128(joined, _mm_or_si128(fromScannedBefore<kSign, kLanes>(joined), edge));
+}
+
+// The runs of 16 voxels of a row whose neighbours toward the sign are all in the row, `carry` the run of the one
+// next to the block: each voxel equal to its neighbour continues its run, counted in four log steps (saturating at
+// 255, the cap) rather than along a chain of one voxel at a time.
+template <int kSign>
+void runBlock(const uint32_t* label, uint8_t* run, uint8_t carry) {
+    const Bytes16 equal = equalLabels(label, label + kSign);
+    __m128i joined, r = _mm_set1_epi8(1);
+    std::memcpy(&joined, &equal, sizeof joined);
+    countStep<kSign, 1>(r, joined);
+    countStep<kSign, 2>(r, joined);
+    countStep<kSign, 4>(r, joined);
+    countStep<kSign, 8>(r, joined);
+    r = _mm_adds_epu8(r, _mm_and_si128(joined, _mm_set1_epi8(char(carry))));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(run), r);
+}
+#endif
+
+// One x-row of runs along x, scanned toward -sign: each voxel extends its neighbour's run.
 void runRowAlongX(const uint32_t* label, uint8_t* run, int nx, int sign) {
-    int previous = 0;
-    for (int i = 0; i < nx; ++i) {
+    const auto one = [&](int i) {  // the i-th voxel of the scan, from its neighbour's run
         const int x = scanCoord(i, nx, sign);
-        previous = i > 0 && label[x] == label[x + sign] ? std::min(previous + 1, kDistanceCap) : 1;
-        run[x] = uint8_t(previous);
+        run[x] = i > 0 && label[x] == label[x + sign] ? uint8_t(std::min(run[x + sign] + 1, kDistanceCap)) : 1;
+    };
+    int i = 0;
+    if (nx > 0) one(i++);  // the first has no neighbour: the blocks after it all have theirs
+#if defined(__SSE2__)
+    for (; i + 16 <= nx; i += 16) {
+        if (sign < 0)
+            runBlock<-1>(label + i, run + i, run[i - 1]);
+        else
+            runBlock<1>(label + nx - i - 16, run + nx - i - 16, run[nx - i]);
     }
+#endif
+    for (; i < nx; ++i) one(i);
 }
 
 // One x-row of runs along y or z from the row one step toward the sign (`next`), null at the border: every

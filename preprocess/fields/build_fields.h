@@ -25,7 +25,7 @@ std::vector<uint8_t> buildACD(const Regions& regions, int octant);
 // All eight octants, in parallel, sharing the axial runs: acd[o] is buildACD(regions, o).
 ACDFields buildACDs(const Regions& regions);
 EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant);
-// All eight octants at once (shares the range-minimum tables between the octants): acd[o] is buildACD(regions, o).
+// All eight octants, one at a time on the same runs and working memory: acd[o] is buildACD(regions, o).
 std::array<EACDField, kOctants> buildEACD(const Regions& regions, const ACDFields& acd);
 
 // The same builders on axial runs shared between them (each run field is computed once).

@@ -19,7 +19,6 @@ inline Bytes16 loadBytes(const uint8_t* p) {
     return v;
 }
 inline Bytes16 minBytes(Bytes16 a, Bytes16 b) { return a < b ? a : b; }
-inline Bytes16 maxBytes(Bytes16 a, Bytes16 b) { return a > b ? a : b; }
 
 // The same operations on one byte or 16, so that a row kernel is written once (see forEachLane).
 inline uint8_t load(const uint8_t* p, uint8_t) { return *p; }
@@ -144,17 +143,6 @@ inline void forEachNonzero(const uint8_t* p, int n, F f) {
         for (unsigned bits = nonzeroBits(p + k); bits; bits &= bits - 1) f(k + std::countr_zero(bits));
     for (; k < n; ++k)
         if (p[k]) f(k);
-}
-
-// The largest of p[0 .. n).
-inline uint8_t maxOfRow(const uint8_t* p, std::size_t n) {
-    Bytes16 m{};
-    std::size_t k = 0;
-    for (; k + 16 <= n; k += 16) m = maxBytes(m, loadBytes(p + k));
-    uint8_t best = 0;
-    for (int q = 0; q < 16; ++q) best = std::max(best, m[q]);
-    for (; k < n; ++k) best = std::max(best, p[k]);
-    return best;
 }
 
 }  // namespace vr

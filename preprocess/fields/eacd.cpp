@@ -2,13 +2,14 @@
 // (step 1, eacd_extensions.cpp), then along the better of the two others (step 2, ibid.; step 3 here picks it).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <bit>
 #include <cstring>
 
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/fields/byte_rows.h"
-#include "preprocess/fields/eacd_batch.h"
+#include "preprocess/fields/eacd_state.h"
 
 namespace vr {
 
@@ -16,22 +17,20 @@ namespace {
 
 // Between steps 1 and 2: the axis that step 1 extends (the first with the largest extent: ties go to x, then y,
 // then z), and its extent, per voxel.
-void findWidestAxes(OctantBatch& batch) {
-    for (int o : batch.octants) {
-        const uint8_t *ex = batch.ext[o][0].data(), *ey = batch.ext[o][1].data(), *ez = batch.ext[o][2].data();
-        uint8_t *widest = batch.widest[o].data(), *longest = batch.longest[o].data();
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, batch.acd[o]->size(), 1 << 16), [&](const auto& range) {
-            forEachLane(range.size(), [&, at = range.begin()](std::size_t i, auto t) {
-                const std::size_t v = at + i;
-                const auto x = load(ex + v, t), y = load(ey + v, t), z = load(ez + v, t);
-                const auto yWins = y > x;  // a mask: its own declaration (its type is not the bytes' type)
-                const auto best = select(yWins, y, x);
-                const auto zWins = z > best;
-                store(widest + v, select(zWins, splat(2, t), select(yWins, splat(1, t), splat(0, t))));
-                store(longest + v, select(zWins, z, best));
-            });
+void findWidestAxes(OctantState& st) {
+    const uint8_t *ex = st.ext[0].data(), *ey = st.ext[1].data(), *ez = st.ext[2].data();
+    uint8_t *widest = st.widest.data(), *longest = st.longest.data();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, st.acd->size(), 1 << 16), [&](const auto& range) {
+        forEachLane(range.size(), [&, at = range.begin()](std::size_t i, auto t) {
+            const std::size_t v = at + i;
+            const auto x = load(ex + v, t), y = load(ey + v, t), z = load(ez + v, t);
+            const auto yWins = y > x;  // a mask: its own declaration (its type is not the bytes' type)
+            const auto best = select(yWins, y, x);
+            const auto zWins = z > best;
+            store(widest + v, select(zWins, splat(2, t), select(yWins, splat(1, t), splat(0, t))));
+            store(longest + v, select(zWins, z, best));
         });
-    }
+    });
 }
 
 // Per axis a, every extent 0..255 rounded down to a code (the codes round each axis on its own, extent_code.h),
@@ -49,10 +48,10 @@ Rounding roundingTables(ExtentCode code) {
 
 // Step 3: the box is k on every axis but the widest a (step 1's extension) and the better of the two others
 // (ties to the lower axis). Computed in planar blocks, then interleaved and rounded down to the code.
-void chooseBoxes(const OctantBatch& batch, int o, const Rounding& round, EACDField& out) {
-    const uint8_t* acd = batch.acd[o]->data();
-    const uint8_t *ex = batch.ext[o][0].data(), *ey = batch.ext[o][1].data(), *ez = batch.ext[o][2].data();
-    const uint8_t* widest = batch.widest[o].data();
+void chooseBoxes(const OctantState& st, const Rounding& round, EACDField& out) {
+    const uint8_t* acd = st.acd->data();
+    const uint8_t *ex = st.ext[0].data(), *ey = st.ext[1].data(), *ez = st.ext[2].data();
+    const uint8_t* widest = st.widest.data();
     constexpr std::size_t kBlock = 4096;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), kBlock), [&](const auto& range) {
         for (std::size_t at = range.begin(); at < range.end(); at += kBlock) {
@@ -83,47 +82,43 @@ void chooseBoxes(const OctantBatch& batch, int o, const Rounding& round, EACDFie
     });
 }
 
-// EACD of `octants` into their outputs, already sized. The planar extents take 5 bytes per voxel and octant while
-// the batch is built; a batch reuses the volumes the batch before it left in batch.spare.
-void buildBatch(AxialRuns& runs, OctantBatch& batch, const std::vector<int>& octants,
-                const std::array<const std::vector<uint8_t>*, kOctants>& acd,
-                const std::array<EACDField*, kOctants>& out, ExtentCode code) {
-    const std::size_t voxels = runs.regions().label.size();
-    batch.octants = octants;
-    for (int o : octants) {
-        if (acd[o]->size() != voxels)
-            throw std::invalid_argument("buildEACD: the ACD of octant " + std::to_string(o) +
-                                        " does not match the regions");
-        batch.acd[o] = acd[o];
-        for (auto& slot : batch.ext[o]) slot = batch.take(voxels);
-        batch.widest[o] = batch.take(voxels);
-        batch.longest[o] = batch.take(voxels);
-    }
-    cubeExtensions(runs, batch);
-    findWidestAxes(batch);
-    boxExtensions(runs, batch);
-    const Rounding round = roundingTables(code);
-    for (int o : octants) {
-        chooseBoxes(batch, o, round, *out[o]);
-        for (auto& slot : batch.ext[o]) batch.spare.push_back(std::move(slot));
-        batch.spare.push_back(std::move(batch.widest[o]));
-        batch.spare.push_back(std::move(batch.longest[o]));
-    }
+// `out` holding n zero extents. resize() would fill the 3-byte elements one at a time (7 instructions each: a
+// third of a CPU second for the 8 octants at 256^3); copies of a block of zeros go at memcpy's speed.
+void resizeZeroed(EACDField& out, std::size_t n) {
+    static constexpr std::array<Extents, 4096> kZeros{};
+    out.clear();
+    out.reserve(n);
+    while (out.size() < n)
+        out.insert(out.end(), kZeros.begin(), kZeros.begin() + std::min(kZeros.size(), n - out.size()));
+}
+
+// The ACD of octant o, checked against the regions.
+void checkACD(const AxialRuns& runs, int o, const std::vector<uint8_t>& acd) {
+    if (acd.size() != runs.regions().label.size())
+        throw std::invalid_argument("buildEACD: the ACD of octant " + std::to_string(o) +
+                                    " does not match the regions");
+}
+
+// Steps 1 and 2 of octant o: its extents, in the state's planar volumes.
+void extendOctant(OctantState& st, int o, const std::vector<uint8_t>& acd) {
+    st.octant = o;
+    st.acd = &acd;
+    cubeExtensions(st);
+    findWidestAxes(st);
+    boxExtensions(st);
 }
 
 }  // namespace
 
 EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant) {
     if (octant < 0 || octant >= kOctants) throw std::invalid_argument("buildEACD: no octant " + std::to_string(octant));
-    EACDField out;
-    std::array<const std::vector<uint8_t>*, kOctants> acds{};
-    std::array<EACDField*, kOctants> outs{};
-    acds[octant] = &acd;
-    outs[octant] = &out;
     AxialRuns runs(regions);
-    OctantBatch batch;
-    out.resize(acd.size());
-    buildBatch(runs, batch, {octant}, acds, outs, ExtentCode::Exact);
+    checkACD(runs, octant, acd);
+    OctantState state(runs);
+    extendOctant(state, octant, acd);
+    EACDField out;
+    resizeZeroed(out, acd.size());
+    chooseBoxes(state, roundingTables(ExtentCode::Exact), out);
     return out;
 }
 
@@ -133,21 +128,24 @@ std::array<EACDField, kOctants> buildEACD(const Regions& regions, const ACDField
 }
 
 std::array<EACDField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd, ExtentCode code) {
+    for (int o = 0; o < kOctants; ++o) checkACD(runs, o, acd[o]);
     std::array<EACDField, kOctants> out;
-    std::array<const std::vector<uint8_t>*, kOctants> acds{};
-    std::array<EACDField*, kOctants> outs{};
+    // Each output is zeroed (and its pages mapped) by a task of its own, waited for just before its octant's boxes
+    // are chosen: a thread done with its walks while the other still walks takes them (the three walks of a step
+    // on two threads leave about a tenth of the time idle otherwise).
+    std::array<tbb::task_group, kOctants> sizing;
+    for (int o = 0; o < kOctants; ++o) sizing[o].run([&, o] { resizeZeroed(out[o], acd[o].size()); });
+    // One octant at a time: 7 bytes of working memory per voxel, 2 of them the runs along x copied for the walks
+    // (0.9 GB at 512^3, where the footprint makes fresh pages dear). (Batches of two opposite octants took as long,
+    // with twice the memory; batches of four, sharing each table by two octants, too: what the tables saved,
+    // mapping the memory cost.)
+    OctantState state(runs);
+    const Rounding round = roundingTables(code);
     for (int o = 0; o < kOctants; ++o) {
-        acds[o] = &acd[o];
-        outs[o] = &out[o];
+        extendOctant(state, o, acd[o]);
+        sizing[o].wait();
+        chooseBoxes(state, round, out[o]);
     }
-    // The outputs are zeroed (and their pages mapped) first, on both threads: one at a time, that was serial.
-    tbb::parallel_for(0, kOctants, [&](int o) { out[o].resize(acd[o].size()); });
-    // One octant at a time: 5 bytes of working memory per voxel (0.7 GB at 512^3, where the footprint makes fresh
-    // pages dear). The three walks of a step run at once and the x walk takes about as long as the y and z walks
-    // together, so both threads stay busy. (Batches of two opposite octants took as long, with twice the memory;
-    // batches of four, sharing each table by two octants, too: what the tables saved, mapping the memory cost.)
-    OctantBatch batch;
-    for (int o = 0; o < kOctants; ++o) buildBatch(runs, batch, {o}, acds, outs, code);
     return out;
 }
 

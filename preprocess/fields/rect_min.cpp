@@ -27,6 +27,7 @@ void RectMin::buildStrips(int maxLenU, int maxLenW) {
     const int levelsU = levelCount(maxLenU, nu_), levelsW = levelCount(maxLenW, nw_);
     squares_ = false;
     levelsU_ = levelsU;
+    levelsW_ = levelsW;
     reserveLevels(levelsU + levelsW - 1);
     // Level i along u from i - 1: two strips of 2^(i-1).
     for (int i = 1; i < levelsU; ++i) {
@@ -47,6 +48,7 @@ void RectMin::buildStrips(int maxLenU, int maxLenW) {
 void RectMin::buildSquares(int maxLen) {
     const int levels = std::min(levelCount(maxLen, nu_), levelCount(maxLen, nw_));
     squares_ = true;
+    levelsU_ = levels;
     reserveLevels(levels);
     // Level (i, i) from (i-1, i-1): four windows of 2^(i-1).
     for (int i = 1; i < levels; ++i) {

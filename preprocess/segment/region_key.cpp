@@ -42,8 +42,10 @@ uint32_t cubeMapCell(const std::array<float, 3>& d, int cellsPerEdge) {
     for (int a = 1; a < 3; ++a)
         if (std::abs(d[a]) > std::abs(d[major])) major = a;
     const double scale = 1.0 / std::abs(double(d[major]));
+    // |t * scale| <= 1 but for rounding, so the position is > -1, where truncation and floor agree once clamped
+    // to 0 (floor is a library call without SSE4.1; this runs per voxel).
     const auto cell = [&](float t) {
-        const int c = int(std::floor((double(t) * scale + 1) * 0.5 * cellsPerEdge));
+        const int c = int((double(t) * scale + 1) * 0.5 * cellsPerEdge);
         return uint32_t(std::clamp(c, 0, cellsPerEdge - 1));
     };
     const uint32_t face = 2 * major + (d[major] < 0);
@@ -72,7 +74,7 @@ RegionKeyer::RegionKeyer(const ClassifiedVolume& classified, const SegmentationP
 
 uint32_t RegionKeyer::bin(double value, double width, float exact) const {
     if (width == 0) return bits(exact);
-    return uint32_t(std::floor(std::clamp(value, 0.0, 1.0) / width));
+    return uint32_t(std::clamp(value, 0.0, 1.0) / width);  // >= 0: the conversion is the floor
 }
 
 void RegionKeyer::opacityAndColour(std::size_t i, RegionKey& key) const {
