@@ -8,10 +8,11 @@
 // 1 - exp(-sigma L) without cancellation for tiny sigma L; exactly 1 for an opaque span.
 double spanOpacity(double sigma, double len) { return -vrExpm1(-sigma * len); }
 
-const double kTerminationSlack = 1.0LF - 1e-9LF;
+const double kTerminationSlack = 1.0LF - 1e-9LF;  // volrender/span.h's: a count a hair above an integer rounds down
 
 // Samples until primitive stepping would reach ert inside a span of extinction sigma, from the optical depth
-// (+inf: never).
+// (+inf: never). The division runs for sigma = 0 too and its result is not picked: llvmpipe runs both sides of a
+// branch.
 double samplesToTermination(double depth, double sigma) {
     precise double q = (uErtDepth - depth) / (sigma * uDt) * kTerminationSlack;
     return sigma <= 0.0LF ? kInfinity : max(1.0LF, ceil(q));
