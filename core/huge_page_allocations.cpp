@@ -3,8 +3,9 @@
 // a large part of that cost where the kernel gives huge pages only on request (THP "madvise", Debian's default):
 // 0.35-1.1 s per GB on this project's build VM, against 0.05 s per GB on 2 MiB pages. glibc can ask for them
 // itself (the glibc.malloc.hugetlb tunable) but reads that only from the environment at start-up, so every
-// program of the project replaces operator new, the allocation under every std::vector, to ask for them.
-// Sanitizer builds keep their own operator new (theirs checks that new is paired with delete).
+// program of the project replaces operator new (under every std::vector of ordinarily aligned elements) to ask
+// for them: a 512^3 threshold change takes 5.2-6.4 s instead of 7.8-8.5 (scaling_bench). Sanitizer builds keep
+// their own operator new (theirs checks that new is paired with delete).
 #include <sys/mman.h>
 
 #include <cstdint>
