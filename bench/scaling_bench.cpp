@@ -4,7 +4,7 @@
 // synthetic phantom made at each size and a real volume resampled (trilinear) to each size. Prints Markdown
 // tables with nanoseconds per voxel, so that linear growth reads as a flat column. One size is alive at a time.
 // --checksums prints FNV-1a checksums of every array the scenarios make (classification, labels, fields), so that
-// a faster stage can be checked bit for bit.
+// a faster stage can be checked bit for bit. Each size's peak resident memory is printed too (BENCH.md: memory).
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <utility>
@@ -79,7 +80,20 @@ struct SizeResult {
     int edge = 0;
     std::map<std::string, std::map<std::string, std::vector<double>>> wall, cpu;
     uint32_t regions = 0;
+    double peakBytes = 0;  // the process's peak resident memory while this size ran
 };
+
+// The process's peak resident memory (VmHWM), reset to the current one by resetPeakResident (Linux 4.0 and later);
+// 0 where /proc does not say.
+double peakResidentBytes() {
+    std::ifstream status("/proc/self/status");
+    std::string key;
+    double kB = 0;
+    while (status >> key)
+        if (key == "VmHWM:" && status >> kB) return kB * 1024;
+    return 0;
+}
+void resetPeakResident() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
 // FNV-1a of the bytes of `v`, continuing from h.
 constexpr uint64_t kFnvBasis = 14695981039346656037ull;
@@ -121,7 +135,8 @@ void record(SizeResult& r, const std::string& scenario, const vr::StagedPreparat
 // does (a second one took 0.5 GB more at 512^3, where fresh pages cost more as the footprint grows).
 SizeResult benchSize(const std::string& name, vr::Volume volume, const vr::PrepareOptions& base, int runs,
                      bool checksums) {
-    SizeResult r{name, volume.grid.dims.x, {}, {}, 0};
+    SizeResult r{name, volume.grid.dims.x, {}, {}, 0, 0};
+    resetPeakResident();
     vr::PrepareOptions thresholdChanged = base;
     thresholdChanged.segmentation.opacityThreshold *= 2;
     vr::PrepareOptions tfChanged = thresholdChanged;
@@ -139,6 +154,7 @@ SizeResult benchSize(const std::string& name, vr::Volume volume, const vr::Prepa
         }
         volume = staged.volume();  // for the next run
     }
+    r.peakBytes = peakResidentBytes();
     std::fprintf(stderr, "%s %d^3:", name.c_str(), r.edge);  // the figures so far, should a long run be cut short
     for (const auto& s : kScenarios)
         std::fprintf(stderr, " %s %.3f s (%.3f CPU s)", s.c_str(), median(r.wall[s]["total"]), median(r.cpu[s]["total"]));
@@ -165,6 +181,17 @@ void printTable(const char* title, const std::vector<SizeResult>& results,
         }
         std::printf("\n");
     }
+    std::printf("\n");
+}
+
+// Peak memory per size. It includes the process's baseline, about 0.15 GB here (libraries, and the real volume's
+// source kept for resampling), which dominates the small sizes.
+void printPeakMemory(const std::vector<SizeResult>& results) {
+    std::printf("Peak resident memory (whole process, all scenarios and runs of a size):\n\n"
+                "| volume | N | GB | B/voxel |\n|---|---:|---:|---:|\n");
+    for (const SizeResult& r : results)
+        std::printf("| %s | %d | %.2f | %.1f |\n", r.volume.c_str(), r.edge, r.peakBytes * 1e-9,
+                    r.peakBytes / std::pow(double(r.edge), 3));
     std::printf("\n");
 }
 
@@ -243,6 +270,7 @@ int main(int argc, char** argv) {
         printTable("Wall seconds:", results, &SizeResult::wall);
         printTable("CPU seconds (all threads; steadier than wall time on a shared machine):", results,
                    &SizeResult::cpu);
+        printPeakMemory(results);
     } catch (const vr::InputError& e) {
         std::fprintf(stderr, "scaling_bench: %s\n", e.what());
         return 1;
