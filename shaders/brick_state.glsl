@@ -6,8 +6,7 @@
 
 struct RayState {
     dvec4 composite;  // premultiplied colour, alpha
-    double k;         // the next lattice sample
-    double samples;   // lattice samples represented so far
+    double k;         // the next lattice sample: also the samples the spans so far represent
     double depth;     // optical depth so far (volrender/span.h Accumulator)
     uint iterations;
     uint flags;       // kFailed, kCutShort (caster.comp)
@@ -17,14 +16,13 @@ layout(set = 0, binding = 7, std430) buffer RayStates { RayState rayState[]; }; 
 
 // Member by member: glslang stores a whole struct into a buffer with an OpStore of mismatched types.
 RayState loadRayState(uint i) {
-    return RayState(rayState[i].composite, rayState[i].k, rayState[i].samples, rayState[i].depth,
+    return RayState(rayState[i].composite, rayState[i].k, rayState[i].depth,
                     rayState[i].iterations, rayState[i].flags);
 }
 
 void storeRayState(uint i, RayState s) {
     rayState[i].composite = s.composite;
     rayState[i].k = s.k;
-    rayState[i].samples = s.samples;
     rayState[i].depth = s.depth;
     rayState[i].iterations = s.iterations;
     rayState[i].flags = s.flags;

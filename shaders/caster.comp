@@ -109,13 +109,12 @@ void main() {
     bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0.0LF;
     bool firstDispatch = !BRICKED || uFirstDispatch != 0, lastDispatch = !BRICKED || uLastDispatch != 0;
     RayState state = firstDispatch
-                         ? RayState(dvec4(0.0LF), 0.0LF, 0.0LF, 0.0LF, 0u, missingOctant ? kFailed : 0u)
+                         ? RayState(dvec4(0.0LF), 0.0LF, 0.0LF, 0u, missingOctant ? kFailed : 0u)
                          : loadRayState(outIndex);
     dvec3 colour = state.composite.rgb;
     double alpha = state.composite.a;
     precise double depth = state.depth;
     uint iterations = state.iterations;
-    double samples = state.samples;
     bool failed = (state.flags & kFailed) != 0u;
     double k = state.k;
     // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
@@ -161,7 +160,6 @@ void main() {
             alpha += w;
             if (CASTER != kPrimitive) depth += s.sigma * length;  // for the termination count only
         }
-        samples += n;
     }
 
     // Some drivers end loops on their own: llvmpipe stops every loop of an invocation once 65535 iterations have run
@@ -173,8 +171,8 @@ void main() {
     if (lastDispatch && k < kCount && alpha < uErt) failed = true;  // in no pass: a bug
     if (failed) flags |= kFailed;
     // The next brick's dispatch reads this state; after the last one, nothing does.
-    if (!lastDispatch) storeRayState(outIndex, RayState(dvec4(colour, alpha), k, samples, depth, iterations, flags));
+    if (!lastDispatch) storeRayState(outIndex, RayState(dvec4(colour, alpha), k, depth, iterations, flags));
 
     uvec4 rgba = floatBitsToUint(vec4(vec3(colour + dvec3(uBackground.rgb) * (1.0LF - alpha)), float(alpha)));
-    outPixel[outIndex] = u64vec4(packUint2x32(rgba.xy), packUint2x32(rgba.zw), uint64_t(samples), iterations | flags);
+    outPixel[outIndex] = u64vec4(packUint2x32(rgba.xy), packUint2x32(rgba.zw), uint64_t(k), iterations | flags);
 }

@@ -102,8 +102,8 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
 
         Accumulator acc;
         long long iterations = 0;
-        uint64_t samples = 0;
-        for (int64_t k = 0, n = 1; k < kCount && acc.alpha < settings.ert; k += n) {
+        int64_t k = 0;  // the next lattice sample: also the samples the spans so far represent
+        for (int64_t n = 1; k < kCount && acc.alpha < settings.ert; k += n) {
             if (++iterations > settings.maxIterationsPerRay)
                 throw std::runtime_error("CPU renderer: a ray at pixel (" + std::to_string(px) + ", " +
                                          std::to_string(py) + ") passed the iteration cap of " +
@@ -147,7 +147,6 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             if (spanAlpha > 0)
                 acc.composite(settings.shading ? shade(s.colour, s.normal, toEye, toLight) : s.colour, spanAlpha,
                               s.sigma * length);
-            samples += uint64_t(n);
         }
 
         const std::size_t p = std::size_t(py) * camera.width + px;
@@ -158,7 +157,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         out[2] = float(c.z);
         out[3] = float(acc.alpha);
         result.iterations[p] = uint32_t(std::min<long long>(iterations, UINT32_MAX));
-        result.samples[p] = samples;
+        result.samples[p] = uint64_t(k);
     };
 
     tbb::parallel_for(tbb::blocked_range<int>(0, camera.height), [&](const tbb::blocked_range<int>& rows) {
