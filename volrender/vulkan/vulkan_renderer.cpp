@@ -25,7 +25,8 @@ enum Binding : uint32_t {
 };
 constexpr vk::Format kFieldFormats[3] = {vk::Format::eR8Uint, vk::Format::eR16Uint, vk::Format::eR8G8B8A8Uint};
 constexpr Binding kFieldBindings[3] = {kField, kField16, kFieldRGBA8};
-constexpr vk::DeviceSize kRayStateBytes = 64;  // RayState of shaders/brick_state.glsl: std430 stride (56 B to 32)
+// RayState of shaders/brick_state.glsl: 56 B of members, its std430 array stride rounded up to its dvec4's 32.
+constexpr vk::DeviceSize kRayStateBytes = 64;
 // OutPixel of shaders/caster.comp: the colour's four floats, then the samples and the iteration count.
 struct OutPixel {
     float colour[4];
