@@ -93,7 +93,6 @@ struct VoxelBox {
     ivec3 lo, hi;
 };
 
-bool boxContains(VoxelBox b, ivec3 v) { return all(greaterThanEqual(v, b.lo)) && all(lessThanEqual(v, b.hi)); }
 
 VoxelBox chebyshevBall(ivec3 v, int r) { return VoxelBox(v - r, v + r); }
 
@@ -134,16 +133,21 @@ double boxLeapSamples(double tBoxExit, double t) {
 // interpolated value changes; such a voxel is stepped sample by sample.
 double trilinearLeapSamples(double wanted, VoxelBox box) { return box.lo == box.hi ? 1.0LF : wanted; }
 
+// volrender/ray_setup.h's beforeFarFaces: whether the sample at t lies in the box that holds the span's first
+// sample's voxel, as floorVoxel places it (only the far face of each axis can be crossed).
+bool beforeFarFaces(GridRay ray, double t, VoxelBox box) {
+    dvec3 p = rayAt(ray, t);
+    bvec3 pastHi = greaterThanEqual(p, dvec3(box.hi + 1)), pastLo = lessThan(p, dvec3(box.lo));
+    bvec3 climbing = greaterThan(ray.d, dvec3(0.0LF)), descending = lessThan(ray.d, dvec3(0.0LF));
+    return !((climbing.x && pastHi.x) || (climbing.y && pastHi.y) || (climbing.z && pastHi.z) ||
+             (descending.x && pastLo.x) || (descending.y && pastLo.y) || (descending.z && pastLo.z));
+}
+
 // The leap taken from sample k of kCount: never past the volume exit, never to a sample whose floor voxel
-// rounding put outside the box or the volume. Always >= 1.
+// rounding put outside the box. Always >= 1.
 double leapCount(GridRay ray, RayInterval iv, double k, double kCount, double wanted, VoxelBox box) {
     double n = floor(min(wanted, kCount - k));
-    VoxelBox volume = VoxelBox(ivec3(0), uDims - 1);
-    while (n > 1.0LF) {
-        ivec3 last = floorVoxel(rayAt(ray, latticeT(iv, k + n - 1.0LF)));
-        if (boxContains(box, last) && boxContains(volume, last)) break;
-        n -= 1.0LF;
-    }
+    while (n > 1.0LF && !beforeFarFaces(ray, latticeT(iv, k + n - 1.0LF), box)) n -= 1.0LF;
     return max(n, 1.0LF);
 }
 

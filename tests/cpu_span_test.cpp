@@ -239,17 +239,22 @@ TEST(LeapCount, SpansEndStrictlyBeforeTheBoxExit) {
     const VoxelBox twoVoxels = octantBox({0, 0, 0}, 0, {2, 2, 2});
     // Box of x in [0, 2): the exit formula says 3 samples; a greedy request is cut back to them too.
     EXPECT_EQ(leapCount(r, iv, 0.5, 0, kCount, boxLeapSamples(boxExitT(r, {0, 0, 0}, 0, {2, 2, 2}), 0, 0.5),
-                        twoVoxels, dims), 3);
-    EXPECT_EQ(leapCount(r, iv, 0.5, 0, kCount, 1e9, twoVoxels, dims), 3);
+                        twoVoxels), 3);
+    EXPECT_EQ(leapCount(r, iv, 0.5, 0, kCount, 1e9, twoVoxels), 3);
     // Never past the volume exit, even when the box is larger than what is left.
-    EXPECT_EQ(leapCount(r, iv, 0.5, 10, kCount, 1e9, VoxelBox{{-100, -100, -100}, {100, 100, 100}}, dims), 5);
-    EXPECT_EQ(leapCount(r, iv, 0.5, 14, kCount, kInf, VoxelBox{{-100, -100, -100}, {100, 100, 100}}, dims), 1);
-    // Always at least one sample, even if the box does not hold the first one.
-    EXPECT_EQ(leapCount(r, iv, 0.5, 0, kCount, 4, VoxelBox{{5, 5, 5}, {6, 6, 6}}, dims), 1);
+    EXPECT_EQ(leapCount(r, iv, 0.5, 10, kCount, 1e9, VoxelBox{{-100, -100, -100}, {100, 100, 100}}), 5);
+    EXPECT_EQ(leapCount(r, iv, 0.5, 14, kCount, kInf, VoxelBox{{-100, -100, -100}, {100, 100, 100}}), 1);
+    // Always at least one sample, even when the far face cuts the span right after it (x = 1.5 in voxel 1, 2 next).
+    EXPECT_EQ(leapCount(r, iv, 0.5, 2, kCount, 4, VoxelBox{{1, 0, 0}, {1, 0, 0}}), 1);
+    // Descending: the far face is the box's low face, and a sample exactly on it lies in the box (floor(5) = 5).
+    const GridRay l{{7.5, 0.5, 0.5}, {-1, 0, 0}};
+    const RayInterval ivl = intersectGrid(l, dims);
+    const VoxelBox threeVoxels = octantBox({7, 0, 0}, rayOctant(l), {3, 1, 1});  // x in 5 .. 7
+    EXPECT_EQ(leapCount(l, ivl, 0.5, 0, latticeCount(ivl, 0.5), 1e9, threeVoxels), 6);  // x = 7.5 .. 5
     // Millions of samples in one leap.
     const double dt = 1e-6;
     const int64_t many = latticeCount(iv, dt);
-    EXPECT_EQ(leapCount(r, iv, dt, 0, many, kInf, VoxelBox{{0, 0, 0}, {7, 7, 7}}, dims), many);
+    EXPECT_EQ(leapCount(r, iv, dt, 0, many, kInf, VoxelBox{{0, 0, 0}, {7, 7, 7}}), many);
     EXPECT_GT(many, 7000000);
 }
 
@@ -258,8 +263,8 @@ TEST(LeapCount, OctantBoxAndBall) {
     EXPECT_EQ(b.lo, (Vec3i{3, 5, 5}));
     EXPECT_EQ(b.hi, (Vec3i{5, 6, 5}));
     const VoxelBox c = chebyshevBall({5, 5, 5}, 2);
-    EXPECT_TRUE(c.contains({3, 7, 5}));
-    EXPECT_FALSE(c.contains({2, 5, 5}));
+    EXPECT_EQ(c.lo, (Vec3i{3, 3, 3}));
+    EXPECT_EQ(c.hi, (Vec3i{7, 7, 7}));
 }
 
 }  // namespace

@@ -140,7 +140,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             if (settings.caster != Caster::Primitive) {
                 if (settings.trilinear) wanted = trilinearLeapSamples(wanted, box);
                 wanted = std::min(wanted, samplesToTermination(acc.depth, s.sigma, dt, ertDepth));
-                n = leapCount(g, iv, dt, k, kCount, wanted, box, dims);
+                n = leapCount(g, iv, dt, k, kCount, wanted, box);
             }
 
             const double length = double(n) * dt, spanAlpha = spanOpacity(s.sigma, length);

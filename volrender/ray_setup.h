@@ -92,9 +92,6 @@ inline int rayOctant(const GridRay& r) { return octantOf(r.d.x, r.d.y, r.d.z); }
 // An inclusive range of voxels: the region a leap may cover.
 struct VoxelBox {
     Vec3i lo, hi;
-    bool contains(const Vec3i& v) const {
-        return v.x >= lo.x && v.y >= lo.y && v.z >= lo.z && v.x <= hi.x && v.y <= hi.y && v.z <= hi.z;
-    }
 };
 
 // PC: the Chebyshev ball of radius r about v.
@@ -142,18 +139,24 @@ inline double boxLeapSamples(double tBoxExit, double t, double dt) {
 // 4.3.2), inside which the interpolated value changes; such a voxel is stepped sample by sample.
 inline double trilinearLeapSamples(double wanted, const VoxelBox& box) { return box.lo == box.hi ? 1.0 : wanted; }
 
-// The leap actually taken from sample k (of kCount), wanting `wanted` samples inside `box`: never past the
-// volume exit, and never a sample whose floor voxel rounding put outside the box or the volume. Positions are
-// monotone in t per axis, so checking the last sample of the span checks all of them. Always >= 1.
+// Whether the sample at t lies in `box` as floorVoxel places it, given that the span's first sample does (its
+// voxel is the box's corner v): positions only grow along an axis the ray climbs and only shrink along one it
+// descends (every rounding is monotone), so the far face of each axis is the only one a later sample can cross.
+inline bool beforeFarFaces(const GridRay& ray, double t, const VoxelBox& box) {
+    const Vec3d p = ray.at(t);
+    for (int a = 0; a < 3; ++a)
+        if ((ray.d[a] > 0 && p[a] >= double(box.hi[a] + 1)) || (ray.d[a] < 0 && p[a] < double(box.lo[a])))
+            return false;
+    return true;
+}
+
+// The leap actually taken from sample k (of kCount), wanting `wanted` samples inside `box` (which holds sample
+// k's voxel): never past the volume exit, and never to a sample whose floor voxel rounding put outside the box.
+// Positions are monotone in t per axis, so checking the last sample of the span checks all of them. Always >= 1.
 inline int64_t leapCount(const GridRay& ray, const RayInterval& iv, double dt, int64_t k, int64_t kCount,
-                         double wanted, const VoxelBox& box, const Vec3i& dims) {
+                         double wanted, const VoxelBox& box) {
     int64_t n = int64_t(std::min(wanted, double(kCount - k)));
-    const VoxelBox volume{{0, 0, 0}, {dims.x - 1, dims.y - 1, dims.z - 1}};
-    while (n > 1) {
-        const Vec3i last = floorVoxel(ray.at(latticeT(iv, dt, k + n - 1)));
-        if (box.contains(last) && volume.contains(last)) break;
-        --n;
-    }
+    while (n > 1 && !beforeFarFaces(ray, latticeT(iv, dt, k + n - 1), box)) --n;
     return std::max<int64_t>(n, 1);
 }
 
