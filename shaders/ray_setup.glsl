@@ -93,7 +93,6 @@ struct VoxelBox {
     ivec3 lo, hi;
 };
 
-
 VoxelBox chebyshevBall(ivec3 v, int r) { return VoxelBox(v - r, v + r); }
 
 VoxelBox octantBox(ivec3 v, int oct, ivec3 ext) {
