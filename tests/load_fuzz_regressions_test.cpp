@@ -111,11 +111,14 @@ TEST(LoadFuzzRegressions, NrrdHeaderWithNulBytes) {
 }
 
 // vtkNrrdReader reads through a null stream (SEGV inside VTK) when the dimension field is missing, comes after the
-// sizes (found by fuzz_nrrd), or leaves it fewer than 2 image axes once it takes the first axis for components.
+// sizes (found by fuzz_nrrd), or leaves it fewer than 2 image axes once it takes the first axis for components; and
+// when the sizes are missing because their key has a trailing space ("sizes : ...", which VTK does not take for
+// "sizes": found by fuzz_nrrd).
 TEST(LoadFuzzRegressions, NrrdHeadersVtkReadsThroughANullStream) {
     expectRefused(kRegressions / "nrrd" / "no_dimension_field.nrrd");
     expectRefused(kRegressions / "nrrd" / "sizes_before_dimension.nrrd");
     expectRefused(kRegressions / "nrrd" / "one_image_axis.nrrd");
+    expectRefused(kRegressions / "nrrd" / "sizes_key_with_a_trailing_space.nrrd");
 }
 
 // " type: " (a key after a space, which vtkNrrdReader does not take for "type") sends vtkNrrdReader::ReadHeader into

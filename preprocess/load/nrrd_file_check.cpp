@@ -62,10 +62,10 @@ void checkNrrdFile(const fs::path& path) {
         if (lineNumber == 1 || line[0] == '#') continue;
         const auto colon = line.find(": ");
         if (colon == std::string::npos || line.find(":=") == colon) continue;  // not a field ("key:=value" pairs)
-        // Keys as vtkNrrdReader matches them: a leading space makes another key (" type" left it without a type,
-        // on which it looped forever: found by fuzz_nrrd).
-        std::string key = line.substr(0, colon);
-        key.erase(key.find_last_not_of(" \t") + 1);
+        // Keys exactly as vtkNrrdReader matches them, untrimmed: a space before or after a key makes another key
+        // (" type" left it without a type, on which it looped forever; "sizes :" without sizes, on which it read
+        // through a null stream: both found by fuzz_nrrd).
+        const std::string key = line.substr(0, colon);
         if (!fields.emplace(key, trim(line.substr(colon + 2))).second)
             throw fail("the field \"" + key + "\" appears twice (header line " + std::to_string(lineNumber) + ")");
         // vtkNrrdReader reads per-axis fields with the dimension it has seen so far (a sizes line before the
