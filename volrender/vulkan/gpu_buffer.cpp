@@ -32,11 +32,39 @@ DeviceBuffer::DeviceBuffer(const VulkanContext& ctx, vk::DeviceSize bytes, vk::B
 namespace {
 
 constexpr vk::ImageUsageFlags kVolumeUsage = vk::ImageUsageFlagBits::eStorage | vk::ImageUsageFlagBits::eTransferDst;
+constexpr vk::MemoryPropertyFlags kHostWritable = vk::MemoryPropertyFlagBits::eDeviceLocal |
+                                                  vk::MemoryPropertyFlagBits::eHostVisible |
+                                                  vk::MemoryPropertyFlagBits::eHostCoherent;
 
-vk::ImageCreateInfo volumeImageInfo(const Vec3i& dims, vk::Format format) {
+// A CPU device's image memory is host memory: its texels are written there in place, through linear tiling
+// (llvmpipe lays out optimal images linearly too), without a staging buffer and a copy. That halves the memory an
+// upload first touches, which on this project's VM costs more than the copying. Elsewhere: optimal tiling, staged.
+vk::ImageTiling volumeTiling(const VulkanContext& ctx, const Vec3i& extent, vk::Format format) {
+    const vk::raii::PhysicalDevice& gpu = ctx.physicalDevice();
+    const auto memory = gpu.getMemoryProperties();
+    const bool hostMemory =
+        ctx.info().type == "cpu" &&
+        std::any_of(memory.memoryTypes.begin(), memory.memoryTypes.begin() + memory.memoryTypeCount,
+                    [](const vk::MemoryType& t) { return (t.propertyFlags & kHostWritable) == kHostWritable; });
+    if (!hostMemory) return vk::ImageTiling::eOptimal;
+    try {
+        const vk::ImageFormatProperties linear =
+            gpu.getImageFormatProperties(format, vk::ImageType::e3D, vk::ImageTiling::eLinear, kVolumeUsage);
+        const vk::Extent3D& max = linear.maxExtent;
+        if (uint32_t(extent.x) <= max.width && uint32_t(extent.y) <= max.height && uint32_t(extent.z) <= max.depth)
+            return vk::ImageTiling::eLinear;
+    } catch (const vk::FormatNotSupportedError&) {
+    }
+    return vk::ImageTiling::eOptimal;
+}
+
+vk::ImageCreateInfo volumeImageInfo(const Vec3i& dims, vk::Format format, vk::ImageTiling tiling) {
+    // Linear images keep what the host writes before their first use (preinitialized).
     return vk::ImageCreateInfo({}, vk::ImageType::e3D, format,
                                vk::Extent3D(uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)), 1, 1,
-                               vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal, kVolumeUsage);
+                               vk::SampleCountFlagBits::e1, tiling, kVolumeUsage, vk::SharingMode::eExclusive, {},
+                               tiling == vk::ImageTiling::eLinear ? vk::ImageLayout::ePreinitialized
+                                                                  : vk::ImageLayout::eUndefined);
 }
 
 }  // namespace
@@ -56,10 +84,10 @@ bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format,
     const vk::raii::PhysicalDevice& gpu = ctx.physicalDevice();
     uint32_t maxDimension = gpu.getProperties().limits.maxImageDimension3D;
     if (limits.maxDimension > 0) maxDimension = std::min(maxDimension, limits.maxDimension);
+    const vk::ImageTiling tiling = volumeTiling(ctx, extent, format);
     vk::ImageFormatProperties format3d;
     try {
-        format3d = gpu.getImageFormatProperties(format, vk::ImageType::e3D, vk::ImageTiling::eOptimal,
-                                                kVolumeUsage);
+        format3d = gpu.getImageFormatProperties(format, vk::ImageType::e3D, tiling, kVolumeUsage);
     } catch (const vk::FormatNotSupportedError&) {
         return false;
     }
@@ -69,7 +97,7 @@ bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format,
         if (extent[a] < 1 || uint32_t(extent[a]) > std::min(maxDimension, formatMax)) return false;
     }
     // The memory the driver asks for, with its padding, against one allocation's limits.
-    const vk::raii::Image probe(ctx.device(), volumeImageInfo(extent, format));
+    const vk::raii::Image probe(ctx.device(), volumeImageInfo(extent, format, tiling));
     const vk::MemoryRequirements req = probe.getMemoryRequirements();
     const auto props = gpu.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceMaintenance3Properties>();
     vk::DeviceSize maxBytes =
@@ -84,8 +112,12 @@ bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format,
 
 VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
                          const void* texels, std::size_t texelBytes)
-    : VolumeImage(ctx, pool, dims, format, texelBytes,
-                  [&](uint8_t* to) { std::memcpy(to, texels, texelBytes); }) {}
+    : VolumeImage(ctx, pool, dims, format, texelBytes, [&](uint8_t* to, std::size_t rowPitch, std::size_t slicePitch) {
+          const std::size_t row = std::size_t(dims.x) * formatBytes(format);
+          const auto* from = static_cast<const uint8_t*>(texels);
+          for (int z = 0; z < dims.z; ++z)
+              for (int y = 0; y < dims.y; ++y, from += row) std::memcpy(to + z * slicePitch + y * rowPitch, from, row);
+      }) {}
 
 VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
                          std::size_t texelBytes, const TexelWriter& write)
@@ -96,38 +128,50 @@ VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& 
         throw std::runtime_error("a volume of " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
                                  std::to_string(dims.z) + " texels exceeds the device's 3D image limit of " +
                                  std::to_string(limits.maxImageDimension3D));
-    image_ = vk::raii::Image(ctx.device(), volumeImageInfo(dims, format));
+    const vk::ImageTiling tiling = volumeTiling(ctx, dims, format);
+    const bool inPlace = tiling == vk::ImageTiling::eLinear;
+    image_ = vk::raii::Image(ctx.device(), volumeImageInfo(dims, format, tiling));
     auto req = image_.getMemoryRequirements();
-    const uint32_t type = ctx.memoryType(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal);
+    const uint32_t type = inPlace ? ctx.memoryType(req.memoryTypeBits, kHostWritable)
+                                  : ctx.memoryType(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal);
     memory_ = vk::raii::DeviceMemory(ctx.device(), vk::MemoryAllocateInfo(req.size, type));
     image_.bindMemory(*memory_, 0);
-    // A CPU device's memory is host memory, first written by the copy below: for a 100 MB volume some 25,000 page
-    // faults on 4 KiB pages, which took longer than the copy itself.
-    const vk::MemoryPropertyFlags flags = ctx.physicalDevice().getMemoryProperties().memoryTypes[type].propertyFlags;
-    if (ctx.info().type == "cpu" && (flags & vk::MemoryPropertyFlagBits::eHostVisible)) {
-        adviseHugePages(memory_.mapMemory(0, req.size), req.size);
-        memory_.unmapMemory();
-    }
-
-    HostBuffer staging(ctx, texelBytes, vk::BufferUsageFlagBits::eTransferSrc);
-    adviseHugePages(staging.data(), texelBytes);
-    write(static_cast<uint8_t*>(staging.data()));
+    const std::size_t row = std::size_t(dims.x) * formatBytes(format), slice = row * dims.y;
     vk::ImageSubresourceRange range(vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1);
-    submitAndWait(ctx, pool, [&](const vk::raii::CommandBuffer& cmd) {
-        using A = vk::AccessFlagBits;
-        using S = vk::PipelineStageFlagBits;
-        vk::ImageMemoryBarrier toDst({}, A::eTransferWrite, vk::ImageLayout::eUndefined,
-                                     vk::ImageLayout::eTransferDstOptimal, VK_QUEUE_FAMILY_IGNORED,
-                                     VK_QUEUE_FAMILY_IGNORED, *image_, range);
-        cmd.pipelineBarrier(S::eTopOfPipe, S::eTransfer, {}, {}, {}, toDst);
-        vk::BufferImageCopy copy(0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, 1),
-                                 {0, 0, 0}, extent);
-        cmd.copyBufferToImage(*staging.buffer(), *image_, vk::ImageLayout::eTransferDstOptimal, copy);
-        vk::ImageMemoryBarrier toRead(A::eTransferWrite, A::eShaderRead, vk::ImageLayout::eTransferDstOptimal,
-                                      kVolumeLayout, VK_QUEUE_FAMILY_IGNORED,
-                                      VK_QUEUE_FAMILY_IGNORED, *image_, range);
-        cmd.pipelineBarrier(S::eTransfer, S::eComputeShader, {}, {}, {}, toRead);
-    });
+    using A = vk::AccessFlagBits;
+    using S = vk::PipelineStageFlagBits;
+    if (inPlace) {
+        auto* mapped = static_cast<uint8_t*>(memory_.mapMemory(0, req.size));
+        // Fresh host memory: some 25,000 page faults per 100 MB on 4 KiB pages, more than the writing itself.
+        adviseHugePages(mapped, req.size);
+        const vk::SubresourceLayout layout =
+            image_.getSubresourceLayout(vk::ImageSubresource(vk::ImageAspectFlagBits::eColor, 0, 0));
+        write(mapped + layout.offset, layout.rowPitch, layout.depthPitch);
+        memory_.unmapMemory();
+        submitAndWait(ctx, pool, [&](const vk::raii::CommandBuffer& cmd) {
+            vk::ImageMemoryBarrier toRead(A::eHostWrite, A::eShaderRead, vk::ImageLayout::ePreinitialized,
+                                          kVolumeLayout, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, *image_,
+                                          range);
+            cmd.pipelineBarrier(S::eHost, S::eComputeShader, {}, {}, {}, toRead);
+        });
+    } else {
+        HostBuffer staging(ctx, texelBytes, vk::BufferUsageFlagBits::eTransferSrc);
+        adviseHugePages(staging.data(), texelBytes);
+        write(static_cast<uint8_t*>(staging.data()), row, slice);
+        submitAndWait(ctx, pool, [&](const vk::raii::CommandBuffer& cmd) {
+            vk::ImageMemoryBarrier toDst({}, A::eTransferWrite, vk::ImageLayout::eUndefined,
+                                         vk::ImageLayout::eTransferDstOptimal, VK_QUEUE_FAMILY_IGNORED,
+                                         VK_QUEUE_FAMILY_IGNORED, *image_, range);
+            cmd.pipelineBarrier(S::eTopOfPipe, S::eTransfer, {}, {}, {}, toDst);
+            vk::BufferImageCopy copy(0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, 1),
+                                     {0, 0, 0}, extent);
+            cmd.copyBufferToImage(*staging.buffer(), *image_, vk::ImageLayout::eTransferDstOptimal, copy);
+            vk::ImageMemoryBarrier toRead(A::eTransferWrite, A::eShaderRead, vk::ImageLayout::eTransferDstOptimal,
+                                          kVolumeLayout, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, *image_,
+                                          range);
+            cmd.pipelineBarrier(S::eTransfer, S::eComputeShader, {}, {}, {}, toRead);
+        });
+    }
     view_ = vk::raii::ImageView(ctx.device(), vk::ImageViewCreateInfo({}, *image_, vk::ImageViewType::e3D, format, {},
                                                                       range));
 }

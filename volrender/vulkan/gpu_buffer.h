@@ -55,10 +55,12 @@ std::size_t formatBytes(vk::Format format);
 bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format, const ImageLimits& limits);
 
 // A 3D image in device-local memory, filled once from host texels and then only read (imageLoad).
+// `texels`: packed, texelBytes in all.
 class VolumeImage {
 public:
-    // Writes the image's texelBytes bytes of texels (x fastest, then y, then z) into its staging memory.
-    using TexelWriter = std::function<void(uint8_t* to)>;
+    // Writes the image's texels (x fastest, then y, then z) to `to`, row y of slice z at to + z * slicePitch +
+    // y * rowPitch: the image's own memory on a CPU device (rows may be padded), a packed staging buffer elsewhere.
+    using TexelWriter = std::function<void(uint8_t* to, std::size_t rowPitch, std::size_t slicePitch)>;
 
     VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
                 const void* texels, std::size_t texelBytes);

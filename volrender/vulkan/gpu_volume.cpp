@@ -13,8 +13,8 @@ namespace vr {
 namespace {
 
 // One image of the whole volume, waiting for the brick plan that every image of the volume fits. Its texels are
-// written row by row straight into each brick's staging memory: a copy of the whole image first, in fresh memory,
-// cost more than the upload itself (page faults on every new page, then a second copy).
+// written row by row straight into each brick's image (or staging) memory: a copy of the whole image first, in
+// fresh memory, cost more than the upload itself (page faults on every new page, then a second copy).
 struct WholeImage {
     std::vector<std::unique_ptr<VolumeImage>>* bricks;
     const char* name;
@@ -134,15 +134,15 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
         for (std::size_t i = 0; i < bricks.size(); ++i) {
             const Brick& b = bricks[i];
             const Vec3i extent{b.imageDims.x, b.imageDims.y, b.imageDims.z * w.slabs};
-            const std::size_t row = texel * b.imageDims.x;
-            const std::size_t bytes = row * b.imageDims.y * extent.z;
+            const std::size_t bytes = texel * b.imageDims.x * b.imageDims.y * extent.z;
             // The brick's box from every slab, stacked along z as the whole image stacks them; slices in parallel.
-            auto write = [&](uint8_t* to) {
+            auto write = [&](uint8_t* to, std::size_t rowPitch, std::size_t slicePitch) {
                 tbb::parallel_for(0, extent.z, [&](int sz) {
                     const int s = sz / b.imageDims.z, z = b.imageLo.z + sz % b.imageDims.z;
-                    uint8_t* slice = to + std::size_t(sz) * b.imageDims.y * row;
+                    uint8_t* slice = to + std::size_t(sz) * slicePitch;
                     for (int y = 0; y < b.imageDims.y; ++y)
-                        w.row(s, linearIndex(dims, b.imageLo.x, b.imageLo.y + y, z), b.imageDims.x, slice + y * row);
+                        w.row(s, linearIndex(dims, b.imageLo.x, b.imageLo.y + y, z), b.imageDims.x,
+                              slice + y * rowPitch);
                 });
             };
             w.bricks->push_back(std::make_unique<VolumeImage>(ctx, pool, extent, w.format, bytes, write));
