@@ -114,7 +114,7 @@ void run(const std::string& name, const Regions& r, int repeat) {
     // buildFields' path: the runs, ACDs and PC shared.
     ACDFields acd;
     std::vector<uint8_t> pc;
-    std::array<EACDField, kOctants> eacd;
+    std::array<ExtentField, kOctants> eacd;
     std::optional<AxialRuns> runs;
     const std::string runsTime = fastest(repeat, [&] {
         runs.emplace(r);
@@ -139,7 +139,7 @@ void run(const std::string& name, const Regions& r, int repeat) {
     uint64_t acdSum = fnv1a(nullptr, 0), eacdSum = acdSum;
     for (int o = 0; o < kOctants; ++o) {
         acdSum = fnv1a(acd[o].data(), acd[o].size(), acdSum);
-        eacdSum = fnv1a(eacd[o].data()->data(), 3 * eacd[o].size(), eacdSum);
+        eacdSum = fnv1a(eacd[o].data(), eacd[o].bytes(), eacdSum);
     }
     std::printf("  checksums:   labels %016llx   PC %016llx   ACD %016llx   EACD %016llx\n",
                 (unsigned long long)fnv1a(reinterpret_cast<const uint8_t*>(r.label.data()), 4 * r.label.size()),
@@ -153,7 +153,7 @@ void run(const std::string& name, const Regions& r, int repeat) {
     for (std::size_t v = 0; v < pc.size(); ++v) {
         pcSum += pc[v];
         acdLeaps += acd[0][v] - 1;
-        const auto& e = eacd[0][v];
+        const Extents e = eacd[0][v];
         eacdX += e[0] - 1;
         eacdDiagonal += std::min({e[0], e[1], e[2]}) - 1;
     }

@@ -97,11 +97,14 @@ void resetPeakResident() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
 // FNV-1a of the bytes of `v`, continuing from h.
 constexpr uint64_t kFnvBasis = 14695981039346656037ull;
+uint64_t fnv1a(const void* data, std::size_t bytes, uint64_t h = kFnvBasis) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    return h;
+}
 template <typename T>
 uint64_t fnv1a(const std::vector<T>& v, uint64_t h = kFnvBasis) {
-    const auto* bytes = reinterpret_cast<const unsigned char*>(v.data());
-    for (std::size_t i = 0; i < v.size() * sizeof(T); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
-    return h;
+    return fnv1a(v.data(), v.size() * sizeof(T), h);
 }
 
 // Checksums of every array of a full preparation, so that a faster stage can be checked bit for bit.
@@ -109,7 +112,7 @@ void printChecksums(const std::string& name, int edge, const vr::PreparedVolume&
     uint64_t acd = kFnvBasis, eacd = kFnvBasis;
     for (int o = 0; o < vr::kOctants; ++o) {
         acd = fnv1a(p.fields.acd[o], acd);
-        eacd = fnv1a(p.fields.eacd[o], eacd);
+        eacd = fnv1a(p.fields.eacd[o].data(), p.fields.eacd[o].bytes(), eacd);
     }
     std::fprintf(stderr,
                  "%s %d^3 checksums: sigma %016llx colour %016llx normal %016llx labels %016llx PC %016llx "

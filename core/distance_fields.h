@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "extent_code.h"
+#include "extent_field.h"
 #include "vec3.h"
 
 namespace vr {
@@ -26,16 +26,14 @@ struct DistanceFields {
     std::vector<uint8_t> pc;
     // ACD: per octant, the edge k >= 1 of the cube {v + s*e : e in [0,k)^3} in v's region and inside the volume.
     std::array<std::vector<uint8_t>, kOctants> acd;
-    // EACD: per octant, extents (ex, ey, ez) >= 1 of the box {v + s*e : 0 <= e_a < ext_a}; exact extents are
-    // >= acd, coded ones (rounded down) may be smaller on some axis.
-    std::array<std::vector<std::array<uint8_t, 3>>, kOctants> eacd;
-    // The code the EACD extents are rounded to (extent_code.h): every stored box is one the code can hold, so the
-    // file and the device store it coded without changing it. The builders give Exact; the pipeline quantises.
-    ExtentCode eacdCode = ExtentCode::Exact;
+    // EACD: per octant, extents (ex, ey, ez) >= 1 of the box {v + s*e : 0 <= e_a < ext_a}, in one code for all
+    // octants (extent_field.h); exact extents are >= acd, coded ones (rounded down) may be smaller on some axis.
+    std::array<ExtentField, kOctants> eacd;
 
     bool hasPC() const { return !pc.empty(); }
     bool hasACD() const { return !acd[0].empty(); }
     bool hasEACD() const { return !eacd[0].empty(); }
+    ExtentCode eacdCode() const { return eacd[0].code(); }
 };
 
 }  // namespace vr

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "distance_fields.h"
+#include "extent_field.h"
 #include "errors.h"
 
 namespace vr {
@@ -88,21 +89,26 @@ ExtentCode parseExtentCode(std::string_view name, std::string_view what) {
                      "' (expected exact, log16 or joint8)");
 }
 
-std::size_t extentCodeBytes(ExtentCode code) {
-    switch (code) {
-        case ExtentCode::Exact: return 3;
-        case ExtentCode::Log16: return 2;
-        case ExtentCode::Joint8: return 1;
-    }
-    return 0;
+const ExtentCodeTerms& extentCodeTerms(ExtentCode code) {
+    // The tables of both compact codes are products of per-axis values, so the largest box inside e takes the
+    // largest value not above e on each axis.
+    static const std::array<ExtentCodeTerms, 3> terms = [] {
+        std::array<ExtentCodeTerms, 3> t{};
+        for (std::size_t v = 0; v < 256; ++v)
+            for (std::size_t a = 0; a < 3; ++a) {
+                t[int(ExtentCode::Exact)][a][v] = uint32_t(v) << (8 * a);
+                t[int(ExtentCode::Log16)][a][v] = uint32_t(kLog16Index[v]) << (5 * a);
+                t[int(ExtentCode::Joint8)][a][v] = kJoint8Index[v] * uint32_t(a == 0 ? 1 : a == 1 ? kJoint8Side
+                                                                                          : kJoint8Side * kJoint8Side);
+            }
+        return t;
+    }();
+    return terms[int(code)];
 }
 
-uint16_t encodeExtents(ExtentCode code, const Extents& e) {
-    // The tables of both codes are products of per-axis values, so the largest box inside e takes the largest
-    // value not above e on each axis.
-    if (code == ExtentCode::Log16)
-        return uint16_t(kLog16Index[e[0]] | (kLog16Index[e[1]] << 5) | (kLog16Index[e[2]] << 10));
-    return uint16_t(kJoint8Index[e[0]] + kJoint8Side * (kJoint8Index[e[1]] + kJoint8Side * kJoint8Index[e[2]]));
+uint32_t encodeExtents(ExtentCode code, const Extents& e) {
+    const ExtentCodeTerms& t = extentCodeTerms(code);
+    return t[0][e[0]] + t[1][e[1]] + t[2][e[2]];
 }
 
 Extents decodeExtents(ExtentCode code, uint16_t coded) {
@@ -123,50 +129,22 @@ const ExtentTable& extentDecodeTable(ExtentCode code) {
     return tables[int(code)];
 }
 
-std::vector<uint8_t> encodeExtentField(ExtentCode code, const std::vector<Extents>& extents) {
-    const std::size_t bytes = extentCodeBytes(code);
-    std::vector<uint8_t> out(extents.size() * bytes);
-    if (code == ExtentCode::Exact) {
-        std::memcpy(out.data(), extents.data(), out.size());
-        return out;
-    }
+ExtentField::ExtentField(ExtentCode code, const std::vector<Extents>& boxes) : ExtentField(code, boxes.size()) {
     static_assert(std::endian::native == std::endian::little, "coded extents are stored little-endian");
-    forEachVoxel(extents.size(), [&](std::size_t i) {
-        const uint16_t c = encodeExtents(code, extents[i]);
-        std::memcpy(&out[i * bytes], &c, bytes);
-    });
-    return out;
-}
-
-std::vector<Extents> decodeExtentField(ExtentCode code, const uint8_t* bytes, std::size_t voxels) {
-    std::vector<Extents> out(voxels);
-    if (code == ExtentCode::Exact) {
-        std::memcpy(out.data(), bytes, voxels * sizeof(Extents));
-        return out;
-    }
     const std::size_t n = extentCodeBytes(code);
-    forEachVoxel(voxels, [&](std::size_t i) {
-        uint16_t c = 0;
-        std::memcpy(&c, bytes + i * n, n);
-        out[i] = decodeExtents(code, c);
+    forEachVoxel(boxes.size(), [&](std::size_t i) {
+        const uint32_t c = encodeExtents(code, boxes[i]);
+        std::memcpy(bytes_.data() + i * n, &c, n);
     });
-    return out;
 }
 
 void quantiseEACD(DistanceFields& fields, ExtentCode code) {
-    fields.eacdCode = code;
-    if (code == ExtentCode::Exact) return;
-    // Both codes round each axis on its own (see encodeExtents): one 256-entry table per axis.
-    std::array<std::array<uint8_t, 256>, 3> round;
-    for (int v = 0; v < 256; ++v) {
-        const Extents q = quantiseExtents(code, {uint8_t(v), uint8_t(v), uint8_t(v)});
-        for (int a = 0; a < 3; ++a) round[std::size_t(a)][std::size_t(v)] = q[std::size_t(a)];
+    for (ExtentField& octant : fields.eacd) {
+        if (octant.empty() || octant.code() == code) continue;
+        std::vector<Extents> boxes(octant.size());
+        forEachVoxel(boxes.size(), [&](std::size_t i) { boxes[i] = octant[i]; });
+        octant = ExtentField(code, boxes);
     }
-    for (auto& octant : fields.eacd)
-        forEachVoxel(octant.size(), [&](std::size_t i) {
-            Extents& e = octant[i];
-            e = {round[0][e[0]], round[1][e[1]], round[2][e[2]]};
-        });
 }
 
 }  // namespace vr

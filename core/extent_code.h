@@ -1,7 +1,7 @@
 // Compact codes for EACD box extents (ALGORITHMS.md section 4, storage). A code rounds every extent DOWN to a
 // value it can hold, so a coded box lies inside the exact one and stays homogeneous: leaps stay conservative and
-// only get shorter. The builders produce Exact extents; the pipeline quantises them once, so memory, the prepared
-// file and the device all hold the same boxes and the CPU reference renders what the GPU renders.
+// only get shorter. The EACD builder writes the code as it goes (extent_field.h), so memory, the prepared file and
+// the device all hold the same bytes and the CPU reference renders what the GPU renders.
 #pragma once
 #include <array>
 #include <cstddef>
@@ -14,7 +14,7 @@ namespace vr {
 struct DistanceFields;
 
 enum class ExtentCode : uint8_t {
-    Exact,   // one byte per axis (3 per octant), the builders' output
+    Exact,   // one byte per axis (3 per octant)
     Log16,   // 5 bits per axis in a uint16 per octant: 1..16 exactly, then geometric (ratio ~1.19) up to 255
     Joint8,  // one byte per octant: an index into a table of box shapes (6 levels per axis, 216 boxes)
 };
@@ -34,10 +34,16 @@ std::string_view extentCodeName(ExtentCode code);  // "exact", "log16", "joint8"
 ExtentCode parseExtentCode(std::string_view name, std::string_view what);
 
 // Stored bytes per voxel and octant: 3 (exact), 2 (log16), 1 (joint8).
-std::size_t extentCodeBytes(ExtentCode code);
+constexpr std::size_t extentCodeBytes(ExtentCode code) {
+    return code == ExtentCode::Exact ? 3 : code == ExtentCode::Log16 ? 2 : 1;
+}
 
-// The code of the largest box the code holds inside extents (each >= 1). Log16 and Joint8 only.
-uint16_t encodeExtents(ExtentCode code, const Extents& extents);
+// Every code is a sum of one term per axis (exact: byte a; log16: 5 bits at 5a; joint8: a level times 6^a): the
+// term of extent 0..255 on each axis, that extent rounded down to a value the code holds.
+using ExtentCodeTerms = std::array<std::array<uint32_t, 256>, 3>;
+const ExtentCodeTerms& extentCodeTerms(ExtentCode code);
+// The code of the largest box the code holds inside extents (each >= 1): the sum of the axes' terms.
+uint32_t encodeExtents(ExtentCode code, const Extents& extents);
 // The extents a code stands for. Log16 and Joint8 only.
 Extents decodeExtents(ExtentCode code, uint16_t coded);
 // decode(encode(extents)): each axis rounded down to the code's values (Exact: unchanged).
@@ -49,12 +55,7 @@ Extents quantiseExtents(ExtentCode code, const Extents& extents);
 // Exact: unused (all 1-voxel boxes).
 const ExtentTable& extentDecodeTable(ExtentCode code);
 
-// One octant's extents as stored: extentCodeBytes(code) little-endian bytes per voxel.
-std::vector<uint8_t> encodeExtentField(ExtentCode code, const std::vector<Extents>& extents);
-// The inverse of encodeExtentField for `voxels` voxels.
-std::vector<Extents> decodeExtentField(ExtentCode code, const uint8_t* bytes, std::size_t voxels);
-
-// Rounds the EACD extents of every octant down to `code` in place and records the code in fields.eacdCode.
+// Recodes every EACD octant to `code`, each box rounded down to it.
 void quantiseEACD(DistanceFields& fields, ExtentCode code);
 
 }  // namespace vr

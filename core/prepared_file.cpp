@@ -68,18 +68,13 @@ ChunkSource source(std::string name, const std::vector<T>& v) {
     return {std::move(name), v.data(), v.size()};
 }
 
-// Coded EACD chunks come from eacdBytes (the coded octants); exact ones are the extents themselves.
-std::vector<ChunkSource> chunkSources(const PreparedVolume& p,
-                                      const std::array<std::vector<uint8_t>, kOctants>& eacdBytes) {
-    const bool coded = p.fields.eacdCode != ExtentCode::Exact;
+std::vector<ChunkSource> chunkSources(const PreparedVolume& p) {
     std::vector<ChunkSource> all = {source("sigma", p.classified.sigma), source("colour", p.classified.colour),
                                     source("normal", p.classified.normal), source("labels", p.regions.label),
                                     source("pc", p.fields.pc)};
     for (int o = 0; o < kOctants; ++o) all.push_back(source("acd" + std::to_string(o), p.fields.acd[o]));
     for (int o = 0; o < kOctants; ++o)
-        all.push_back({"eacd" + std::to_string(o),
-                       coded ? static_cast<const void*>(eacdBytes[o].data()) : p.fields.eacd[o].data(),
-                       p.fields.eacd[o].size()});
+        all.push_back({"eacd" + std::to_string(o), p.fields.eacd[o].data(), p.fields.eacd[o].size()});
     std::erase_if(all, [](const ChunkSource& c) { return c.elements == 0; });
     return all;
 }
@@ -128,11 +123,13 @@ void checkSizes(const fs::path& path, const PreparedVolume& p) {
     if (p.classified.sigma.size() != g.voxels() || p.classified.colour.size() != g.voxels() ||
         p.regions.label.size() != g.voxels())
         throw fail("sigma, colour and labels must hold one value per voxel");
-    for (const ChunkSource& c : chunkSources(p, {}))
+    for (const ChunkSource& c : chunkSources(p))
         if (c.elements != g.voxels()) throw fail("chunk '" + c.name + "' does not hold one value per voxel");
     for (int o = 1; o < kOctants; ++o)
         if (p.fields.acd[o].empty() != p.fields.acd[0].empty() || p.fields.eacd[o].empty() != p.fields.eacd[0].empty())
             throw fail("ACD and EACD need all 8 octants or none");
+    for (const ExtentField& octant : p.fields.eacd)
+        if (octant.code() != p.fields.eacdCode()) throw fail("the EACD octants are in different codes");
 }
 
 // Reading: every problem becomes an InputError naming the file. pread() lets chunks be read from many threads.
@@ -210,10 +207,16 @@ struct ChunkRead {
 };
 
 template <typename T>
-std::function<char*()> destination(std::vector<T>& vec, std::size_t elements) {
-    return [&vec, elements] {
-        vec.resize(elements);
+std::function<char*()> destination(std::vector<T>& vec, std::size_t bytes, ExtentCode) {
+    return [&vec, bytes] {
+        vec.resize(bytes / sizeof(T));
         return reinterpret_cast<char*>(vec.data());
+    };
+}
+std::function<char*()> destination(ExtentField& field, std::size_t bytes, ExtentCode code) {
+    return [&field, bytes, code] {
+        field = ExtentField(code, bytes / extentCodeBytes(code));
+        return reinterpret_cast<char*>(field.data());
     };
 }
 
@@ -254,11 +257,8 @@ void readChunks(const Reader& r, uint64_t dataStart, const std::vector<ChunkRead
 void writePrepared(const fs::path& path, const PreparedVolume& p) {
     checkSizes(path, p);
     const GridGeometry& g = p.classified.grid;
-    const ExtentCode code = p.fields.eacdCode;
-    std::array<std::vector<uint8_t>, kOctants> eacdBytes;
-    if (code != ExtentCode::Exact)
-        for (int o = 0; o < kOctants; ++o) eacdBytes[o] = encodeExtentField(code, p.fields.eacd[o]);
-    std::vector<ChunkSource> chunks = chunkSources(p, eacdBytes);
+    const ExtentCode code = p.fields.eacdCode();
+    std::vector<ChunkSource> chunks = chunkSources(p);
 
     json table = json::array();
     uint64_t offset = 0;
@@ -360,8 +360,9 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     p.meta.segmentation.trilinear = field<bool>(r, meta, "trilinear");
     p.meta.distanceCap = int(countField(r, meta, "distanceCap", kDistanceCap));
     p.meta.statistics = field<json>(r, meta, "statistics");
+    ExtentCode eacdCode;
     try {
-        p.fields.eacdCode = parseExtentCode(field<std::string>(r, header, "eacdCode"), "'eacdCode'");
+        eacdCode = parseExtentCode(field<std::string>(r, header, "eacdCode"), "'eacdCode'");
     } catch (const InputError& e) {
         throw r.fail(std::string("bad header: ") + e.what());
     }
@@ -370,7 +371,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     std::map<std::string, ChunkEntry> table;
     for (const json& c : field<json>(r, header, "chunks")) {
         auto name = field<std::string>(r, c, "name");
-        ChunkLayout l = layoutOf(name, p.fields.eacdCode);
+        ChunkLayout l = layoutOf(name, eacdCode);
         if (!l.type) throw r.fail("bad header: unknown chunk '" + name + "'");
         if (table.count(name)) throw r.fail("bad header: chunk '" + name + "' appears twice");
         if (field<std::string>(r, c, "type") != l.type || countField(r, c, "components", 3) != uint64_t(l.components))
@@ -391,9 +392,9 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     auto has = [&](const std::string& name) { return table.count(name) > 0; };
     std::vector<ChunkRead> reads;
     // The table's sizes were checked against the dims and the chunk's layout above.
-    auto want = [&](const std::string& name, auto& vec) {
+    auto want = [&](const std::string& name, auto& to) {
         const ChunkEntry& e = table.at(name);
-        reads.push_back({name, e, destination(vec, e.bytes / sizeof(vec[0]))});
+        reads.push_back({name, e, destination(to, e.bytes, eacdCode)});
     };
     auto wantOctants = [&](const std::string& prefix, const char* label, auto& arrays) {
         for (int o = 0; o < kOctants; ++o) {
@@ -403,9 +404,6 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
             want(name, arrays[o]);
         }
     };
-    // Coded EACD is read as bytes and decoded after the read; exact extents go straight to their arrays.
-    const bool eacdCoded = (fields & kFieldEACD) && p.fields.eacdCode != ExtentCode::Exact;
-    std::array<std::vector<uint8_t>, kOctants> eacdBytes;
     for (const char* required : {"sigma", "colour", "labels"})
         if (!has(required)) throw r.fail(std::string("has no '") + required + "' chunk");
     want("sigma", p.classified.sigma);
@@ -418,16 +416,8 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
         want("pc", p.fields.pc);
     }
     if (fields & kFieldACD) wantOctants("acd", "ACD", p.fields.acd);
-    if (eacdCoded)
-        wantOctants("eacd", "EACD", eacdBytes);
-    else if (fields & kFieldEACD)
-        wantOctants("eacd", "EACD", p.fields.eacd);
+    if (fields & kFieldEACD) wantOctants("eacd", "EACD", p.fields.eacd);
     readChunks(r, dataStart, reads);
-    if (eacdCoded)
-        for (int o = 0; o < kOctants; ++o) {
-            p.fields.eacd[o] = decodeExtentField(p.fields.eacdCode, eacdBytes[o].data(), voxelCount(n));
-            eacdBytes[o] = {};
-        }
 
     // The labels must name regions that exist: whatever indexes per-region data by label relies on it.
     const std::vector<uint32_t>& label = p.regions.label;

@@ -61,7 +61,7 @@ long long fieldBytes(const DistanceFields& f, Caster c) {
         case Caster::Primitive: return 0;
         case Caster::PC: return (long long)f.pc.size();
         case Caster::ACD: return (long long)(f.acd[0].size() * kOctants);
-        case Caster::EACD: return (long long)(f.eacd[0].size() * kOctants * extentCodeBytes(f.eacdCode));
+        case Caster::EACD: return (long long)(f.eacd[0].bytes() * kOctants);
     }
     return 0;
 }

@@ -204,9 +204,9 @@ TEST(FieldsBruteForce, EACDEqualsTheNaiveGreedyEverywhere) {
         SCOPED_TRACE(name);
         std::array<std::vector<uint8_t>, kOctants> acd;
         for (int o = 0; o < kOctants; ++o) acd[o] = buildACD(r, o);
-        const std::array<EACDField, kOctants> all = buildEACD(r, acd);
+        const std::array<ExtentField, kOctants> all = buildEACD(r, acd);
         for (int o = 0; o < kOctants; ++o) {
-            const EACDField one = buildEACD(r, acd[o], o);  // one octant alone gives the same field
+            const ExtentField one = buildEACD(r, acd[o], o);  // one octant alone gives the same field
             ASSERT_EQ(one, all[o]) << "octant " << o;
             for (std::size_t v = 0; v < one.size(); ++v) {
                 const Box expected = bruteEACD(r, coordOf(r.dims, v), o);
@@ -278,7 +278,7 @@ TEST(FieldsBuild, CodedEACDIsTheExactOneQuantised) {
         DistanceFields rounded = exact;
         quantiseEACD(rounded, code);
         const DistanceFields coded = buildFields(r, kFieldPC | kFieldEACD, code, [](FieldKind) {});
-        EXPECT_EQ(coded.eacdCode, code);
+        EXPECT_EQ(coded.eacdCode(), code);
         EXPECT_EQ(coded.pc, exact.pc);
         for (int o = 0; o < kOctants; ++o) ASSERT_EQ(coded.eacd[o], rounded.eacd[o]) << "octant " << o;
     }

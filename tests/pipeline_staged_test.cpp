@@ -51,7 +51,6 @@ void expectSameAsFresh(const StagedPreparation& staged, const PreparedVolume& p,
     EXPECT_EQ(p.fields.pc, f.fields.pc);
     EXPECT_EQ(p.fields.acd, f.fields.acd);
     EXPECT_EQ(p.fields.eacd, f.fields.eacd);
-    EXPECT_EQ(p.fields.eacdCode, f.fields.eacdCode);
     EXPECT_EQ(p.meta.source, f.meta.source);
     EXPECT_EQ(p.meta.classification, f.meta.classification);
     EXPECT_EQ(p.meta.segmentation.opacityThreshold, f.meta.segmentation.opacityThreshold);

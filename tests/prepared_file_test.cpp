@@ -36,12 +36,15 @@ PreparedVolume samplePrepared(Vec3i dims) {
     p.regions.count = 16;
     p.fields.dims = dims;
     for (std::size_t i = 0; i < n; ++i) p.fields.pc.push_back(uint8_t(noise.values[i]) % 7);
-    for (int o = 0; o < kOctants; ++o)
+    for (int o = 0; o < kOctants; ++o) {
+        std::vector<Extents> boxes;
         for (std::size_t i = 0; i < n; ++i) {
             uint8_t a = uint8_t(1 + (uint8_t(noise.values[i]) + o) % 9);
             p.fields.acd[o].push_back(a);
-            p.fields.eacd[o].push_back({a, uint8_t(a + o), uint8_t(a + 2 * o)});
+            boxes.push_back({a, uint8_t(a + o), uint8_t(a + 2 * o)});
         }
+        p.fields.eacd[o] = ExtentField(ExtentCode::Exact, boxes);
+    }
     p.meta.source = "phantom:noise";
     p.meta.classification = R"([{"Points": [0, 0, 0.5, 0, 255, 1, 0.5, 0]}])";
     p.meta.segmentation = {0.01, 3.0, true, true};
@@ -229,18 +232,18 @@ TEST_F(PreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
         EXPECT_EQ(split(bad).data.size(), exactBytes - kOctants * voxels * (3 - extentCodeBytes(code)));
 
         const PreparedVolume r = readPrepared(bad);
-        EXPECT_EQ(r.fields.eacdCode, code);
+        EXPECT_EQ(r.fields.eacdCode(), code);
         EXPECT_EQ(r.fields.eacd, p.fields.eacd);
         EXPECT_EQ(r.fields.acd, p.fields.acd);
         EXPECT_FALSE(readPrepared(bad, kFieldPC).fields.hasEACD());
-
-        // Extents the code cannot hold are stored rounded down, never up.
-        PreparedVolume unrounded = prepared;
-        unrounded.fields.eacdCode = code;
-        writePrepared(bad, unrounded);
-        EXPECT_EQ(readPrepared(bad, kFieldEACD).fields.eacd, p.fields.eacd);
     }
-    EXPECT_EQ(readPrepared(good).fields.eacdCode, ExtentCode::Exact);
+    EXPECT_EQ(readPrepared(good).fields.eacdCode(), ExtentCode::Exact);
+
+    // The octants must share one code: the header names one.
+    PreparedVolume mixed = prepared;
+    quantiseEACD(mixed.fields, ExtentCode::Log16);
+    mixed.fields.eacd[6] = prepared.fields.eacd[6];
+    EXPECT_THROW(writePrepared(bad, mixed), InputError);
 }
 
 TEST_F(PreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {

@@ -50,10 +50,11 @@ std::string headsqArgs(const fs::path& output) {
            " -o " + q(output);
 }
 
-template <typename T, typename Get>
-double mean(const std::vector<T>& v, Get get) {
+// Mean of get(v[i]) over a field (a vector or an ExtentField).
+template <typename Field, typename Get>
+double mean(const Field& v, Get get) {
     double s = 0;
-    for (const T& x : v) s += get(x);
+    for (std::size_t i = 0; i < v.size(); ++i) s += get(v[i]);
     return s / double(v.size());
 }
 
@@ -95,9 +96,9 @@ TEST(Volprep, PreparesTheHeadCtAndItReadsBackConsistently) {
         EXPECT_NEAR(acd, s["leaps"]["acdMeanEdge"][0].get<double>(), 1e-9) << "octant " << o;
         for (int a = 0; a < 3; ++a)
             EXPECT_NEAR(s["leaps"]["eacdMeanExtent"][o][a].get<double>(),
-                        mean(p.fields.eacd[o], [a](const std::array<uint8_t, 3>& x) { return x[a]; }), 1e-9);
+                        mean(p.fields.eacd[o], [a](const Extents& x) { return x[a]; }), 1e-9);
     }
-    EXPECT_EQ(p.fields.eacdCode, ExtentCode::Log16);  // the default: 2 bytes per octant
+    EXPECT_EQ(p.fields.eacdCode(), ExtentCode::Log16);  // the default: 2 bytes per octant
     EXPECT_EQ(s["eacdCode"], "log16");
     EXPECT_EQ(s["bytes"]["eacd"].get<std::size_t>(), 16 * n);
     EXPECT_EQ(s["bytes"]["sigma"].get<std::size_t>(), 4 * n);
@@ -115,7 +116,7 @@ TEST(Volprep, StoresEacdInTheCodeAsked) {
         ASSERT_EQ(r.status, 0) << r.err;
         EXPECT_NE(r.out.find(name + " code"), std::string::npos) << r.out;
         p[code] = readPrepared(out, kFieldEACD, false);
-        EXPECT_EQ(p[code].fields.eacdCode, code);
+        EXPECT_EQ(p[code].fields.eacdCode(), code);
         EXPECT_EQ(p[code].meta.statistics["bytes"]["eacd"].get<std::size_t>(),
                   kOctants * extentCodeBytes(code) * p[code].classified.grid.voxels());
     }

@@ -27,7 +27,7 @@ void printSummary(std::FILE* out, const std::filesystem::path& output, const Pre
     }
     if (leaps.contains("eacdMeanExtent")) {
         std::fprintf(out, "  mean EACD extents octants 0-7 (x,y,z; %s code):",
-                     std::string(extentCodeName(p.fields.eacdCode)).c_str());
+                     std::string(extentCodeName(p.fields.eacdCode())).c_str());
         for (const auto& e : leaps["eacdMeanExtent"])
             std::fprintf(out, " (%.2f,%.2f,%.2f)", e[0].get<double>(), e[1].get<double>(), e[2].get<double>());
         std::fprintf(out, "\n");

@@ -100,7 +100,6 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode ea
     }
     if (kinds & kFieldEACD) {
         f.eacd = buildEACD(runs, acds, eacdCode);
-        f.eacdCode = eacdCode;
         done(kFieldEACD);
     }
     if (kinds & kFieldACD) f.acd = std::move(acds);

@@ -14,7 +14,6 @@
 
 namespace vr {
 
-using EACDField = std::vector<std::array<uint8_t, 3>>;
 using ACDFields = std::array<std::vector<uint8_t>, kOctants>;
 
 // PC from the eight ACD passes (no ACD is kept).
@@ -24,16 +23,17 @@ std::vector<uint8_t> pcFromACD(const ACDFields& acd);
 std::vector<uint8_t> buildACD(const Regions& regions, int octant);
 // All eight octants, in parallel, sharing the axial runs: acd[o] is buildACD(regions, o).
 ACDFields buildACDs(const Regions& regions);
-EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant);
+// In the exact code.
+ExtentField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant);
 // All eight octants, one at a time on the same runs and working memory: acd[o] is buildACD(regions, o).
-std::array<EACDField, kOctants> buildEACD(const Regions& regions, const ACDFields& acd);
+std::array<ExtentField, kOctants> buildEACD(const Regions& regions, const ACDFields& acd);
 
 // The same builders on axial runs shared between them (each run field is computed once).
 std::vector<uint8_t> buildACD(AxialRuns& runs, int octant);
 ACDFields buildACDs(AxialRuns& runs);
-// code: every extent rounded down to that code as it is stored (quantiseExtents; Exact leaves them as built).
-std::array<EACDField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd,
-                                          ExtentCode code = ExtentCode::Exact);
+// code: every extent written in that code, rounded down to it (quantiseExtents; Exact leaves them as built).
+std::array<ExtentField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd,
+                                            ExtentCode code = ExtentCode::Exact);
 
 // kinds: a mask of FieldKind. EACD needs ACD internally; ACD is kept only when asked for. The fastest way to get
 // several fields: the runs, ACDs and PC are shared.
@@ -41,8 +41,8 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds);
 // The same, calling done(kind) as each field is finished, so that a caller can time them: ACD first (with the axial
 // runs; also when it is built only for EACD), then PC (alone when only PC is asked for), then EACD.
 DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::function<void(FieldKind)>& done);
-// The same with the EACD rounded down to eacdCode as it is built (fields.eacdCode records it): what
-// quantiseEACD(buildFields(regions, kinds), eacdCode) gives, without a second pass over the extents.
+// The same with the EACD written in eacdCode as it is built: what quantiseEACD(buildFields(regions, kinds),
+// eacdCode) gives, without an exact copy and a second pass over the extents.
 DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
                            const std::function<void(FieldKind)>& done);
 

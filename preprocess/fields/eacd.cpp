@@ -33,25 +33,16 @@ void findWidestAxes(OctantState& st) {
     });
 }
 
-// Per axis a, every extent 0..255 rounded down to a code (the codes round each axis on its own, extent_code.h),
-// placed in byte a of a word: a voxel's three extents are then one 4-byte store.
-using Rounding = std::array<std::array<uint32_t, 256>, 3>;
-Rounding roundingTables(ExtentCode code) {
-    static_assert(std::endian::native == std::endian::little, "byte a of a word is its bits 8a..8a+7");
-    Rounding r;
-    for (int v = 0; v < 256; ++v) {
-        const Extents e = quantiseExtents(code, {uint8_t(v), uint8_t(v), uint8_t(v)});
-        for (int a = 0; a < 3; ++a) r[a][v] = uint32_t(e[a]) << (8 * a);
-    }
-    return r;
-}
-
 // Step 3: the box is k on every axis but the widest a (step 1's extension) and the better of the two others
-// (ties to the lower axis). Computed in planar blocks, then interleaved and rounded down to the code.
-void chooseBoxes(const OctantState& st, const Rounding& round, EACDField& out) {
+// (ties to the lower axis). Computed in planar blocks, then written in the field's code: the sum of one term per
+// axis (extent_code.h), stored as the code's bytes.
+void chooseBoxes(const OctantState& st, ExtentField& out) {
     const uint8_t* acd = st.acd->data();
     const uint8_t *ex = st.ext[0].data(), *ey = st.ext[1].data(), *ez = st.ext[2].data();
     const uint8_t* widest = st.widest.data();
+    const ExtentCodeTerms& term = extentCodeTerms(out.code());
+    const std::size_t codeBytes = extentCodeBytes(out.code());
+    static_assert(std::endian::native == std::endian::little, "a code's bytes are the low bytes of its word");
     constexpr std::size_t kBlock = 4096;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), kBlock), [&](const auto& range) {
         for (std::size_t at = range.begin(); at < range.end(); at += kBlock) {
@@ -67,29 +58,21 @@ void chooseBoxes(const OctantState& st, const Rounding& round, EACDField& out) {
                 store(box[1] + i, select(onY | (onX & yz) | (onZ & (xy == 0)), y, k));
                 store(box[2] + i, select(onZ | (onX & (yz == 0)) | (onY & (xz == 0)), z, k));
             });
-            // Each voxel's word overlaps the next voxel's first byte, rewritten next; the block's last voxel
-            // takes 3 bytes, as the byte after it may be another thread's.
-            static_assert(sizeof(Extents) == 3);
-            uint8_t* bytes = out[at].data();
-            auto word = [&](std::size_t i) { return round[0][box[0][i]] | round[1][box[1][i]] | round[2][box[2][i]]; };
-            for (std::size_t i = 0; i + 1 < count; ++i) {
-                const uint32_t w = word(i);
-                std::memcpy(bytes + 3 * i, &w, 4);
+            // A voxel's 4-byte word spills into the next voxels' bytes, rewritten next; the block's last voxels
+            // write only their own, as the bytes after the block may be another thread's.
+            uint8_t* bytes = out.data() + at * codeBytes;
+            std::size_t i = 0;
+            auto word = [&] { return term[0][box[0][i]] + term[1][box[1][i]] + term[2][box[2][i]]; };
+            for (; codeBytes * i + 4 <= codeBytes * count; ++i) {
+                const uint32_t w = word();
+                std::memcpy(bytes + codeBytes * i, &w, 4);
             }
-            const uint32_t last = word(count - 1);
-            std::memcpy(bytes + 3 * (count - 1), &last, 3);
+            for (; i < count; ++i) {
+                const uint32_t w = word();
+                std::memcpy(bytes + codeBytes * i, &w, codeBytes);
+            }
         }
     });
-}
-
-// `out` holding n zero extents. resize() would fill the 3-byte elements one at a time (7 instructions each: a
-// third of a CPU second for the 8 octants at 256^3); copies of a block of zeros go at memcpy's speed.
-void resizeZeroed(EACDField& out, std::size_t n) {
-    static constexpr std::array<Extents, 4096> kZeros{};
-    out.clear();
-    out.reserve(n);
-    while (out.size() < n)
-        out.insert(out.end(), kZeros.begin(), kZeros.begin() + std::min(kZeros.size(), n - out.size()));
 }
 
 // The ACD of octant o, checked against the regions.
@@ -110,41 +93,39 @@ void extendOctant(OctantState& st, int o, const std::vector<uint8_t>& acd) {
 
 }  // namespace
 
-EACDField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant) {
+ExtentField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, int octant) {
     if (octant < 0 || octant >= kOctants) throw std::invalid_argument("buildEACD: no octant " + std::to_string(octant));
     AxialRuns runs(regions);
     checkACD(runs, octant, acd);
     OctantState state(runs);
     extendOctant(state, octant, acd);
-    EACDField out;
-    resizeZeroed(out, acd.size());
-    chooseBoxes(state, roundingTables(ExtentCode::Exact), out);
+    ExtentField out(ExtentCode::Exact, acd.size());
+    chooseBoxes(state, out);
     return out;
 }
 
-std::array<EACDField, kOctants> buildEACD(const Regions& regions, const ACDFields& acd) {
+std::array<ExtentField, kOctants> buildEACD(const Regions& regions, const ACDFields& acd) {
     AxialRuns runs(regions);
     return buildEACD(runs, acd);
 }
 
-std::array<EACDField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd, ExtentCode code) {
+std::array<ExtentField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd, ExtentCode code) {
     for (int o = 0; o < kOctants; ++o) checkACD(runs, o, acd[o]);
-    std::array<EACDField, kOctants> out;
+    std::array<ExtentField, kOctants> out;
     // Each output is zeroed (and its pages mapped) by a task of its own, waited for just before its octant's boxes
     // are chosen: a thread done with its walks while the other still walks takes them (the three walks of a step
     // on two threads leave about a tenth of the time idle otherwise).
     std::array<tbb::task_group, kOctants> sizing;
-    for (int o = 0; o < kOctants; ++o) sizing[o].run([&, o] { resizeZeroed(out[o], acd[o].size()); });
+    for (int o = 0; o < kOctants; ++o) sizing[o].run([&, o] { out[o] = ExtentField(code, acd[o].size()); });
     // One octant at a time: 7 bytes of working memory per voxel, 2 of them the runs along x copied for the walks
     // (0.9 GB at 512^3, where the footprint makes fresh pages dear). (Batches of two opposite octants took as long,
     // with twice the memory; batches of four, sharing each table by two octants, too: what the tables saved,
     // mapping the memory cost.)
     OctantState state(runs);
-    const Rounding round = roundingTables(code);
     for (int o = 0; o < kOctants; ++o) {
         extendOctant(state, o, acd[o]);
         sizing[o].wait();
-        chooseBoxes(state, round, out[o]);
+        chooseBoxes(state, out[o]);
     }
     return out;
 }

@@ -45,9 +45,9 @@ private:
     StageClock clock_;
 };
 
-// Mean of get(element) over a field, in parallel (get returns one uint8 distance).
-template <typename T, typename Get>
-double meanOf(const std::vector<T>& v, Get get) {
+// Mean of get(element) over a field (a vector or an ExtentField), in parallel (get returns one uint8 distance).
+template <typename Field, typename Get>
+double meanOf(const Field& v, Get get) {
     if (v.empty()) return 0;
     double sum = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, v.size()), 0.0,
@@ -74,7 +74,7 @@ DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCo
     const unsigned built = (kinds & kFieldEACD ? kinds | kFieldACD : kinds) & (kFieldPC | kFieldACD | kFieldEACD);
     ProgressBar bar("fields", std::popcount(built));
     StageClock clock;
-    // The EACD is rounded down to eacdCode as it is built: memory, file and device then hold the same boxes.
+    // The EACD is written in eacdCode as it is built: memory, file and device then hold the same bytes.
     DistanceFields f = buildFields(regions, kinds, eacdCode, [&](FieldKind kind) {
         stages.push_back(clock.stop(kind == kFieldPC ? "pc" : kind == kFieldACD ? "acd" : "eacd"));
         bar.advance();
@@ -122,7 +122,7 @@ json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& s
         json extents = json::array();
         for (int o = 0; o < kOctants; ++o) {
             json e = json::array();
-            for (int a = 0; a < 3; ++a) e.push_back(meanOf(f.eacd[o], [a](const std::array<uint8_t, 3>& x) { return x[a]; }));
+            for (int a = 0; a < 3; ++a) e.push_back(meanOf(f.eacd[o], [a](const Extents& x) { return x[a]; }));
             extents.push_back(e);
         }
         leaps["eacdMeanExtent"] = extents;
@@ -133,12 +133,12 @@ json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& s
     std::size_t acd = 0, eacd = 0;
     for (int o = 0; o < kOctants; ++o) {
         acd += bytesOf(f.acd[o]);
-        eacd += f.eacd[o].size() * extentCodeBytes(f.eacdCode);  // as stored: coded
+        eacd += f.eacd[o].bytes();
     }
     s["bytes"] = {{"sigma", bytesOf(p.classified.sigma)}, {"colour", bytesOf(p.classified.colour)},
                   {"normal", bytesOf(p.classified.normal)}, {"labels", bytesOf(p.regions.label)},
                   {"pc", bytesOf(f.pc)}, {"acd", acd}, {"eacd", eacd}};
-    s["eacdCode"] = extentCodeName(f.eacdCode);
+    s["eacdCode"] = extentCodeName(f.eacdCode());
     json seconds = json::object(), cpuSeconds = json::object();
     for (const StageTime& t : stages) {
         seconds[t.stage] = t.seconds;

@@ -45,7 +45,7 @@ vk::Format eacdFormat(ExtentCode code) {
 
 GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const PreparedVolume& prepared,
                      const GpuVolumeContents& contents, const ImageLimits& limits)
-    : grid_(prepared.classified.grid), contents_(contents), eacdCode_(prepared.fields.eacdCode) {
+    : grid_(prepared.classified.grid), contents_(contents), eacdCode_(prepared.fields.eacdCode()) {
     slot_.fill(-1);
     const bool shading = contents.shading;
     const unsigned octants = contents.octants;
@@ -101,22 +101,18 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
                               [&f, &octantOfSlot](int slab, std::size_t first, int count, uint8_t* to) {
                                   std::memcpy(to, f.acd[octantOfSlot[slab]].data() + first, count);
                               }});
-        if (caster == Caster::EACD && f.eacdCode == ExtentCode::Exact)
+        if (caster == Caster::EACD && f.eacdCode() == ExtentCode::Exact)
             wholes.push_back({&fields_[int(caster)], "eacd", int(octantOfSlot.size()), vk::Format::eR8G8B8A8Uint,
                               [&f, &octantOfSlot](int slab, std::size_t first, int count, uint8_t* to) {
-                                  const Extents* e = f.eacd[octantOfSlot[slab]].data() + first;
-                                  for (int i = 0; i < count; ++i, to += 4)
-                                      to[0] = e[i][0], to[1] = e[i][1], to[2] = e[i][2], to[3] = 0;
+                                  const uint8_t* e = f.eacd[octantOfSlot[slab]].data() + 3 * first;
+                                  for (int i = 0; i < count; ++i, to += 4, e += 3)
+                                      to[0] = e[0], to[1] = e[1], to[2] = e[2], to[3] = 0;
                               }});
-        else if (caster == Caster::EACD)  // the bytes of encodeExtentField, row by row
-            wholes.push_back({&fields_[int(caster)], "eacd", int(octantOfSlot.size()), eacdFormat(f.eacdCode),
+        else if (caster == Caster::EACD)  // the field's own bytes
+            wholes.push_back({&fields_[int(caster)], "eacd", int(octantOfSlot.size()), eacdFormat(f.eacdCode()),
                               [&f, &octantOfSlot](int slab, std::size_t first, int count, uint8_t* to) {
-                                  const std::size_t bytes = extentCodeBytes(f.eacdCode);
-                                  const Extents* e = f.eacd[octantOfSlot[slab]].data() + first;
-                                  for (int i = 0; i < count; ++i, to += bytes) {
-                                      const uint16_t c = encodeExtents(f.eacdCode, e[i]);
-                                      std::memcpy(to, &c, bytes);  // little-endian, as encodeExtentField
-                                  }
+                                  const std::size_t bytes = extentCodeBytes(f.eacdCode());
+                                  std::memcpy(to, f.eacd[octantOfSlot[slab]].data() + bytes * first, bytes * count);
                               }});
     }
 
