@@ -127,6 +127,26 @@ TEST(VulkanUploads, ARenderUploadsOnlyWhatItReads) {
     expectNoValidationErrors();
 }
 
+// lavapipe's uploads write texels in place, into linear images whose rows are padded (to 64 bytes, and to 64 rows
+// a slice); a GPU's go through a staging buffer. Both give the same images and leaps, shaded and unshaded, with
+// volume sides that are no multiple of the padding.
+TEST(VulkanUploads, StagedUploadsRenderWhatInPlaceUploadsRender) {
+    static VulkanRenderer staged(context(), 20, ImageLimits{0, 0, true});
+    const PreparedVolume p = prepare(shellsPhantom({21, 18, 13}), 0.02, 10, false);
+    for (const Camera& cam : {Camera::fit(p.classified.grid, view(30, 20)),
+                              Camera::fit(p.classified.grid, view(200, -25, Projection::Perspective))})
+        for (Caster c : kCasters)
+            for (bool shading : {false, true}) {
+                SCOPED_TRACE(std::string(casterName(c)) + (shading ? " shaded" : ""));
+                const RenderResult inPlace = whole().render(p, cam, settings(c, shading));
+                const RenderResult copied = staged.render(p, cam, settings(c, shading));
+                EXPECT_EQ(maxAbsDifference(copied.image, inPlace.image), 0.0);
+                EXPECT_EQ(copied.iterations, inPlace.iterations);
+                EXPECT_EQ(bytesByName(staged.lastUploads()), bytesByName(whole().lastUploads()));
+            }
+    expectNoValidationErrors();
+}
+
 // One upload for an orbit and every caster: each render reads (and reports) its own part, and renders what a
 // render that uploads for itself renders.
 TEST(VulkanUploads, OneUploadServesAnOrbitOfEveryCaster) {

@@ -38,12 +38,13 @@ constexpr vk::MemoryPropertyFlags kHostWritable = vk::MemoryPropertyFlagBits::eD
 
 // A CPU device's image memory is host memory: its texels are written there in place, through linear tiling
 // (llvmpipe lays out optimal images linearly too), without a staging buffer and a copy. That halves the memory an
-// upload first touches, which on this project's VM costs more than the copying. Elsewhere: optimal tiling, staged.
-vk::ImageTiling volumeTiling(const VulkanContext& ctx, const Vec3i& extent, vk::Format format) {
+// upload first touches, which on this project's VM costs more than the copying. Elsewhere, or when `staged`:
+// optimal tiling, through a staging buffer.
+vk::ImageTiling volumeTiling(const VulkanContext& ctx, const Vec3i& extent, vk::Format format, bool staged) {
     const vk::raii::PhysicalDevice& gpu = ctx.physicalDevice();
     const auto memory = gpu.getMemoryProperties();
     const bool hostMemory =
-        ctx.info().type == "cpu" &&
+        !staged && ctx.info().type == "cpu" &&
         std::any_of(memory.memoryTypes.begin(), memory.memoryTypes.begin() + memory.memoryTypeCount,
                     [](const vk::MemoryType& t) { return (t.propertyFlags & kHostWritable) == kHostWritable; });
     if (!hostMemory) return vk::ImageTiling::eOptimal;
@@ -84,7 +85,7 @@ bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format,
     const vk::raii::PhysicalDevice& gpu = ctx.physicalDevice();
     uint32_t maxDimension = gpu.getProperties().limits.maxImageDimension3D;
     if (limits.maxDimension > 0) maxDimension = std::min(maxDimension, limits.maxDimension);
-    const vk::ImageTiling tiling = volumeTiling(ctx, extent, format);
+    const vk::ImageTiling tiling = volumeTiling(ctx, extent, format, limits.staged);
     vk::ImageFormatProperties format3d;
     try {
         format3d = gpu.getImageFormatProperties(format, vk::ImageType::e3D, tiling, kVolumeUsage);
@@ -120,7 +121,7 @@ VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& 
       }) {}
 
 VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
-                         std::size_t texelBytes, const TexelWriter& write)
+                         std::size_t texelBytes, const TexelWriter& write, bool staged)
     : format_(format), bytes_(texelBytes) {
     vk::Extent3D extent(uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z));
     auto limits = ctx.physicalDevice().getProperties().limits;
@@ -128,7 +129,7 @@ VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& 
         throw std::runtime_error("a volume of " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
                                  std::to_string(dims.z) + " texels exceeds the device's 3D image limit of " +
                                  std::to_string(limits.maxImageDimension3D));
-    const vk::ImageTiling tiling = volumeTiling(ctx, dims, format);
+    const vk::ImageTiling tiling = volumeTiling(ctx, dims, format, staged);
     const bool inPlace = tiling == vk::ImageTiling::eLinear;
     image_ = vk::raii::Image(ctx.device(), volumeImageInfo(dims, format, tiling));
     auto req = image_.getMemoryRequirements();

@@ -41,6 +41,9 @@ private:
 struct ImageLimits {
     uint32_t maxDimension = 0;         // texels along any axis
     vk::DeviceSize maxTexelBytes = 0;  // texels x their bytes (without the driver's padding: the same on every device)
+    // Upload as on a GPU, through a staging buffer into an optimally tiled image, even where the texels could be
+    // written in place (a CPU device), so that tests cover that path too.
+    bool staged = false;
 };
 
 // Every volume image (classified, normals, fields) is a storage image, which the casters read with imageLoad:
@@ -65,7 +68,7 @@ public:
     VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
                 const void* texels, std::size_t texelBytes);
     VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Vec3i dims, vk::Format format,
-                std::size_t texelBytes, const TexelWriter& write);
+                std::size_t texelBytes, const TexelWriter& write, bool staged = false);
     const vk::raii::ImageView& view() const { return view_; }
     vk::Format format() const { return format_; }
     std::size_t bytes() const { return bytes_; }  // texel bytes uploaded

@@ -141,7 +141,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
                               slice + y * rowPitch);
                 });
             };
-            w.bricks->push_back(std::make_unique<VolumeImage>(ctx, pool, extent, w.format, bytes, write));
+            w.bricks->push_back(std::make_unique<VolumeImage>(ctx, pool, extent, w.format, bytes, write, limits.staged));
             uploads_.push_back({w.name, bytes, int(i)});
         }
     }
