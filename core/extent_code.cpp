@@ -3,13 +3,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <bit>
-#include <cstring>
 #include <string>
 
 #include "distance_fields.h"
-#include "extent_field.h"
 #include "errors.h"
+#include "extent_field.h"
 
 namespace vr {
 namespace {
@@ -127,15 +125,6 @@ const ExtentTable& extentDecodeTable(ExtentCode code) {
     static const ExtentTable tables[3] = {makeTable(ExtentCode::Exact), makeTable(ExtentCode::Log16),
                                           makeTable(ExtentCode::Joint8)};
     return tables[int(code)];
-}
-
-ExtentField::ExtentField(ExtentCode code, const std::vector<Extents>& boxes) : ExtentField(code, boxes.size()) {
-    static_assert(std::endian::native == std::endian::little, "coded extents are stored little-endian");
-    const std::size_t n = extentCodeBytes(code);
-    forEachVoxel(boxes.size(), [&](std::size_t i) {
-        const uint32_t c = encodeExtents(code, boxes[i]);
-        std::memcpy(bytes_.data() + i * n, &c, n);
-    });
 }
 
 void quantiseEACD(DistanceFields& fields, ExtentCode code) {
