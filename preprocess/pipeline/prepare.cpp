@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <array>
 #include <bit>
 #include <chrono>
 #include <sstream>
@@ -45,19 +46,33 @@ private:
     StageClock clock_;
 };
 
-// Mean of get(element) over a field (a vector or an ExtentField), in parallel (get returns one uint8 distance).
-template <typename Field, typename Get>
-double meanOf(const Field& v, Get get) {
-    if (v.empty()) return 0;
-    double sum = tbb::parallel_reduce(
-        tbb::blocked_range<std::size_t>(0, v.size()), 0.0,
-        [&](const tbb::blocked_range<std::size_t>& r, double s) {
-            uint64_t local = 0;  // exact: at most 255 per voxel
-            for (std::size_t i = r.begin(); i < r.end(); ++i) local += get(v[i]);
-            return s + double(local);
+// Means of the N distances get(element) gives, over a field (a vector or an ExtentField), in parallel: one pass,
+// each element read (an ExtentField's box decoded) once.
+template <std::size_t N, typename Field, typename Get>
+std::array<double, N> meansOf(const Field& v, Get get) {
+    using Sums = std::array<double, N>;
+    if (v.empty()) return {};
+    Sums sum = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, v.size()), Sums{},
+        [&](const tbb::blocked_range<std::size_t>& r, Sums s) {
+            std::array<uint64_t, N> local{};  // exact: at most 255 per voxel
+            for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                const auto x = get(v[i]);
+                for (std::size_t a = 0; a < N; ++a) local[a] += x[a];
+            }
+            for (std::size_t a = 0; a < N; ++a) s[a] += double(local[a]);
+            return s;
         },
-        std::plus<double>());
-    return sum / double(v.size());
+        [](Sums a, const Sums& b) {
+            for (std::size_t i = 0; i < N; ++i) a[i] += b[i];
+            return a;
+        });
+    for (double& m : sum) m /= double(v.size());
+    return sum;
+}
+
+double meanOf(const std::vector<uint8_t>& distances) {
+    return meansOf<1>(distances, [](uint8_t d) { return std::array<uint8_t, 1>{d}; })[0];
 }
 
 template <typename T>
@@ -112,19 +127,15 @@ json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& s
 
     json leaps = json::object();
     const DistanceFields& f = p.fields;
-    if (f.hasPC()) leaps["pcMeanRadius"] = meanOf(f.pc, [](uint8_t r) { return r; });
+    if (f.hasPC()) leaps["pcMeanRadius"] = meanOf(f.pc);
     if (f.hasACD()) {
         json edges = json::array();
-        for (int o = 0; o < kOctants; ++o) edges.push_back(meanOf(f.acd[o], [](uint8_t k) { return k; }));
+        for (int o = 0; o < kOctants; ++o) edges.push_back(meanOf(f.acd[o]));
         leaps["acdMeanEdge"] = edges;
     }
     if (f.hasEACD()) {
         json extents = json::array();
-        for (int o = 0; o < kOctants; ++o) {
-            json e = json::array();
-            for (int a = 0; a < 3; ++a) e.push_back(meanOf(f.eacd[o], [a](const Extents& x) { return x[a]; }));
-            extents.push_back(e);
-        }
+        for (int o = 0; o < kOctants; ++o) extents.push_back(meansOf<3>(f.eacd[o], [](const Extents& e) { return e; }));
         leaps["eacdMeanExtent"] = extents;
     }
     s["leaps"] = leaps;
