@@ -21,6 +21,7 @@
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
+#include "support/checksum.h"
 
 namespace {
 
@@ -87,13 +88,6 @@ Regions datasetRegions(const std::string& file) {
     return segment(vr::classify(loadVolume(dir / file), classify), SegmentationParams{});
 }
 
-// FNV-1a of bytes, continuing from h: a checksum printed beside the times, so that a faster builder can be checked
-// against the last one on volumes too large for the brute-force tests.
-uint64_t fnv1a(const uint8_t* bytes, std::size_t n, uint64_t h = 14695981039346656037ull) {
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
-    return h;
-}
-
 // Times f() `repeat` times and keeps the fastest (wall and CPU), for a machine shared with others.
 template <typename F>
 std::string fastest(int repeat, F f) {
@@ -136,15 +130,13 @@ void run(const std::string& name, const Regions& r, int repeat) {
     std::printf("  stand-alone: PC %s   ACD x8 %s   EACD x8 %s\n", alonePCTime.c_str(), aloneACDTime.c_str(),
                 aloneEACDTime.c_str());
     if (alonePC != pc) std::printf("  ERROR: buildPC differs from pcFromACD\n");
-    uint64_t acdSum = fnv1a(nullptr, 0), eacdSum = acdSum;
+    uint32_t acdSum = 0, eacdSum = 0;
     for (int o = 0; o < kOctants; ++o) {
-        acdSum = fnv1a(acd[o].data(), acd[o].size(), acdSum);
-        eacdSum = fnv1a(eacd[o].data(), eacd[o].bytes(), eacdSum);
+        acdSum = vr::test::crc32Of(acd[o], acdSum);
+        eacdSum = vr::test::crc32Of(eacd[o].data(), eacd[o].bytes(), eacdSum);
     }
-    std::printf("  checksums:   labels %016llx   PC %016llx   ACD %016llx   EACD %016llx\n",
-                (unsigned long long)fnv1a(reinterpret_cast<const uint8_t*>(r.label.data()), 4 * r.label.size()),
-                (unsigned long long)fnv1a(pc.data(), pc.size()), (unsigned long long)acdSum,
-                (unsigned long long)eacdSum);
+    std::printf("  CRC-32:      labels %08x   PC %08x   ACD %08x   EACD %08x\n", vr::test::crc32Of(r.label),
+                vr::test::crc32Of(pc), acdSum, eacdSum);
 
     // Mean guaranteed leap from a sample in each voxel, in voxels of the max norm (the farthest a sample in v can
     // move and stay in the box): PC r; ACD k - 1; EACD ext_a - 1 along axis a and min_a ext_a - 1 along the

@@ -3,7 +3,7 @@
 // threshold change (segmentation and fields) and a transfer-function change (classification too). For a
 // synthetic phantom made at each size and a real volume resampled (trilinear) to each size. Prints Markdown
 // tables with nanoseconds per voxel, so that linear growth reads as a flat column. One size is alive at a time.
-// --checksums prints FNV-1a checksums of every array the scenarios make (classification, labels, fields), so that
+// --checksums prints CRC-32 checksums of every array the scenarios make (classification, labels, fields), so that
 // a faster stage can be checked bit for bit. Each size's peak resident memory is printed too (BENCH.md: memory).
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
@@ -21,6 +21,7 @@
 #include "core/errors.h"
 #include "datasets/phantoms.h"
 #include "preprocess/pipeline/staged_prepare.h"
+#include "support/checksum.h"
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"
 
@@ -95,32 +96,18 @@ double peakResidentBytes() {
 }
 void resetPeakResident() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
-// FNV-1a of the bytes of `v`, continuing from h.
-constexpr uint64_t kFnvBasis = 14695981039346656037ull;
-uint64_t fnv1a(const void* data, std::size_t bytes, uint64_t h = kFnvBasis) {
-    const auto* b = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    return h;
-}
-template <typename T>
-uint64_t fnv1a(const std::vector<T>& v, uint64_t h = kFnvBasis) {
-    return fnv1a(v.data(), v.size() * sizeof(T), h);
-}
-
 // Checksums of every array of a full preparation, so that a faster stage can be checked bit for bit.
 void printChecksums(const std::string& name, int edge, const vr::PreparedVolume& p) {
-    uint64_t acd = kFnvBasis, eacd = kFnvBasis;
+    using vr::test::crc32Of;
+    uint32_t acd = 0, eacd = 0;
     for (int o = 0; o < vr::kOctants; ++o) {
-        acd = fnv1a(p.fields.acd[o], acd);
-        eacd = fnv1a(p.fields.eacd[o].data(), p.fields.eacd[o].bytes(), eacd);
+        acd = crc32Of(p.fields.acd[o], acd);
+        eacd = crc32Of(p.fields.eacd[o].data(), p.fields.eacd[o].bytes(), eacd);
     }
     std::fprintf(stderr,
-                 "%s %d^3 checksums: sigma %016llx colour %016llx normal %016llx labels %016llx PC %016llx "
-                 "ACD %016llx EACD %016llx\n",
-                 name.c_str(), edge, (unsigned long long)fnv1a(p.classified.sigma),
-                 (unsigned long long)fnv1a(p.classified.colour), (unsigned long long)fnv1a(p.classified.normal),
-                 (unsigned long long)fnv1a(p.regions.label), (unsigned long long)fnv1a(p.fields.pc),
-                 (unsigned long long)acd, (unsigned long long)eacd);
+                 "%s %d^3 CRC-32: sigma %08x colour %08x normal %08x labels %08x PC %08x ACD %08x EACD %08x\n",
+                 name.c_str(), edge, crc32Of(p.classified.sigma), crc32Of(p.classified.colour),
+                 crc32Of(p.classified.normal), crc32Of(p.regions.label), crc32Of(p.fields.pc), acd, eacd);
 }
 
 void record(SizeResult& r, const std::string& scenario, const vr::StagedPreparation& staged,
