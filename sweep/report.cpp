@@ -91,11 +91,24 @@ void bestSettings(std::ostream& md, const std::vector<SweepRow>& rows) {
         separator = "; ";
     }
     md << ".\n";
-    if (const SweepRow* eacd = bestMeetingTarget(rows, "eacd"))
+    if (const SweepRow* eacd = bestMeetingTarget(rows, "eacd")) {
         md << "\n**Issue target (EACD >= " << kTargetSpeedUp << "x faster with the quality target):** "
            << (speedUp(*eacd) >= kTargetSpeedUp ? "met" : "not met") << " here; best EACD setting T_o="
            << thresholdText(eacd->opacityThreshold) << " T_a=" << thresholdText(eacd->angleThreshold) << " at "
-           << fmt("%.2fx", speedUp(*eacd)) << ".\n";
+           << fmt("%.2fx", speedUp(*eacd)) << ".";
+        // The speed-up is the iteration ratio divided by what one leaping iteration costs in primitive samples:
+        // the two figures say whether leaping finds too few long spans or each leap costs too much.
+        const SweepRow* primitive = find(rows, "primitive", eacd->opacityThreshold, eacd->angleThreshold);
+        if (primitive && eacd->iterationsMean > 0 && speedUp(*eacd) > 0) {
+            const double fewer = primitive->iterationsMean / eacd->iterationsMean;
+            md << " It runs " << fmt("%.1fx", fewer) << " fewer iterations per ray than the primitive caster ("
+               << fmt("%.1f", primitive->iterationsMean) << " -> " << fmt("%.1f", eacd->iterationsMean)
+               << "), and each costs the device time of " << fmt("%.2f", fewer / speedUp(*eacd))
+               << " primitive samples; " << kTargetSpeedUp << "x would need at most " << fmt("%.2f", fewer / kTargetSpeedUp)
+               << ".";
+        }
+        md << "\n";
+    }
 }
 
 void paretoList(std::ostream& md, const std::vector<SweepRow>& rows) {
