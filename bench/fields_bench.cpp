@@ -16,12 +16,12 @@
 #include <sstream>
 #include <string>
 
+#include "core/crc32.h"
 #include "core/errors.h"
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
-#include "support/checksum.h"
 
 namespace {
 
@@ -132,11 +132,11 @@ void run(const std::string& name, const Regions& r, int repeat) {
     if (alonePC != pc) std::printf("  ERROR: buildPC differs from pcFromACD\n");
     uint32_t acdSum = 0, eacdSum = 0;
     for (int o = 0; o < kOctants; ++o) {
-        acdSum = vr::test::crc32Of(acd[o], acdSum);
-        eacdSum = vr::test::crc32Of(eacd[o].data(), eacd[o].bytes(), eacdSum);
+        acdSum = vr::crc32Of(acd[o], acdSum);
+        eacdSum = vr::crc32Of(eacd[o].data(), eacd[o].bytes(), eacdSum);
     }
-    std::printf("  CRC-32:      labels %08x   PC %08x   ACD %08x   EACD %08x\n", vr::test::crc32Of(r.label),
-                vr::test::crc32Of(pc), acdSum, eacdSum);
+    std::printf("  CRC-32:      labels %08x   PC %08x   ACD %08x   EACD %08x\n", vr::crc32Of(r.label),
+                vr::crc32Of(pc), acdSum, eacdSum);
 
     // Mean guaranteed leap from a sample in each voxel, in voxels of the max norm (the farthest a sample in v can
     // move and stay in the box): PC r; ACD k - 1; EACD ext_a - 1 along axis a and min_a ext_a - 1 along the

@@ -18,10 +18,10 @@
 #include <map>
 #include <utility>
 
+#include "core/crc32.h"
 #include "core/errors.h"
 #include "datasets/phantoms.h"
 #include "preprocess/pipeline/staged_prepare.h"
-#include "support/checksum.h"
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"
 
@@ -98,7 +98,7 @@ void resetPeakResident() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
 // Checksums of every array of a full preparation, so that a faster stage can be checked bit for bit.
 void printChecksums(const std::string& name, int edge, const vr::PreparedVolume& p) {
-    using vr::test::crc32Of;
+    using vr::crc32Of;
     uint32_t acd = 0, eacd = 0;
     for (int o = 0; o < vr::kOctants; ++o) {
         acd = crc32Of(p.fields.acd[o], acd);

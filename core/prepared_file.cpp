@@ -5,7 +5,6 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <bit>
@@ -15,6 +14,7 @@
 #include <map>
 
 #include "atomic_file.h"
+#include "crc32.h"
 #include "errors.h"
 #include "extent_code.h"
 
@@ -77,27 +77,6 @@ std::vector<ChunkSource> chunkSources(const PreparedVolume& p) {
         all.push_back({"eacd" + std::to_string(o), p.fields.eacd[o].data(), p.fields.eacd[o].size()});
     std::erase_if(all, [](const ChunkSource& c) { return c.elements == 0; });
     return all;
-}
-
-// Chunks are checksummed in blocks on many threads; zlib combines the blocks' CRCs into the chunk's CRC-32.
-constexpr std::size_t kCrcBlock = std::size_t(8) << 20;
-
-uLong blockCrc(const void* data, std::size_t bytes) {
-    return crc32_z(crc32_z(0L, Z_NULL, 0), static_cast<const Bytef*>(data), bytes);
-}
-
-// CRC-32 (zlib) of a large buffer.
-uint32_t crc32Of(const void* data, std::size_t bytes) {
-    const auto* p = static_cast<const char*>(data);
-    std::size_t blocks = (bytes + kCrcBlock - 1) / kCrcBlock;
-    std::vector<uLong> crcs(blocks);
-    tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-        crcs[b] = blockCrc(p + b * kCrcBlock, std::min(kCrcBlock, bytes - b * kCrcBlock));
-    });
-    uLong crc = blockCrc(nullptr, 0);
-    for (std::size_t b = 0; b < blocks; ++b)
-        crc = crc32_combine(crc, crcs[b], z_off_t(std::min(kCrcBlock, bytes - b * kCrcBlock)));
-    return uint32_t(crc);
 }
 
 json vec3Json(const Vec3d& v) { return json::array({v.x, v.y, v.z}); }
@@ -235,20 +214,20 @@ void readChunks(const Reader& r, uint64_t dataStart, const std::vector<ChunkRead
     for (std::size_t i = 0; i < reads.size(); ++i)
         for (uint64_t b = 0; b < reads[i].entry.bytes; b += kCrcBlock)
             blocks.push_back({i, b, std::min<uint64_t>(kCrcBlock, reads[i].entry.bytes - b)});
-    std::vector<uLong> crcs(blocks.size());
+    std::vector<uint32_t> crcs(blocks.size());
     tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t k) {
         const Block& b = blocks[k];
         const ChunkRead& c = reads[b.chunk];
         char* to = data[b.chunk] + b.begin;
         r.read(dataStart + c.entry.offset + b.begin, to, b.bytes, "chunk '" + c.name + "'");
-        crcs[k] = blockCrc(to, b.bytes);
+        crcs[k] = crc32Of(to, b.bytes);
     });
 
-    std::vector<uLong> chunkCrc(reads.size(), blockCrc(nullptr, 0));
+    std::vector<uint32_t> chunkCrc(reads.size(), 0);
     for (std::size_t k = 0; k < blocks.size(); ++k)
-        chunkCrc[blocks[k].chunk] = crc32_combine(chunkCrc[blocks[k].chunk], crcs[k], z_off_t(blocks[k].bytes));
+        chunkCrc[blocks[k].chunk] = crc32Combine(chunkCrc[blocks[k].chunk], crcs[k], blocks[k].bytes);
     for (std::size_t i = 0; i < reads.size(); ++i)
-        if (uint32_t(chunkCrc[i]) != reads[i].entry.crc)
+        if (chunkCrc[i] != reads[i].entry.crc)
             throw r.fail("chunk '" + reads[i].name + "' checksum mismatch (file is corrupted)");
 }
 
