@@ -1,7 +1,7 @@
 // --caster auto against the fixed casters (issue 6): on every raw dataset of the shared MANIFEST.tsv and the
 // synthetic phantoms, each fixed caster's time for a few views (device ms of the renders, sum over views of the
 // median over repeats, plus the wall ms of uploading its field once) with its mean loop iterations per pixel,
-// auto's one choice for the views (volrender/caster_choice.h, from the statistics volprep stores) and its ratio to
+// auto's one choice for the views (render/caster_choice.h, from the statistics volprep stores) and its ratio to
 // the fastest fixed caster (target: at most 1.10), the run-to-run spread of the fastest fixed caster (the noise
 // the ratio sits in), and a least-squares fit of the choice model's constants to the renders (re-run it when the
 // shader loop or the device changes). Prints a Markdown table. --short: one tiny dataset at 64x64 (CTest).
@@ -18,7 +18,7 @@
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"
-#include "volrender/caster_choice.h"
+#include "render/caster_choice.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace {

@@ -19,7 +19,7 @@
 #include "support/datasets.h"
 #include "sweep/metrics/rmse.h"
 #include "sweep/order_statistics.h"
-#include "volrender/view_octants.h"
+#include "render/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace {

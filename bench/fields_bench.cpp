@@ -16,7 +16,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/crc32.h"
+#include "io/crc32.h"
 #include "core/errors.h"
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"

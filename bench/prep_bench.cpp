@@ -11,7 +11,7 @@
 #include <map>
 
 #include "core/errors.h"
-#include "core/prepared_file.h"
+#include "io/prepared_file.h"
 #include "preprocess/pipeline/prepare.h"
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"

@@ -18,7 +18,7 @@
 #include <map>
 #include <utility>
 
-#include "core/crc32.h"
+#include "io/crc32.h"
 #include "core/errors.h"
 #include "datasets/phantoms.h"
 #include "preprocess/pipeline/staged_prepare.h"

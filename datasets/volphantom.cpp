@@ -7,9 +7,9 @@
 #include <cstring>
 #include <limits>
 
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 #include "core/errors.h"
-#include "core/tool_main.h"
+#include "tools/tool_main.h"
 #include "datasets/phantoms.h"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/errors.h"
-#include "core/prepared_file.h"
+#include "io/prepared_file.h"
 #include "fuzz/support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

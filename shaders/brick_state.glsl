@@ -7,7 +7,7 @@
 struct RayState {
     dvec4 composite;  // premultiplied colour, alpha
     double k;         // the next lattice sample: also the samples the spans so far represent
-    double depth;     // optical depth so far (volrender/span.h Accumulator)
+    double depth;     // optical depth so far (render/span.h Accumulator)
     uint iterations;
     uint flags;       // kFailed, kCutShort (caster.comp)
 };

@@ -13,7 +13,7 @@ layout(set = 0, binding = 0, std140) uniform Params {
     double halfHeight; // Camera::halfHeight
     double dt;         // step in world units
     double ert;        // early ray termination threshold
-    double ertDepth;   // the optical depth where opacity reaches ert (volrender/span.h terminationDepth)
+    double ertDepth;   // the optical depth where opacity reaches ert (render/span.h terminationDepth)
     double loopProbe;  // 2: trip count of the loop that detects a driver's loop limit (caster.comp)
     ivec4 dims;        // voxels per axis
     ivec2 imageSize;   // width, height

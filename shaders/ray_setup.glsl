@@ -1,4 +1,4 @@
-// Ray setup shared by every caster: the GLSL mirror of volrender/ray_setup.h and Camera::ray() (keep in step).
+// Ray setup shared by every caster: the GLSL mirror of render/ray_setup.h and Camera::ray() (keep in step).
 // Positions, the lattice and leap counts are computed in double with the same operations in the same order
 // as the CPU reference (`precise` forbids fused multiply-adds), so every sample picks the same voxel even
 // where the lattice lands exactly on voxel faces (axis-aligned views). Integer counts are held in doubles
@@ -132,7 +132,7 @@ double boxLeapSamples(double tBoxExit, double t) {
 // interpolated value changes; such a voxel is stepped sample by sample.
 double trilinearLeapSamples(double wanted, VoxelBox box) { return box.lo == box.hi ? 1.0LF : wanted; }
 
-// volrender/ray_setup.h's beforeFarFaces: whether the sample at t lies in the box that holds the span's first
+// render/ray_setup.h's beforeFarFaces: whether the sample at t lies in the box that holds the span's first
 // sample's voxel, as floorVoxel places it (only the far face of each axis can be crossed).
 bool beforeFarFaces(GridRay ray, double t, VoxelBox box) {
     dvec3 p = rayAt(ray, t);

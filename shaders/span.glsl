@@ -1,4 +1,4 @@
-// Span integration and shading: the GLSL mirror of volrender/span.h (keep in step). Opacity is integrated in
+// Span integration and shading: the GLSL mirror of render/span.h (keep in step). Opacity is integrated in
 // double (see numerics.glsl), the shade in float.
 #ifndef VR_SPAN_GLSL
 #define VR_SPAN_GLSL
@@ -8,7 +8,7 @@
 // 1 - exp(-sigma L) without cancellation for tiny sigma L; exactly 1 for an opaque span.
 double spanOpacity(double sigma, double len) { return -vrExpm1(-sigma * len); }
 
-const double kTerminationSlack = 1.0LF - 1e-9LF;  // volrender/span.h's: a count a hair above an integer rounds down
+const double kTerminationSlack = 1.0LF - 1e-9LF;  // render/span.h's: a count a hair above an integer rounds down
 
 // Samples until primitive stepping would reach ert inside a span of extinction sigma, from the optical depth
 // (+inf: never). The division runs for sigma = 0 too and its result is not picked: llvmpipe runs both sides of a

@@ -4,7 +4,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "volrender/image.h"
+#include "render/image.h"
 
 namespace vr {
 

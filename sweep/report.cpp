@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 #include "core/errors.h"
 #include "sweep/error_plot.h"
 #include "sweep/image_strip.h"

@@ -4,16 +4,16 @@
 #include <map>
 #include <set>
 
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 #include "core/errors.h"
-#include "core/progress.h"
+#include "tools/progress.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "sweep/downsample.h"
 #include "sweep/order_statistics.h"
 #include "sweep/peer_comparison.h"
 #include "sweep/sweep_row.h"
-#include "volrender/camera.h"
-#include "volrender/view_octants.h"
+#include "render/camera.h"
+#include "render/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "preprocess/load/load_volume.h"
-#include "volrender/render_settings.h"
+#include "render/render_settings.h"
 
 namespace vr {
 

@@ -5,8 +5,8 @@
 #include <numbers>
 
 #include "core/errors.h"
-#include "volrender/camera.h"
-#include "volrender/ray_setup.h"
+#include "render/camera.h"
+#include "render/ray_setup.h"
 
 namespace vr {
 namespace {

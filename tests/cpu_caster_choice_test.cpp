@@ -1,11 +1,11 @@
-// --caster auto's choice (volrender/caster_choice.h) on hand-made statistics of the form preparedStatistics writes:
+// --caster auto's choice (render/caster_choice.h) on hand-made statistics of the form preparedStatistics writes:
 // per caster and direction class, the ray probe's mean leaps and single-sample iterations per pixel at step 0.5.
 #include <gtest/gtest.h>
 
 #include <map>
 
 #include "core/distance_fields.h"
-#include "volrender/caster_choice.h"
+#include "render/caster_choice.h"
 
 namespace vr {
 namespace {

@@ -13,7 +13,7 @@
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
-#include "volrender/cpu_renderer.h"
+#include "render/cpu_renderer.h"
 
 namespace vr {
 namespace {

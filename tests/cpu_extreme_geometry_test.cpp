@@ -8,7 +8,7 @@
 #include <cstdio>
 
 #include "support/render_cases.h"
-#include "volrender/cpu_renderer.h"
+#include "render/cpu_renderer.h"
 
 namespace vr {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "core/errors.h"
 #include "support/datasets.h"
-#include "volrender/image.h"
+#include "render/image.h"
 
 namespace vr {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "core/errors.h"
 #include "preprocess/fields/build_fields.h"
-#include "volrender/cpu_renderer.h"
+#include "render/cpu_renderer.h"
 
 namespace vr {
 namespace {

@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "core/classified_volume.h"
-#include "volrender/ray_setup.h"
-#include "volrender/span.h"
+#include "render/ray_setup.h"
+#include "render/span.h"
 
 namespace vr {
 namespace {

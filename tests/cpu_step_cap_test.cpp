@@ -8,8 +8,8 @@
 
 #include "core/errors.h"
 #include "support/render_cases.h"
-#include "volrender/cpu_renderer.h"
-#include "volrender/render_checks.h"
+#include "render/cpu_renderer.h"
+#include "render/render_checks.h"
 
 namespace vr {
 namespace {

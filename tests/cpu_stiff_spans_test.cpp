@@ -8,8 +8,8 @@
 
 #include "core/classified_volume.h"
 #include "support/render_cases.h"
-#include "volrender/cpu_renderer.h"
-#include "volrender/span.h"
+#include "render/cpu_renderer.h"
+#include "render/span.h"
 
 namespace vr {
 namespace {

@@ -1,4 +1,4 @@
-// The ray probe behind --caster auto (preprocess/pipeline/ray_probe.h): its form, and its counts against the
+// The ray probe behind --caster auto (render/ray_probe.h): its form, and its counts against the
 // iterations the CPU reference takes on whole views of each kind of direction (along an axis, in a coordinate
 // plane, in general position), on a real CT volume with anisotropic voxels.
 #include <gtest/gtest.h>
@@ -6,10 +6,10 @@
 #include <numeric>
 
 #include "preprocess/pipeline/prepare.h"
-#include "preprocess/pipeline/ray_probe.h"
+#include "render/ray_probe.h"
 #include "support/datasets.h"
-#include "volrender/cpu_renderer.h"
-#include "volrender/direction_class.h"
+#include "render/cpu_renderer.h"
+#include "render/direction_class.h"
 
 namespace vr {
 namespace {

@@ -1,4 +1,4 @@
-// Atomic writes (core/atomic_file.h): a writer killed in the middle leaves the previous output intact, and the next
+// Atomic writes (io/atomic_file.h): a writer killed in the middle leaves the previous output intact, and the next
 // write of the same output removes the temporary the killed one left, and nothing else.
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -10,7 +10,7 @@
 #include <set>
 #include <string>
 
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 #include "core/errors.h"
 #include "support/cli.h"
 #include "support/datasets.h"

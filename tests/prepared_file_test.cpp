@@ -7,7 +7,7 @@
 
 #include "core/errors.h"
 #include "core/extent_code.h"
-#include "core/prepared_file.h"
+#include "io/prepared_file.h"
 #include "datasets/phantoms.h"
 #include "support/datasets.h"
 

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "core/errors.h"
-#include "core/prepared_file.h"
+#include "io/prepared_file.h"
 #include "datasets/phantoms.h"
 #include "support/cli.h"
 #include "support/datasets.h"

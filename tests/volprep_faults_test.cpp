@@ -5,7 +5,7 @@
 
 #include <fstream>
 
-#include "core/prepared_file.h"
+#include "io/prepared_file.h"
 #include "support/cli.h"
 #include "support/datasets.h"
 

@@ -5,14 +5,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/prepared_file.h"
+#include "io/prepared_file.h"
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
 #include "support/cli.h"
 #include "support/datasets.h"
-#include "volrender/image.h"
+#include "render/image.h"
 
 namespace vr {
 namespace {

@@ -9,11 +9,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/prepared_file.h"
+#include "io/prepared_file.h"
 #include "support/cli.h"
 #include "support/datasets.h"
 #include "support/render_cases.h"
-#include "volrender/image.h"
+#include "render/image.h"
 #include "volrender/vulkan/vulkan_context.h"
 
 namespace vr {

@@ -13,8 +13,8 @@
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
 #include "support/render_cases.h"
-#include "volrender/cpu_renderer.h"
-#include "volrender/view_octants.h"
+#include "render/cpu_renderer.h"
+#include "render/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {

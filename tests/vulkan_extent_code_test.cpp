@@ -10,7 +10,7 @@
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
 #include "support/render_cases.h"
-#include "volrender/cpu_renderer.h"
+#include "render/cpu_renderer.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "support/render_cases.h"
-#include "volrender/cpu_renderer.h"
+#include "render/cpu_renderer.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {

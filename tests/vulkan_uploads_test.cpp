@@ -13,7 +13,7 @@
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/segment/segment.h"
 #include "support/render_cases.h"
-#include "volrender/view_octants.h"
+#include "render/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {

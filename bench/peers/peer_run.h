@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bench/peers/peer_scene.h"
-#include "volrender/image.h"
+#include "render/image.h"
 
 namespace vr {
 

@@ -7,7 +7,7 @@
 #include "core/volume.h"
 #include "preprocess/classify/transfer_function.h"
 #include "preprocess/load/load_volume.h"
-#include "volrender/camera.h"
+#include "render/camera.h"
 
 namespace vr {
 

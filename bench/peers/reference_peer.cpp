@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "preprocess/pipeline/prepare.h"
-#include "volrender/cpu_renderer.h"
+#include "render/cpu_renderer.h"
 
 namespace vr {
 

@@ -14,7 +14,7 @@
 #include "bench/peers/vdb_peer.h"
 #include "bench/peers/volpack_peer.h"
 #include "bench/peers/vtk_peer.h"
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 #include "core/errors.h"
 
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/tool_main.h"
+#include "tools/tool_main.h"
 #include "core/errors.h"
 #include "preprocess/cmd/summary.h"
 #include "preprocess/pipeline/prepare.h"

@@ -9,10 +9,10 @@
 #include <chrono>
 #include <sstream>
 
-#include "core/prepared_file.h"
-#include "core/progress.h"
+#include "io/prepared_file.h"
+#include "tools/progress.h"
 #include "preprocess/fields/build_fields.h"
-#include "preprocess/pipeline/ray_probe.h"
+#include "render/ray_probe.h"
 #include "preprocess/segment/segment.h"
 
 namespace vr {

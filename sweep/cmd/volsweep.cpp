@@ -5,7 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "core/tool_main.h"
+#include "tools/tool_main.h"
 #include "core/errors.h"
 #include "sweep/report.h"
 #include "sweep/run_sweep.h"

@@ -2,7 +2,7 @@
 #pragma once
 #include <vector>
 
-#include "volrender/image.h"
+#include "render/image.h"
 
 namespace vr {
 

@@ -1,6 +1,6 @@
 // Percentages of pixels that differ visibly: in their 8-bit sRGB values, or perceptually (CIEDE2000).
 #pragma once
-#include "volrender/image.h"
+#include "render/image.h"
 
 namespace vr {
 

@@ -1,7 +1,7 @@
 // Per-pixel differences of two images over their linear RGB channels (alpha is not compared: the images are
 // composited over the background already).
 #pragma once
-#include "volrender/image.h"
+#include "render/image.h"
 
 namespace vr {
 

@@ -2,7 +2,7 @@
 // Gaussian window: 11 x 11, sigma 1.5, K1 = 0.01, K2 = 0.03, dynamic range 1. The mean over every pixel where
 // the whole window lies inside the image ("valid" positions).
 #pragma once
-#include "volrender/image.h"
+#include "render/image.h"
 
 namespace vr {
 

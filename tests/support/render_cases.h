@@ -8,8 +8,8 @@
 #include <string>
 
 #include "core/prepared_volume.h"
-#include "volrender/camera.h"
-#include "volrender/render_result.h"
+#include "render/camera.h"
+#include "render/render_result.h"
 
 namespace vr::test {
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "volrender/image.h"
+#include "render/image.h"
 
 namespace vr {
 

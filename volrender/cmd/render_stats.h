@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "volrender/render_result.h"
+#include "render/render_result.h"
 #include "volrender/vulkan/gpu_volume.h"
 
 namespace vr {

@@ -10,14 +10,14 @@
 #include <memory>
 #include <optional>
 
-#include "core/tool_main.h"
+#include "tools/tool_main.h"
 #include "core/errors.h"
-#include "core/prepared_file.h"
+#include "io/prepared_file.h"
 #include "volrender/cmd/heatmap.h"
-#include "volrender/caster_choice.h"
+#include "render/caster_choice.h"
 #include "volrender/cmd/render_stats.h"
-#include "volrender/cpu_renderer.h"
-#include "volrender/view_octants.h"
+#include "render/cpu_renderer.h"
+#include "render/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace {

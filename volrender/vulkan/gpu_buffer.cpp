@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/huge_pages.h"
+#include "tools/huge_pages.h"
 
 namespace vr {
 

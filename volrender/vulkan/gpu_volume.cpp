@@ -7,7 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "volrender/render_checks.h"
+#include "render/render_checks.h"
 
 namespace vr {
 namespace {

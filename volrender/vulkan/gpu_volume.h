@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/prepared_volume.h"
-#include "volrender/render_settings.h"
+#include "render/render_settings.h"
 #include "volrender/vulkan/brick_grid.h"
 #include "volrender/vulkan/gpu_buffer.h"
 

@@ -8,11 +8,11 @@
 
 #include "core/errors.h"
 #include "shaders/embedded_shaders.h"
-#include "volrender/ray_setup.h"
-#include "volrender/render_checks.h"
-#include "volrender/span.h"
+#include "render/ray_setup.h"
+#include "render/render_checks.h"
+#include "render/span.h"
 #include "volrender/vulkan/caster_params.h"
-#include "volrender/view_octants.h"
+#include "render/view_octants.h"
 
 namespace vr {
 namespace {

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/prepared_volume.h"
-#include "volrender/camera.h"
-#include "volrender/render_result.h"
+#include "render/camera.h"
+#include "render/render_result.h"
 #include "volrender/vulkan/gpu_volume.h"
 #include "volrender/vulkan/vulkan_context.h"
 

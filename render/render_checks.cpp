@@ -1,4 +1,4 @@
-#include "render_checks.h"
+#include "render/render_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/errors.h"
-#include "ray_setup.h"
+#include "render/ray_setup.h"
 
 namespace vr {
 

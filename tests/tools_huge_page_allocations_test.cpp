@@ -1,4 +1,4 @@
-// Large blocks from operator new are advised onto transparent huge pages (core/huge_page_allocations.cpp): the
+// Large blocks from operator new are advised onto transparent huge pages (tools/huge_page_allocations.cpp): the
 // kernel marks the mapping holding them "hg" in /proc/self/smaps.
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "camera.h"
+#include "render/camera.h"
 #include "core/distance_fields.h"
 #include "core/errors.h"
 #include "core/grid.h"

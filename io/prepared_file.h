@@ -2,7 +2,7 @@
 #pragma once
 #include <filesystem>
 
-#include "prepared_volume.h"
+#include "core/prepared_volume.h"
 
 namespace vr {
 

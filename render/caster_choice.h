@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "volrender/direction_class.h"
-#include "volrender/render_settings.h"
+#include "render/direction_class.h"
+#include "render/render_settings.h"
 
 namespace vr {
 

@@ -1,4 +1,4 @@
-// Large allocations on transparent huge pages (core/huge_pages.h). Preprocessing allocates and frees volumes of
+// Large allocations on transparent huge pages (tools/huge_pages.h). Preprocessing allocates and frees volumes of
 // hundreds of MB at a time, and a threshold or transfer-function change allocates them again. glibc can advise its
 // blocks itself (the glibc.malloc.hugetlb tunable) but reads that only from the environment at start-up, so every
 // program of the project replaces operator new (under every std::vector of ordinarily aligned elements) to advise
@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <new>
 
-#include "core/huge_pages.h"
+#include "tools/huge_pages.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "preprocess/pipeline/ray_probe.h"
+#include "render/ray_probe.h"
 
 #include <tbb/parallel_for.h>
 
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "volrender/cpu_renderer.h"
-#include "volrender/direction_class.h"
+#include "render/cpu_renderer.h"
+#include "render/direction_class.h"
 
 namespace vr {
 using json = nlohmann::json;

@@ -1,6 +1,6 @@
 // Image files through OpenImageIO. 8-bit files hold the picture as seen (RGB over the background, sRGB-encoded,
 // clamped); .exr holds the linear float RGBA the renderer produced.
-#include "image.h"
+#include "render/image.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -9,7 +9,7 @@
 #include <limits>
 #include <string>
 
-#include "core/atomic_file.h"
+#include "io/atomic_file.h"
 #include "core/errors.h"
 
 namespace vr {

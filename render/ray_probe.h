@@ -1,4 +1,4 @@
-// The ray probe behind --caster auto (volrender/caster_choice.h), stored in the prepared file's statistics.
+// The ray probe behind --caster auto (render/caster_choice.h), stored in the prepared file's statistics.
 #pragma once
 #include <nlohmann/json.hpp>
 
@@ -6,7 +6,7 @@
 
 namespace vr {
 
-// Per direction class (volrender/direction_class.h: the 8 octants, 12 plane quadrants and 6 axes) and per caster
+// Per direction class (render/direction_class.h: the 8 octants, 12 plane quadrants and 6 axes) and per caster
 // the fields allow, the mean loop iterations per pixel of the CPU reference renderer (the casters' own loop:
 // lattice, leaps, early ray termination; nearest sampling, unshaded) over small orthographic views along
 // directions of the class, split into iterations that leap several samples ("leaps", independent of the step)

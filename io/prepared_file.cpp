@@ -1,4 +1,4 @@
-#include "prepared_file.h"
+#include "io/prepared_file.h"
 
 #include <fcntl.h>
 #include <tbb/blocked_range.h>
@@ -13,10 +13,10 @@
 #include <functional>
 #include <map>
 
-#include "atomic_file.h"
-#include "crc32.h"
-#include "errors.h"
-#include "extent_code.h"
+#include "io/atomic_file.h"
+#include "io/crc32.h"
+#include "core/errors.h"
+#include "core/extent_code.h"
 
 namespace vr {
 namespace fs = std::filesystem;

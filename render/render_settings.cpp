@@ -1,4 +1,4 @@
-#include "render_settings.h"
+#include "render/render_settings.h"
 
 #include <string>
 

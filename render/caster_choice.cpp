@@ -1,4 +1,4 @@
-#include "volrender/caster_choice.h"
+#include "render/caster_choice.h"
 
 #include <algorithm>
 #include <array>

@@ -1,8 +1,8 @@
 // The CPU reference renderer: the four casters of ALGORITHMS.md section 5 in double precision.
 #pragma once
-#include "camera.h"
+#include "render/camera.h"
 #include "core/prepared_volume.h"
-#include "render_result.h"
+#include "render/render_result.h"
 
 namespace vr {
 

@@ -1,4 +1,4 @@
-#include "volrender/view_octants.h"
+#include "render/view_octants.h"
 
 #include <cmath>
 #include <vector>

@@ -2,7 +2,7 @@
 // The caster only decides n, the number of lattice samples one fetch stands for. Each span is shaded once, at
 // its first sample (as the thesis does); with a headlight or any directional light the shade is constant along
 // a ray, so with thresholds 0 this equals shading every sample.
-#include "cpu_renderer.h"
+#include "render/cpu_renderer.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -14,9 +14,9 @@
 #include <string>
 
 #include "core/errors.h"
-#include "ray_setup.h"
-#include "render_checks.h"
-#include "span.h"
+#include "render/ray_setup.h"
+#include "render/render_checks.h"
+#include "render/span.h"
 
 namespace vr {
 namespace {

@@ -1,7 +1,7 @@
 // The checks every renderer (CPU reference or Vulkan) makes before casting a ray: one place, one message each.
 #pragma once
 #include "core/prepared_volume.h"
-#include "render_settings.h"
+#include "render/render_settings.h"
 
 namespace vr {
 

@@ -1,4 +1,4 @@
-#include "atomic_file.h"
+#include "io/atomic_file.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -14,7 +14,7 @@
 #include <random>
 #include <string>
 
-#include "errors.h"
+#include "core/errors.h"
 
 namespace vr {
 namespace fs = std::filesystem;

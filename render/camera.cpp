@@ -1,6 +1,6 @@
 // The camera convention of ALGORITHMS.md section 1. The Vulkan casters build their rays on the host with this
 // class and shaders/ray_setup.glsl must mirror Camera::ray() exactly (same pixel mapping, same orthographic plane).
-#include "camera.h"
+#include "render/camera.h"
 
 #include <cmath>
 #include <numbers>

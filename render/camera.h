@@ -1,7 +1,7 @@
 // The one camera convention (ALGORITHMS.md section 1) for the CPU reference, the Vulkan casters and the CLI.
 #pragma once
 #include "core/grid.h"
-#include "render_settings.h"
+#include "render/render_settings.h"
 
 namespace vr {
 

@@ -1,6 +1,6 @@
 // Which ray octants a view can produce: ACD and EACD upload the distance fields of those octants only.
 #pragma once
-#include "volrender/camera.h"
+#include "render/camera.h"
 
 namespace vr {
 

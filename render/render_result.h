@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "image.h"
+#include "render/image.h"
 
 namespace vr {
 

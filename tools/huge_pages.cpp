@@ -1,4 +1,4 @@
-#include "core/huge_pages.h"
+#include "tools/huge_pages.h"
 
 #include <sys/mman.h>
 #include <unistd.h>
