@@ -4,7 +4,7 @@
 // synthetic phantom made at each size and a real volume resampled (trilinear) to each size. Prints Markdown
 // tables with nanoseconds per voxel, so that linear growth reads as a flat column. One size is alive at a time.
 // --checksums prints CRC-32 checksums of every array the scenarios make (classification, labels, fields), so that
-// a faster stage can be checked bit for bit. Each size's peak resident memory is printed too (BENCH.md: memory).
+// a faster stage can be checked bit for bit. Each size's peak resident memory is printed too (docs/BENCH.md: memory).
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>

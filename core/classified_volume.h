@@ -1,4 +1,4 @@
-// The classified volume (ALGORITHMS.md section 2): per voxel extinction, colour and normal.
+// The classified volume (docs/ALGORITHMS.md section 2): per voxel extinction, colour and normal.
 #pragma once
 #include <array>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Distance fields over the regions (ALGORITHMS.md section 4); distances in voxels.
+// Distance fields over the regions (docs/ALGORITHMS.md section 4); distances in voxels.
 #pragma once
 #include <array>
 #include <cstdint>

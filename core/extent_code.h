@@ -1,4 +1,4 @@
-// Compact codes for EACD box extents (ALGORITHMS.md section 4, storage). A code rounds every extent DOWN to a
+// Compact codes for EACD box extents (docs/ALGORITHMS.md section 4, storage). A code rounds every extent DOWN to a
 // value it can hold, so a coded box lies inside the exact one and stays homogeneous: leaps stay conservative and
 // only get shorter. The EACD builder writes the code as it goes (extent_field.h), so memory, the prepared file and
 // the device all hold the same bytes and the CPU reference renders what the GPU renders.

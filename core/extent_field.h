@@ -1,4 +1,4 @@
-// One octant of the EACD as it is stored everywhere (ALGORITHMS.md section 4, storage): in memory, in the prepared
+// One octant of the EACD as it is stored everywhere (docs/ALGORITHMS.md section 4, storage): in memory, in the prepared
 // file and on the device, each voxel's box in extentCodeBytes(code) little-endian bytes (exact: x, y, z; log16: one
 // uint16; joint8: one byte). The builder writes the code straight in, so no exact copy is held beside it.
 #pragma once

@@ -1,4 +1,4 @@
-// Homogeneous regions (ALGORITHMS.md section 3): a partition of the voxels into labelled regions.
+// Homogeneous regions (docs/ALGORITHMS.md section 3): a partition of the voxels into labelled regions.
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -1,4 +1,4 @@
-// The camera convention of ALGORITHMS.md section 1. The Vulkan casters build their rays on the host with this
+// The camera convention of docs/ALGORITHMS.md section 1. The Vulkan casters build their rays on the host with this
 // class and shaders/ray_setup.glsl must mirror Camera::ray() exactly (same pixel mapping, same orthographic plane).
 #include "render/camera.h"
 

@@ -1,4 +1,4 @@
-// The one camera convention (ALGORITHMS.md section 1) for the CPU reference, the Vulkan casters and the CLI.
+// The one camera convention (docs/ALGORITHMS.md section 1) for the CPU reference, the Vulkan casters and the CLI.
 #pragma once
 #include "core/grid.h"
 #include "render/render_settings.h"

@@ -1,4 +1,4 @@
-// The CPU reference: one loop for the four casters (ALGORITHMS.md section 5), double precision throughout.
+// The CPU reference: one loop for the four casters (docs/ALGORITHMS.md section 5), double precision throughout.
 // The caster only decides n, the number of lattice samples one fetch stands for. Each span is shaded once, at
 // its first sample (as the thesis does); with a headlight or any directional light the shade is constant along
 // a ray, so with thresholds 0 this equals shading every sample.

@@ -1,4 +1,4 @@
-// The CPU reference renderer: the four casters of ALGORITHMS.md section 5 in double precision.
+// The CPU reference renderer: the four casters of docs/ALGORITHMS.md section 5 in double precision.
 #pragma once
 #include "render/camera.h"
 #include "core/prepared_volume.h"

@@ -1,4 +1,4 @@
-// Ray setup shared by every caster (ALGORITHMS.md sections 1 and 5): world ray -> grid ray, the volume
+// Ray setup shared by every caster (docs/ALGORITHMS.md sections 1 and 5): world ray -> grid ray, the volume
 // interval, the sampling lattice, the voxel of a sample and the leap count n of each caster.
 // GLSL counterpart: shaders/ray_setup.glsl mirrors every function here, also in double (positions, lattice, leaps);
 // keep the two in step.

@@ -1,4 +1,4 @@
-// Factorized span integration and shading (ALGORITHMS.md sections 5 and 6), shared by every caster.
+// Factorized span integration and shading (docs/ALGORITHMS.md sections 5 and 6), shared by every caster.
 // GLSL counterpart: shaders/span.glsl mirrors every function here (it needs its own expm1 / log1p, since GLSL
 // has none); keep the two in step.
 #pragma once

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The peer renderers side by side (BENCH.md "Peers"): VTK's fixed-point CPU and OpenGL GPU ray casters (on Mesa
+# The peer renderers side by side (docs/BENCH.md "Peers"): VTK's fixed-point CPU and OpenGL GPU ray casters (on Mesa
 # llvmpipe), VolPack and OpenVDB's vdb_render, with our CPU reference, on the same views of one dataset.
 #   scripts/peers.sh DATASET [VIEWS] [SIZE] [OUTDIR]
 # DATASET: a file in the shared datasets folder or the start of its name (boston_teapot, cranium_ct, ...): the

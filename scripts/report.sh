@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The full report (BENCH.md "Error against run time" and "Peers"): every raw dataset of the shared MANIFEST.tsv
+# The full report (docs/BENCH.md "Error against run time" and "Peers"): every raw dataset of the shared MANIFEST.tsv
 # and one synthetic phantom through volsweep over the 6x5 threshold grid, and the peers side by side with
 # our casters on every CT dataset, into one folder: sweep.csv, report.md, plots/, strips/, images/, peers/.
 #   scripts/report.sh [OUTDIR]            (default out/sweep)

@@ -1,4 +1,4 @@
-// The four casters of ALGORITHMS.md section 5 in one loop: the GLSL mirror of renderCpu's trace (keep in step).
+// The four casters of docs/ALGORITHMS.md section 5 in one loop: the GLSL mirror of renderCpu's trace (keep in step).
 // Specialization constants pick the caster, the sampling and the shading, so each variant compiles to a
 // pipeline without the others' branches. One invocation per pixel of one tile and one brick (brick_state.glsl:
 // a ray's state carries over from brick to brick, so bricks change no leap). Each span is shaded once, at its

@@ -1,4 +1,4 @@
-// expm1 in double, which GLSL lacks (it has exp in float only; ALGORITHMS.md section 6). The casters accumulate
+// expm1 in double, which GLSL lacks (it has exp in float only; docs/ALGORITHMS.md section 6). The casters accumulate
 // opacity in double so that early ray termination decides exactly as the CPU reference does: in float, opacity
 // near the threshold is off by 1e-7 and flips whether one more sample is composited. Small arguments are
 // evaluated by a series that involves no cancellation. Tested against the C library by numerics_test.comp. (No

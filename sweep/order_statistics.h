@@ -1,4 +1,4 @@
-// Median and nearest-rank percentiles of a sample (the figures BENCH.md quotes).
+// Median and nearest-rank percentiles of a sample (the figures docs/BENCH.md quotes).
 #pragma once
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// The camera convention (ALGORITHMS.md section 1): default view, azimuth / elevation, fit, anisotropic grids.
+// The camera convention (docs/ALGORITHMS.md section 1): default view, azimuth / elevation, fit, anisotropic grids.
 #include <gtest/gtest.h>
 
 #include <cmath>

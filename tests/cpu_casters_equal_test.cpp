@@ -1,4 +1,4 @@
-// The first correctness test of every caster (ALGORITHMS.md section 5): with T_o = T_a = 0, nearest sampling
+// The first correctness test of every caster (docs/ALGORITHMS.md section 5): with T_o = T_a = 0, nearest sampling
 // and view-independent shading (headlight), PC, ACD and EACD render the primitive caster's image, on every
 // real dataset and on phantoms, at axis-aligned, diagonal and perspective views; and they need fewer fetches.
 #include <gtest/gtest.h>

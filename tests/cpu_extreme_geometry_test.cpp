@@ -1,4 +1,4 @@
-// Extreme geometry on the CPU reference (ALGORITHMS.md section 6): rays along axes and diagonals, through voxel
+// Extreme geometry on the CPU reference (docs/ALGORITHMS.md section 6): rays along axes and diagonals, through voxel
 // edges and corners, grazing and missing, eyes inside the volume and on voxel corners; volumes of 1 voxel, lines,
 // primes, spacing ratios of 1:100; constant, checkerboard, noise, transparent and opaque content. PC, ACD and EACD
 // must give primitive's image with finite values, fetch counts as the fields predict, and the iteration cap must

@@ -1,4 +1,4 @@
-// Span integration, leap counts and ray setup on hand cases (ALGORITHMS.md sections 1, 5 and 6).
+// Span integration, leap counts and ray setup on hand cases (docs/ALGORITHMS.md sections 1, 5 and 6).
 #include <gtest/gtest.h>
 
 #include <cmath>

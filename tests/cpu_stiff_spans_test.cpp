@@ -1,4 +1,4 @@
-// The stiff numerics of ALGORITHMS.md section 6 on the CPU reference: span opacity from 1e-12 to 1 over spans of
+// The stiff numerics of docs/ALGORITHMS.md section 6 on the CPU reference: span opacity from 1e-12 to 1 over spans of
 // 1 to 1e7 samples, long rays through many thin regions and one huge region against double-precision answers,
 // steps from 1/64 to 4 voxels with samples on voxel faces, and early termination hit exactly.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Distance fields (ALGORITHMS.md section 4): the fast builders equal brute force written straight from the
+// Distance fields (docs/ALGORITHMS.md section 4): the fast builders equal brute force written straight from the
 // definitions, exhaustively on small random volumes in all 8 octants; invariants (inside, homogeneous, maximal)
 // exhaustively there and on sampled real datasets; values above the cap are capped and still valid.
 #include <gtest/gtest.h>
@@ -140,7 +140,7 @@ int bruteExtension(const Regions& r, Vec3i v, int octant, const Box& ext, int ax
     return smallest;
 }
 
-// The greedy of ALGORITHMS.md: from the ACD cube, extend the axis giving the largest volume, then the better of
+// The greedy of docs/ALGORITHMS.md: from the ACD cube, extend the axis giving the largest volume, then the better of
 // the two others; ties go to x, then y, then z.
 Box bruteEACD(const Regions& r, Vec3i v, int octant) {
     const int k = bruteACD(r, v, octant);

@@ -186,7 +186,7 @@ TEST(VulkanCasters, MatchCpuReferenceWithDirectionalLightBackgroundAndOtherSteps
     expectNoValidationErrors();
 }
 
-// Tiny steps in a huge region: one leap stands for thousands of samples (ALGORITHMS.md section 6).
+// Tiny steps in a huge region: one leap stands for thousands of samples (docs/ALGORITHMS.md section 6).
 TEST(VulkanCasters, LeapsOfThousandsOfSamplesMatchCpuReference) {
     const Volume v = constantPhantom({48, 48, 48}, 20);
     const PreparedVolume p = prepare(v, phantomTf(), 0, 0);
@@ -220,7 +220,7 @@ TEST(VulkanCasters, MissingFieldsAndIterationCapAreReported) {
     expectNoValidationErrors();
 }
 
-// ALGORITHMS.md section 5: with T_o = T_a = 0, nearest sampling and an orthographic view, every caster's image
+// docs/ALGORITHMS.md section 5: with T_o = T_a = 0, nearest sampling and an orthographic view, every caster's image
 // equals the primitive one (up to float rounding), on every dataset and phantom.
 void expectCastersEqualPrimitive(const std::string& name, const PreparedVolume& p) {
     const std::vector<ViewParams> views{view(0, 0), view(90, 0), view(0, 90), view(180, 0),

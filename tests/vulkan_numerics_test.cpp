@@ -88,7 +88,7 @@ TEST(VulkanNumerics, Expm1MatchesTheCLibraryFrom1eMinus12To1e3) {
 }
 
 TEST(VulkanNumerics, SpanOpacityOfTinyExtinctionKeepsItsValue) {
-    // The stiff case of ALGORITHMS.md section 6: 1 - (1 - 1e-8)^10000 in float is 0; expm1 keeps ~1e-4.
+    // The stiff case of docs/ALGORITHMS.md section 6: 1 - (1 - 1e-8)^10000 in float is 0; expm1 keeps ~1e-4.
     VulkanContext ctx;
     const double sigmaL = -std::log1p(-1e-8) * 10000;
     const std::vector<double> got = expm1OnDevice(ctx, {-sigmaL});

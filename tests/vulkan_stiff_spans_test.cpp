@@ -1,4 +1,4 @@
-// The stiff numerics of ALGORITHMS.md section 6 on the Vulkan casters (positions and opacity in double in the
+// The stiff numerics of docs/ALGORITHMS.md section 6 on the Vulkan casters (positions and opacity in double in the
 // shaders): the same cases as cpu_stiff_spans_test, against the same double-precision answers.
 #include <gtest/gtest.h>
 

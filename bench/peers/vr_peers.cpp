@@ -44,7 +44,7 @@ nlohmann::json runJson(const vr::PeerRun& run, const vr::PeerScene& scene) {
 
 int main(int argc, char** argv) {
     CLI::App app{"Renders one volume with VTK (fixed-point CPU and GPU ray casters), VolPack and vdb_render on our "
-                 "views, timing each; see BENCH.md \"Peers\""};
+                 "views, timing each; see docs/BENCH.md \"Peers\""};
     vr::PeerSceneOptions o;
     std::string volume, tf, size = "512x512", out = "peers_out";
     std::vector<double> spacing;

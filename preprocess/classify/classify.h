@@ -1,4 +1,4 @@
-// Classification (ALGORITHMS.md section 2): scalar volume -> extinction, colour and normals.
+// Classification (docs/ALGORITHMS.md section 2): scalar volume -> extinction, colour and normals.
 #pragma once
 #include <array>
 #include <optional>

@@ -1,4 +1,4 @@
-// Scalar gradients for classification and normals (ALGORITHMS.md section 2).
+// Scalar gradients for classification and normals (docs/ALGORITHMS.md section 2).
 #pragma once
 #include "core/vec3.h"
 #include "core/volume.h"

@@ -1,4 +1,4 @@
-// Levoy (1988) iso-contour classification (ALGORITHMS.md section 2).
+// Levoy (1988) iso-contour classification (docs/ALGORITHMS.md section 2).
 #pragma once
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-// A 1D transfer function read from ParaView's preset JSON (ALGORITHMS.md section 2).
+// A 1D transfer function read from ParaView's preset JSON (docs/ALGORITHMS.md section 2).
 #pragma once
 #include <array>
 #include <filesystem>

@@ -1,4 +1,4 @@
-// ACD (ALGORITHMS.md section 4) from the axial runs toward the octant, one z-layer at a time. With x, y, z one
+// ACD (docs/ALGORITHMS.md section 4) from the axial runs toward the octant, one z-layer at a time. With x, y, z one
 // step toward the octant and sq the largest square of the xy layer cornered at v:
 //   sq[v]  = min(runX[v], runX[v+y], runY[v], 1 + sq[v+y], 1 + sq[v+x+y])
 //   acd[v] = min(sq[v], sq[v+z], runZ[v], 1 + min(acd[v+z], acd[v+x+z], acd[v+y+z], acd[v+x+y+z]))

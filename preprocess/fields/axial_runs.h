@@ -1,4 +1,4 @@
-// Axial run lengths, the building block of ACD and EACD (ALGORITHMS.md section 4).
+// Axial run lengths, the building block of ACD and EACD (docs/ALGORITHMS.md section 4).
 #pragma once
 #include <array>
 #include <cstdint>

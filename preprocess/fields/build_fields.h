@@ -1,4 +1,4 @@
-// Distance fields over the regions (ALGORITHMS.md section 4). Outside the volume is never in a region.
+// Distance fields over the regions (docs/ALGORITHMS.md section 4). Outside the volume is never in a region.
 // Every value is one byte; caps (all conservative: a capped box is smaller than the true one, never larger):
 //   ACD  <= kDistanceCap (255): a cube edge above 255 is stored as 255.
 //   PC   <= kDistanceCap - 1 (254): PC is min over octants of ACD - 1, so it inherits the ACD cap.

@@ -1,4 +1,4 @@
-// EACD (ALGORITHMS.md section 4): the ACD cube of edge k, extended greedily along the axis giving the largest box
+// EACD (docs/ALGORITHMS.md section 4): the ACD cube of edge k, extended greedily along the axis giving the largest box
 // (step 1, eacd_extensions.cpp), then along the better of the two others (step 2, ibid.; step 3 here picks it).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

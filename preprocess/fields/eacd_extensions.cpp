@@ -1,4 +1,4 @@
-// EACD steps 1 and 2 (ALGORITHMS.md section 4): the extension of a box along an axis is the minimum, over its
+// EACD steps 1 and 2 (docs/ALGORITHMS.md section 4): the extension of a box along an axis is the minimum, over its
 // near face, of the axial runs along the octant's direction. Slices across the axis are walked toward -s (s the
 // octant's sign there), so that the neighbour w = v + s e_a is done first: where w's face is v's, one step on,
 // v's extension follows from w's in O(1) (16 voxels at a time), and the few others are queries of sparse tables

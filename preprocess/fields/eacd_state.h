@@ -1,4 +1,4 @@
-// The EACD builder's working state (ALGORITHMS.md section 4) and its two extension steps (eacd_extensions.cpp).
+// The EACD builder's working state (docs/ALGORITHMS.md section 4) and its two extension steps (eacd_extensions.cpp).
 #pragma once
 #include <array>
 #include <cstdint>

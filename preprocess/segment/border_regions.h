@@ -1,4 +1,4 @@
-// Regions for trilinear sampling (ALGORITHMS.md section 3, thesis 4.3.2).
+// Regions for trilinear sampling (docs/ALGORITHMS.md section 3, thesis 4.3.2).
 #pragma once
 #include "core/regions.h"
 

@@ -1,4 +1,4 @@
-// Connected components of equal region keys (ALGORITHMS.md section 3).
+// Connected components of equal region keys (docs/ALGORITHMS.md section 3).
 #pragma once
 #include "core/regions.h"
 #include "preprocess/segment/region_key.h"

@@ -1,4 +1,4 @@
-// The quantisation behind the regions (ALGORITHMS.md section 3): voxels with equal keys are similar, with a bound
+// The quantisation behind the regions (docs/ALGORITHMS.md section 3): voxels with equal keys are similar, with a bound
 // that holds for every pair of them, not only for neighbours.
 #pragma once
 #include <array>

@@ -1,4 +1,4 @@
-// Homogeneous regions (ALGORITHMS.md section 3): a partition with bounded variation.
+// Homogeneous regions (docs/ALGORITHMS.md section 3): a partition with bounded variation.
 #pragma once
 #include "core/classified_volume.h"
 #include "core/regions.h"

@@ -1,4 +1,4 @@
-// volsweep: the threshold sweep of BENCH.md "Error against run time". One dataset per run: load and classify
+// volsweep: the threshold sweep of docs/BENCH.md "Error against run time". One dataset per run: load and classify
 // once, then per (T_o, T_a) segment, build the fields and render every caster at every view on the Vulkan device,
 // comparing with the primitive caster at thresholds 0; appends OUTDIR/sweep.csv and rewrites OUTDIR/report.md
 // (all datasets of the CSV), the plots and the image strips.

@@ -1,4 +1,4 @@
-// Every error figure of one image against its reference (BENCH.md "Error"), and their summary over the views.
+// Every error figure of one image against its reference (docs/BENCH.md "Error"), and their summary over the views.
 #pragma once
 #include <vector>
 

@@ -99,7 +99,7 @@ struct SlabRay {
     Camera camera() const { return orthoCamera(eye(), {0, 0, downward ? -1.0 : 1.0}, {1, 0, 0}, 1, 1, 0.5); }
 };
 
-// Front-to-back over the lattice t_k = 1 + k dt < m + 1, each sample in voxel clamp(floor(z)), as ALGORITHMS.md
+// Front-to-back over the lattice t_k = 1 + k dt < m + 1, each sample in voxel clamp(floor(z)), as docs/ALGORITHMS.md
 // section 1 defines it, summed in long double from the stored (float) extinctions.
 struct Composite {
     long double colour[3] = {0, 0, 0};

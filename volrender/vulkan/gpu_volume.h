@@ -1,4 +1,4 @@
-// A prepared volume on the device: only what its renders need (ALGORITHMS.md section 4, storage), split into
+// A prepared volume on the device: only what its renders need (docs/ALGORITHMS.md section 4, storage), split into
 // bricks where one image would exceed the device's limits. Upload once, render many views (VulkanRenderer).
 #pragma once
 #include <array>
