@@ -18,13 +18,16 @@ set(VR_LAYERS
   "volrender_vk   volrender/vulkan     4"
   "volsweep       sweep                5")
 
-# Fails the configuration when a library of the table links one of its own layer or above.
+# Fails the configuration when a library of the table links one of its own layer or above (but for the
+# libraries of its own folder, which are parts of one).
 function(vr_check_layer_links)
   foreach(row ${VR_LAYERS})
     string(REGEX MATCHALL "[^ ]+" f "${row}")
     list(GET f 0 lib)
+    list(GET f 1 folder)
     list(GET f 2 layer)
     set(layer_of_${lib} ${layer})
+    set(folder_of_${lib} ${folder})
   endforeach()
   foreach(row ${VR_LAYERS})
     string(REGEX MATCHALL "[^ ]+" f "${row}")
@@ -36,7 +39,7 @@ function(vr_check_layer_links)
     get_target_property(interface ${lib} INTERFACE_LINK_LIBRARIES)
     foreach(dep IN LISTS direct interface)
       string(REGEX REPLACE "^\\$<LINK_ONLY:(.*)>$" "\\1" dep "${dep}")
-      if(dep STREQUAL lib OR NOT DEFINED layer_of_${dep})
+      if(NOT DEFINED layer_of_${dep} OR folder_of_${dep} STREQUAL folder_of_${lib})  # a part of itself
         continue()
       endif()
       if(NOT layer_of_${dep} LESS layer_of_${lib})
