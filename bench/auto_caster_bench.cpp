@@ -1,7 +1,7 @@
 // --caster auto against the fixed casters: on every raw dataset of the shared MANIFEST.tsv and the
 // synthetic phantoms, each fixed caster's time for a few views (device ms of the renders, sum over views of the
 // median over repeats, plus the wall ms of uploading its field once) with its mean loop iterations per pixel,
-// auto's one choice for the views (render/caster_choice.h, from the statistics volprep stores) and its ratio to
+// auto's one choice for the views (render/caster_choice.h, from the ray probe volprep stores) and its ratio to
 // the fastest fixed caster (target: at most 1.10), the run-to-run spread of the fastest fixed caster (the noise
 // the ratio sits in), and a least-squares fit of the choice model's constants to the renders (re-run it when the
 // shader loop or the device changes). Prints a Markdown table. --short: one tiny dataset at 64x64 (CTest).
@@ -13,9 +13,7 @@
 #include <map>
 
 #include "datasets/phantoms.h"
-#include "preprocess/classify/classify.h"
-#include "preprocess/pipeline/prepare.h"
-#include "preprocess/segment/segment.h"
+#include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"
 #include "render/caster_choice.h"
@@ -88,19 +86,14 @@ std::vector<Scene> scenes(const std::vector<std::string>& prefixes, int phantomS
     return out;
 }
 
-// Classify, segment and build every field at one setting, with the statistics volprep would store (timed: the
-// ray probe's cost is part of every preparation).
-PreparedVolume prepare(const Volume& volume, const fs::path& tf, double to, double ta, StageTime& statistics) {
-    PreparedVolume p;
-    ClassifyParams cp;
-    cp.transferFunction = loadTransferFunction(tf);
-    p.classified = classify(volume, cp);
-    p.meta.segmentation = {to, ta, true, false};
-    p.regions = segment(p.classified, p.meta.segmentation);
-    std::vector<StageTime> stages;
-    p.fields = buildTimedFields(p.regions, kFieldPC | kFieldACD | kFieldEACD, kDefaultExtentCode, stages);
+// Segments and builds every field at one setting (classified once per scene), with the statistics and the ray
+// probe volprep would store (timed: the probe's cost is part of every preparation).
+const PreparedVolume& prepareSetting(StagedPreparation& staged, PrepareOptions& options, double to, double ta,
+                                     StageTime& statistics) {
+    options.segmentation = {to, ta, true, false};
+    staged.prepare(options);
     const StageClock clock;
-    p.meta.statistics = preparedStatistics(p, {});
+    const PreparedVolume& p = staged.withStatistics();
     statistics = clock.stop("statistics");
     return p;
 }
@@ -142,11 +135,12 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
         demand.addView(cameras.back());
     }
     contents.octants = demand.octants;
-    t.chosen = chooseCaster(p.meta.statistics, demand);
+    const FieldBytes fieldBytes = fieldBytesOf(p.fields);
+    t.chosen = chooseCaster(p.meta.rayProbe, fieldBytes, demand);
     for (unsigned classes : demand.views) {
         CasterDemand one = demand;
         one.views = {classes};
-        t.viewEstimates.push_back(chooseCaster(p.meta.statistics, one).reason);
+        t.viewEstimates.push_back(chooseCaster(p.meta.rayProbe, fieldBytes, one).reason);
     }
 
     // The fields' uploads: what a caster adds to the classified volume and normals every caster uploads. On a
@@ -287,10 +281,12 @@ int main(int argc, char** argv) {
         std::vector<RenderSample> renderSamples;             // every caster's renders, per row
         std::vector<double> perByte;                         // wall ns per field byte uploaded, per row
         for (const Scene& scene : scenes(datasets, phantomSize)) {
-            const Volume volume = scene.load();
+            StagedPreparation staged(scene.load());
+            PrepareOptions options;
+            options.classify.transferFunction = loadTransferFunction(scene.tf);
             for (std::size_t k = 0; k < to.size(); ++k) {
                 StageTime statistics;
-                const PreparedVolume p = prepare(volume, scene.tf, to[k], ta[k], statistics);
+                const PreparedVolume& p = prepareSetting(staged, options, to[k], ta[k], statistics);
                 const Timings t = measure(renderer, p, views, repeats, step);
                 std::map<Caster, double> renders, totals;
                 Caster fastest = Caster::Primitive, fastestRenders = Caster::Primitive;

@@ -14,7 +14,7 @@
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/load/load_volume.h"
-#include "preprocess/pipeline/prepare.h"
+#include "preprocess/pipeline/stage_time.h"
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
 #include "sweep/metrics/rmse.h"

@@ -12,7 +12,7 @@
 
 #include "core/errors.h"
 #include "io/prepared_file.h"
-#include "preprocess/pipeline/prepare.h"
+#include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"
 
@@ -78,19 +78,27 @@ vr::test::DatasetEntry findDataset(const std::string& file) {
     throw vr::InputError(file + ": not in " + (vr::test::datasetsDir() / "MANIFEST.tsv").string());
 }
 
+// Every stage as volprep runs them (the scalars freed once classified), the write included.
+void prepareFile(const fs::path& input, const vr::RawOptions& raw, const vr::PrepareOptions& options,
+                 const fs::path& out, DatasetResult& result) {
+    vr::StagedPreparation staged = vr::StagedPreparation::load(input, raw, vr::ScalarsOnceClassified::Free);
+    staged.prepare(options);
+    staged.write(out);
+    for (const vr::StageTime& t : staged.stageTimes()) record(result, t);
+    result.statistics = staged.withStatistics().meta.statistics;
+    result.fileBytes = fs::file_size(out);
+}
+
 DatasetResult benchDataset(const std::string& file, const vr::PrepareOptions& base, int runs, const fs::path& scratch) {
     vr::test::DatasetEntry e = findDataset(file);
+    vr::RawOptions raw;
+    raw.spacing = e.spacing;
     vr::PrepareOptions options = base;
-    options.raw.spacing = e.spacing;
     options.classify.transferFunction = vr::loadTransferFunction(vr::test::datasetsDir() / e.tf);
     fs::path out = scratch / (file + ".vprep");
     DatasetResult result{file, {}, {}, {}, 0, 0};
     for (int run = 0; run < runs; ++run) {
-        vr::PrepareResult r = vr::prepareFile(vr::test::datasetsDir() / file, out, options);
-        for (const vr::StageTime& t : r.stages) record(result, t);
-        result.statistics = r.prepared.meta.statistics;
-        result.fileBytes = r.fileBytes;
-        r.prepared = {};  // free it before reading the file back
+        prepareFile(vr::test::datasetsDir() / file, raw, options, out, result);  // freed before reading it back
 
         vr::StageClock all;
         vr::PreparedVolume back = vr::readPrepared(out, options.fields, options.classify.normals);

@@ -12,6 +12,7 @@ struct SegmentationParams {
     double angleThresholdDeg = 0.0; // T_a: normal angle allowed within a region, degrees
     bool useNormals = true;         // false when shading is off: normals are then ignored
     bool trilinear = false;         // border voxels of the 2x2x2 footprint become regions of their own
+    bool operator==(const SegmentationParams&) const = default;
 };
 
 struct Regions {

@@ -15,6 +15,7 @@
 
 #include "io/atomic_file.h"
 #include "io/crc32.h"
+#include "io/ray_probe_json.h"
 #include "core/errors.h"
 #include "core/extent_code.h"
 
@@ -81,6 +82,13 @@ std::vector<ChunkSource> chunkSources(const PreparedVolume& p) {
 
 json vec3Json(const Vec3d& v) { return json::array({v.x, v.y, v.z}); }
 
+// The ray probe is stored among the statistics (their form predates its type).
+json statisticsJson(const PreparedMetadata& m) {
+    json s = m.statistics.is_null() ? json::object() : m.statistics;
+    if (m.rayProbe) s["rayProbe"] = rayProbeJson(*m.rayProbe);
+    return s;
+}
+
 json metadataJson(const PreparedMetadata& m) {
     return {{"source", m.source},
             {"classification", m.classification},
@@ -89,7 +97,7 @@ json metadataJson(const PreparedMetadata& m) {
             {"useNormals", m.segmentation.useNormals},
             {"trilinear", m.segmentation.trilinear},
             {"distanceCap", m.distanceCap},
-            {"statistics", m.statistics.is_null() ? json::object() : m.statistics}};
+            {"statistics", statisticsJson(m)}};
 }
 
 void checkSizes(const fs::path& path, const PreparedVolume& p) {
@@ -231,6 +239,110 @@ void readChunks(const Reader& r, uint64_t dataStart, const std::vector<ChunkRead
             throw r.fail("chunk '" + reads[i].name + "' checksum mismatch (file is corrupted)");
 }
 
+// Everything the header says, checked against the file: all of the prepared volume but the chunks' contents.
+struct Header {
+    PreparedVolume prepared;  // grid, reference step, region count and metadata
+    ExtentCode eacdCode = kDefaultExtentCode;
+    std::map<std::string, ChunkEntry> chunks;  // by name
+    uint64_t dataStart = 0;                    // where the chunks' offsets start
+};
+
+Header readHeader(const Reader& r) {
+    Header h;
+    char magic[sizeof(kMagic)];
+    if (r.size() < kPreambleBytes)
+        throw r.fail("not a prepared file (only " + std::to_string(r.size()) + " bytes; run volprep to make one)");
+    r.read(0, magic, sizeof(magic), "magic");
+    if (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0)
+        throw r.fail("not a prepared file (no VOLPREP magic; run volprep to make one)");
+    uint32_t version = 0;
+    r.read(8, &version, sizeof(version), "version");
+    if (version != uint32_t(kPreparedFormatVersion))
+        throw r.fail("prepared format version " + std::to_string(version) + ", this build reads version " +
+                     std::to_string(kPreparedFormatVersion) + " (run volprep again)");
+    uint64_t headerBytes = 0;
+    r.read(12, &headerBytes, sizeof(headerBytes), "header length");
+    if (headerBytes > kMaxHeaderBytes) throw r.fail("bad header length " + std::to_string(headerBytes));
+    std::string text(headerBytes, '\0');
+    r.read(kPreambleBytes, text.data(), headerBytes, "header");
+    uint32_t headerCrc = 0;
+    r.read(kPreambleBytes + headerBytes, &headerCrc, sizeof(headerCrc), "header");
+    if (headerCrc != crc32Of(text.data(), text.size())) throw r.fail("header checksum mismatch (file is corrupted)");
+    const uint64_t dataStart = h.dataStart = kPreambleBytes + headerBytes + sizeof(headerCrc);
+
+    json header;
+    try {
+        header = json::parse(text);
+    } catch (const json::exception& e) {
+        throw r.fail(std::string("bad header: ") + e.what());
+    }
+
+    PreparedVolume& p = h.prepared;
+    json grid = field<json>(r, header, "grid");
+    json dims = field<json>(r, grid, "dims");
+    if (!dims.is_array() || dims.size() != 3) throw r.fail("bad header: 'dims' needs 3 numbers");
+    std::string dimsText = dims[0].dump() + "x" + dims[1].dump() + "x" + dims[2].dump();
+    for (const json& d : dims)
+        if (!d.is_number_unsigned() || d.get<uint64_t>() < 1 || d.get<uint64_t>() > kMaxDim)
+            throw r.fail("absurd grid dims " + dimsText);
+    Vec3i n{dims[0].get<int>(), dims[1].get<int>(), dims[2].get<int>()};
+    if (voxelCount(n) > kMaxVoxels) throw r.fail("absurd grid dims " + dimsText + " (too many voxels)");
+    GridGeometry& g = p.classified.grid;
+    g.dims = n;
+    g.spacing = vec3Field(r, grid, "spacing");
+    g.origin = vec3Field(r, grid, "origin");
+    // A zero, negative or overflowing spacing makes every ray degenerate (a zero step never ends).
+    for (int a = 0; a < 3; ++a)
+        if (!(g.spacing[a] > 0) || !std::isfinite(g.origin[a]))
+            throw r.fail("bad header: 'spacing' must be positive and 'origin' finite");
+    if (!std::isfinite(length(g.extent()))) throw r.fail("bad header: 'spacing' x dims overflows (extent not finite)");
+    p.classified.referenceStep = field<double>(r, header, "referenceStep");
+    p.regions.dims = n;
+    p.regions.count = uint32_t(countField(r, header, "regionCount", UINT32_MAX));
+
+    json meta = field<json>(r, header, "metadata");
+    p.meta.source = field<std::string>(r, meta, "source");
+    p.meta.classification = field<std::string>(r, meta, "classification");
+    p.meta.segmentation.opacityThreshold = field<double>(r, meta, "opacityThreshold");
+    p.meta.segmentation.angleThresholdDeg = field<double>(r, meta, "angleThresholdDeg");
+    p.meta.segmentation.useNormals = field<bool>(r, meta, "useNormals");
+    p.meta.segmentation.trilinear = field<bool>(r, meta, "trilinear");
+    p.meta.distanceCap = int(countField(r, meta, "distanceCap", kDistanceCap));
+    p.meta.statistics = field<json>(r, meta, "statistics");
+    if (p.meta.statistics.contains("rayProbe")) {
+        p.meta.rayProbe = rayProbeFromJson(p.meta.statistics["rayProbe"]);
+        p.meta.statistics.erase("rayProbe");
+    }
+    ExtentCode& eacdCode = h.eacdCode;
+    try {
+        eacdCode = parseExtentCode(field<std::string>(r, header, "eacdCode"), "'eacdCode'");
+    } catch (const InputError& e) {
+        throw r.fail(std::string("bad header: ") + e.what());
+    }
+
+    // The chunk table must agree with the dims and lie inside the file before anything is allocated.
+    std::map<std::string, ChunkEntry>& table = h.chunks;
+    for (const json& c : field<json>(r, header, "chunks")) {
+        auto name = field<std::string>(r, c, "name");
+        ChunkLayout l = layoutOf(name, eacdCode);
+        if (!l.type) throw r.fail("bad header: unknown chunk '" + name + "'");
+        if (table.count(name)) throw r.fail("bad header: chunk '" + name + "' appears twice");
+        if (field<std::string>(r, c, "type") != l.type || countField(r, c, "components", 3) != uint64_t(l.components))
+            throw r.fail("bad header: chunk '" + name + "' should be " + std::to_string(l.components) + " x " + l.type);
+        ChunkEntry e{countField(r, c, "offset", UINT64_MAX), countField(r, c, "bytes", UINT64_MAX),
+                     uint32_t(countField(r, c, "crc32", UINT32_MAX))};
+        uint64_t expected = uint64_t(voxelCount(n)) * l.components * l.elementBytes;
+        if (e.bytes != expected)
+            throw r.fail("chunk '" + name + "' holds " + std::to_string(e.bytes) + " bytes but grid " + dimsText +
+                         " needs " + std::to_string(expected));
+        if (e.offset > r.size() || dataStart + e.offset + e.bytes > r.size())
+            throw r.fail("truncated: chunk '" + name + "' ends at byte " + std::to_string(dataStart + e.offset + e.bytes) +
+                         " but the file has " + std::to_string(r.size()) + " bytes");
+        table[name] = e;
+    }
+    return h;
+}
+
 }  // namespace
 
 void writePrepared(const fs::path& path, const PreparedVolume& p) {
@@ -276,101 +388,29 @@ void writePrepared(const fs::path& path, const PreparedVolume& p) {
     });
 }
 
+PreparedHeader readPreparedHeader(const fs::path& path) {
+    Header h = readHeader(Reader(path));
+    auto bytes = [&](const std::string& name) { return h.chunks.count(name) ? h.chunks.at(name).bytes : 0; };
+    PreparedHeader out{h.prepared.classified.grid, std::move(h.prepared.meta), {bytes("pc"), 0, 0}};
+    for (int o = 0; o < kOctants; ++o) {
+        out.fieldBytes.acd += bytes("acd" + std::to_string(o));
+        out.fieldBytes.eacd += bytes("eacd" + std::to_string(o));
+    }
+    return out;
+}
+
 PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals) {
     Reader r(path);
-
-    char magic[sizeof(kMagic)];
-    if (r.size() < kPreambleBytes)
-        throw r.fail("not a prepared file (only " + std::to_string(r.size()) + " bytes; run volprep to make one)");
-    r.read(0, magic, sizeof(magic), "magic");
-    if (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0)
-        throw r.fail("not a prepared file (no VOLPREP magic; run volprep to make one)");
-    uint32_t version = 0;
-    r.read(8, &version, sizeof(version), "version");
-    if (version != uint32_t(kPreparedFormatVersion))
-        throw r.fail("prepared format version " + std::to_string(version) + ", this build reads version " +
-                     std::to_string(kPreparedFormatVersion) + " (run volprep again)");
-    uint64_t headerBytes = 0;
-    r.read(12, &headerBytes, sizeof(headerBytes), "header length");
-    if (headerBytes > kMaxHeaderBytes) throw r.fail("bad header length " + std::to_string(headerBytes));
-    std::string text(headerBytes, '\0');
-    r.read(kPreambleBytes, text.data(), headerBytes, "header");
-    uint32_t headerCrc = 0;
-    r.read(kPreambleBytes + headerBytes, &headerCrc, sizeof(headerCrc), "header");
-    if (headerCrc != crc32Of(text.data(), text.size())) throw r.fail("header checksum mismatch (file is corrupted)");
-    const uint64_t dataStart = kPreambleBytes + headerBytes + sizeof(headerCrc);
-
-    json header;
-    try {
-        header = json::parse(text);
-    } catch (const json::exception& e) {
-        throw r.fail(std::string("bad header: ") + e.what());
-    }
-
-    PreparedVolume p;
-    json grid = field<json>(r, header, "grid");
-    json dims = field<json>(r, grid, "dims");
-    if (!dims.is_array() || dims.size() != 3) throw r.fail("bad header: 'dims' needs 3 numbers");
-    std::string dimsText = dims[0].dump() + "x" + dims[1].dump() + "x" + dims[2].dump();
-    for (const json& d : dims)
-        if (!d.is_number_unsigned() || d.get<uint64_t>() < 1 || d.get<uint64_t>() > kMaxDim)
-            throw r.fail("absurd grid dims " + dimsText);
-    Vec3i n{dims[0].get<int>(), dims[1].get<int>(), dims[2].get<int>()};
-    if (voxelCount(n) > kMaxVoxels) throw r.fail("absurd grid dims " + dimsText + " (too many voxels)");
-    GridGeometry& g = p.classified.grid;
-    g.dims = n;
-    g.spacing = vec3Field(r, grid, "spacing");
-    g.origin = vec3Field(r, grid, "origin");
-    // A zero, negative or overflowing spacing makes every ray degenerate (a zero step never ends).
-    for (int a = 0; a < 3; ++a)
-        if (!(g.spacing[a] > 0) || !std::isfinite(g.origin[a]))
-            throw r.fail("bad header: 'spacing' must be positive and 'origin' finite");
-    if (!std::isfinite(length(g.extent()))) throw r.fail("bad header: 'spacing' x dims overflows (extent not finite)");
-    p.classified.referenceStep = field<double>(r, header, "referenceStep");
-    p.regions.dims = n;
-    p.regions.count = uint32_t(countField(r, header, "regionCount", UINT32_MAX));
-
-    json meta = field<json>(r, header, "metadata");
-    p.meta.source = field<std::string>(r, meta, "source");
-    p.meta.classification = field<std::string>(r, meta, "classification");
-    p.meta.segmentation.opacityThreshold = field<double>(r, meta, "opacityThreshold");
-    p.meta.segmentation.angleThresholdDeg = field<double>(r, meta, "angleThresholdDeg");
-    p.meta.segmentation.useNormals = field<bool>(r, meta, "useNormals");
-    p.meta.segmentation.trilinear = field<bool>(r, meta, "trilinear");
-    p.meta.distanceCap = int(countField(r, meta, "distanceCap", kDistanceCap));
-    p.meta.statistics = field<json>(r, meta, "statistics");
-    ExtentCode eacdCode;
-    try {
-        eacdCode = parseExtentCode(field<std::string>(r, header, "eacdCode"), "'eacdCode'");
-    } catch (const InputError& e) {
-        throw r.fail(std::string("bad header: ") + e.what());
-    }
-
-    // The chunk table must agree with the dims and lie inside the file before anything is allocated.
-    std::map<std::string, ChunkEntry> table;
-    for (const json& c : field<json>(r, header, "chunks")) {
-        auto name = field<std::string>(r, c, "name");
-        ChunkLayout l = layoutOf(name, eacdCode);
-        if (!l.type) throw r.fail("bad header: unknown chunk '" + name + "'");
-        if (table.count(name)) throw r.fail("bad header: chunk '" + name + "' appears twice");
-        if (field<std::string>(r, c, "type") != l.type || countField(r, c, "components", 3) != uint64_t(l.components))
-            throw r.fail("bad header: chunk '" + name + "' should be " + std::to_string(l.components) + " x " + l.type);
-        ChunkEntry e{countField(r, c, "offset", UINT64_MAX), countField(r, c, "bytes", UINT64_MAX),
-                     uint32_t(countField(r, c, "crc32", UINT32_MAX))};
-        uint64_t expected = uint64_t(voxelCount(n)) * l.components * l.elementBytes;
-        if (e.bytes != expected)
-            throw r.fail("chunk '" + name + "' holds " + std::to_string(e.bytes) + " bytes but grid " + dimsText +
-                         " needs " + std::to_string(expected));
-        if (e.offset > r.size() || dataStart + e.offset + e.bytes > r.size())
-            throw r.fail("truncated: chunk '" + name + "' ends at byte " + std::to_string(dataStart + e.offset + e.bytes) +
-                         " but the file has " + std::to_string(r.size()) + " bytes");
-        table[name] = e;
-    }
+    Header h = readHeader(r);
+    PreparedVolume& p = h.prepared;
+    const std::map<std::string, ChunkEntry>& table = h.chunks;
+    const ExtentCode eacdCode = h.eacdCode;
+    const Vec3i n = p.classified.grid.dims;
 
     // Gather the chunks to read, then read them all at once (see readChunks).
     auto has = [&](const std::string& name) { return table.count(name) > 0; };
     std::vector<ChunkRead> reads;
-    // The table's sizes were checked against the dims and the chunk's layout above.
+    // readHeader checked the table's sizes against the dims and the chunk's layout.
     auto want = [&](const std::string& name, auto& to) {
         const ChunkEntry& e = table.at(name);
         reads.push_back({name, e, destination(to, e.bytes, eacdCode)});
@@ -396,7 +436,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     }
     if (fields & kFieldACD) wantOctants("acd", "ACD", p.fields.acd);
     if (fields & kFieldEACD) wantOctants("eacd", "EACD", p.fields.eacd);
-    readChunks(r, dataStart, reads);
+    readChunks(r, h.dataStart, reads);
 
     // The labels must name regions that exist: whatever indexes per-region data by label relies on it.
     const std::vector<uint32_t>& label = p.regions.label;
@@ -409,7 +449,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     if (maxLabel >= p.regions.count)
         throw r.fail("labels hold region id " + std::to_string(maxLabel) + " but regionCount is " +
                      std::to_string(p.regions.count));
-    return p;
+    return std::move(p);
 }
 
 }  // namespace vr

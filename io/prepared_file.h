@@ -15,4 +15,15 @@ void writePrepared(const std::filesystem::path& path, const PreparedVolume& prep
 PreparedVolume readPrepared(const std::filesystem::path& path, unsigned fields = kFieldPC | kFieldACD | kFieldEACD,
                             bool normals = true);
 
+// What the header says of a prepared file, which is all --caster auto needs.
+struct PreparedHeader {
+    GridGeometry grid;
+    PreparedMetadata meta;
+    FieldBytes fieldBytes;  // of the distance fields the file holds (0 for one it lacks)
+};
+
+// The header, checked as readPrepared checks it, without reading any chunk. Throws InputError as readPrepared does
+// for a bad header.
+PreparedHeader readPreparedHeader(const std::filesystem::path& path);
+
 }  // namespace vr

@@ -1,15 +1,23 @@
-// --caster auto: which caster to render a view with, chosen among the fields a prepared file holds from the
-// statistics volprep stored in it (preparedStatistics: the ray probe's iterations per caster and
-// direction class, bytes).
+// --caster auto: which caster to render a view with, chosen among the fields a prepared volume holds. At
+// preparation the ray probe counts each caster's iterations per direction class on small CPU renders (kept in the
+// prepared file); at render time the choice weighs them, and the fields' bytes, for the views asked.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/prepared_volume.h"
 #include "render/direction_class.h"
 #include "render/render_settings.h"
 
 namespace vr {
+
+// Per direction class (render/direction_class.h: the 8 octants, 12 plane quadrants and 6 axes) and per caster the
+// fields allow, the mean loop iterations per pixel of the CPU reference renderer (the casters' own loop: lattice,
+// leaps, early ray termination; nearest sampling, unshaded) over small orthographic views along directions of the
+// class, at the renderer's default step and at half of it to split leaps from single samples. None for a volume
+// whose rays are too long to probe (spacings far apart: more than 2^17 samples across).
+std::optional<RayProbe> probeRays(const PreparedVolume& prepared);
 
 // The views to render, which share one upload of the field.
 struct CasterDemand {
@@ -30,11 +38,12 @@ struct CasterChoice {
 };
 
 // Estimates each available caster's time as pixels x (a cost per ray + iterations per pixel x its time per
-// iteration) per view, the iterations from the file's ray probe for the view's direction classes (rescaled to the
-// step), plus the upload of its field (bytes, per octant uploaded) shared by the views, and returns the cheapest; when a leaner
-// caster is within a few percent of it, the one with less to upload. Statistics without a ray probe (an old or
-// foreign file) give the primitive caster, which needs no field, and a reason that says so.
-CasterChoice chooseCaster(const nlohmann::json& statistics, const CasterDemand& demand);
+// iteration) per view, the iterations from the probe for the view's direction classes (rescaled to the step), plus
+// the upload of its field (`fieldBytes`, per octant uploaded) shared by the views, and returns the cheapest; when a
+// leaner caster is within a few percent of it, the one with less to upload. Without a probe (an old or foreign
+// file, or rays too long to probe) the primitive caster, which needs no field, and a reason that says so.
+CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes& fieldBytes,
+                          const CasterDemand& demand);
 
 // The model's device time of one loop iteration of a caster (measured: see caster_choice.cpp).
 double iterationNanoseconds(Caster caster);

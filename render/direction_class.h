@@ -1,5 +1,5 @@
 // Classes of ray directions by the signs of their components, as the ray probe behind --caster auto counts them
-// (render/ray_probe.h, render/caster_choice.h). A direction with a zero component leaps
+// (render/caster_choice.h). A direction with a zero component leaps
 // differently from its neighbours: an ACD or EACD box never ends on that axis's faces, so an axis-aligned or
 // in-plane orthographic view takes other iterations than the octant around it. Each sign is -1, 0 or +1: the 26
 // classes are the 8 octants, the 12 quadrants of the coordinate planes and the 6 axis directions.

@@ -1,4 +1,4 @@
-#include "render/ray_probe.h"
+#include "render/caster_choice.h"
 
 #include <tbb/parallel_for.h>
 
@@ -7,14 +7,14 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
-#include <string>
 #include <vector>
 
 #include "render/cpu_renderer.h"
 #include "render/direction_class.h"
 
 namespace vr {
-using json = nlohmann::json;
+
+static_assert(kProbeDirectionClasses == kDirectionClasses, "the probe counts every direction class");
 
 namespace {
 
@@ -25,12 +25,16 @@ constexpr int kOctantViews = 16, kQuadrantViews = 6, kAxisViews = 8;
 // Samples across the volume at half the default step above which rays are too long to probe (2^17: at most
 // 2^28 iterations per caster; real volumes of 512^3 take about 3500).
 constexpr double kMaxProbeSamples = 0x1p17;
-constexpr std::array<Caster, 3> kLeaping{Caster::PC, Caster::ACD, Caster::EACD};
 
-bool hasField(const DistanceFields& f, Caster c) {
-    return c == Caster::Primitive || (c == Caster::PC && f.hasPC()) || (c == Caster::ACD && f.hasACD()) ||
-           (c == Caster::EACD && f.hasEACD());
-}
+// The leaping casters, whether a volume has their field, and where the probe keeps their counts.
+struct LeapingCaster {
+    Caster caster;
+    bool (DistanceFields::*has)() const;
+    std::optional<ProbeCounts> RayProbe::*counts;
+};
+constexpr LeapingCaster kLeaping[] = {{Caster::PC, &DistanceFields::hasPC, &RayProbe::pc},
+                                      {Caster::ACD, &DistanceFields::hasACD, &RayProbe::acd},
+                                      {Caster::EACD, &DistanceFields::hasEACD, &RayProbe::eacd}};
 
 double fraction(double x) { return x - std::floor(x); }
 
@@ -98,10 +102,10 @@ std::vector<ProbeView> probeViews() {
     return views;
 }
 
-// Per direction class (index kNoDirection: 0), the mean per pixel of caster c's loop iterations and of the
+// Per direction class (class kNoDirection: 0), the mean per pixel of caster c's loop iterations and of the
 // lattice samples they stood for.
 struct ClassMeans {
-    std::vector<double> iterations, samples;
+    PerDirectionClass iterations{}, samples{};
 };
 
 ClassMeans meanIterations(const PreparedVolume& p, const std::vector<ProbeView>& views, Caster c,
@@ -116,8 +120,8 @@ ClassMeans meanIterations(const PreparedVolume& p, const std::vector<ProbeView>&
         perView[i] = {std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0),
                       std::accumulate(r.samples.begin(), r.samples.end(), 0.0)};
     });
-    ClassMeans m{std::vector<double>(kDirectionClasses, 0.0), std::vector<double>(kDirectionClasses, 0.0)};
-    std::vector<double> rays(kDirectionClasses, 0.0);
+    ClassMeans m;
+    PerDirectionClass rays{};
     for (std::size_t i = 0; i < views.size(); ++i) {
         const auto c = std::size_t(views[i].directionClass);
         m.iterations[c] += perView[i][0];
@@ -133,34 +137,37 @@ ClassMeans meanIterations(const PreparedVolume& p, const std::vector<ProbeView>&
 
 }  // namespace
 
-json rayProbe(const PreparedVolume& p) {
+std::optional<RayProbe> probeRays(const PreparedVolume& p) {
     const RenderSettings defaults;
     const GridGeometry& grid = p.classified.grid;
-    if (length(grid.extent()) / (defaults.stepVoxels / 2 * grid.smallestSpacing()) > kMaxProbeSamples) return json();
+    if (length(grid.extent()) / (defaults.stepVoxels / 2 * grid.smallestSpacing()) > kMaxProbeSamples)
+        return std::nullopt;
     const std::vector<ProbeView> views = probeViews();
-    json probe{{"stepVoxels", defaults.stepVoxels},
-               {"ert", defaults.ert},
-               {"views", {{"octant", kOctantViews}, {"quadrant", kQuadrantViews}, {"axis", kAxisViews}}}};
+    RayProbe probe;
+    probe.stepVoxels = defaults.stepVoxels;
+    probe.ert = defaults.ert;
+    probe.octantViews = kOctantViews;
+    probe.quadrantViews = kQuadrantViews;
+    probe.axisViews = kAxisViews;
     // The primitive caster takes one iteration per lattice sample a leaping caster's iterations stand for (the
     // same until termination at thresholds 0, and close to it above): no need to run it, its rays being the
-    // longest. Only a file without fields, where auto has nothing to choose, probes it.
-    std::vector<double> primitive;
-    for (const Caster caster : kLeaping) {
-        if (!hasField(p.fields, caster)) continue;
+    // longest. Only a volume without fields, where auto has nothing to choose, probes it.
+    std::optional<PerDirectionClass> primitive;
+    for (const LeapingCaster& leaping : kLeaping) {
+        if (!(p.fields.*leaping.has)()) continue;
         // At the default step I = L + S, at half of it L + 2 S: single samples double, leaps stay.
-        const ClassMeans atStep = meanIterations(p, views, caster, defaults.stepVoxels);
-        const ClassMeans atHalf = meanIterations(p, views, caster, defaults.stepVoxels / 2);
-        std::vector<double> leaps(kDirectionClasses), singles(kDirectionClasses);
-        for (std::size_t c = 0; c < leaps.size(); ++c) {
-            singles[c] = std::clamp(atHalf.iterations[c] - atStep.iterations[c], 0.0, atStep.iterations[c]);
-            leaps[c] = atStep.iterations[c] - singles[c];
+        const ClassMeans atStep = meanIterations(p, views, leaping.caster, defaults.stepVoxels);
+        const ClassMeans atHalf = meanIterations(p, views, leaping.caster, defaults.stepVoxels / 2);
+        ProbeCounts& counts = (probe.*leaping.counts).emplace();
+        for (std::size_t c = 0; c < counts.leaps.size(); ++c) {
+            const double iterations = atStep.iterations[c];
+            counts.singleSamples[c] = std::clamp(atHalf.iterations[c] - iterations, 0.0, iterations);
+            counts.leaps[c] = iterations - counts.singleSamples[c];
         }
-        probe["casters"][std::string(casterName(caster))] = {{"leaps", leaps}, {"singleSamples", singles}};
-        if (primitive.empty()) primitive = atStep.samples;
+        if (!primitive) primitive = atStep.samples;
     }
-    if (primitive.empty()) primitive = meanIterations(p, views, Caster::Primitive, defaults.stepVoxels).iterations;
-    probe["casters"]["primitive"] = {{"leaps", std::vector<double>(kDirectionClasses, 0.0)},
-                                     {"singleSamples", primitive}};
+    probe.primitive.singleSamples =
+        primitive ? *primitive : meanIterations(p, views, Caster::Primitive, defaults.stepVoxels).iterations;
     return probe;
 }
 

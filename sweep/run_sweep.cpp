@@ -157,20 +157,19 @@ std::vector<std::pair<double, double>> pendingSettings(const SweepOptions& o, co
 // The sweep's classification (its TF, normals for shading) and the fields its casters read.
 PrepareOptions prepareOptions(const SweepOptions& o) {
     PrepareOptions options;
-    options.raw = o.raw;
     options.classify.transferFunction = loadTransferFunction(o.transferFunction);
     options.classify.normals = o.shading;
     options.fields = fieldsFor(o.casters);
     return options;
 }
 
-// Loads and classifies: the classification does not depend on the thresholds, so it is done once.
-const PreparedVolume& loadClassified(StagedPreparation& staged, const PrepareOptions& options,
-                                     const std::string& dataset, std::size_t settings) {
+// Classifies: the classification does not depend on the thresholds, so it is done once.
+const PreparedVolume& classifyOnce(StagedPreparation& staged, const PrepareOptions& options,
+                                   const std::string& dataset, std::size_t settings) {
     const PreparedVolume& p = staged.prepare(options, PrepStage::Classify);
     const Vec3i dims = p.classified.grid.dims;
     std::fprintf(stderr, "%s: %dx%dx%d voxels", dataset.c_str(), dims.x, dims.y, dims.z);
-    for (const StageTime& t : staged.lastStages()) std::fprintf(stderr, ", %s %.2f s", t.stage.c_str(), t.seconds);
+    for (const StageTime& t : staged.stageTimes()) std::fprintf(stderr, ", %s %.2f s", t.stage.c_str(), t.seconds);
     std::fprintf(stderr, ", %zu settings to run\n", settings);
     return p;
 }
@@ -188,9 +187,9 @@ int runSweep(const SweepOptions& o) {
     // Load and classify once; per setting the staged preparation re-runs only segmentation and the fields.
     StagedPreparation staged = o.downsample > 1
                                    ? StagedPreparation(downsample(loadVolume(o.input, o.raw), o.downsample))
-                                   : StagedPreparation(o.input);
+                                   : StagedPreparation::load(o.input, o.raw);
     PrepareOptions options = prepareOptions(o);
-    const PreparedVolume& p = loadClassified(staged, options, dataset, settings.size());
+    const PreparedVolume& p = classifyOnce(staged, options, dataset, settings.size());
     fs::create_directories(images);
 
     VulkanContext context(VulkanOptions{o.device, false});

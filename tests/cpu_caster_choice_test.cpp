@@ -1,5 +1,5 @@
-// --caster auto's choice (render/caster_choice.h) on hand-made statistics of the form preparedStatistics writes:
-// per caster and direction class, the ray probe's mean leaps and single-sample iterations per pixel at step 0.5.
+// --caster auto's choice (render/caster_choice.h) on hand-made ray probes: per caster and direction class, the
+// probe's mean leaps and single-sample iterations per pixel at step 0.5, and the bytes of the fields.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -9,27 +9,47 @@
 
 namespace vr {
 namespace {
-using json = nlohmann::json;
 
 // Iterations per pixel of one caster in every direction class: leaps (several samples each) and single samples.
 struct Counts {
     double leaps = 0, singles = 0;
 };
 
-// Statistics of a 256^3 volume whose probe found `counts` for the casters named (the others' fields absent: no
-// counts, no bytes). Field bytes as volprep stores them: PC 1, ACD 8 and EACD 24 per voxel.
-json statistics(const std::map<std::string, Counts>& counts, double voxels = 256.0 * 256 * 256) {
-    const std::map<std::string, double> bytesPerVoxel{{"pc", 1}, {"acd", 8}, {"eacd", 24}};
-    json s{{"voxels", voxels}, {"bytes", {{"sigma", 4 * voxels}, {"colour", 12 * voxels}}}};
-    json probe{{"stepVoxels", 0.5}, {"ert", 0.99}, {"raysPerSide", 32}, {"casters", json::object()}};
+// What a prepared file tells the choice.
+struct Prepared {
+    std::optional<RayProbe> probe;
+    FieldBytes bytes;
+};
+
+// A 256^3 volume whose probe found `counts` for the casters named (the others' fields absent: no counts, no
+// bytes). Field bytes as volprep stores them: PC 1, ACD 8 and EACD 24 per voxel.
+Prepared probed(const std::map<std::string, Counts>& counts, double voxels = 256.0 * 256 * 256) {
+    Prepared p{RayProbe(), {}};
+    RayProbe& probe = *p.probe;
+    probe.stepVoxels = 0.5;
+    probe.ert = 0.99;
     for (const auto& [name, c] : counts) {
-        probe["casters"][name] = {{"leaps", std::vector<double>(kDirectionClasses, c.leaps)},
-                                  {"singleSamples", std::vector<double>(kDirectionClasses, c.singles)}};
-        if (name != "primitive") s["bytes"][name] = bytesPerVoxel.at(name) * voxels;
+        ProbeCounts perClass;
+        perClass.leaps.fill(c.leaps);
+        perClass.singleSamples.fill(c.singles);
+        if (name == "primitive") probe.primitive = perClass;
+        if (name == "pc") {
+            probe.pc = perClass;
+            p.bytes.pc = std::uint64_t(voxels);
+        }
+        if (name == "acd") {
+            probe.acd = perClass;
+            p.bytes.acd = std::uint64_t(8 * voxels);
+        }
+        if (name == "eacd") {
+            probe.eacd = perClass;
+            p.bytes.eacd = std::uint64_t(24 * voxels);
+        }
     }
-    s["rayProbe"] = probe;
-    return s;
+    return p;
 }
+
+CasterChoice choose(const Prepared& p, const CasterDemand& d) { return chooseCaster(p.probe, p.bytes, d); }
 
 CasterDemand ortho(Vec3d direction = {0, 0, -1}) {
     CasterDemand d;
@@ -39,57 +59,45 @@ CasterDemand ortho(Vec3d direction = {0, 0, -1}) {
 }
 
 TEST(CasterChoice, NoProbeGivesPrimitiveAndSaysSo) {
-    EXPECT_EQ(chooseCaster(json::object(), ortho()).caster, Caster::Primitive);
-    EXPECT_EQ(chooseCaster(json(nullptr), ortho()).caster, Caster::Primitive);
-    // A file from before the probe: mean leaps only.
-    const json old{{"voxels", 1e6}, {"leaps", {{"pcMeanRadius", 8}}}, {"bytes", {{"pc", 1e6}}}};
-    const CasterChoice c = chooseCaster(old, ortho());
+    // A file from before the probe (or of its older forms: io/ray_probe_json.h), whatever fields it has.
+    const CasterChoice c = chooseCaster(std::nullopt, FieldBytes{1u << 24, 1u << 27, 1u << 28}, ortho());
     EXPECT_EQ(c.caster, Caster::Primitive);
     EXPECT_NE(c.reason.find("older volprep"), std::string::npos) << c.reason;
-    // Malformed counts are not trusted either, nor a probe of per-octant counts (the first probe's form).
-    json bad = statistics({{"primitive", {0, 500}}, {"acd", {10, 5}}});
-    bad["rayProbe"]["casters"]["primitive"]["leaps"] = json::array({1, 2});
-    EXPECT_EQ(chooseCaster(bad, ortho()).caster, Caster::Primitive);
-    json perOctant = statistics({{"primitive", {0, 500}}, {"acd", {10, 5}}});
-    for (const char* caster : {"primitive", "acd"})
-        for (const char* key : {"leaps", "singleSamples"})
-            perOctant["rayProbe"]["casters"][caster][key] = std::vector<double>(kOctants, 10.0);
-    EXPECT_EQ(chooseCaster(perOctant, ortho()).caster, Caster::Primitive);
 }
 
 TEST(CasterChoice, TakesTheFewestWeightedIterationsAmongTheFieldsPresent) {
     const Counts primitive{0, 500}, pc{40, 200}, acd{30, 60}, eacd{20, 40};
-    EXPECT_EQ(chooseCaster(statistics({{"primitive", primitive}}), ortho()).caster, Caster::Primitive);
-    EXPECT_EQ(chooseCaster(statistics({{"primitive", primitive}, {"pc", pc}}), ortho()).caster, Caster::PC);
-    EXPECT_EQ(chooseCaster(statistics({{"primitive", primitive}, {"pc", pc}, {"acd", acd}}), ortho()).caster,
+    EXPECT_EQ(choose(probed({{"primitive", primitive}}), ortho()).caster, Caster::Primitive);
+    EXPECT_EQ(choose(probed({{"primitive", primitive}, {"pc", pc}}), ortho()).caster, Caster::PC);
+    EXPECT_EQ(choose(probed({{"primitive", primitive}, {"pc", pc}, {"acd", acd}}), ortho()).caster,
               Caster::ACD);
-    EXPECT_EQ(chooseCaster(statistics({{"primitive", primitive}, {"pc", pc}, {"acd", acd}, {"eacd", eacd}}),
+    EXPECT_EQ(choose(probed({{"primitive", primitive}, {"pc", pc}, {"acd", acd}, {"eacd", eacd}}),
                            ortho()).caster,
               Caster::EACD);
     // A field the file lacks is no candidate, however few its counts.
-    json s = statistics({{"primitive", primitive}, {"acd", acd}, {"eacd", eacd}});
-    s["bytes"].erase("eacd");
-    EXPECT_EQ(chooseCaster(s, ortho()).caster, Caster::ACD);
+    Prepared s = probed({{"primitive", primitive}, {"acd", acd}, {"eacd", eacd}});
+    s.bytes.eacd = 0;
+    EXPECT_EQ(choose(s, ortho()).caster, Caster::ACD);
 }
 
 TEST(CasterChoice, APcIterationMustSaveMoreThanItCosts) {
     // Opaque data: every ray ends after a few samples, and a PC iteration costs more than a primitive sample.
-    EXPECT_EQ(chooseCaster(statistics({{"primitive", {0, 100}}, {"pc", {0, 90}}}), ortho()).caster,
+    EXPECT_EQ(choose(probed({{"primitive", {0, 100}}, {"pc", {0, 90}}}), ortho()).caster,
               Caster::Primitive);
-    EXPECT_EQ(chooseCaster(statistics({{"primitive", {0, 100}}, {"pc", {10, 40}}}), ortho()).caster, Caster::PC);
+    EXPECT_EQ(choose(probed({{"primitive", {0, 100}}, {"pc", {10, 40}}}), ortho()).caster, Caster::PC);
 }
 
 TEST(CasterChoice, OnlySingleSampleIterationsFollowTheStep) {
     // ACD's iterations are leaps, EACD's are fewer but mostly single samples: at the probe's step EACD wins; at a
     // quarter of it, its single samples quadruple and ACD wins.
-    const json s = statistics({{"primitive", {0, 400}}, {"acd", {60, 0}}, {"eacd", {10, 30}}});
+    const Prepared s = probed({{"primitive", {0, 400}}, {"acd", {60, 0}}, {"eacd", {10, 30}}});
     CasterDemand d = ortho();
-    EXPECT_EQ(chooseCaster(s, d).caster, Caster::EACD);
+    EXPECT_EQ(choose(s, d).caster, Caster::EACD);
     d.stepVoxels = 0.125;
-    EXPECT_EQ(chooseCaster(s, d).caster, Caster::ACD);
+    EXPECT_EQ(choose(s, d).caster, Caster::ACD);
     // At eight times the step primitive takes 50 iterations, and no caster more than it.
     d.stepVoxels = 4;
-    const std::string reason = chooseCaster(s, d).reason;
+    const std::string reason = choose(s, d).reason;
     EXPECT_NE(reason.find("primitive 50.0,"), std::string::npos) << reason;
     EXPECT_NE(reason.find("acd 50.0,"), std::string::npos) << reason;
     EXPECT_NE(reason.find("eacd 13.8,"), std::string::npos) << reason;
@@ -100,7 +108,7 @@ TEST(CasterChoice, NearTiesGoToTheLeanerField) {
     // so that the cost per ray does not count.)
     const double perAcdIteration = iterationNanoseconds(Caster::ACD) / iterationNanoseconds(Caster::EACD);
     auto eacdAt = [&](double fraction) {
-        return chooseCaster(statistics({{"primitive", {0, 1e5}}, {"acd", {1000, 0}},
+        return choose(probed({{"primitive", {0, 1e5}}, {"acd", {1000, 0}},
                                         {"eacd", {1000 * perAcdIteration * fraction, 0}}}),
                             ortho())
             .caster;
@@ -110,57 +118,57 @@ TEST(CasterChoice, NearTiesGoToTheLeanerField) {
 }
 
 TEST(CasterChoice, OnlyTheViewsDirectionClassesCount) {
-    json s = statistics({{"primitive", {0, 500}}, {"acd", {100, 300}}, {"eacd", {100, 300}}});
-    s["rayProbe"]["casters"]["acd"]["singleSamples"][octantClass(0)] = 10;   // few iterations in +x +y +z
-    s["rayProbe"]["casters"]["eacd"]["singleSamples"][octantClass(7)] = 10;  // and in -x -y -z
-    s["rayProbe"]["casters"]["eacd"]["singleSamples"][directionClass(0, 0, -1)] = 10;  // and along -z
-    EXPECT_EQ(chooseCaster(s, ortho({1, 1, 1})).caster, Caster::ACD);
-    EXPECT_EQ(chooseCaster(s, ortho({-1, -1, -1})).caster, Caster::EACD);
-    EXPECT_EQ(chooseCaster(s, ortho({0, 0, -1})).caster, Caster::EACD);
+    Prepared s = probed({{"primitive", {0, 500}}, {"acd", {100, 300}}, {"eacd", {100, 300}}});
+    s.probe->acd->singleSamples[octantClass(0)] = 10;          // few iterations in +x +y +z
+    s.probe->eacd->singleSamples[octantClass(7)] = 10;         // and in -x -y -z
+    s.probe->eacd->singleSamples[directionClass(0, 0, -1)] = 10;  // and along -z
+    EXPECT_EQ(choose(s, ortho({1, 1, 1})).caster, Caster::ACD);
+    EXPECT_EQ(choose(s, ortho({-1, -1, -1})).caster, Caster::EACD);
+    EXPECT_EQ(choose(s, ortho({0, 0, -1})).caster, Caster::EACD);
     // Elsewhere they leap alike, and 400 leaping iterations cost more than 500 samples: off the axis too, though
     // the view's octant (+x +y -z) holds the axis.
-    EXPECT_EQ(chooseCaster(s, ortho({1, -1, 1})).caster, Caster::Primitive);
-    EXPECT_EQ(chooseCaster(s, ortho({0.1, 0, -1})).caster, Caster::Primitive);
+    EXPECT_EQ(choose(s, ortho({1, -1, 1})).caster, Caster::Primitive);
+    EXPECT_EQ(choose(s, ortho({0.1, 0, -1})).caster, Caster::Primitive);
     // A view whose rays span octants 0 and 7 (perspective) averages them: ACD and EACD 255 iterations each, a tie
     // the leaner ACD wins.
     CasterDemand both = ortho({1, 1, 1});
     both.octants = 1u | 1u << 7;
     both.views = {1u << octantClass(0) | 1u << octantClass(7)};
-    EXPECT_EQ(chooseCaster(s, both).caster, Caster::ACD);
+    EXPECT_EQ(choose(s, both).caster, Caster::ACD);
     // Views are averaged: one along -z (EACD 110) and one in +x +y +z (ACD 110, EACD 400).
     CasterDemand two = ortho({0, 0, -1});
     two.octants |= 1u;
     two.views.push_back(1u << octantClass(0));
-    const std::string reason = chooseCaster(s, two).reason;
+    const std::string reason = choose(s, two).reason;
     EXPECT_NE(reason.find("acd 255.0,"), std::string::npos) << reason;
     EXPECT_NE(reason.find("eacd 255.0,"), std::string::npos) << reason;
 }
 
 TEST(CasterChoice, ATinyImageDoesNotPayForAHugeUpload) {
-    const json s = statistics({{"primitive", {0, 1000}}, {"pc", {100, 200}}, {"acd", {50, 20}}, {"eacd", {30, 10}}},
+    const Prepared s = probed({{"primitive", {0, 1000}}, {"pc", {100, 200}}, {"acd", {50, 20}}, {"eacd", {30, 10}}},
                               512.0 * 512 * 512);
     CasterDemand d = ortho();
     d.views.assign(100, d.views.front());  // an orbit sharing one upload
-    EXPECT_EQ(chooseCaster(s, d).caster, Caster::EACD);
+    EXPECT_EQ(choose(s, d).caster, Caster::EACD);
     d.pixels = 16;  // 4x4 pixels: rendering costs less than uploading any field
     d.views.resize(1);
-    EXPECT_EQ(chooseCaster(s, d).caster, Caster::Primitive);
+    EXPECT_EQ(choose(s, d).caster, Caster::Primitive);
 }
 
 TEST(CasterChoice, PerspectiveUploadsEveryOctantItsRaysHave) {
     // EACD's fewer iterations pay for one octant's bytes, not for all eight: then ACD (a third of the bytes).
-    const json s = statistics({{"primitive", {0, 1000}}, {"acd", {60, 20}}, {"eacd", {40, 10}}}, 512.0 * 512 * 512);
+    const Prepared s = probed({{"primitive", {0, 1000}}, {"acd", {60, 20}}, {"eacd", {40, 10}}}, 512.0 * 512 * 512);
     CasterDemand d = ortho();
     d.pixels = 1024 * 1024;
-    EXPECT_EQ(chooseCaster(s, d).caster, Caster::EACD);
+    EXPECT_EQ(choose(s, d).caster, Caster::EACD);
     d.octants = 0xff;
-    EXPECT_EQ(chooseCaster(s, d).caster, Caster::ACD);
+    EXPECT_EQ(choose(s, d).caster, Caster::ACD);
 }
 
 TEST(CasterChoice, SaysWhy) {
     // Every candidate with its estimated iterations per pixel and relative cost.
     const CasterChoice c =
-        chooseCaster(statistics({{"primitive", {0, 500}}, {"pc", {40, 200}}, {"acd", {30, 60}}, {"eacd", {20, 40}}}),
+        choose(probed({{"primitive", {0, 500}}, {"pc", {40, 200}}, {"acd", {30, 60}}, {"eacd", {20, 40}}}),
                      ortho());
     for (const char* caster : {"primitive 500.0, 1.000", "pc 240.0,", "acd 90.0,", "eacd 60.0,"})
         EXPECT_NE(c.reason.find(caster), std::string::npos) << c.reason;

@@ -1,46 +1,52 @@
-// The ray probe behind --caster auto (render/ray_probe.h): its form, and its counts against the
+// The ray probe behind --caster auto (render/caster_choice.h: probeRays): its form, and its counts against the
 // iterations the CPU reference takes on whole views of each kind of direction (along an axis, in a coordinate
 // plane, in general position), on a real CT volume with anisotropic voxels.
 #include <gtest/gtest.h>
 
 #include <numeric>
 
-#include "preprocess/pipeline/prepare.h"
-#include "render/ray_probe.h"
-#include "support/datasets.h"
+#include "render/caster_choice.h"
 #include "render/cpu_renderer.h"
 #include "render/direction_class.h"
+#include "support/datasets.h"
+#include "support/prepare.h"
 
 namespace vr {
 namespace {
-using json = nlohmann::json;
 
-PrepareResult preparedHead(unsigned fields) {
+PreparedVolume preparedHead(unsigned fields) {
     PrepareOptions o;
-    o.raw.spacing = Vec3d{3.2, 3.2, 1.5};  // MANIFEST.tsv
     o.classify.transferFunction = loadTransferFunction(test::datasetsDir() / "vtk_headsq_ct.tf.json");
     o.segmentation = {0.02, 10, true, false};
     o.fields = fields;
-    return prepareVolume(test::datasetsDir() / "vtk_headsq_ct_64x64x93_uint16.raw.gz", o);
+    return test::prepareDataset("vtk_headsq_ct_64x64x93_uint16.raw.gz", o);
 }
 
 const PreparedVolume& head() {
-    static const PrepareResult r = preparedHead(kFieldPC | kFieldACD | kFieldEACD);
-    return r.prepared;
+    static const PreparedVolume p = preparedHead(kFieldPC | kFieldACD | kFieldEACD);
+    return p;
+}
+
+// The probe of head(), as the preparation stored it.
+const RayProbe& headProbe() {
+    EXPECT_TRUE(head().meta.rayProbe);
+    return *head().meta.rayProbe;
 }
 
 double mean(const std::vector<uint32_t>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size()); }
 
 TEST(RayProbe, CountsEveryDirectionClassOfEveryCasterTheFieldsAllow) {
-    const json probe = rayProbe(head());
-    EXPECT_EQ(probe["stepVoxels"], 0.5);
-    for (const char* caster : {"primitive", "pc", "acd", "eacd"}) {
+    const RayProbe& probe = headProbe();
+    EXPECT_EQ(probeRays(head()), probe);  // the preparation's is the probe's
+    EXPECT_EQ(probe.stepVoxels, 0.5);
+    EXPECT_EQ(probe.ert, 0.99);
+    ASSERT_TRUE(probe.pc && probe.acd && probe.eacd);
+    const std::pair<std::string, ProbeCounts> casters[] = {
+        {"primitive", probe.primitive}, {"pc", *probe.pc}, {"acd", *probe.acd}, {"eacd", *probe.eacd}};
+    for (const auto& [caster, c] : casters) {
         SCOPED_TRACE(caster);
-        const json& c = probe["casters"][caster];
-        ASSERT_EQ(c["leaps"].size(), std::size_t(kDirectionClasses));
-        ASSERT_EQ(c["singleSamples"].size(), std::size_t(kDirectionClasses));
         for (int k = 0; k < kDirectionClasses; ++k) {
-            const double leaps = c["leaps"][k], singles = c["singleSamples"][k];
+            const double leaps = c.leaps[k], singles = c.singleSamples[k];
             if (k == kNoDirection) {
                 EXPECT_EQ(leaps + singles, 0);
                 continue;
@@ -48,19 +54,19 @@ TEST(RayProbe, CountsEveryDirectionClassOfEveryCasterTheFieldsAllow) {
             EXPECT_GE(leaps, 0);
             EXPECT_GE(singles, 0);
             EXPECT_GT(leaps + singles, 0) << "class " << k;
-            if (std::string(caster) == "primitive") {
+            if (caster == "primitive") {
                 EXPECT_EQ(leaps, 0);
             }
             // No caster iterates more often than the primitive caster samples.
-            EXPECT_LE(leaps + singles, double(probe["casters"]["primitive"]["singleSamples"][k]) + 1e-9);
+            EXPECT_LE(leaps + singles, probe.primitive.singleSamples[k] + 1e-9);
         }
     }
-    // Only the casters whose fields the file has.
-    const json pcOnly = rayProbe(preparedHead(kFieldPC).prepared);
-    EXPECT_TRUE(pcOnly["casters"].contains("primitive"));
-    EXPECT_TRUE(pcOnly["casters"].contains("pc"));
-    EXPECT_FALSE(pcOnly["casters"].contains("acd"));
-    EXPECT_FALSE(pcOnly["casters"].contains("eacd"));
+    // Only the casters whose fields the volume has.
+    const std::optional<RayProbe> pcOnly = preparedHead(kFieldPC).meta.rayProbe;
+    ASSERT_TRUE(pcOnly);
+    EXPECT_TRUE(pcOnly->pc);
+    EXPECT_FALSE(pcOnly->acd);
+    EXPECT_FALSE(pcOnly->eacd);
 }
 
 // The probe's estimate for an orthographic view against the CPU reference's mean iterations per pixel over the
@@ -68,7 +74,7 @@ TEST(RayProbe, CountsEveryDirectionClassOfEveryCasterTheFieldsAllow) {
 // from its octant, and its unshifted 4 x 4 pixels missed the image centre: on the 128^3 engine phantom it estimated
 // 25 primitive iterations per pixel where views took 43 to 55.
 TEST(RayProbe, MatchesWholeViewsAlongAxesInPlanesAndInGeneralPosition) {
-    const json probe = rayProbe(head());
+    const RayProbe& probe = headProbe();
     struct View {
         double azimuth, elevation;
     };
@@ -85,8 +91,8 @@ TEST(RayProbe, MatchesWholeViewsAlongAxesInPlanesAndInGeneralPosition) {
             s.caster = caster;
             s.shading = false;
             const double measured = mean(renderCpu(head(), camera, s).iterations);
-            const json& counts = probe["casters"][std::string(casterName(caster))];
-            const double estimated = double(counts["leaps"][c]) + double(counts["singleSamples"][c]);
+            const ProbeCounts& counts = caster == Caster::Primitive ? probe.primitive : *probe.eacd;
+            const double estimated = counts.leaps[c] + counts.singleSamples[c];
             EXPECT_NEAR(estimated, measured, 0.15 * measured)
                 << casterName(caster) << " azimuth " << v.azimuth << " elevation " << v.elevation << " class " << c;
         }

@@ -1,22 +1,27 @@
-// Staged preparation: after any sequence of option changes its result equals a fresh prepareVolume, and a change
+// Staged preparation: after any sequence of option changes its result equals a fresh prepare(), and a change
 // re-runs only the stages that depend on it (a threshold change: segmentation and fields; a TF change:
-// classification too; loading never).
+// classification too).
 #include <gtest/gtest.h>
 
 #include "core/errors.h"
 #include "datasets/phantoms.h"
+#include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "preprocess/segment/segment.h"
 #include "support/datasets.h"
+#include "support/prepare.h"
 
 namespace vr {
 namespace {
 
 const char* kFile = "vtk_headsq_ct_64x64x93_uint16.raw.gz";
 
+StagedPreparation stagedHead() {
+    return StagedPreparation::load(test::datasetsDir() / kFile, test::manifestRawOptions(kFile));
+}
+
 PrepareOptions headOptions() {
     PrepareOptions o;
-    o.raw.spacing = Vec3d{3.2, 3.2, 1.5};  // MANIFEST.tsv
     o.classify.transferFunction = loadTransferFunction(test::datasetsDir() / "vtk_headsq_ct.tf.json");
     o.segmentation = {0.05, 20, true, false};
     return o;
@@ -35,10 +40,10 @@ nlohmann::json untimed(nlohmann::json statistics) {
     return statistics;
 }
 
-// Everything prepareVolume produces, compared with the staged result.
-void expectSameAsFresh(const StagedPreparation& staged, const PreparedVolume& p, const PrepareOptions& options) {
-    const PrepareResult fresh = prepareVolume(test::datasetsDir() / kFile, options);
-    const PreparedVolume& f = fresh.prepared;
+// Everything a fresh prepare() produces, compared with the staged result.
+void expectSameAsFresh(StagedPreparation& staged, const PrepareOptions& options) {
+    const PreparedVolume& p = staged.withStatistics();
+    const PreparedVolume f = test::prepareDataset(kFile, options);
     EXPECT_EQ(p.classified.grid, f.classified.grid);
     EXPECT_EQ(p.classified.referenceStep, f.classified.referenceStep);
     EXPECT_EQ(p.classified.sigma, f.classified.sigma);
@@ -53,21 +58,20 @@ void expectSameAsFresh(const StagedPreparation& staged, const PreparedVolume& p,
     EXPECT_EQ(p.fields.eacd, f.fields.eacd);
     EXPECT_EQ(p.meta.source, f.meta.source);
     EXPECT_EQ(p.meta.classification, f.meta.classification);
-    EXPECT_EQ(p.meta.segmentation.opacityThreshold, f.meta.segmentation.opacityThreshold);
-    EXPECT_EQ(p.meta.segmentation.angleThresholdDeg, f.meta.segmentation.angleThresholdDeg);
-    EXPECT_EQ(p.meta.segmentation.useNormals, f.meta.segmentation.useNormals);
-    EXPECT_EQ(p.meta.segmentation.trilinear, f.meta.segmentation.trilinear);
+    EXPECT_EQ(p.meta.segmentation, f.meta.segmentation);
     EXPECT_EQ(p.meta.distanceCap, f.meta.distanceCap);
-    EXPECT_EQ(untimed(staged.statistics()), untimed(f.meta.statistics));
+    EXPECT_EQ(untimed(p.meta.statistics), untimed(f.meta.statistics));
+    EXPECT_EQ(p.meta.rayProbe, f.meta.rayProbe);
 }
 
 TEST(StagedPreparation, EachChangeReRunsOnlyTheStagesAfterIt) {
-    StagedPreparation staged(test::datasetsDir() / kFile);
+    StagedPreparation staged = stagedHead();
     PrepareOptions o = headOptions();
     const PreparedVolume& p = staged.prepare(o);
-    EXPECT_EQ(names(staged.lastStages()),
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
+    EXPECT_EQ(names(staged.stageTimes()),
               (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd"}));
-    expectSameAsFresh(staged, p, o);
+    expectSameAsFresh(staged, o);
 
     // The same options again: nothing runs.
     EXPECT_EQ(&staged.prepare(o), &p);
@@ -78,38 +82,45 @@ TEST(StagedPreparation, EachChangeReRunsOnlyTheStagesAfterIt) {
     o.segmentation.trilinear = true;
     staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
-    expectSameAsFresh(staged, p, o);
+    EXPECT_TRUE(p.meta.statistics.is_null());  // they described the old result
+    EXPECT_FALSE(p.meta.rayProbe);
+    expectSameAsFresh(staged, o);
 
     // Other fields only: the fields only.
     o.fields = kFieldPC;
     staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"pc"}));
     EXPECT_FALSE(p.fields.hasACD());
-    expectSameAsFresh(staged, p, o);
+    expectSameAsFresh(staged, o);
 
-    // A TF change: classification, segmentation and the fields; no loading.
+    // A TF change: classification, segmentation and the fields; the load's time stays first.
     o.classify.transferFunction->opacity.back().opacity = 0.3;
     staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "pc"}));
-    expectSameAsFresh(staged, p, o);
+    EXPECT_EQ(names(staged.stageTimes()), (std::vector<std::string>{"load", "classify", "segment", "pc"}));
+    expectSameAsFresh(staged, o);
 
-    // Only the TF's text (not what it says) changed: no stage runs, the metadata follows.
+    // Only the TF's name and text (not what it says) changed: no stage runs, the metadata follows.
+    o.classify.transferFunction->name += " renamed";
     o.classify.transferFunction->json += " ";
     staged.prepare(o);
     EXPECT_TRUE(staged.lastStages().empty());
     EXPECT_EQ(p.meta.classification, o.classify.transferFunction->json);
+    // Any other parameter of the classification classifies again.
+    o.classify.flatGradientFloor *= 2;
+    staged.prepare(o);
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "pc"}));
 
-    EXPECT_EQ(staged.runs(PrepStage::Load), 1);
-    EXPECT_EQ(staged.runs(PrepStage::Classify), 2);
-    EXPECT_EQ(staged.runs(PrepStage::Segment), 3);
-    EXPECT_EQ(staged.runs(PrepStage::Fields), 4);
+    EXPECT_EQ(staged.runs(PrepStage::Classify), 3);
+    EXPECT_EQ(staged.runs(PrepStage::Segment), 4);
+    EXPECT_EQ(staged.runs(PrepStage::Fields), 5);
 }
 
 TEST(StagedPreparation, StopsAtTheStageAskedFor) {
-    StagedPreparation staged(test::datasetsDir() / kFile);
+    StagedPreparation staged = stagedHead();
     PrepareOptions o = headOptions();
     const PreparedVolume& p = staged.prepare(o, PrepStage::Classify);
-    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"load", "classify"}));
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify"}));
     EXPECT_EQ(p.classified.sigma.size(), voxelCount({64, 64, 93}));
     EXPECT_TRUE(p.regions.label.empty());
     EXPECT_FALSE(p.fields.hasPC());
@@ -128,41 +139,31 @@ TEST(StagedPreparation, StopsAtTheStageAskedFor) {
     EXPECT_FALSE(p.fields.hasEACD());
     EXPECT_FALSE(p.regions.label.empty());
     staged.prepare(o);
-    expectSameAsFresh(staged, p, o);
-
-    // Other raw-file options load again (here: a different spacing).
-    o.raw.spacing = Vec3d{1, 1, 1};
-    staged.prepare(o);
-    EXPECT_EQ(names(staged.lastStages()),
-              (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd"}));
-    expectSameAsFresh(staged, p, o);
+    expectSameAsFresh(staged, o);
 }
 
 TEST(StagedPreparation, AVolumeInMemoryIsNeverLoaded) {
     const Volume engine = enginePhantom({20, 17, 12});
     StagedPreparation staged(engine);
     PrepareOptions o;
-    o.raw.spacing = Vec3d{2, 2, 2};  // does not apply
     o.classify.transferFunction = loadTransferFunction(test::datasetsDir() / "sim.tf.json");
     o.segmentation = {0.1, 20, true, true};
     const PreparedVolume& p = staged.prepare(o);
-    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
+    EXPECT_EQ(names(staged.stageTimes()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
     EXPECT_EQ(p.meta.source, engine.source);
     const ClassifiedVolume c = classify(engine, o.classify);
     EXPECT_EQ(p.classified.sigma, c.sigma);
     EXPECT_EQ(p.classified.normal, c.normal);
     EXPECT_EQ(p.regions.label, segment(c, o.segmentation).label);
-    std::vector<StageTime> times;
-    EXPECT_EQ(p.fields.pc, buildTimedFields(p.regions, kFieldPC, o.eacdCode, times).pc);
+    EXPECT_EQ(p.fields.pc, buildFields(p.regions, kFieldPC).pc);
     o.classify.normals = false;
     staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
     EXPECT_FALSE(p.classified.hasNormals());
-    EXPECT_EQ(staged.runs(PrepStage::Load), 0);
 }
 
 TEST(StagedPreparation, AStageThatThrowsRunsAgainNextTime) {
-    StagedPreparation staged(test::datasetsDir() / kFile);
+    StagedPreparation staged = stagedHead();
     PrepareOptions o = headOptions();
     staged.prepare(o);
     PrepareOptions bad = o;
@@ -170,13 +171,43 @@ TEST(StagedPreparation, AStageThatThrowsRunsAgainNextTime) {
     EXPECT_THROW(staged.prepare(bad), InputError);
     EXPECT_TRUE(staged.prepare(o).regions.label.size() == voxelCount({64, 64, 93}));
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
-    expectSameAsFresh(staged, staged.prepare(o), o);
+    expectSameAsFresh(staged, o);
 
-    StagedPreparation missing(test::datasetsDir() / "no_such_volume_8x8x8_uint8.raw.gz");
-    EXPECT_THROW(missing.prepare(o), InputError);
-    EXPECT_THROW(missing.prepare(o), InputError);
-    EXPECT_EQ(missing.runs(PrepStage::Load), 2);
-    EXPECT_EQ(missing.runs(PrepStage::Classify), 0);
+    EXPECT_THROW(StagedPreparation::load(test::datasetsDir() / "no_such_volume_8x8x8_uint8.raw.gz", {}),
+                 InputError);
+}
+
+// A preparation that runs once frees the scalars as soon as they are classified (volprep's peak memory), after a
+// classification that threw only.
+TEST(StagedPreparation, FreesTheScalarsOnceClassifiedWhenAskedTo) {
+    StagedPreparation staged(enginePhantom({20, 17, 12}), ScalarsOnceClassified::Free);
+    PrepareOptions o;
+    o.classify.transferFunction = loadTransferFunction(test::datasetsDir() / "sim.tf.json");
+    PrepareOptions bad = o;
+    bad.classify.referenceStep = -1;
+    EXPECT_THROW(staged.prepare(bad), InputError);
+    EXPECT_FALSE(staged.volume().values.empty());
+    staged.prepare(o, PrepStage::Classify);
+    EXPECT_TRUE(staged.volume().values.empty());
+    staged.prepare(o);  // the later stages need no scalars
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
+    o.classify.normals = false;
+    EXPECT_THROW(staged.prepare(o), std::logic_error);
+}
+
+// volprep's stages: the write comes last, timed, after the statistics the file holds (which cannot include it).
+TEST(StagedPreparation, WritesTheResultWithItsStatisticsAsTheLastStage) {
+    StagedPreparation staged = stagedHead();
+    const PrepareOptions o = headOptions();
+    staged.prepare(o);
+    const std::filesystem::path file = test::scratchDir("pipeline_staged_write") / "head.vprep";
+    staged.write(file);
+    EXPECT_EQ(names(staged.stageTimes()),
+              (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd", "write"}));
+    const PreparedVolume& p = staged.withStatistics();
+    EXPECT_FALSE(p.meta.statistics["seconds"].contains("write"));
+    EXPECT_TRUE(p.meta.rayProbe);
+    EXPECT_TRUE(std::filesystem::is_regular_file(file));
 }
 
 }  // namespace

@@ -49,6 +49,17 @@ PreparedVolume samplePrepared(Vec3i dims) {
     p.meta.classification = R"([{"Points": [0, 0, 0.5, 0, 255, 1, 0.5, 0]}])";
     p.meta.segmentation = {0.01, 3.0, true, true};
     p.meta.statistics = {{"voxels", n}, {"regions", 16}};
+    RayProbe& probe = p.meta.rayProbe.emplace();
+    probe.stepVoxels = 0.5;
+    probe.ert = 0.99;
+    probe.octantViews = 16;
+    probe.quadrantViews = 6;
+    probe.axisViews = 8;
+    probe.acd.emplace();
+    for (int c = 0; c < kProbeDirectionClasses; ++c) {
+        probe.primitive.singleSamples[c] = 100 + c;
+        probe.acd->leaps[c] = 0.25 * c;
+    }
     return p;
 }
 
@@ -155,6 +166,80 @@ TEST_F(PreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
     EXPECT_TRUE(r.meta.segmentation.trilinear);
     EXPECT_EQ(r.meta.distanceCap, kDistanceCap);
     EXPECT_EQ(r.meta.statistics, p.meta.statistics);
+    EXPECT_EQ(r.meta.rayProbe, p.meta.rayProbe);
+}
+
+// The probe is stored among the statistics as before it had a type: files from either side read alike.
+TEST_F(PreparedFile, KeepsTheRayProbeAmongTheStatistics) {
+    const json probe = split(good).header["metadata"]["statistics"]["rayProbe"];
+    EXPECT_EQ(probe["stepVoxels"], 0.5);
+    EXPECT_EQ(probe["ert"], 0.99);
+    EXPECT_EQ(probe["views"], (json{{"octant", 16}, {"quadrant", 6}, {"axis", 8}}));
+    EXPECT_EQ(probe["casters"]["primitive"]["singleSamples"][26], 126);
+    EXPECT_EQ(probe["casters"]["primitive"]["leaps"].size(), std::size_t(kProbeDirectionClasses));
+    EXPECT_EQ(probe["casters"]["acd"]["leaps"][2], 0.5);
+    EXPECT_FALSE(probe["casters"].contains("pc"));
+    EXPECT_FALSE(probe["casters"].contains("eacd"));
+
+    PreparedVolume none = prepared;
+    none.meta.rayProbe.reset();
+    writePrepared(bad, none);
+    EXPECT_FALSE(split(bad).header["metadata"]["statistics"].contains("rayProbe"));
+    EXPECT_FALSE(readPrepared(bad, 0, false).meta.rayProbe);
+}
+
+// An older volprep's probe (per-octant counts, no views) is no probe, and a caster's malformed counts no counts:
+// the file still reads, and --caster auto chooses among what is left.
+TEST_F(PreparedFile, ReadsAnOlderRayProbeAsNone) {
+    Parts parts = split(good);
+    json& probe = parts.header["metadata"]["statistics"]["rayProbe"];
+    probe["casters"]["acd"]["singleSamples"] = std::vector<double>(kOctants, 1.0);
+    join(bad, parts);
+    std::optional<RayProbe> read = readPrepared(bad, 0, false).meta.rayProbe;
+    ASSERT_TRUE(read);
+    EXPECT_EQ(read->primitive, prepared.meta.rayProbe->primitive);
+    EXPECT_FALSE(read->acd);
+
+    for (const char* key : {"leaps", "singleSamples"})
+        probe["casters"]["primitive"][key] = std::vector<double>(kOctants, 1.0);
+    probe.erase("views");
+    probe["raysPerSide"] = 32;
+    join(bad, parts);
+    const PreparedVolume older = readPrepared(bad, 0, false);
+    EXPECT_FALSE(older.meta.rayProbe);
+    EXPECT_FALSE(older.meta.statistics.contains("rayProbe"));
+}
+
+TEST_F(PreparedFile, ReadsTheHeaderAlone) {
+    const PreparedHeader h = readPreparedHeader(good);
+    EXPECT_EQ(h.grid, prepared.classified.grid);
+    EXPECT_EQ(h.meta.source, prepared.meta.source);
+    EXPECT_EQ(h.meta.segmentation, prepared.meta.segmentation);
+    EXPECT_EQ(h.meta.statistics, prepared.meta.statistics);
+    EXPECT_EQ(h.meta.rayProbe, prepared.meta.rayProbe);
+    const std::size_t n = prepared.classified.grid.voxels();
+    EXPECT_EQ(h.fieldBytes.pc, n);
+    EXPECT_EQ(h.fieldBytes.acd, kOctants * n);
+    EXPECT_EQ(h.fieldBytes.eacd, kOctants * 3 * n);  // exact extents
+
+    // A damaged chunk is not read; a damaged header is.
+    std::vector<char> b = readBytes(good);
+    b[dataStart(good)] ^= 0x5a;
+    writeBytes(bad, b);
+    EXPECT_EQ(readPreparedHeader(bad).grid, prepared.classified.grid);
+    Parts parts = split(good);
+    parts.header["grid"]["dims"] = {13, 7, 6};
+    join(bad, parts);
+    EXPECT_THROW(readPreparedHeader(bad), InputError);
+
+    PreparedVolume pcOnly = prepared;
+    pcOnly.fields.acd = {};
+    pcOnly.fields.eacd = {};
+    writePrepared(bad, pcOnly);
+    const FieldBytes bytes = readPreparedHeader(bad).fieldBytes;
+    EXPECT_EQ(bytes.pc, n);
+    EXPECT_EQ(bytes.acd, 0u);
+    EXPECT_EQ(bytes.eacd, 0u);
 }
 
 TEST_F(PreparedFile, ReadsOnlyWhatIsAskedFor) {

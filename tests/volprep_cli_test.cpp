@@ -104,6 +104,9 @@ TEST(Volprep, PreparesTheHeadCtAndItReadsBackConsistently) {
     EXPECT_EQ(s["bytes"]["sigma"].get<std::size_t>(), 4 * n);
     for (const char* stage : {"load", "classify", "segment", "pc", "acd", "eacd"})
         EXPECT_GE(s["seconds"][stage].get<double>(), 0.0) << stage;
+    // The ray probe behind --caster auto, with counts for every field built.
+    ASSERT_TRUE(p.meta.rayProbe);
+    EXPECT_TRUE(p.meta.rayProbe->pc && p.meta.rayProbe->acd && p.meta.rayProbe->eacd);
 }
 
 TEST(Volprep, StoresEacdInTheCodeAsked) {

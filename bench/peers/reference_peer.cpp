@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "preprocess/pipeline/prepare.h"
+#include "preprocess/pipeline/staged_prepare.h"
 #include "render/cpu_renderer.h"
 
 namespace vr {
@@ -10,11 +10,10 @@ namespace vr {
 PeerRun runReferencePeer(const PeerScene& scene, const std::filesystem::path& outDir) {
     const auto setup = std::chrono::steady_clock::now();
     PrepareOptions options;
-    options.raw = scene.options.raw;
     options.classify.transferFunction = scene.tf;
     options.classify.normals = false;
     options.fields = 0;  // the primitive caster leaps nowhere
-    const PreparedVolume prepared = prepareVolume(scene.options.volume, options).prepared;
+    const PreparedVolume prepared = prepare(loadVolume(scene.options.volume, scene.options.raw), options);
     const double setupMs = millisecondsSince(setup);
 
     RenderSettings settings;

@@ -19,6 +19,7 @@ struct ClassifyParams {
     double referenceStep = 0;         // dt0 in world units; 0 = the smallest spacing (one voxel)
     // |grad| at or below flatGradientFloor * (value range) / (smallest spacing) is flat: the normal is (0,0,0).
     double flatGradientFloor = 1e-6;
+    bool operator==(const ClassifyParams&) const = default;
 };
 
 // Opacity from the TF (sampled exactly at every integer value for integer volumes, else at 65536 values over the

@@ -26,6 +26,7 @@ struct TransferFunction {
     std::string colourSpace = "RGB";    // ParaView's name: RGB, HSV, Lab, Lab/CIEDE2000, Diverging, Step
     std::string name;
     std::string json;                   // the source text, kept for the prepared file's metadata
+    bool operator==(const TransferFunction&) const = default;
 
     // Single evaluations (each builds the VTK functions: use sample() for volumes).
     double opacityAt(double f) const;

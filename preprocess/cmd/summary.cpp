@@ -8,11 +8,11 @@ double megabytes(double bytes) { return bytes / (1024.0 * 1024.0); }
 
 }  // namespace
 
-void printSummary(std::FILE* out, const std::filesystem::path& output, const PrepareResult& result) {
-    const PreparedVolume& p = result.prepared;
+void printSummary(std::FILE* out, const std::filesystem::path& output, const PreparedVolume& p,
+                  const std::vector<StageTime>& stages) {
     const nlohmann::json& s = p.meta.statistics;
     const Vec3i n = p.classified.grid.dims;
-    std::fprintf(out, "wrote %s (%.1f MiB)\n", output.c_str(), megabytes(double(result.fileBytes)));
+    std::fprintf(out, "wrote %s (%.1f MiB)\n", output.c_str(), megabytes(double(std::filesystem::file_size(output))));
     std::fprintf(out, "  voxels   %zu (%d x %d x %d)\n", p.classified.grid.voxels(), n.x, n.y, n.z);
     std::fprintf(out, "  regions  %u (mean %.1f voxels per region)\n", p.regions.count,
                  s["meanRegionSize"].get<double>());
@@ -35,7 +35,7 @@ void printSummary(std::FILE* out, const std::filesystem::path& output, const Pre
 
     std::fprintf(out, "  seconds  ");
     double total = 0;
-    for (const StageTime& t : result.stages) {
+    for (const StageTime& t : stages) {
         std::fprintf(out, " %s %.3f", t.stage.c_str(), t.seconds);
         total += t.seconds;
     }

@@ -2,11 +2,15 @@
 #pragma once
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
-#include "preprocess/pipeline/prepare.h"
+#include "core/prepared_volume.h"
+#include "preprocess/pipeline/stage_time.h"
 
 namespace vr {
 
-void printSummary(std::FILE* out, const std::filesystem::path& output, const PrepareResult& result);
+// `prepared` as written to `output` by the stages timed in `stages` (in the order they ran).
+void printSummary(std::FILE* out, const std::filesystem::path& output, const PreparedVolume& prepared,
+                  const std::vector<StageTime>& stages);
 
 }  // namespace vr

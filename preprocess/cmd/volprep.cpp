@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "tools/tool_main.h"
 #include "core/errors.h"
 #include "preprocess/cmd/summary.h"
-#include "preprocess/pipeline/prepare.h"
+#include "preprocess/pipeline/staged_prepare.h"
+#include "tools/tool_main.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -76,12 +76,17 @@ void checkBeforeRunning(const Flags& f) {
     if (fs::is_directory(out)) throw vr::fileError(f.output, "cannot write: it is a folder");
 }
 
+vr::RawOptions rawOptionsFrom(const Flags& f) {
+    vr::RawOptions raw;
+    if (!f.dims.empty()) raw.dims = vr::Vec3i{f.dims[0], f.dims[1], f.dims[2]};
+    if (!f.type.empty()) raw.type = vr::parseScalarType(f.type);
+    if (!f.spacing.empty()) raw.spacing = vr::Vec3d{f.spacing[0], f.spacing[1], f.spacing[2]};
+    raw.bigEndian = f.bigEndian;
+    return raw;
+}
+
 vr::PrepareOptions optionsFrom(const Flags& f) {
     vr::PrepareOptions o;
-    if (!f.dims.empty()) o.raw.dims = vr::Vec3i{f.dims[0], f.dims[1], f.dims[2]};
-    if (!f.type.empty()) o.raw.type = vr::parseScalarType(f.type);
-    if (!f.spacing.empty()) o.raw.spacing = vr::Vec3d{f.spacing[0], f.spacing[1], f.spacing[2]};
-    o.raw.bigEndian = f.bigEndian;
     if (!f.tf.empty()) o.classify.transferFunction = vr::loadTransferFunction(f.tf);
     for (const auto& iso : f.iso) o.classify.isoContours.push_back({iso[0], iso[1], iso[2]});
     o.classify.normals = !f.noNormals;
@@ -104,8 +109,13 @@ int main(int argc, char** argv) {
     addFlags(app, flags);
     return vr::runTool("volprep", app, argc, argv, [&] {
         checkBeforeRunning(flags);
-        vr::PrepareResult result = vr::prepareFile(flags.input, flags.output, optionsFrom(flags));
-        vr::printSummary(stdout, flags.output, result);
+        const vr::PrepareOptions options = optionsFrom(flags);  // a bad transfer function fails before the load
+        // Classified once: the scalars' memory goes to segmentation and the fields.
+        vr::StagedPreparation staged =
+            vr::StagedPreparation::load(flags.input, rawOptionsFrom(flags), vr::ScalarsOnceClassified::Free);
+        staged.prepare(options);
+        staged.write(flags.output);
+        vr::printSummary(stdout, flags.output, staged.withStatistics(), staged.stageTimes());
         return 0;
     });
 }

@@ -1,50 +1,77 @@
 #include "preprocess/pipeline/staged_prepare.h"
 
-#include <utility>
+#include <bit>
+#include <sstream>
+#include <stdexcept>
 
+#include "io/prepared_file.h"
+#include "preprocess/fields/build_fields.h"
+#include "preprocess/pipeline/prepared_statistics.h"
 #include "preprocess/segment/segment.h"
+#include "render/caster_choice.h"
 
 namespace vr {
 namespace {
 
-bool sameRaw(const RawOptions& a, const RawOptions& b) {
-    return a.dims == b.dims && a.type == b.type && a.spacing == b.spacing && a.bigEndian == b.bigEndian;
-}
-
-// Whether two sets of parameters classify alike: the TF's name and JSON text only go to the metadata.
-bool sameClassification(const ClassifyParams& a, const ClassifyParams& b) {
-    if (a.transferFunction.has_value() != b.transferFunction.has_value()) return false;
-    if (a.transferFunction) {
-        const TransferFunction &s = *a.transferFunction, &t = *b.transferFunction;
-        if (s.opacity != t.opacity || s.colour != t.colour || s.colourSpace != t.colourSpace) return false;
+// The parameters as far as they classify: the TF's name and JSON text only go to the metadata. Whatever else a
+// parameter struct holds is compared, so that a new parameter can never leave a stale classification.
+ClassifyParams classifyingPart(ClassifyParams params) {
+    if (params.transferFunction) {
+        params.transferFunction->name.clear();
+        params.transferFunction->json.clear();
     }
-    return a.isoContours == b.isoContours && a.isoColour == b.isoColour && a.normals == b.normals &&
-           a.referenceStep == b.referenceStep && a.flatGradientFloor == b.flatGradientFloor;
+    return params;
 }
 
-bool sameSegmentation(const SegmentationParams& a, const SegmentationParams& b) {
-    return a.opacityThreshold == b.opacityThreshold && a.angleThresholdDeg == b.angleThresholdDeg &&
-           a.useNormals == b.useNormals && a.trilinear == b.trilinear;
+// The classification as text for the metadata: the TF's JSON, or "iso value,width,strength; ...".
+std::string classificationText(const ClassifyParams& params) {
+    if (params.transferFunction) return params.transferFunction->json;
+    std::ostringstream s;
+    s.precision(17);
+    s << "iso";
+    for (std::size_t i = 0; i < params.isoContours.size(); ++i) {
+        const IsoContour& c = params.isoContours[i];
+        s << (i ? "; " : " ") << c.value << "," << c.width << "," << c.strength;
+    }
+    return s.str();
+}
+
+// The fields of `kinds` (a FieldKind mask), with a progress bar and each field timed into `times`.
+DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
+                                std::vector<StageTime>& times) {
+    // One call builds them all, sharing the axial runs and the ACDs: each field is timed from the end of the one
+    // before (ACD first, then PC from the ACDs, then EACD).
+    const unsigned built = (kinds & kFieldEACD ? kinds | kFieldACD : kinds) & (kFieldPC | kFieldACD | kFieldEACD);
+    ProgressBar bar("fields", std::popcount(built));
+    StageClock clock;
+    // The EACD is written in eacdCode as it is built: memory, file and device then hold the same bytes.
+    DistanceFields f = buildFields(regions, kinds, eacdCode, [&](FieldKind kind) {
+        times.push_back(clock.stop(kind == kFieldPC ? "pc" : kind == kFieldACD ? "acd" : "eacd"));
+        bar.advance();
+        clock = StageClock();
+    });
+    bar.finish();
+    return f;
 }
 
 }  // namespace
 
-StagedPreparation::StagedPreparation(std::filesystem::path input) : input_(std::move(input)) {
-    prepared_.meta.source = input_.string();
-    prepared_.meta.distanceCap = kDistanceCap;
-}
-
-StagedPreparation::StagedPreparation(Volume volume) : volume_(std::move(volume)) {
+StagedPreparation::StagedPreparation(Volume volume, ScalarsOnceClassified scalars)
+    : volume_(std::move(volume)), scalarsOnceClassified_(scalars) {
     prepared_.meta.source = volume_.source;
     prepared_.meta.distanceCap = kDistanceCap;
 }
 
+StagedPreparation StagedPreparation::load(const std::filesystem::path& input, const RawOptions& raw,
+                                          ScalarsOnceClassified scalars) {
+    std::vector<StageTime> times;
+    StagedPreparation staged(runStage("load", times, [&] { return loadVolume(input, raw); }), scalars);
+    staged.loadTimes_ = std::move(times);
+    return staged;
+}
+
 void StagedPreparation::invalidateFrom(PrepStage stage) {
     switch (stage) {  // each case falls through to the stages after it
-        case PrepStage::Load:
-            loadedWith_.reset();
-            volume_ = {};
-            [[fallthrough]];
         case PrepStage::Classify:
             classifiedWith_.reset();
             if (!prepared_.classified.sigma.empty())  // its memory serves the next classification (likewise below)
@@ -59,39 +86,39 @@ void StagedPreparation::invalidateFrom(PrepStage stage) {
             prepared_.fields = {};
     }
     for (int s = int(stage); s < kPrepStages; ++s) times_[s].clear();
+    writeTimes_.clear();
+    prepared_.meta.statistics = {};
+    prepared_.meta.rayProbe.reset();
 }
 
 template <typename Work>
-void StagedPreparation::run(PrepStage stage, const char* name, Work work) {
+void StagedPreparation::run(PrepStage stage, Work work) {
     invalidateFrom(stage);  // first: the old results go before the new ones are built, and stay gone on a throw
     ++runs_[int(stage)];
     std::vector<StageTime>& times = times_[int(stage)];
-    StageClock clock;
     work(times);
-    if (name) times.push_back(clock.stop(name));
     lastStages_.insert(lastStages_.end(), times.begin(), times.end());
 }
 
 const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, PrepStage last) {
     lastStages_.clear();
-    if (!input_.empty() && (!loadedWith_ || !sameRaw(*loadedWith_, options.raw))) {
-        run(PrepStage::Load, "load", [&](std::vector<StageTime>&) { volume_ = loadVolume(input_, options.raw); });
-        loadedWith_ = options.raw;
-    }
-    if (last >= PrepStage::Classify) {
-        if (!classifiedWith_ || !sameClassification(*classifiedWith_, options.classify)) {
-            run(PrepStage::Classify, "classify", [&](std::vector<StageTime>&) {
-                classify(volume_, options.classify, spareClassified_);
-                prepared_.classified = std::exchange(spareClassified_, {});
-            });
-            classifiedWith_ = options.classify;
+    ClassifyParams classifying = classifyingPart(options.classify);
+    if (classifiedWith_ != classifying) {
+        if (scalarsFreed_) throw std::logic_error("StagedPreparation: the scalars were freed once classified");
+        run(PrepStage::Classify, [&](std::vector<StageTime>& times) {
+            runStage("classify", times, [&] { classify(volume_, options.classify, spareClassified_); });
+            prepared_.classified = std::exchange(spareClassified_, {});
+        });
+        classifiedWith_ = std::move(classifying);
+        if (scalarsOnceClassified_ == ScalarsOnceClassified::Free) {
+            volume_ = {};
+            scalarsFreed_ = true;
         }
-        prepared_.meta.classification = classificationText(options.classify);  // the TF's text may differ
     }
-    if (last >= PrepStage::Segment &&
-        (!segmentedWith_ || !sameSegmentation(*segmentedWith_, options.segmentation))) {
-        run(PrepStage::Segment, "segment", [&](std::vector<StageTime>&) {
-            segment(prepared_.classified, options.segmentation, spareRegions_);
+    prepared_.meta.classification = classificationText(options.classify);  // the TF's text may differ
+    if (last >= PrepStage::Segment && segmentedWith_ != options.segmentation) {
+        run(PrepStage::Segment, [&](std::vector<StageTime>& times) {
+            runStage("segment", times, [&] { segment(prepared_.classified, options.segmentation, spareRegions_); });
             prepared_.regions = std::exchange(spareRegions_, {});
         });
         segmentedWith_ = options.segmentation;
@@ -99,7 +126,7 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
     }
     const std::pair<unsigned, ExtentCode> fields{options.fields, options.eacdCode};
     if (last >= PrepStage::Fields && fieldsWith_ != fields) {
-        run(PrepStage::Fields, nullptr, [&](std::vector<StageTime>& times) {
+        run(PrepStage::Fields, [&](std::vector<StageTime>& times) {
             prepared_.fields = buildTimedFields(prepared_.regions, options.fields, options.eacdCode, times);
         });
         fieldsWith_ = fields;
@@ -107,10 +134,32 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
     return prepared_;
 }
 
-nlohmann::json StagedPreparation::statistics() const {
-    std::vector<StageTime> times;
+const PreparedVolume& StagedPreparation::withStatistics() {
+    if (prepared_.meta.statistics.is_null()) {
+        prepared_.meta.statistics = preparedStatistics(prepared_, stageTimes());
+        prepared_.meta.rayProbe = probeRays(prepared_);
+    }
+    return prepared_;
+}
+
+void StagedPreparation::write(const std::filesystem::path& path) {
+    const PreparedVolume& prepared = withStatistics();  // before the write's time: the file cannot hold that
+    writeTimes_.clear();
+    runStage("write", writeTimes_, [&] { writePrepared(path, prepared); });
+}
+
+std::vector<StageTime> StagedPreparation::stageTimes() const {
+    std::vector<StageTime> times = loadTimes_;
     for (const auto& t : times_) times.insert(times.end(), t.begin(), t.end());
-    return preparedStatistics(prepared_, times);
+    times.insert(times.end(), writeTimes_.begin(), writeTimes_.end());
+    return times;
+}
+
+PreparedVolume prepare(Volume volume, const PrepareOptions& options) {
+    StagedPreparation staged(std::move(volume), ScalarsOnceClassified::Free);
+    staged.prepare(options);
+    staged.withStatistics();
+    return staged.takeResult();
 }
 
 }  // namespace vr

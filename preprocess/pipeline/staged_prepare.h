@@ -1,67 +1,97 @@
-// Preparation that pays only for what changes: it keeps the loaded volume, the classification, the regions and the
-// fields, and when asked again with other options re-runs only the stages whose inputs changed and those after
-// them. A threshold change re-runs segmentation and the fields, a transfer-function change classification too;
-// the file is loaded once (again only when the raw-file options change).
+// The preprocessing pipeline over a volume in memory: classify -> segment -> distance fields, each stage timed with
+// a progress bar (shown on a terminal only). It keeps every stage's result, and when asked again with other options
+// re-runs only the stages whose inputs changed and those after them: a threshold change re-runs segmentation and
+// the fields, a transfer-function change classification too. volprep, volsweep and the benchmarks all run it.
 #pragma once
-#include <array>
 #include <filesystem>
 #include <optional>
+#include <utility>
 #include <vector>
 
-#include "preprocess/pipeline/prepare.h"
+#include "core/prepared_volume.h"
+#include "preprocess/classify/classify.h"
+#include "preprocess/load/load_volume.h"
+#include "preprocess/pipeline/stage_time.h"
 
 namespace vr {
 
+struct PrepareOptions {
+    ClassifyParams classify;           // a transfer function or iso-contours
+    SegmentationParams segmentation;   // T_o, T_a, useNormals, trilinear
+    unsigned fields = kFieldPC | kFieldACD | kFieldEACD;
+    ExtentCode eacdCode = kDefaultExtentCode;  // EACD extents rounded down to this code (core/extent_code.h)
+};
+
 // The stages in the order they depend on each other.
-enum class PrepStage { Load, Classify, Segment, Fields };
-constexpr int kPrepStages = 4;
+enum class PrepStage { Classify, Segment, Fields };
+constexpr int kPrepStages = 3;
+
+// What becomes of the scalars once classified: kept for another classification, or freed so that the later stages
+// have their memory (a preparation that runs once, as volprep's; classifying again is then a logic error).
+enum class ScalarsOnceClassified { Keep, Free };
 
 class StagedPreparation {
 public:
-    explicit StagedPreparation(std::filesystem::path input);
-    // A volume already in memory (a phantom, a resampled volume): the load stage never runs and options.raw does
-    // not apply; meta.source is volume.source.
-    explicit StagedPreparation(Volume volume);
+    // meta.source is volume.source.
+    explicit StagedPreparation(Volume volume, ScalarsOnceClassified scalars = ScalarsOnceClassified::Keep);
+    // Loads `input` (loadVolume, `raw` for headerless raw files) as the stage "load": the first of stageTimes().
+    // Throws InputError as loadVolume does.
+    static StagedPreparation load(const std::filesystem::path& input, const RawOptions& raw,
+                                  ScalarsOnceClassified scalars = ScalarsOnceClassified::Keep);
 
-    // Brings the stages up to `last` up to date with `options` and returns the result. With last = Fields it
-    // equals prepareVolume(input, options) but for meta.statistics (see statistics()); stages after `last` do not
-    // run, and keep their results only while these are still valid (else they are empty). Throws InputError as
-    // prepareVolume does; a stage that threw runs again on the next call. The reference stays valid for the
-    // lifetime of this object.
+    // Brings the stages up to `last` up to date with `options` and returns the result. Each field is timed on its
+    // own: ACD (the 8 octant passes, also built when only EACD is asked for), PC from the ACDs, EACD on top of ACD.
+    // Stages after `last` do not run, and keep their results only while these are still valid (else they are
+    // empty). Throws InputError for bad parameters; a stage that threw runs again on the next call. The reference
+    // stays valid for the lifetime of this object.
     const PreparedVolume& prepare(const PrepareOptions& options, PrepStage last = PrepStage::Fields);
 
-    // The stages the last prepare() ran, in order (load, classify, segment, pc, acd, eacd); empty when nothing
-    // had changed.
+    // The result with meta.statistics (preparedStatistics, with stageTimes()) and meta.rayProbe (probeRays: a few
+    // hundred small CPU renders) filled in, as a prepared file holds them; until a stage runs again.
+    const PreparedVolume& withStatistics();
+    // Writes withStatistics() to `path` atomically (writePrepared) as the stage "write": the last of stageTimes()
+    // until a stage runs again. Throws InputError where the file cannot be written.
+    void write(const std::filesystem::path& path);
+    // The result, moved out: what is left is empty.
+    PreparedVolume takeResult() { return std::exchange(prepared_, {}); }
+
+    // The stages the last prepare() ran, in order (classify, segment, acd, pc, eacd); empty when nothing had changed.
     const std::vector<StageTime>& lastStages() const { return lastStages_; }
+    // The times of the stage runs behind the current result, in order: "load" first where it ran, "write" last.
+    std::vector<StageTime> stageTimes() const;
     // How many times `stage` has run since construction (a stage that threw included).
     int runs(PrepStage stage) const { return runs_[int(stage)]; }
-    // preparedStatistics of the current result, with the times of the stage runs that produced it.
-    nlohmann::json statistics() const;
-    // The loaded scalars (kept for the next classification).
+    // The scalars (kept for the next classification unless freed).
     const Volume& volume() const { return volume_; }
 
 private:
     // Discards the results of `stage` and of every stage after it (the classification's and the regions' arrays
     // are kept aside for the next run of their stage to reuse: no fresh pages to fault in).
     void invalidateFrom(PrepStage stage);
-    // Runs `work` as `stage` (named `name` in the times), counting and timing it.
+    // Runs `work` as `stage`, counting it; `work` appends its times.
     template <typename Work>
-    void run(PrepStage stage, const char* name, Work work);
+    void run(PrepStage stage, Work work);
 
-    std::filesystem::path input_;  // empty for a volume given in memory
     Volume volume_;
+    ScalarsOnceClassified scalarsOnceClassified_;
+    bool scalarsFreed_ = false;
     PreparedVolume prepared_;
     // Invalidated results, whose arrays the next run of their stage reuses.
     ClassifiedVolume spareClassified_;
     Regions spareRegions_;
     // The options each stage last ran with; empty when it has no valid result.
-    std::optional<RawOptions> loadedWith_;
-    std::optional<ClassifyParams> classifiedWith_;
+    std::optional<ClassifyParams> classifiedWith_;  // as far as they classify (the TF's name and text left out)
     std::optional<SegmentationParams> segmentedWith_;
     std::optional<std::pair<unsigned, ExtentCode>> fieldsWith_;  // kinds, EACD code
+    std::vector<StageTime> loadTimes_;                           // of loading the volume, where it was loaded
     std::array<std::vector<StageTime>, kPrepStages> times_;      // of the run behind each stage's result
+    std::vector<StageTime> writeTimes_;                          // of writing the current result
     std::array<int, kPrepStages> runs_{};
     std::vector<StageTime> lastStages_;
 };
+
+// Every stage once over `volume`, its scalars freed once classified, with the statistics and the ray probe: the
+// prepared volume as volprep writes it (StagedPreparation for the stages' times).
+PreparedVolume prepare(Volume volume, const PrepareOptions& options);
 
 }  // namespace vr

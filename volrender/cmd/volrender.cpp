@@ -134,17 +134,17 @@ unsigned fieldsFor(vr::Caster c) {
     return 0;
 }
 
-// --caster auto: the caster for the orbit's views, from the statistics the prepared file stores (the fields are
-// read once the caster is known).
+// --caster auto: the caster for the orbit's views, from the ray probe and the field sizes in the prepared file's
+// header (the chunks are read once the caster is known).
 vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s) {
-    const vr::PreparedVolume header = vr::readPrepared(f.prepared, 0, false);
+    const vr::PreparedHeader header = vr::readPreparedHeader(f.prepared);
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (int i = 0; i < f.views; ++i) {
         view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
         view.elevationDeg = f.elevation;
-        d.addView(vr::Camera::fit(header.classified.grid, view));
+        d.addView(vr::Camera::fit(header.grid, view));
     }
-    return vr::chooseCaster(header.meta.statistics, d);
+    return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d);
 }
 
 int run(const Flags& f) {
