@@ -239,6 +239,53 @@ void readChunks(const Reader& r, uint64_t dataStart, const std::vector<ChunkRead
             throw r.fail("chunk '" + reads[i].name + "' checksum mismatch (file is corrupted)");
 }
 
+}  // namespace
+
+void writePrepared(const fs::path& path, const PreparedVolume& p) {
+    checkSizes(path, p);
+    const GridGeometry& g = p.classified.grid;
+    const ExtentCode code = p.fields.eacdCode();
+    std::vector<ChunkSource> chunks = chunkSources(p);
+
+    json table = json::array();
+    uint64_t offset = 0;
+    for (const ChunkSource& c : chunks) {
+        ChunkLayout l = layoutOf(c.name, code);
+        uint64_t bytes = uint64_t(c.elements) * l.components * l.elementBytes;
+        table.push_back({{"name", c.name},
+                         {"type", l.type},
+                         {"components", l.components},
+                         {"offset", offset},
+                         {"bytes", bytes},
+                         {"crc32", crc32Of(c.data, bytes)}});
+        offset += bytes;
+    }
+    json header = {{"grid",
+                    {{"dims", {g.dims.x, g.dims.y, g.dims.z}}, {"spacing", vec3Json(g.spacing)}, {"origin", vec3Json(g.origin)}}},
+                   {"referenceStep", p.classified.referenceStep},
+                   {"regionCount", p.regions.count},
+                   {"metadata", metadataJson(p.meta)},
+                   {"eacdCode", extentCodeName(code)},
+                   {"chunks", table}};
+    // Paths need not be UTF-8: replace what JSON cannot hold rather than fail the write.
+    std::string text = header.dump(1, ' ', false, json::error_handler_t::replace);
+
+    writeFileAtomically(path, [&](std::ostream& out) {
+        uint32_t version = kPreparedFormatVersion;
+        uint64_t headerBytes = text.size();
+        uint32_t headerCrc = crc32Of(text.data(), text.size());
+        out.write(kMagic, sizeof(kMagic));
+        out.write(reinterpret_cast<const char*>(&version), sizeof(version));
+        out.write(reinterpret_cast<const char*>(&headerBytes), sizeof(headerBytes));
+        out.write(text.data(), std::streamsize(text.size()));
+        out.write(reinterpret_cast<const char*>(&headerCrc), sizeof(headerCrc));
+        for (std::size_t i = 0; i < chunks.size(); ++i)
+            out.write(static_cast<const char*>(chunks[i].data), std::streamsize(table[i]["bytes"].get<uint64_t>()));
+    });
+}
+
+namespace {
+
 // Everything the header says, checked against the file: all of the prepared volume but the chunks' contents.
 struct Header {
     PreparedVolume prepared;  // grid, reference step, region count and metadata
@@ -344,49 +391,6 @@ Header readHeader(const Reader& r) {
 }
 
 }  // namespace
-
-void writePrepared(const fs::path& path, const PreparedVolume& p) {
-    checkSizes(path, p);
-    const GridGeometry& g = p.classified.grid;
-    const ExtentCode code = p.fields.eacdCode();
-    std::vector<ChunkSource> chunks = chunkSources(p);
-
-    json table = json::array();
-    uint64_t offset = 0;
-    for (const ChunkSource& c : chunks) {
-        ChunkLayout l = layoutOf(c.name, code);
-        uint64_t bytes = uint64_t(c.elements) * l.components * l.elementBytes;
-        table.push_back({{"name", c.name},
-                         {"type", l.type},
-                         {"components", l.components},
-                         {"offset", offset},
-                         {"bytes", bytes},
-                         {"crc32", crc32Of(c.data, bytes)}});
-        offset += bytes;
-    }
-    json header = {{"grid",
-                    {{"dims", {g.dims.x, g.dims.y, g.dims.z}}, {"spacing", vec3Json(g.spacing)}, {"origin", vec3Json(g.origin)}}},
-                   {"referenceStep", p.classified.referenceStep},
-                   {"regionCount", p.regions.count},
-                   {"metadata", metadataJson(p.meta)},
-                   {"eacdCode", extentCodeName(code)},
-                   {"chunks", table}};
-    // Paths need not be UTF-8: replace what JSON cannot hold rather than fail the write.
-    std::string text = header.dump(1, ' ', false, json::error_handler_t::replace);
-
-    writeFileAtomically(path, [&](std::ostream& out) {
-        uint32_t version = kPreparedFormatVersion;
-        uint64_t headerBytes = text.size();
-        uint32_t headerCrc = crc32Of(text.data(), text.size());
-        out.write(kMagic, sizeof(kMagic));
-        out.write(reinterpret_cast<const char*>(&version), sizeof(version));
-        out.write(reinterpret_cast<const char*>(&headerBytes), sizeof(headerBytes));
-        out.write(text.data(), std::streamsize(text.size()));
-        out.write(reinterpret_cast<const char*>(&headerCrc), sizeof(headerCrc));
-        for (std::size_t i = 0; i < chunks.size(); ++i)
-            out.write(static_cast<const char*>(chunks[i].data), std::streamsize(table[i]["bytes"].get<uint64_t>()));
-    });
-}
 
 PreparedHeader readPreparedHeader(const fs::path& path) {
     Header h = readHeader(Reader(path));

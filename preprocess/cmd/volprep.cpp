@@ -109,10 +109,10 @@ int main(int argc, char** argv) {
     addFlags(app, flags);
     return vr::runTool("volprep", app, argc, argv, [&] {
         checkBeforeRunning(flags);
+        const vr::RawOptions raw = rawOptionsFrom(flags);
         const vr::PrepareOptions options = optionsFrom(flags);  // a bad transfer function fails before the load
         // Classified once: the scalars' memory goes to segmentation and the fields.
-        vr::StagedPreparation staged =
-            vr::StagedPreparation::load(flags.input, rawOptionsFrom(flags), vr::ScalarsOnceClassified::Free);
+        vr::StagedPreparation staged = vr::StagedPreparation::load(flags.input, raw, vr::ScalarsOnceClassified::Free);
         staged.prepare(options);
         staged.write(flags.output);
         vr::printSummary(stdout, flags.output, staged.withStatistics(), staged.stageTimes());

@@ -159,7 +159,7 @@ PreparedVolume prepare(Volume volume, const PrepareOptions& options) {
     StagedPreparation staged(std::move(volume), ScalarsOnceClassified::Free);
     staged.prepare(options);
     staged.withStatistics();
-    return staged.takeResult();
+    return std::move(staged).takeResult();
 }
 
 }  // namespace vr

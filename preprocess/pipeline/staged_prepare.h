@@ -3,6 +3,7 @@
 // re-runs only the stages whose inputs changed and those after them: a threshold change re-runs segmentation and
 // the fields, a transfer-function change classification too. volprep, volsweep and the benchmarks all run it.
 #pragma once
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <utility>
@@ -52,8 +53,8 @@ public:
     // Writes withStatistics() to `path` atomically (writePrepared) as the stage "write": the last of stageTimes()
     // until a stage runs again. Throws InputError where the file cannot be written.
     void write(const std::filesystem::path& path);
-    // The result, moved out: what is left is empty.
-    PreparedVolume takeResult() { return std::exchange(prepared_, {}); }
+    // The result, moved out of a preparation that is done with.
+    PreparedVolume takeResult() && { return std::move(prepared_); }
 
     // The stages the last prepare() ran, in order (classify, segment, acd, pc, eacd); empty when nothing had changed.
     const std::vector<StageTime>& lastStages() const { return lastStages_; }
