@@ -11,7 +11,8 @@ BoundedReader::BoundedReader(fs::path path, std::string subject, Unopened)
 
 BoundedReader::BoundedReader(fs::path path, std::string subject)
     : BoundedReader(std::move(path), std::move(subject), Unopened{}) {
-    if (const std::string problem = open(); !problem.empty()) throw fileError(path_.string(), "cannot read: " + problem);
+    if (const std::string problem = open(); !problem.empty())
+        throw fileError(path_.string(), "cannot read: " + problem);
 }
 
 BoundedReader BoundedReader::dataFile(const fs::path& other) const {

@@ -109,19 +109,22 @@ DicomSliceLayout checkDicomFile(const fs::path& path) {
                 break;
             case Encoding::NoVr: length = valueAt<std::int32_t>(vr, 0); break;
         }
+        const std::string what = "element " + tagText(t);
         const bool valueNeeded = needsValue(t);
-        if (pixelDataSeen && valueNeeded) throw file.fail("element " + tagText(t) + " follows the pixel data");
+        if (pixelDataSeen && valueNeeded) throw file.fail(what + " follows the pixel data");
         if (length <= 0) {
             if (t == kPixelData && length == -1)
                 throw file.fail("compressed (encapsulated) pixel data are not supported");
-            if (valueNeeded) throw file.fail("element " + tagText(t) + " is empty");
+            if (valueNeeded) throw file.fail(what + " is empty");
             continue;  // the parser neither reads nor skips anything
         }
         if (std::uint64_t(length) > file.remaining())
-            throw file.fail("element " + tagText(t) + " of " + std::to_string(length) +
-                            " bytes runs past the end of the file");
+            throw file.fail(what + " of " + std::to_string(length) + " bytes runs past the end of the file");
         const std::uint64_t end = file.position() + std::uint64_t(length);
-        const std::string what = "element " + tagText(t);
+        // The value's first `most` bytes as text, without its padding.
+        const auto text = [&](std::int64_t most) {
+            return unpadded(file.bytes(std::size_t(std::min(length, most)), what));
+        };
         if (t == kPixelData) {
             if (rows == 0 || columns == 0 || bits == 0)
                 throw file.fail("pixel data without rows, columns and bits allocated before them");
@@ -131,16 +134,16 @@ DicomSliceLayout checkDicomFile(const fs::path& path) {
                                 " bytes but rows x columns x samples x bits allocated need " + std::to_string(needed));
             pixelDataSeen = true;
         } else if (t == kTransferSyntax) {
-            const std::string value = unpadded(file.bytes(std::size_t(std::min<std::int64_t>(length, 64)), what));
+            const std::string value = text(64);
             if (value != "1.2.840.10008.1.2" && value != "1.2.840.10008.1.2.1")
                 throw file.fail("transfer syntax \"" + value + "\" is not implicit or explicit VR little endian");
             transferSyntaxSeen = true;
         } else if (t == kPhotometric) {
-            rgb = unpadded(file.bytes(std::size_t(std::min<std::int64_t>(length, 16)), what)).rfind("RGB", 0) == 0 ? 3 : 1;
+            rgb = text(16).starts_with("RGB") ? 3 : 1;
         } else if (t == kRows || t == kColumns || t == kBitsAllocated || t == kSamples) {
             if (length < 2) throw file.fail(what + " holds " + std::to_string(length) + " byte");
-            (t == kRows ? rows : t == kColumns ? columns : t == kBitsAllocated ? bits : samples) =
-                file.littleEndian<std::uint16_t>(what);
+            std::uint64_t& field = t == kRows ? rows : t == kColumns ? columns : t == kBitsAllocated ? bits : samples;
+            field = file.littleEndian<std::uint16_t>(what);
             if (t == kBitsAllocated && bits != 8 && bits != 16)
                 throw file.fail(std::to_string(bits) + " bits allocated (VTK's DICOM reader reads 8 or 16)");
         }

@@ -24,7 +24,8 @@ void checkMetaImageHeader(const fs::path& path) {
         if (!line) throw file.fail("it ends before an ElementDataFile line");
         if (trimmed(*line).empty()) continue;
         const auto equals = line->find_first_of(":=");
-        if (equals == std::string::npos) throw file.fail("a line without \"=\": \"" + trimmed(*line).substr(0, 40) + "\"");
+        if (equals == std::string::npos)
+            throw file.fail("a line without \"=\": \"" + trimmed(*line).substr(0, 40) + "\"");
         const std::string key = trimmed(line->substr(0, equals));
         if (!fields.emplace(key, trimmed(line->substr(equals + 1))).second)
             throw file.fail("the field " + key.substr(0, 40) + " appears twice");
@@ -84,7 +85,7 @@ void checkMetaImageHeader(const fs::path& path) {
     if (dataFile.empty()) throw file.fail("ElementDataFile is empty");
     if (dataFile.starts_with("LIST") || dataFile.find('%') != std::string::npos)
         throw file.fail("ElementDataFile \"" + dataFile.substr(0, 40) +
-                   "\": lists and patterns of data files are not supported");
+                        "\": lists and patterns of data files are not supported");
     const bool local = dataFile == "LOCAL" || dataFile == "Local" || dataFile == "local";
     std::optional<BoundedReader> detached;
     if (!local) {
@@ -103,17 +104,17 @@ void checkMetaImageHeader(const fs::path& path) {
     if (!compressed) {
         if (held < needed)
             throw file.fail("its data hold " + std::to_string(held) + " bytes but DimSize \"" + value("DimSize") +
-                       "\" of " + type->first + " needs " + std::to_string(needed));
+                            "\" of " + type->first + " needs " + std::to_string(needed));
         return;
     }
     if (std::uintmax_t(compressedSize) > held)
         throw file.fail("CompressedDataSize " + std::to_string(compressedSize) + " is more than the " +
-                   std::to_string(held) + " bytes of data the file holds");
+                        std::to_string(held) + " bytes of data the file holds");
     if (const std::uintmax_t got =
             decompressedBytes(data, start, needed, Compression::ZlibOrGzip, std::uintmax_t(compressedSize));
         got < needed)
         throw file.fail("its compressed data decompress to " + std::to_string(got) + " bytes but DimSize \"" +
-                   value("DimSize") + "\" of " + type->first + " needs " + std::to_string(needed));
+                        value("DimSize") + "\" of " + type->first + " needs " + std::to_string(needed));
 }
 
 }  // namespace vr

@@ -65,12 +65,13 @@ void checkNiftiHeader(const fs::path& path) {
 
     std::int64_t dims[8];
     for (int i = 0; i < 8; ++i)
-        dims[i] =
-            nifti2 ? valueAt<std::int64_t>(header, 16 + 8 * i, order) : valueAt<std::int16_t>(header, 40 + 2 * i, order);
+        dims[i] = nifti2 ? valueAt<std::int64_t>(header, 16 + 8 * i, order)
+                         : valueAt<std::int16_t>(header, 40 + 2 * i, order);
     if (dims[0] < 1 || dims[0] > 7) throw file.fail("dim[0] is " + std::to_string(dims[0]) + ", not in 1..7");
     double voxels = 1;
     for (int i = 1; i <= dims[0]; ++i) {
-        if (dims[i] < 1) throw file.fail("dim[" + std::to_string(i) + "] is " + std::to_string(dims[i]) + ", not positive");
+        if (dims[i] < 1)
+            throw file.fail("dim[" + std::to_string(i) + "] is " + std::to_string(dims[i]) + ", not positive");
         voxels *= double(dims[i]);
     }
 
@@ -80,7 +81,7 @@ void checkNiftiHeader(const fs::path& path) {
     if (bits == 0) throw file.fail("datatype " + std::to_string(datatype) + " is not a supported scalar type");
     if (bitpix != bits)
         throw file.fail("bitpix is " + std::to_string(bitpix) + " but datatype " + std::to_string(datatype) + " has " +
-                   std::to_string(bits) + " bits");
+                        std::to_string(bits) + " bits");
 
     const double voxOffset =
         nifti2 ? double(valueAt<std::int64_t>(header, 168, order)) : double(valueAt<float>(header, 108, order));
@@ -99,8 +100,8 @@ void checkNiftiHeader(const fs::path& path) {
     const std::uintmax_t needed = std::uintmax_t(voxOffset) + std::uintmax_t(voxels) * std::uintmax_t(bits / 8);
     const std::uintmax_t held = gzipped ? decompressedBytes(file, 0, needed, Compression::GzipOrPlain) : file.size();
     if (held < needed)
-        throw file.fail(std::string(gzipped ? "the gzip data decompress to " : "the file holds ") + std::to_string(held) +
-                   " bytes but vox_offset and dims need " + std::to_string(needed));
+        throw file.fail(std::string(gzipped ? "the gzip data decompress to " : "the file holds ") +
+                        std::to_string(held) + " bytes but vox_offset and dims need " + std::to_string(needed));
 }
 
 }  // namespace vr

@@ -86,7 +86,7 @@ void checkNrrdFile(const fs::path& path) {
     for (const char* key : {"type", "dimension", "sizes", "encoding"})
         if (!fields.contains(key))
             throw file.fail(std::string("no \"") + key +
-                       "\" field (a NRRD header needs type, dimension, sizes and encoding)");
+                            "\" field (a NRRD header needs type, dimension, sizes and encoding)");
     const std::vector<long long> dimensionField = integers(fields["dimension"]);
     if (dimensionField.size() != 1 || dimensionField[0] < 1 || dimensionField[0] > 16)
         throw file.fail("dimension \"" + fields["dimension"] + "\" is not an integer in 1..16");
@@ -94,14 +94,15 @@ void checkNrrdFile(const fs::path& path) {
     const auto it = fields.find("sizes");
     const std::vector<long long> sizes = integers(it->second);
     if (sizes.size() != std::size_t(dimension))
-        throw file.fail("sizes \"" + it->second + "\" are not " + std::to_string(dimension) + " integers (the dimension)");
+        throw file.fail("sizes \"" + it->second + "\" are not " + std::to_string(dimension) +
+                        " integers (the dimension)");
     // vtkNrrdReader takes the first axis for components when the dimension is 4 or that axis has 9 samples or
     // fewer, and reads through a null stream (SEGV) when that leaves fewer than 2 or more than 3 image axes.
     const bool componentAxis = dimension == 4 || sizes[0] <= 9;
     if (const int axes = dimension - componentAxis; axes < 2 || axes > 3)
-        throw file.fail("dimension " + std::to_string(dimension) + " and sizes \"" + it->second + "\" leave VTK's reader " +
-                   std::to_string(axes) + " image axes" +
-                   (componentAxis ? " (it takes the first axis for components)" : "") + "; it reads 2 or 3");
+        throw file.fail("dimension " + std::to_string(dimension) + " and sizes \"" + it->second +
+                        "\" leave VTK's reader " + std::to_string(axes) + " image axes" +
+                        (componentAxis ? " (it takes the first axis for components)" : "") + "; it reads 2 or 3");
 
     const int bytes = typeBytes(fields["type"]);
     if (bytes == 0) return;  // VTK's reader names the type it does not know
@@ -145,8 +146,8 @@ void checkNrrdFile(const fs::path& path) {
         // Counted by decompressing (up to what is needed): the reader allocates the image before it inflates.
         const std::uintmax_t needed = values * std::uintmax_t(bytes);
         if (const std::uintmax_t got = decompressedBytes(data, start, needed, Compression::GzipOrPlain); got < needed)
-            throw file.fail("its gzip data decompress to " + std::to_string(got) + " bytes but sizes \"" +
-                            it->second + "\" of type " + fields["type"] + " need " + std::to_string(needed));
+            throw file.fail("its gzip data decompress to " + std::to_string(got) + " bytes but sizes \"" + it->second +
+                            "\" of type " + fields["type"] + " need " + std::to_string(needed));
     }
 }
 

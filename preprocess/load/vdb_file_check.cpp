@@ -13,8 +13,8 @@
 #include <array>
 #include <bit>
 #include <cctype>
-#include <cstdint>
 #include <climits>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <set>
@@ -109,11 +109,12 @@ void readDelayedLoad(BoundedReader& file, std::uint32_t stated, const char* wher
         // compression::bloscCompress pads what is shorter to 128 bytes
         if (unpacked != size && !(size < 128 && unpacked == 128))
             throw file.fail(what + ": a blosc array of " + std::to_string(length) + " bytes that is not " +
-                       std::to_string(size) + " bytes compressed");
+                            std::to_string(size) + " bytes compressed");
         file.skip(length - headerBytes, what);
     };
     array(file.littleEndian<std::uint32_t>(where), count);
-    if (const std::uint32_t length = file.littleEndian<std::uint32_t>(where); length != UINT32_MAX) array(length, count * 8);
+    if (const std::uint32_t length = file.littleEndian<std::uint32_t>(where); length != UINT32_MAX)
+        array(length, count * 8);
     const std::uint64_t consumed = file.position() - start;
     if (consumed < stated) file.skip(stated - consumed, what);
 }
@@ -122,8 +123,9 @@ void readDelayedLoad(BoundedReader& file, std::uint32_t stated, const char* wher
 // bounding box, taper and depth are followed by a second map.
 void readTransform(BoundedReader& file, const char* what) {
     static const std::map<std::string, std::uint32_t> sizes{
-        {"AffineMap", 128},       {"UnitaryMap", 128},        {"ScaleMap", 120},
-        {"UniformScaleMap", 120}, {"TranslationMap", 24},     {"ScaleTranslateMap", 144},
+        {"AffineMap", 128},          {"UnitaryMap", 128},
+        {"ScaleMap", 120},           {"UniformScaleMap", 120},
+        {"TranslationMap", 24},      {"ScaleTranslateMap", 144},
         {"NonlinearFrustumMap", 64}, {"UniformScaleTranslateMap", 144}};
     const std::string type = readString(file, what);
     const auto map = sizes.find(type);

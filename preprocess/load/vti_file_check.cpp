@@ -71,10 +71,10 @@ void checkVtkXmlImageFile(const fs::path& path) {
     const double claimed = double(dims.x) * dims.y * dims.z * double(components) * type->second;
     if (claimed > size * ratio)
         throw file.fail("WholeExtent \"" + attribute(text, image, "WholeExtent") + "\" claims " +
-                   std::to_string(std::uint64_t(claimed)) + " bytes of " + type->first + " values but the file of " +
-                   std::to_string(std::uint64_t(size)) + " bytes holds at most " +
-                   std::to_string(std::uint64_t(size * ratio)) +
-                   (compressor.empty() ? std::string(" (uncompressed)") : " (" + compressor + ")"));
+                        std::to_string(std::uint64_t(claimed)) + " bytes of " + type->first +
+                        " values but the file of " + std::to_string(std::uint64_t(size)) + " bytes holds at most " +
+                        std::to_string(std::uint64_t(size * ratio)) +
+                        (compressor.empty() ? std::string(" (uncompressed)") : " (" + compressor + ")"));
 }
 
 }  // namespace vr

@@ -69,7 +69,8 @@ void checkVtkLegacyFile(const fs::path& path) {
         std::vector<std::string> w = words(*line);
         if (w.empty()) continue;
         if (w[0] == "SCALARS") {
-            if (w.size() < 3 || w.size() > 4) throw file.fail("the SCALARS line is not \"SCALARS NAME TYPE [COMPONENTS]\"");
+            if (w.size() < 3 || w.size() > 4)
+                throw file.fail("the SCALARS line is not \"SCALARS NAME TYPE [COMPONENTS]\"");
             scalars = w;
             break;
         }
@@ -78,7 +79,7 @@ void checkVtkLegacyFile(const fs::path& path) {
         const auto count = counts.find(w[0]);
         if (count == counts.end())
             throw file.fail("unexpected \"" + w[0].substr(0, 40) +
-                       "\" before SCALARS (only scalar point data is supported)");
+                            "\" before SCALARS (only scalar point data is supported)");
         if (w.size() != count->second + 1)
             throw file.fail(w[0] + " is not followed by " + std::to_string(count->second) + " numbers");
         std::vector<double>& values = numbers[w[0]];
@@ -88,7 +89,8 @@ void checkVtkLegacyFile(const fs::path& path) {
             else
                 throw file.fail(w[0] + " is followed by \"" + w[i].substr(0, 40) + "\", not a number");
     }
-    if (!numbers.contains("DIMENSIONS") || !numbers.contains("POINT_DATA")) throw file.fail("no DIMENSIONS or POINT_DATA");
+    if (!numbers.contains("DIMENSIONS") || !numbers.contains("POINT_DATA"))
+        throw file.fail("no DIMENSIONS or POINT_DATA");
     const std::vector<double>& d = numbers["DIMENSIONS"];
     for (double n : d)
         if (!(n >= 1 && n <= 1e15 && n == std::floor(n))) throw file.fail("DIMENSIONS must be positive integers");
@@ -114,13 +116,14 @@ void checkVtkLegacyFile(const fs::path& path) {
     if (binary) {
         const double available = double(file.size() - dataStart);
         if (available < values * bytes)
-            throw file.fail("it holds " + std::to_string(std::int64_t(available)) + " bytes of binary data but POINT_DATA " +
-                       "needs " + std::to_string(std::int64_t(values * bytes)));
+            throw file.fail("it holds " + std::to_string(std::int64_t(available)) +
+                            " bytes of binary data but POINT_DATA " + "needs " +
+                            std::to_string(std::int64_t(values * bytes)));
     } else {
         const double count = double(file.countWords(std::uint64_t(std::ceil(values))));
         if (count < values)
             throw file.fail("it holds " + std::to_string(std::int64_t(count)) + " ASCII values but POINT_DATA needs " +
-                       std::to_string(std::int64_t(values)));
+                            std::to_string(std::int64_t(values)));
     }
 }
 
