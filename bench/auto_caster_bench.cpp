@@ -1,4 +1,4 @@
-// --caster auto against the fixed casters (issue 6): on every raw dataset of the shared MANIFEST.tsv and the
+// --caster auto against the fixed casters: on every raw dataset of the shared MANIFEST.tsv and the
 // synthetic phantoms, each fixed caster's time for a few views (device ms of the renders, sum over views of the
 // median over repeats, plus the wall ms of uploading its field once) with its mean loop iterations per pixel,
 // auto's one choice for the views (render/caster_choice.h, from the statistics volprep stores) and its ratio to

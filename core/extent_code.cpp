@@ -6,6 +6,7 @@
 #include <string>
 
 #include "distance_fields.h"
+#include "enum_names.h"
 #include "errors.h"
 #include "extent_field.h"
 
@@ -71,20 +72,17 @@ ExtentTable makeTable(ExtentCode code) {
 
 }  // namespace
 
-std::string_view extentCodeName(ExtentCode code) {
-    switch (code) {
-        case ExtentCode::Exact: return "exact";
-        case ExtentCode::Log16: return "log16";
-        case ExtentCode::Joint8: return "joint8";
-    }
-    return "?";
-}
+constexpr EnumName<ExtentCode> kExtentCodeNames[] = {
+    {ExtentCode::Exact, "exact"}, {ExtentCode::Log16, "log16"}, {ExtentCode::Joint8, "joint8"}};
+
+std::string_view extentCodeName(ExtentCode code) { return nameOf(kExtentCodeNames, code); }
 
 ExtentCode parseExtentCode(std::string_view name, std::string_view what) {
-    for (ExtentCode c : {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8})
-        if (name == extentCodeName(c)) return c;
-    throw InputError(std::string(what) + ": unknown EACD code '" + std::string(name) +
-                     "' (expected exact, log16 or joint8)");
+    try {
+        return valueNamed(kExtentCodeNames, name, "EACD code");
+    } catch (const InputError& e) {
+        throw InputError(std::string(what) + ": " + e.what());
+    }
 }
 
 const ExtentCodeTerms& extentCodeTerms(ExtentCode code) {

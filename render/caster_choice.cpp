@@ -27,10 +27,10 @@ struct CasterCost {
 };
 // Lavapipe on this project's 2-core machine: least squares of device ms = pixels x (kRayNs + iterations x
 // iterationNs) over bench/auto_caster_bench's 136 renders (34 rows x 4 casters: the shared datasets and the
-// phantoms, T = 0 and 0.02/10, 256x256, 4 views), after session 4's shader changes. A leaping iteration adds a
-// field fetch, a box exit and the leap's bounds check to the sample; EACD also decodes its extents. Kept after
-// session 5 made every iteration cheaper (primitive 2.8x, EACD 1.2x): they still pick within 10 % on 33 of 34
-// rows, where this session's own fit (ray 27; 5, 9, 11, 13) picks so on 29-30. An iteration's time grows with the
+// phantoms, T = 0 and 0.02/10, 256x256, 4 views). A leaping iteration adds a field fetch, a box exit and the
+// leap's bounds check to the sample; EACD also decodes its extents. Kept after later shader changes made every
+// iteration cheaper (primitive 2.8x, EACD 1.2x): they still pick within 10 % on 33 of 34 rows, where a fit to
+// the faster shaders (ray 27; 5, 9, 11, 13) picks so on 29-30. An iteration's time grows with the
 // volume (primitive: 3 ns on 2 MB of classified voxels, 10 ns on 268 MB), which these constants do not model.
 constexpr double kRayNs = 38;
 constexpr std::array<CasterCost, 4> kCasters{{{Caster::Primitive, "primitive", 11},

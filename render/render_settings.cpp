@@ -1,25 +1,17 @@
 #include "render/render_settings.h"
 
-#include <string>
-
-#include "core/errors.h"
+#include "core/enum_names.h"
 
 namespace vr {
+namespace {
 
-std::string_view casterName(Caster c) {
-    switch (c) {
-        case Caster::Primitive: return "primitive";
-        case Caster::PC: return "pc";
-        case Caster::ACD: return "acd";
-        case Caster::EACD: return "eacd";
-    }
-    return "unknown";
-}
+constexpr EnumName<Caster> kCasterNames[] = {
+    {Caster::Primitive, "primitive"}, {Caster::PC, "pc"}, {Caster::ACD, "acd"}, {Caster::EACD, "eacd"}};
 
-Caster parseCaster(std::string_view name) {
-    for (Caster c : {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD})
-        if (name == casterName(c)) return c;
-    throw InputError("unknown caster '" + std::string(name) + "' (expected primitive, pc, acd or eacd)");
-}
+}  // namespace
+
+std::string_view casterName(Caster c) { return nameOf(kCasterNames, c); }
+
+Caster parseCaster(std::string_view name) { return valueNamed(kCasterNames, name, "caster"); }
 
 }  // namespace vr

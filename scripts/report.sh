@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # The full report (docs/BENCH.md "Error against run time" and "Peers"): every raw dataset of the shared MANIFEST.tsv
-# and one synthetic phantom through volsweep over the 6x5 threshold grid, and the peers side by side with
+# and one synthetic phantom through volsweep over a 6x5 threshold grid, and the peers side by side with
 # our casters on every CT dataset, into one folder: sweep.csv, report.md, plots/, strips/, images/, peers/.
 #   scripts/report.sh [OUTDIR]            (default out/sweep)
 # Sized for 30 minutes on this 2-core machine with lavapipe (the "This run" section of the report says why):
-# 256x256 images, an 8-view orbit (the default); volumes of BIG_VOXELS voxels or more are swept
+# 256x256 images, an 8-view orbit at elevation 0; volumes of BIG_VOXELS voxels or more are swept
 # box-averaged by DOWNSAMPLE per axis; the peers at 512x512 (the same 8 views) on the full-size CT volumes.
 # Environment: BUILD_DIR (default build), VIEWS (8), SIZE (256x256), TO and TA (the grid, comma-separated; default
-# the 0,0.005,0.01,0.02,0.05,0.1 x 0,1,3,10,20), BIG_VOXELS (4000000), DOWNSAMPLE (2), ONLY
+# 0,0.005,0.01,0.02,0.05,0.1 x 0,1,3,10,20), BIG_VOXELS (4000000), DOWNSAMPLE (2), ONLY
 # (space-separated dataset name prefixes, e.g. "cranium_ct vtk_headsq_ct phantom"), PEERS (dataset prefixes for
 # the peers, default the CT volumes "boston_teapot cranium_ct vtk_headsq_ct"; "" for none), PEER_SIZE (512x512),
 # PEER_VIEWS (8), PEER_LIST (the peers run, default vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render),

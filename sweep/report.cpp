@@ -92,7 +92,7 @@ void bestSettings(std::ostream& md, const std::vector<SweepRow>& rows) {
     }
     md << ".\n";
     if (const SweepRow* eacd = bestMeetingTarget(rows, "eacd")) {
-        md << "\n**Issue target (EACD >= " << kTargetSpeedUp << "x faster with the quality target):** "
+        md << "\n**Speed-up target (EACD >= " << kTargetSpeedUp << "x faster with the quality target):** "
            << (speedUp(*eacd) >= kTargetSpeedUp ? "met" : "not met") << " here; best EACD setting T_o="
            << thresholdText(eacd->opacityThreshold) << " T_a=" << thresholdText(eacd->angleThreshold) << " at "
            << fmt("%.2fx", speedUp(*eacd)) << ".";

@@ -1,4 +1,4 @@
-// Which rows of a sweep the report singles out: the quality target of the issue and the best setting meeting it.
+// Which rows of a sweep the report singles out: the quality target and the best setting meeting it.
 #pragma once
 #include <string>
 #include <vector>
@@ -10,7 +10,7 @@ namespace vr {
 // The target: PSNR >= 40 dB and fewer than 1 % of the pixels off by more than 1/255, both in the WORST view.
 constexpr double kTargetPsnr = 40;
 constexpr double kTargetPercentOff = 1;
-// The issue's speed target for EACD over the primitive caster.
+// The speed-up EACD aims for over the primitive caster at the quality target.
 constexpr double kTargetSpeedUp = 8;
 
 bool meetsQualityTarget(const SweepRow& row);

@@ -71,11 +71,11 @@ TEST(SweepSmoke, HeadMrTwoByTwoGrid) {
     }
     EXPECT_TRUE(someError);
 
-    // The issue target's line splits the best EACD speed-up into the iteration ratio and the cost of an iteration
+    // The speed-up target's line splits the best EACD speed-up into the iteration ratio and the cost of an iteration
     // (at thresholds 0, EACD meets the quality target, so some setting does).
     std::ifstream in(report);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const std::size_t target = text.find("**Issue target");
+    const std::size_t target = text.find("**Speed-up target");
     ASSERT_NE(target, std::string::npos);
     const std::string line = text.substr(target, text.find('\n', target) - target);
     EXPECT_NE(line.find("fewer iterations per ray than the primitive caster"), std::string::npos) << line;

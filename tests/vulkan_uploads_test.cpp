@@ -1,4 +1,4 @@
-// What a Vulkan render puts on the device (issue 6): only what it reads, one upload for many renders, and a volume
+// What a Vulkan render puts on the device: only what it reads, one upload for many renders, and a volume
 // split into bricks that each fit the device's image limits rendering the same image, with the same leaps, as the
 // unsplit one.
 #include <gtest/gtest.h>
