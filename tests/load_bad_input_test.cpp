@@ -296,6 +296,14 @@ TEST(LoadBadInput, GarbageVtkFiles) {
     expectInputError(dir / "garbage.vtk", {"garbage.vtk"});
 }
 
+// A binary legacy file that ends with its SCALARS line, without a line break: it holds no data at all.
+TEST(LoadBadInput, LegacyVtkEndingAtItsScalarsLine) {
+    const fs::path path = test::scratchDir("bad_vtk_no_data") / "no_data.vtk";
+    writeText(path,
+              "# vtk DataFile Version 3.0\nno data\nBINARY\nDATASET STRUCTURED_POINTS\nDIMENSIONS 4 3 2\n"
+              "SPACING 1 1 1\nORIGIN 0 0 0\nPOINT_DATA 24\nSCALARS s unsigned_char");
+    expectInputError(path, {"holds 0 bytes of binary data", "needs 24"});
+}
 
 // Gzip (zlib with a gzip header) of `bytes`, or zlib's own format (MetaImage's compressed data).
 std::string deflated(const std::string& bytes, bool gzipHeader = true) {

@@ -42,7 +42,9 @@ namespace vr {
 namespace {
 namespace fs = std::filesystem;
 
-const fs::path kRegressions = fs::path(__FILE__).parent_path().parent_path() / "fuzz" / "regressions";
+// __FILE__ is relative to the build folder, where the compiler runs, when ccache's base_dir rewrites it.
+const fs::path kThisFile = fs::path(__FILE__).is_absolute() ? fs::path(__FILE__) : fs::path(VR_BINARY_DIR) / __FILE__;
+const fs::path kRegressions = kThisFile.parent_path().parent_path() / "fuzz" / "regressions";
 
 // Run in a child process: exits 0 only when loadVolume throws an InputError naming the file, having allocated at
 // most maxAllocation bytes at once. The alarm turns a hang into a failure instead of a stalled suite.

@@ -154,5 +154,24 @@ TEST(LoadRaw, NameGivesDimsAndTypeAndFlagsOverrideIt) {
     EXPECT_EQ(flagged.values[59], -1.0f);
 }
 
+// Stages compare the options a volume was loaded with to decide whether to load it again.
+TEST(LoadRaw, OptionsCompareByEveryField) {
+    const RawOptions options{Vec3i{4, 4, 2}, ScalarType::UInt16, Vec3d{1, 1, 2}, false};
+    EXPECT_TRUE(options == options);
+    EXPECT_TRUE(RawOptions{} == RawOptions{});
+    RawOptions other = options;
+    other.dims = Vec3i{4, 4, 3};
+    EXPECT_FALSE(other == options);
+    other = options;
+    other.type.reset();
+    EXPECT_FALSE(other == options);
+    other = options;
+    other.spacing = Vec3d{1, 1, 1};
+    EXPECT_FALSE(other == options);
+    other = options;
+    other.bigEndian = true;
+    EXPECT_FALSE(other == options);
+}
+
 }  // namespace
 }  // namespace vr

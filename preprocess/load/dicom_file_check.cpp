@@ -8,11 +8,9 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <string>
-#include <vector>
 
-#include "core/errors.h"
+#include "preprocess/load/bounded_reader.h"
 #include "preprocess/load/header_checks.h"
 
 namespace vr {
@@ -29,20 +27,12 @@ constexpr std::uint32_t kTransferSyntax = tag(0x0002, 0x0010), kPixelData = tag(
                         kRows = tag(0x0028, 0x0010), kColumns = tag(0x0028, 0x0011),
                         kBitsAllocated = tag(0x0028, 0x0100);
 
-// Elements with a callback in VTK 9.1's DICOMAppHelper (RegisterCallbacks, RegisterPixelDataCallback) or
-// DICOMParser (the transfer syntax). The parser reads their values; an empty one reaches the callback as null.
-enum class Callback { None, NullSafe, NeedsValue };
-
-Callback callbackOf(std::uint32_t t) {
+// Whether the element has a callback in VTK 9.1's DICOMAppHelper (RegisterCallbacks, RegisterPixelDataCallback) or
+// DICOMParser (the transfer syntax) that uses its value: the parser hands an empty value to the callback as null.
+// (The callbacks of slice number, image position and orientation, pixel spacing, patient name, study ID and
+// gantry angle take null.)
+bool needsValue(std::uint32_t t) {
     switch (t) {
-        case tag(0x0020, 0x0013):  // slice number
-        case tag(0x0020, 0x0032):  // image position
-        case tag(0x0020, 0x0037):  // image orientation
-        case tag(0x0028, 0x0030):  // pixel spacing
-        case tag(0x0010, 0x0010):  // patient name
-        case tag(0x0020, 0x0010):  // study ID
-        case tag(0x0018, 0x1120):  // gantry angle
-            return Callback::NullSafe;
         case kTransferSyntax:
         case kPhotometric:
         case kRows:
@@ -56,8 +46,8 @@ Callback callbackOf(std::uint32_t t) {
         case tag(0x0028, 0x0103):  // pixel representation
         case tag(0x0028, 0x1052):  // rescale intercept
         case tag(0x0028, 0x1053):  // rescale slope
-            return Callback::NeedsValue;
-        default: return Callback::None;
+            return true;
+        default: return false;
     }
 }
 
@@ -83,7 +73,8 @@ std::string tagText(std::uint32_t t) {
     return text;
 }
 
-std::string trimmed(std::string value) {
+// A value without the NULs and spaces that pad it to an even length.
+std::string unpadded(std::string value) {
     while (!value.empty() && (value.back() == '\0' || value.back() == ' ')) value.pop_back();
     return value;
 }
@@ -91,95 +82,75 @@ std::string trimmed(std::string value) {
 }  // namespace
 
 DicomSliceLayout checkDicomFile(const fs::path& path) {
-    const auto fail = [&](const std::string& problem) {
-        return fileError(path.string(), "invalid DICOM file: " + problem);
+    BoundedReader file(path, "invalid DICOM file");
+    const auto magicAt = [&](std::uint64_t at) {
+        if (file.size() < at + 4) return false;
+        file.seek(at, "the magic");
+        return file.bytes(4, "the magic") == "DICM";
     };
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw fileError(path.string(), "cannot open");
-    std::error_code ec;
-    const std::uint64_t size = fs::file_size(path, ec);
-    if (ec) throw fileError(path.string(), "cannot read its size");
-    const auto readAt = [&](std::uint64_t at, std::size_t count) {
-        std::string bytes(count, '\0');
-        if (!in.seekg(std::streamoff(at)) || !in.read(bytes.data(), std::streamsize(count)))
-            throw fail("cannot read " + std::to_string(count) + " bytes at byte " + std::to_string(at));
-        return bytes;
-    };
-    const auto u16 = [](const std::string& b, std::size_t i) {
-        return std::uint16_t(std::uint8_t(b[i]) | std::uint8_t(b[i + 1]) << 8);
-    };
-    const auto i32 = [](const std::string& b, std::size_t i) {
-        return std::int32_t(std::uint32_t(std::uint8_t(b[i])) | std::uint32_t(std::uint8_t(b[i + 1])) << 8 |
-                            std::uint32_t(std::uint8_t(b[i + 2])) << 16 | std::uint32_t(std::uint8_t(b[i + 3])) << 24);
-    };
-
-    std::uint64_t at;
-    if (size >= 4 && readAt(0, 4) == "DICM")
-        at = 4;
-    else if (size >= 132 && readAt(128, 4) == "DICM")
-        at = 132;
-    else
-        throw fail("no \"DICM\" after the 128-byte preamble (only DICOM Part 10 files are supported)");
+    if (!magicAt(0) && !magicAt(128))
+        throw file.fail("no \"DICM\" after the 128-byte preamble (only DICOM Part 10 files are supported)");
 
     std::uint64_t rows = 0, columns = 0, bits = 0, samples = 1, rgb = 0;
     bool transferSyntaxSeen = false, pixelDataSeen = false;
-    while (at < size) {
-        if (size - at < 8) throw fail("an element header is cut off at byte " + std::to_string(at));
-        std::string head = readAt(at, 8);
-        const std::uint32_t t = tag(u16(head, 0), u16(head, 2));
+    while (file.remaining() > 0) {
+        const std::uint64_t start = file.position();
+        const auto cutOff = [&] { return file.fail("an element header is cut off at byte " + std::to_string(start)); };
+        if (file.remaining() < 8) throw cutOff();
+        const std::uint16_t group = file.littleEndian<std::uint16_t>("an element's tag");
+        const std::uint32_t t = tag(group, file.littleEndian<std::uint16_t>("an element's tag"));
+        const std::string vr = file.bytes(4, "an element header");  // or, without a VR, the length
         std::int64_t length;  // DICOMParser's quadbyte is an int: lengths of 2^31 or more are negative
-        switch (encodingOf(head[4], head[5])) {
-            case Encoding::ShortLength:
-                length = u16(head, 6);
-                at += 8;
-                break;
+        switch (encodingOf(vr[0], vr[1])) {
+            case Encoding::ShortLength: length = valueAt<std::uint16_t>(vr, 2); break;
             case Encoding::LongLength:
-                if (size - at < 12) throw fail("an element header is cut off at byte " + std::to_string(at));
-                length = i32(readAt(at + 8, 4), 0);
-                at += 12;
+                if (file.remaining() < 4) throw cutOff();
+                length = file.littleEndian<std::int32_t>("an element header");
                 break;
-            case Encoding::NoVr:
-                length = i32(head, 4);
-                at += 8;
-                break;
+            case Encoding::NoVr: length = valueAt<std::int32_t>(vr, 0); break;
         }
-        const Callback callback = callbackOf(t);
-        if (pixelDataSeen && callback == Callback::NeedsValue)
-            throw fail("element " + tagText(t) + " follows the pixel data");
+        const std::string what = "element " + tagText(t);
+        const bool valueNeeded = needsValue(t);
+        if (pixelDataSeen && valueNeeded) throw file.fail(what + " follows the pixel data");
         if (length <= 0) {
-            if (t == kPixelData && length == -1) throw fail("compressed (encapsulated) pixel data are not supported");
-            if (callback == Callback::NeedsValue) throw fail("element " + tagText(t) + " is empty");
+            if (t == kPixelData && length == -1)
+                throw file.fail("compressed (encapsulated) pixel data are not supported");
+            if (valueNeeded) throw file.fail(what + " is empty");
             continue;  // the parser neither reads nor skips anything
         }
-        if (std::uint64_t(length) > size - at)
-            throw fail("element " + tagText(t) + " of " + std::to_string(length) +
-                       " bytes runs past the end of the file");
+        if (std::uint64_t(length) > file.remaining())
+            throw file.fail(what + " of " + std::to_string(length) + " bytes runs past the end of the file");
+        const std::uint64_t end = file.position() + std::uint64_t(length);
+        // The value's first `most` bytes as text, without its padding.
+        const auto text = [&](std::int64_t most) {
+            return unpadded(file.bytes(std::size_t(std::min(length, most)), what));
+        };
         if (t == kPixelData) {
             if (rows == 0 || columns == 0 || bits == 0)
-                throw fail("pixel data without rows, columns and bits allocated before them");
+                throw file.fail("pixel data without rows, columns and bits allocated before them");
             const std::uint64_t needed = rows * columns * std::max(samples, rgb) * (bits / 8);
             if (std::uint64_t(length) < needed)
-                throw fail("pixel data hold " + std::to_string(length) +
-                           " bytes but rows x columns x samples x bits allocated need " + std::to_string(needed));
+                throw file.fail("pixel data hold " + std::to_string(length) +
+                                " bytes but rows x columns x samples x bits allocated need " + std::to_string(needed));
             pixelDataSeen = true;
         } else if (t == kTransferSyntax) {
-            const std::string value = trimmed(readAt(at, std::size_t(std::min<std::int64_t>(length, 64))));
+            const std::string value = text(64);
             if (value != "1.2.840.10008.1.2" && value != "1.2.840.10008.1.2.1")
-                throw fail("transfer syntax \"" + value + "\" is not implicit or explicit VR little endian");
+                throw file.fail("transfer syntax \"" + value + "\" is not implicit or explicit VR little endian");
             transferSyntaxSeen = true;
         } else if (t == kPhotometric) {
-            rgb = trimmed(readAt(at, std::size_t(std::min<std::int64_t>(length, 16)))).rfind("RGB", 0) == 0 ? 3 : 1;
+            rgb = text(16).starts_with("RGB") ? 3 : 1;
         } else if (t == kRows || t == kColumns || t == kBitsAllocated || t == kSamples) {
-            if (length < 2) throw fail("element " + tagText(t) + " holds " + std::to_string(length) + " byte");
-            (t == kRows ? rows : t == kColumns ? columns : t == kBitsAllocated ? bits : samples) =
-                u16(readAt(at, 2), 0);
+            if (length < 2) throw file.fail(what + " holds " + std::to_string(length) + " byte");
+            std::uint64_t& field = t == kRows ? rows : t == kColumns ? columns : t == kBitsAllocated ? bits : samples;
+            field = file.littleEndian<std::uint16_t>(what);
             if (t == kBitsAllocated && bits != 8 && bits != 16)
-                throw fail(std::to_string(bits) + " bits allocated (VTK's DICOM reader reads 8 or 16)");
+                throw file.fail(std::to_string(bits) + " bits allocated (VTK's DICOM reader reads 8 or 16)");
         }
-        at += std::uint64_t(length);
+        file.seek(end, what);
     }
-    if (!transferSyntaxSeen) throw fail("no transfer syntax (0002,0010)");
-    if (!pixelDataSeen) throw fail("no pixel data (7FE0,0010)");
+    if (!transferSyntaxSeen) throw file.fail("no transfer syntax (0002,0010)");
+    if (!pixelDataSeen) throw file.fail("no pixel data (7FE0,0010)");
     return {rows, columns, bits, std::max(samples, rgb)};
 }
 

@@ -1,6 +1,7 @@
 // Checks of a file's header made before a VTK reader sees it: VTK's readers trust what headers claim (types, dims,
 // data sizes, element lengths) and crash, hang or read uninitialised memory on what fuzzing fed them. Each throws
-// InputError naming the file and the problem; a file that passes is one the reader can take safely.
+// InputError naming the file and the problem; a file that passes is one the reader can take safely. They read
+// files through a BoundedReader (bounded_reader.h), which no stated length can make read past a file's end.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -44,16 +45,5 @@ struct DicomSliceLayout {
 // callbacks parse, 8 or 16 bits allocated, and one pixel data element, after the layout elements, at least rows x
 // columns x samples x bits allocated long. Returns that layout.
 DicomSliceLayout checkDicomFile(const std::filesystem::path& path);
-
-// How data are packed: what gzread reads (gzip members, or plain bytes without the gzip magic) or what MetaIO
-// inflates (zlib or gzip).
-enum class Compression { GzipOrPlain, ZlibOrGzip };
-
-// The bytes that the compressed data starting `offset` bytes into `path` (and at most `compressedBytes` long)
-// decompress to, counted by decompressing them up to `needed` (the count returned is at most that): what a reader
-// can really fill, found in time and memory bounded by `needed`. Throws InputError naming the file for a corrupt
-// stream; data that end early are simply counted short.
-std::uintmax_t decompressedBytes(const std::filesystem::path& path, std::uintmax_t offset, std::uintmax_t needed,
-                                 Compression compression, std::uintmax_t compressedBytes = UINTMAX_MAX);
 
 }  // namespace vr

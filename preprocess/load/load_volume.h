@@ -14,6 +14,7 @@ struct RawOptions {
     std::optional<ScalarType> type;
     std::optional<Vec3d> spacing;
     bool bigEndian = false;
+    bool operator==(const RawOptions&) const = default;
 };
 
 // Raw (.raw, .raw.gz), NRRD (.nrrd/.nhdr), MetaImage (.mhd/.mha), NIfTI (.nii/.nii.gz), DICOM series (a folder),

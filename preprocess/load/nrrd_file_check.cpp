@@ -3,27 +3,22 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
-#include <fstream>
 #include <map>
+#include <optional>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "core/errors.h"
+#include "preprocess/load/bounded_reader.h"
+#include "preprocess/load/compressed_data.h"
 #include "preprocess/load/header_checks.h"
+#include "preprocess/load/header_text.h"
 #include "preprocess/load/voxel_budget.h"
 
 namespace vr {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string trim(const std::string& s) {
-    const auto first = s.find_first_not_of(" \t\r");
-    if (first == std::string::npos) return {};
-    return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
-}
 
 // Bytes per value of a NRRD type name (its spellings: "uchar", "unsigned char", "uint8_t", ...); 0 if unknown.
 int typeBytes(const std::string& type) {
@@ -40,25 +35,29 @@ int typeBytes(const std::string& type) {
 }  // namespace
 
 void checkNrrdFile(const fs::path& path) {
-    const auto fail = [&](const std::string& problem) {
-        return fileError(path.string(), "invalid NRRD file: " + problem);
-    };
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw fileError(path.string(), "cannot open");
-
+    BoundedReader file(path, "invalid NRRD file");
     // "key: value" lines up to a blank line (attached data) or the end of the file (a detached header).
+    // vtkNrrdReader parses the first 4 MiB - 1 bytes up to their first blank line, else all of them: a longer
+    // header is refused.
+    constexpr std::uint64_t kVtkHeaderBytes = 0x400000 - 1;
     std::map<std::string, std::string> fields;
     int lineNumber = 0;
-    for (std::string line; std::getline(in, line);) {
+    std::optional<std::uint64_t> headerEnd;  // where attached data start
+    while (std::optional<std::string> read =
+               file.line(kVtkHeaderBytes, "the header is longer than the 4 MiB VTK's reader reads")) {
+        std::string& line = *read;
         ++lineNumber;
         if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line.empty()) break;
+        if (line.empty()) {
+            if (file.lineEnded()) headerEnd = file.position();
+            break;
+        }
         if (lineNumber == 1 && !line.starts_with("NRRD000"))
-            throw fail("not a NRRD file: its first line is not the magic \"NRRD000N\"");
+            throw file.fail("not a NRRD file: its first line is not the magic \"NRRD000N\"");
         for (char c : line)
             if (std::iscntrl(static_cast<unsigned char>(c)) && c != '\t')
-                throw fail("header line " + std::to_string(lineNumber) + " holds control byte " +
-                           std::to_string(int(static_cast<unsigned char>(c))));
+                throw file.fail("header line " + std::to_string(lineNumber) + " holds control byte " +
+                                std::to_string(int(static_cast<unsigned char>(c))));
         if (lineNumber == 1 || line[0] == '#') continue;
         const auto colon = line.find(": ");
         if (colon == std::string::npos || line.find(":=") == colon) continue;  // not a field ("key:=value" pairs)
@@ -66,8 +65,8 @@ void checkNrrdFile(const fs::path& path) {
         // (" type" left it without a type, on which it looped forever; "sizes :" without sizes, on which it read
         // through a null stream: both found by fuzz_nrrd).
         const std::string key = line.substr(0, colon);
-        if (!fields.emplace(key, trim(line.substr(colon + 2))).second)
-            throw fail("the field \"" + key + "\" appears twice (header line " + std::to_string(lineNumber) + ")");
+        if (!fields.emplace(key, trimmed(line.substr(colon + 2))).second)
+            throw file.fail("the field \"" + key + "\" appears twice (header line " + std::to_string(lineNumber) + ")");
         // vtkNrrdReader reads per-axis fields with the dimension it has seen so far (a sizes line before the
         // dimension one made it read through a null stream, SEGV); the format puts dimension first, too.
         static const std::set<std::string> perAxis{"sizes",     "spacings", "thicknesses", "axis mins",
@@ -75,45 +74,35 @@ void checkNrrdFile(const fs::path& path) {
                                                    "centerings", "labels",  "units",       "kinds",
                                                    "space directions"};
         if (perAxis.contains(key) && !fields.contains("dimension"))
-            throw fail("the field \"" + key + "\" comes before the dimension field (header line " +
-                       std::to_string(lineNumber) + ")");
+            throw file.fail("the field \"" + key + "\" comes before the dimension field (header line " +
+                            std::to_string(lineNumber) + ")");
     }
-    const std::streamoff headerEnd = in.eof() ? -1 : std::streamoff(in.tellg());
-    if (lineNumber == 0) throw fail("the file is empty");
-    // vtkNrrdReader parses the first 4 MiB - 1 bytes up to their first blank line, else all of them. A last line
-    // without a line break it rereads forever (std::getline leaves the line as it was once the stream has ended:
-    // found by fuzz_nrrd), and a header cut at 4 MiB is one.
-    constexpr std::streamoff kVtkHeaderBytes = 0x400000 - 1;
-    in.clear();
-    const std::streamoff fileBytes = in.seekg(0, std::ios::end).tellg();
-    char last = '\n';
-    if (headerEnd < 0 && fileBytes > 0) in.seekg(-1, std::ios::end).get(last);
-    if ((headerEnd < 0 ? fileBytes : headerEnd) > kVtkHeaderBytes)
-        throw fail("the header is longer than the 4 MiB VTK's reader reads");
-    if (last != '\n') throw fail("the header's last line has no line break");
+    if (lineNumber == 0) throw file.fail("the file is empty");
+    // A last line without a line break vtkNrrdReader rereads forever (std::getline leaves the line as it was once
+    // the stream has ended: found by fuzz_nrrd).
+    if (!headerEnd && !file.lineEnded()) throw file.fail("the header's last line has no line break");
     // vtkNrrdReader reads through a null stream (SEGV) when dimension or sizes are missing; the format requires
     // these four fields.
     for (const char* key : {"type", "dimension", "sizes", "encoding"})
         if (!fields.contains(key))
-            throw fail(std::string("no \"") + key +
-                       "\" field (a NRRD header needs type, dimension, sizes and encoding)");
-    std::istringstream dimensionText(fields["dimension"]);
-    int dimension = 0;
-    if (!(dimensionText >> dimension) || !(dimensionText >> std::ws).eof() || dimension < 1 || dimension > 16)
-        throw fail("dimension \"" + fields["dimension"] + "\" is not an integer in 1..16");
+            throw file.fail(std::string("no \"") + key +
+                            "\" field (a NRRD header needs type, dimension, sizes and encoding)");
+    const std::vector<long long> dimensionField = integers(fields["dimension"]);
+    if (dimensionField.size() != 1 || dimensionField[0] < 1 || dimensionField[0] > 16)
+        throw file.fail("dimension \"" + fields["dimension"] + "\" is not an integer in 1..16");
+    const int dimension = int(dimensionField[0]);
     const auto it = fields.find("sizes");
-    std::istringstream sizesText(it->second);
-    std::vector<std::int64_t> sizes;
-    for (std::int64_t n; sizesText >> n;) sizes.push_back(n);
-    if (!sizesText.eof() || sizes.size() != std::size_t(dimension))
-        throw fail("sizes \"" + it->second + "\" are not " + std::to_string(dimension) + " integers (the dimension)");
+    const std::vector<long long> sizes = integers(it->second);
+    if (sizes.size() != std::size_t(dimension))
+        throw file.fail("sizes \"" + it->second + "\" are not " + std::to_string(dimension) +
+                        " integers (the dimension)");
     // vtkNrrdReader takes the first axis for components when the dimension is 4 or that axis has 9 samples or
     // fewer, and reads through a null stream (SEGV) when that leaves fewer than 2 or more than 3 image axes.
     const bool componentAxis = dimension == 4 || sizes[0] <= 9;
     if (const int axes = dimension - componentAxis; axes < 2 || axes > 3)
-        throw fail("dimension " + std::to_string(dimension) + " and sizes \"" + it->second + "\" leave VTK's reader " +
-                   std::to_string(axes) + " image axes" +
-                   (componentAxis ? " (it takes the first axis for components)" : "") + "; it reads 2 or 3");
+        throw file.fail("dimension " + std::to_string(dimension) + " and sizes \"" + it->second +
+                        "\" leave VTK's reader " + std::to_string(axes) + " image axes" +
+                        (componentAxis ? " (it takes the first axis for components)" : "") + "; it reads 2 or 3");
 
     const int bytes = typeBytes(fields["type"]);
     if (bytes == 0) return;  // VTK's reader names the type it does not know
@@ -124,7 +113,7 @@ void checkNrrdFile(const fs::path& path) {
         const Vec3i dims = checkVoxelBudget(path, sizes[0], sizes[1], sizes[2], loading);
         values = std::uintmax_t(dims.x) * std::uintmax_t(dims.y) * std::uintmax_t(dims.z);
     } else {
-        for (std::int64_t n : sizes) {
+        for (long long n : sizes) {
             if (n < 1 || values > (std::uintmax_t(1) << 40) / std::uintmax_t(n)) return;  // left to VTK's reader
             values *= std::uintmax_t(n);
         }
@@ -133,34 +122,32 @@ void checkNrrdFile(const fs::path& path) {
 
     const std::string dataFile = fields.contains("data file") ? fields["data file"] : fields["datafile"];
     if (dataFile.starts_with("LIST") || dataFile.find('%') != std::string::npos) return;  // several data files
-    const fs::path data = dataFile.empty() ? path : path.parent_path() / dataFile;
-    if (dataFile.empty() && headerEnd < 0) throw fail("the header has no blank line before the data and no data file");
-    const std::streamoff start = dataFile.empty() ? headerEnd : 0;
+    if (dataFile.empty() && !headerEnd)
+        throw file.fail("the header has no blank line before the data and no data file");
+    const std::uint64_t start = dataFile.empty() ? *headerEnd : 0;
 
     const std::string encoding = fields["encoding"];
-    if (encoding == "raw") {
-        std::error_code ec;
-        const std::uintmax_t size = fs::file_size(data, ec);
-        if (ec) throw fail("cannot read data file " + data.string() + ": " + ec.message());
-        const std::uintmax_t available = size - std::min<std::uintmax_t>(size, std::uintmax_t(start));
+    const bool raw = encoding == "raw", ascii = encoding == "ascii" || encoding == "text" || encoding == "txt",
+               gzip = encoding == "gzip" || encoding == "gz";
+    if (!raw && !ascii && !gzip) return;  // left to VTK's reader
+    std::optional<BoundedReader> detached;
+    BoundedReader& data = dataFile.empty() ? file : detached.emplace(file.dataFile(path.parent_path() / dataFile));
+    if (raw) {
+        const std::uintmax_t available = data.size() - std::min(data.size(), start);
         if (available < values * std::uintmax_t(bytes))
-            throw fail("it holds " + std::to_string(available) + " bytes of raw data but sizes \"" + it->second +
-                       "\" of type " + fields["type"] + " need " + std::to_string(values * std::uintmax_t(bytes)));
-    } else if (encoding == "ascii" || encoding == "text" || encoding == "txt") {
-        std::ifstream text(data, std::ios::binary);
-        if (!text || !text.seekg(start)) throw fail("cannot read data file " + data.string());
-        std::uintmax_t count = 0;
-        for (std::string token; count < values && text >> token;) ++count;
-        if (count < values)
-            throw fail("it holds " + std::to_string(count) + " ASCII values but sizes \"" + it->second + "\" need " +
-                       std::to_string(values));
-    } else if (encoding == "gzip" || encoding == "gz") {
+            throw file.fail("it holds " + std::to_string(available) + " bytes of raw data but sizes \"" + it->second +
+                            "\" of type " + fields["type"] + " need " + std::to_string(values * std::uintmax_t(bytes)));
+    } else if (ascii) {
+        data.seek(start, "its data");
+        if (const std::uint64_t count = data.countWords(values); count < values)
+            throw file.fail("it holds " + std::to_string(count) + " ASCII values but sizes \"" + it->second +
+                            "\" need " + std::to_string(values));
+    } else {
         // Counted by decompressing (up to what is needed): the reader allocates the image before it inflates.
         const std::uintmax_t needed = values * std::uintmax_t(bytes);
-        if (const std::uintmax_t got = decompressedBytes(data, std::uintmax_t(start), needed, Compression::GzipOrPlain);
-            got < needed)
-            throw fail("its gzip data decompress to " + std::to_string(got) + " bytes but sizes \"" + it->second +
-                       "\" of type " + fields["type"] + " need " + std::to_string(needed));
+        if (const std::uintmax_t got = decompressedBytes(data, start, needed, Compression::GzipOrPlain); got < needed)
+            throw file.fail("its gzip data decompress to " + std::to_string(got) + " bytes but sizes \"" + it->second +
+                            "\" of type " + fields["type"] + " need " + std::to_string(needed));
     }
 }
 

@@ -13,17 +13,16 @@
 #include <array>
 #include <bit>
 #include <cctype>
-#include <cstdint>
 #include <climits>
+#include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <set>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "core/errors.h"
+#include "preprocess/load/bounded_reader.h"
 #include "preprocess/load/header_checks.h"
 
 namespace vr {
@@ -42,164 +41,126 @@ std::uint64_t bloscSize(const unsigned char* chunk, std::uint64_t length) {
     return cbytes == length ? nbytes : UINT64_MAX;
 }
 
-// Reads the file as OpenVDB does, refusing any length beyond its end.
-class VdbWalker {
-public:
-    explicit VdbWalker(const fs::path& path) : path_(path), in_(path, std::ios::binary) {
-        if (!in_) throw fileError(path.string(), "cannot open");
-        std::error_code ec;
-        size_ = fs::file_size(path, ec);
-        if (ec) throw fileError(path.string(), "cannot read: " + ec.message());
-    }
+// openvdb::readString: a uint32 length and the characters.
+std::string readString(BoundedReader& file, const std::string& what) {
+    const std::uint32_t length = file.littleEndian<std::uint32_t>(what);
+    return file.bytes(length, what);
+}
 
-    InputError fail(const std::string& problem) const {
-        return fileError(path_.string(), "not a readable OpenVDB file: " + problem);
-    }
-    std::uint64_t left() { return size_ - std::min<std::uint64_t>(size_, std::uint64_t(in_.tellg())); }
-    void seek(std::int64_t at, const char* what) {
-        if (at < 0 || std::uint64_t(at) > size_)
-            throw fail(std::string(what) + " at byte " + std::to_string(at) + ", beyond its " + std::to_string(size_) +
-                       " bytes");
-        in_.seekg(at);
-    }
-    template <typename T>
-    T read(const std::string& what) {
-        T value;
-        if (!in_.read(reinterpret_cast<char*>(&value), sizeof value)) throw fail("it ends in " + what);
-        return value;
-    }
-    void require(std::uint64_t bytes, const std::string& what) {
-        if (bytes > left())
-            throw fail(what + " of " + std::to_string(bytes) + " bytes, more than the " + std::to_string(left()) +
-                       " bytes left");
-    }
-    void skip(std::uint64_t bytes, const std::string& what) {
-        require(bytes, what);
-        in_.seekg(std::streamoff(bytes), std::ios::cur);
-    }
-    void bytes(void* to, std::uint64_t count, const std::string& what) {
-        require(count, what);
-        in_.read(static_cast<char*>(to), std::streamsize(count));
-    }
-    // openvdb::readString: a uint32 length and the characters.
-    std::string string(const char* what) {
-        const std::uint32_t length = read<std::uint32_t>(what);
-        require(length, what);
-        std::string text(length, '\0');
-        bytes(text.data(), length, what);
-        return text;
-    }
+// Where OpenVDB seeks to an offset the file states.
+void seekTo(BoundedReader& file, std::int64_t at, const char* what) {
+    if (at < 0) throw file.fail(std::string(what) + " at byte " + std::to_string(at) + ", before its start");
+    file.seek(std::uint64_t(at), what);
+}
 
-    // MetaMap::readMeta: a count, then name, type name and (Metadata::read) a uint32 size and the value. Fixed-size
-    // types read their own size whatever the stated one; strings, unknown types and the delayed-load table (after
-    // its own lengths are checked) take the stated size. Returns "is_saved_as_half_float" (the last of that name,
-    // GridBase::saveFloatAsHalf), which says whether a grid's tree holds half floats; OpenVDB writes it as a bool.
-    bool metadata(const char* where) {
-        static const std::map<std::string, std::uint32_t> fixed{
-            {"bool", 1},   {"int32", 4},  {"int64", 8},  {"float", 4},  {"double", 8}, {"vec2i", 8},
-            {"vec2s", 8},  {"vec2d", 16}, {"vec3i", 12}, {"vec3s", 12}, {"vec3d", 24}, {"vec4i", 16},
-            {"vec4s", 16}, {"vec4d", 32}, {"mat4s", 64}, {"mat4d", 128}};
-        bool half = false;
-        const std::uint32_t count = read<std::uint32_t>(where);
-        for (std::uint32_t i = 0; i < count; ++i) {
-            const std::string name = string(where);
-            const std::string type = string(where);
-            const std::uint32_t stated = read<std::uint32_t>(where);
-            const std::string what = std::string(where) + " value of type \"" + type.substr(0, 40) + "\"";
-            require(stated, what);
-            const auto known = fixed.find(type);
-            if (name == "is_saved_as_half_float") {
-                const char value = type == "bool" ? read<char>(what) : char(2);
-                if (value != 0 && value != 1) throw fail(std::string(where) + ": is_saved_as_half_float not a bool");
-                half = value;
-                continue;
-            }
-            if (type == "__delayedload" && stated > 0) {
-                delayedLoad(stated, where);
-                continue;
-            }
-            skip(known != fixed.end() ? known->second : stated, what);
+void readDelayedLoad(BoundedReader& file, std::uint32_t stated, const char* where);
+
+// MetaMap::readMeta: a count, then name, type name and (Metadata::read) a uint32 size and the value. Fixed-size
+// types read their own size whatever the stated one; strings, unknown types and the delayed-load table (after
+// its own lengths are checked) take the stated size. Returns "is_saved_as_half_float" (the last of that name,
+// GridBase::saveFloatAsHalf), which says whether a grid's tree holds half floats; OpenVDB writes it as a bool.
+bool readMetadata(BoundedReader& file, const char* where) {
+    static const std::map<std::string, std::uint32_t> fixed{
+        {"bool", 1},   {"int32", 4},  {"int64", 8},  {"float", 4},  {"double", 8}, {"vec2i", 8},
+        {"vec2s", 8},  {"vec2d", 16}, {"vec3i", 12}, {"vec3s", 12}, {"vec3d", 24}, {"vec4i", 16},
+        {"vec4s", 16}, {"vec4d", 32}, {"mat4s", 64}, {"mat4d", 128}};
+    bool half = false;
+    const std::uint32_t count = file.littleEndian<std::uint32_t>(where);
+    for (std::uint32_t i = 0; i < count; ++i) {
+        const std::string name = readString(file, where);
+        const std::string type = readString(file, where);
+        const std::uint32_t stated = file.littleEndian<std::uint32_t>(where);
+        const std::string what = std::string(where) + " value of type \"" + type.substr(0, 40) + "\"";
+        file.require(stated, what);
+        const auto known = fixed.find(type);
+        if (name == "is_saved_as_half_float") {
+            const char value = type == "bool" ? file.littleEndian<char>(what) : char(2);
+            if (value != 0 && value != 1) throw file.fail(std::string(where) + ": is_saved_as_half_float not a bool");
+            half = value;
+            continue;
         }
-        return half;
+        if (type == "__delayedload" && stated > 0) {
+            readDelayedLoad(file, stated, where);
+            continue;
+        }
+        file.skip(known != fixed.end() ? known->second : stated, what);
     }
+    return half;
+}
 
-    // DelayedLoadMetadata::readValue: a count of leaf buffers, then a mask byte per buffer and (unless its length is
-    // UINT32_MAX) a 64-bit size per buffer, each array either blosc-compressed (a uint32 length and the bytes, which
-    // OpenVDB allocates at that length and at the size their header states) or raw (length 0, then the values). What
-    // is left of the stated size is read and discarded, but longer arrays are read past it. The count is bounded by
-    // what the stated size could decompress to (at most 1032 to 1).
-    void delayedLoad(std::uint32_t stated, const char* where) {
-        const std::uint64_t start = std::uint64_t(in_.tellg());
-        const std::uint64_t count = read<std::uint32_t>(where);
-        const std::string what = std::string(where) + ": delayed-load metadata";
-        if (double(count) * 9 > double(stated) * 1032)
-            throw fail(what + " for " + std::to_string(count) + " buffers in " + std::to_string(stated) + " bytes");
-        const auto array = [&](std::uint32_t length, std::uint64_t size) {
-            if (length == 0) return skip(size, what);
-            require(length, what);
-            std::array<unsigned char, 16> header{};
-            const std::uint32_t headerBytes = std::min<std::uint32_t>(length, header.size());
-            bytes(header.data(), headerBytes, what);
-            const std::uint64_t unpacked = bloscSize(header.data(), length);
-            // compression::bloscCompress pads what is shorter to 128 bytes
-            if (unpacked != size && !(size < 128 && unpacked == 128))
-                throw fail(what + ": a blosc array of " + std::to_string(length) + " bytes that is not " +
-                           std::to_string(size) + " bytes compressed");
-            skip(length - headerBytes, what);
-        };
-        array(read<std::uint32_t>(where), count);
-        if (const std::uint32_t length = read<std::uint32_t>(where); length != UINT32_MAX) array(length, count * 8);
-        const std::uint64_t consumed = std::uint64_t(in_.tellg()) - start;
-        if (consumed < stated) skip(stated - consumed, what);
-    }
-
-    // Transform::read: the map's type name, then the map (math/Maps.h): its Vec3d and Mat4d members; a frustum's
-    // bounding box, taper and depth are followed by a second map.
-    void transform(const char* what) {
-        static const std::map<std::string, std::uint32_t> sizes{
-            {"AffineMap", 128},       {"UnitaryMap", 128},        {"ScaleMap", 120},
-            {"UniformScaleMap", 120}, {"TranslationMap", 24},     {"ScaleTranslateMap", 144},
-            {"NonlinearFrustumMap", 64}, {"UniformScaleTranslateMap", 144}};
-        const std::string type = string(what);
-        const auto map = sizes.find(type);
-        if (map == sizes.end()) throw fail(std::string(what) + " of unknown type \"" + type.substr(0, 40) + "\"");
-        skip(map->second, what);
-        if (type == "NonlinearFrustumMap") transform(what);
-    }
-
-    // Archive::readGrid up to the tree: the compression flags, the metadata and the transform.
-    struct GridHead {
-        std::uint32_t compression;
-        bool half;
+// DelayedLoadMetadata::readValue: a count of leaf buffers, then a mask byte per buffer and (unless its length is
+// UINT32_MAX) a 64-bit size per buffer, each array either blosc-compressed (a uint32 length and the bytes, which
+// OpenVDB allocates at that length and at the size their header states) or raw (length 0, then the values). What
+// is left of the stated size is read and discarded, but longer arrays are read past it. The count is bounded by
+// what the stated size could decompress to (at most 1032 to 1).
+void readDelayedLoad(BoundedReader& file, std::uint32_t stated, const char* where) {
+    const std::uint64_t start = file.position();
+    const std::uint64_t count = file.littleEndian<std::uint32_t>(where);
+    const std::string what = std::string(where) + ": delayed-load metadata";
+    if (double(count) * 9 > double(stated) * 1032)
+        throw file.fail(what + " for " + std::to_string(count) + " buffers in " + std::to_string(stated) + " bytes");
+    const auto array = [&](std::uint32_t length, std::uint64_t size) {
+        if (length == 0) return file.skip(size, what);
+        file.require(length, what);
+        std::array<unsigned char, 16> header{};
+        const std::uint32_t headerBytes = std::min<std::uint32_t>(length, header.size());
+        file.bytes(header.data(), headerBytes, what);
+        const std::uint64_t unpacked = bloscSize(header.data(), length);
+        // compression::bloscCompress pads what is shorter to 128 bytes
+        if (unpacked != size && !(size < 128 && unpacked == 128))
+            throw file.fail(what + ": a blosc array of " + std::to_string(length) + " bytes that is not " +
+                            std::to_string(size) + " bytes compressed");
+        file.skip(length - headerBytes, what);
     };
-    GridHead gridHead() {
-        GridHead head;
-        head.compression = read<std::uint32_t>("a grid's compression flags");
-        head.half = metadata("a grid's metadata");
-        transform("a grid's transform");
-        return head;
-    }
+    array(file.littleEndian<std::uint32_t>(where), count);
+    if (const std::uint32_t length = file.littleEndian<std::uint32_t>(where); length != UINT32_MAX)
+        array(length, count * 8);
+    const std::uint64_t consumed = file.position() - start;
+    if (consumed < stated) file.skip(stated - consumed, what);
+}
 
-private:
-    fs::path path_;
-    std::ifstream in_;
-    std::uint64_t size_ = 0;
+// Transform::read: the map's type name, then the map (math/Maps.h): its Vec3d and Mat4d members; a frustum's
+// bounding box, taper and depth are followed by a second map.
+void readTransform(BoundedReader& file, const char* what) {
+    static const std::map<std::string, std::uint32_t> sizes{
+        {"AffineMap", 128},          {"UnitaryMap", 128},
+        {"ScaleMap", 120},           {"UniformScaleMap", 120},
+        {"TranslationMap", 24},      {"ScaleTranslateMap", 144},
+        {"NonlinearFrustumMap", 64}, {"UniformScaleTranslateMap", 144}};
+    const std::string type = readString(file, what);
+    const auto map = sizes.find(type);
+    if (map == sizes.end()) throw file.fail(std::string(what) + " of unknown type \"" + type.substr(0, 40) + "\"");
+    file.skip(map->second, what);
+    if (type == "NonlinearFrustumMap") readTransform(file, what);
+}
+
+// Archive::readGrid up to the tree: the compression flags, the metadata and the transform.
+struct GridHead {
+    std::uint32_t compression;
+    bool half;
 };
+GridHead readGridHead(BoundedReader& file) {
+    GridHead head;
+    head.compression = file.littleEndian<std::uint32_t>("a grid's compression flags");
+    head.half = readMetadata(file, "a grid's metadata");
+    readTransform(file, "a grid's transform");
+    return head;
+}
 
 // A float grid's tree (Tree<RootNode<InternalNode<InternalNode<LeafNode<float, 3>, 4>, 5>>>), walked as OpenVDB 10
 // reads it: Tree::readTopology, then Tree::readBuffers.
 class FloatTreeWalk {
 public:
-    FloatTreeWalk(VdbWalker& file, const VdbWalker::GridHead& head, const std::string& grid)
+    FloatTreeWalk(BoundedReader& file, const GridHead& head, const std::string& grid)
         : file_(file), head_(head), grid_("float grid \"" + grid.substr(0, 40) + "\": ") {}
 
     void topology() {
-        file_.read<std::int32_t>(grid_ + "the tree's buffer count");
-        file_.read<float>(grid_ + "the background");
+        file_.littleEndian<std::int32_t>(grid_ + "the tree's buffer count");
+        file_.littleEndian<float>(grid_ + "the background");
         // RootNode::readTopology: tiles (origin, value, active byte), then children (origin, topology), each kept
         // in a map by origin, which orders the buffers.
-        const std::uint32_t tiles = file_.read<std::uint32_t>(grid_ + "the root's tile count");
-        const std::uint32_t children = file_.read<std::uint32_t>(grid_ + "the root's child count");
+        const std::uint32_t tiles = file_.littleEndian<std::uint32_t>(grid_ + "the root's tile count");
+        const std::uint32_t children = file_.littleEndian<std::uint32_t>(grid_ + "the root's child count");
         file_.require(std::uint64_t(tiles) * 17, grid_ + std::to_string(tiles) + " root tiles");
         for (std::uint32_t i = 0; i < tiles; ++i) {
             origin("a root tile");
@@ -227,7 +188,7 @@ private:
     // A root entry's origin: OpenVDB's root table keys are multiples of a child's extent (4096), one entry each.
     Origin origin(const char* what) {
         Origin o;
-        for (std::int32_t& c : o) c = file_.read<std::int32_t>(grid_ + what);
+        for (std::int32_t& c : o) c = file_.littleEndian<std::int32_t>(grid_ + what);
         const auto at = [&] {
             return " at (" + std::to_string(o[0]) + ", " + std::to_string(o[1]) + ", " + std::to_string(o[2]) + ")";
         };
@@ -270,7 +231,7 @@ private:
     void values(std::uint32_t size, std::uint32_t active, const char* node) {
         using namespace openvdb::io;
         const std::string what = grid_ + node + "'s values";
-        const std::int8_t stored = file_.read<std::int8_t>(what);
+        const std::int8_t stored = file_.littleEndian<std::int8_t>(what);
         if (stored < NO_MASK_OR_INACTIVE_VALS || stored > NO_MASK_AND_ALL_VALS)
             throw file_.fail(what + ": an unknown inactive-value code " + std::to_string(stored));
         if (stored == NO_MASK_AND_ONE_INACTIVE_VAL || stored == MASK_AND_ONE_INACTIVE_VAL)
@@ -293,7 +254,7 @@ private:
     // io::unzipFromStream, io::bloscFromStream: an int64 length, negative for that many raw bytes, which OpenVDB 10
     // reads into the node's buffer whatever their number, else the compressed bytes, allocated at that length.
     void chunk(std::uint64_t bytes, bool blosc, const std::string& what) {
-        const std::int64_t stated = file_.read<std::int64_t>(what);
+        const std::int64_t stated = file_.littleEndian<std::int64_t>(what);
         const std::string held = " where the node holds " + std::to_string(bytes);
         if (stated <= 0) {
             const std::uint64_t raw = 0 - std::uint64_t(stated);
@@ -321,8 +282,8 @@ private:
         return uncompress2(out.data(), &outLength, packed.data(), &inLength) == Z_OK ? outLength : UINT64_MAX;
     }
 
-    VdbWalker& file_;
-    VdbWalker::GridHead head_;
+    BoundedReader& file_;
+    GridHead head_;
     std::string grid_;
     std::set<Origin> seen_;
     std::map<Origin, std::vector<LeafMask>> children_;  // each root child's leaves' value masks
@@ -347,7 +308,7 @@ std::string baseName(std::string name) {
 }
 
 // Walks a float grid's tree, whose head was just read.
-void walkFloatTree(VdbWalker& file, const VdbWalker::GridHead& head, const std::string& name) {
+void walkFloatTree(BoundedReader& file, const GridHead& head, const std::string& name) {
     FloatTreeWalk tree(file, head, name);
     tree.topology();
     tree.buffers();
@@ -356,39 +317,38 @@ void walkFloatTree(VdbWalker& file, const VdbWalker::GridHead& head, const std::
 }  // namespace
 
 void checkVdbFile(const fs::path& path) {
-    VdbWalker file(path);
+    BoundedReader file(path, "not a readable OpenVDB file");
     // Archive::readHeader, for the versions OpenVDB has written since 2014 (222: per-grid compression).
-    if (file.read<std::int64_t>("the magic number") != 0x56444220) throw file.fail("no VDB magic number");
-    const std::uint32_t version = file.read<std::uint32_t>("the file version");
+    if (file.littleEndian<std::int64_t>("the magic number") != 0x56444220) throw file.fail("no VDB magic number");
+    const std::uint32_t version = file.littleEndian<std::uint32_t>("the file version");
     if (version < 222 || version > 224)
         throw file.fail("file format version " + std::to_string(version) + "; versions 222 to 224 are supported");
-    file.read<std::uint32_t>("the library version");
-    file.read<std::uint32_t>("the library version");
-    const bool gridOffsets = file.read<char>("the header") != 0;
-    std::array<char, 36> uuid;
-    for (char& c : uuid) c = file.read<char>("the UUID");
+    file.littleEndian<std::uint32_t>("the library version");
+    file.littleEndian<std::uint32_t>("the library version");
+    const bool gridOffsets = file.littleEndian<char>("the header") != 0;
+    const std::string uuid = file.bytes(36, "the UUID");
     for (std::size_t i = 0; i < uuid.size(); ++i) {
         const bool hyphen = i == 8 || i == 13 || i == 18 || i == 23;
         if (hyphen ? uuid[i] != '-' : !std::isxdigit(static_cast<unsigned char>(uuid[i])))
             throw file.fail("a malformed UUID in the header");
     }
-    file.metadata("the file's metadata");
+    readMetadata(file, "the file's metadata");
 
     // File::open: the grid count and each GridDescriptor::read, followed by a seek to its end (or, in a stream
     // without grid offsets, by the grid itself, all of which io::File reads).
-    const std::int32_t grids = file.read<std::int32_t>("the grid count");
+    const std::int32_t grids = file.littleEndian<std::int32_t>("the grid count");
     if (grids < 0) throw file.fail("a grid count of " + std::to_string(grids));
     std::vector<Descriptor> descriptors;
     for (std::int32_t g = 0; g < grids; ++g) {
         Descriptor d;
-        d.name = file.string("a grid name");
-        d.type = file.string("a grid type");
-        d.parent = file.string("an instance parent name");
-        d.grid = file.read<std::int64_t>("a grid descriptor");
-        file.read<std::int64_t>("a grid descriptor");  // where its buffers begin
-        const std::int64_t end = file.read<std::int64_t>("a grid descriptor");
+        d.name = readString(file, "a grid name");
+        d.type = readString(file, "a grid type");
+        d.parent = readString(file, "an instance parent name");
+        d.grid = file.littleEndian<std::int64_t>("a grid descriptor");
+        file.littleEndian<std::int64_t>("a grid descriptor");  // where its buffers begin
+        const std::int64_t end = file.littleEndian<std::int64_t>("a grid descriptor");
         if (!gridOffsets) {
-            const VdbWalker::GridHead head = file.gridHead();
+            const GridHead head = readGridHead(file);
             if (!d.parent.empty()) continue;  // an instance: no tree of its own
             if (!isFloatGrid(d.type))
                 throw file.fail("a stream without grid offsets holding a tree of type \"" + d.type.substr(0, 40) +
@@ -397,13 +357,13 @@ void checkVdbFile(const fs::path& path) {
             continue;
         }
         descriptors.push_back(d);
-        file.seek(end, "a grid ending");
+        seekTo(file, end, "a grid ending");
     }
     // Each grid where OpenVDB seeks to read it: every head, and the trees of float grids. A float grid that is an
     // instance gets its parent's tree, found by name: every grid that name could find must be a float grid.
     for (const Descriptor& d : descriptors) {
-        file.seek(d.grid, "a grid");
-        const VdbWalker::GridHead head = file.gridHead();
+        seekTo(file, d.grid, "a grid");
+        const GridHead head = readGridHead(file);
         if (!isFloatGrid(d.type)) continue;
         if (d.parent.empty()) {
             walkFloatTree(file, head, d.name);

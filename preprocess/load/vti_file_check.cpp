@@ -2,12 +2,11 @@
 // decodes the data: a few hundred bytes claiming 1024^3 floats made it allocate 4 GiB (found by fuzz_vti).
 #include <cctype>
 #include <climits>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
 
-#include "core/errors.h"
+#include "preprocess/load/bounded_reader.h"
 #include "preprocess/load/header_checks.h"
 #include "preprocess/load/voxel_budget.h"
 
@@ -31,19 +30,13 @@ std::string attribute(const std::string& text, std::size_t tag, const std::strin
 }  // namespace
 
 void checkVtkXmlImageFile(const fs::path& path) {
-    const auto fail = [&](const std::string& problem) {
-        return fileError(path.string(), "invalid VTK XML image data: " + problem);
-    };
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw fileError(path.string(), "cannot open");
+    BoundedReader file(path, "invalid VTK XML image data");
     // The header: the tags up to the first array's data (inline data and appended data come after).
-    std::string text(1 << 16, '\0');
-    in.read(text.data(), std::streamsize(text.size()));
-    text.resize(std::size_t(in.gcount()));
-    const std::size_t file = text.find("<VTKFile"), image = text.find("<ImageData");
+    const std::string text = file.bytesUpTo(1 << 16);
+    const std::size_t root = text.find("<VTKFile"), image = text.find("<ImageData");
     const std::size_t points = text.find("<PointData", text.find("<Piece", image));
     const std::size_t array = text.find("<DataArray", points);
-    if (file == std::string::npos || image == std::string::npos || array == std::string::npos)
+    if (root == std::string::npos || image == std::string::npos || array == std::string::npos)
         return;  // VTK's reader names what is missing
 
     std::istringstream extentText(attribute(text, image, "WholeExtent"));
@@ -51,7 +44,7 @@ void checkVtkXmlImageFile(const fs::path& path) {
     for (long long& v : e) {
         if (!(extentText >> v)) return;  // likewise
         if (v < INT_MIN || v > INT_MAX)
-            throw fail("WholeExtent \"" + attribute(text, image, "WholeExtent") + "\" is beyond the int range");
+            throw file.fail("WholeExtent \"" + attribute(text, image, "WholeExtent") + "\" is beyond the int range");
     }
     static const std::map<std::string, int> typeBytes{{"Int8", 1},   {"UInt8", 1},   {"Int16", 2},   {"UInt16", 2},
                                                       {"Int32", 4},  {"UInt32", 4},  {"Int64", 8},   {"UInt64", 8},
@@ -62,28 +55,26 @@ void checkVtkXmlImageFile(const fs::path& path) {
     if (const std::string n = attribute(text, array, "NumberOfComponents"); !n.empty()) {
         std::istringstream nText(n);
         if (!(nText >> components) || components < 1 || components > 1024)
-            throw fail("NumberOfComponents \"" + n + "\" is not in 1..1024");
+            throw file.fail("NumberOfComponents \"" + n + "\" is not in 1..1024");
     }
     const Vec3i dims = checkVoxelBudget(path, e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1,
                                         std::size_t(components * type->second) + sizeof(float));
 
     // No encoding packs values denser than raw bytes (base64 and ASCII take more), and none of VTK's compressors
     // inflates beyond its format's limit (deflate: 1032 to 1), so a file cannot hold more than this.
-    const std::string compressor = attribute(text, file, "compressor");
+    const std::string compressor = attribute(text, root, "compressor");
     const double ratio = compressor.empty()                          ? 1
                          : compressor == "vtkZLibDataCompressor"     ? 1032
                          : compressor == "vtkLZ4DataCompressor"      ? 256
                                                                      : 1e5;  // LZMA: no tight limit
-    std::error_code ec;
-    const double size = double(fs::file_size(path, ec));
-    if (ec) throw fileError(path.string(), "cannot read: " + ec.message());
+    const double size = double(file.size());
     const double claimed = double(dims.x) * dims.y * dims.z * double(components) * type->second;
     if (claimed > size * ratio)
-        throw fail("WholeExtent \"" + attribute(text, image, "WholeExtent") + "\" claims " +
-                   std::to_string(std::uint64_t(claimed)) + " bytes of " + type->first + " values but the file of " +
-                   std::to_string(std::uint64_t(size)) + " bytes holds at most " +
-                   std::to_string(std::uint64_t(size * ratio)) +
-                   (compressor.empty() ? std::string(" (uncompressed)") : " (" + compressor + ")"));
+        throw file.fail("WholeExtent \"" + attribute(text, image, "WholeExtent") + "\" claims " +
+                        std::to_string(std::uint64_t(claimed)) + " bytes of " + type->first +
+                        " values but the file of " + std::to_string(std::uint64_t(size)) + " bytes holds at most " +
+                        std::to_string(std::uint64_t(size * ratio)) +
+                        (compressor.empty() ? std::string(" (uncompressed)") : " (" + compressor + ")"));
 }
 
 }  // namespace vr

@@ -1,0 +1,25 @@
+// Values in the text headers of NRRD and MetaImage files.
+#pragma once
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace vr {
+
+// Without the spaces, tabs and carriage returns around it.
+inline std::string trimmed(const std::string& s) {
+    const auto first = s.find_first_not_of(" \t\r");
+    if (first == std::string::npos) return {};
+    return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+}
+
+// The whitespace-separated integers that make up all of `text`, or none where anything else is in it.
+inline std::vector<long long> integers(const std::string& text) {
+    std::istringstream in(text);
+    std::vector<long long> values;
+    for (long long v; in >> v;) values.push_back(v);
+    if (!in.eof()) return {};
+    return values;
+}
+
+}  // namespace vr
