@@ -22,8 +22,10 @@ namespace {
 // The field's image formats, one binding each (a storage image is read in the format it declares).
 constexpr vk::Format kFieldFormats[3] = {vk::Format::eR8Uint, vk::Format::eR16Uint, vk::Format::eR8G8B8A8Uint};
 constexpr uint32_t kFieldBindings[3] = {device::kBindingField8, device::kBindingField16, device::kBindingFieldRGBA8};
+// The uploaded decode table is the shader's array of kExtentTableEntries uvec4.
 static_assert(kExtentTableEntries == device::kExtentTableEntries && sizeof(ExtentTableEntry) == 16);
 
+// The values of the caster's and the extent code's specialization constants.
 int deviceCaster(Caster caster) {
     switch (caster) {
         case Caster::Primitive: return device::kPrimitive;
