@@ -10,7 +10,8 @@ layout(push_constant) uniform Tile { TilePush T; };
 
 // What the casters read, copied once per invocation by copyUniforms() before anything else: llvmpipe (Mesa 22)
 // reads a block member as a gather over the invocations of its SIMD batch, every time the shader reads it, once
-// control flow may differ between them (after the early return of pixels outside the tile).
+// control flow may differ between them (after the early return of pixels outside the tile). glslang copies a
+// block into a private struct member by member.
 CasterParams params;
 TilePush tile;
 
