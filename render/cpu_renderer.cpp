@@ -17,6 +17,7 @@
 #include "render/ray_setup.h"
 #include "render/render_checks.h"
 #include "render/span.h"
+#include "shaders/device_contract.h"
 
 namespace vr {
 namespace {
@@ -28,10 +29,6 @@ struct SampleValue {
 };
 
 Vec3d toVec(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
-
-// Shorter interpolated normals than this count as flat (the classification's floor is on the gradient; here it
-// guards the renormalisation of a blend of opposite normals).
-constexpr double kFlatNormalLength = 1e-6;
 
 class Sampler {
 public:
@@ -61,7 +58,7 @@ public:
             if (normals_) s.normal += toVec(cv_.normal[i]) * w;
         }
         const double len = length(s.normal);
-        s.normal = len > kFlatNormalLength ? s.normal / len : Vec3d{0, 0, 0};
+        s.normal = len > device::kFlatNormalLength ? s.normal / len : Vec3d{0, 0, 0};
         return s;
     }
 

@@ -7,6 +7,7 @@
 #include "core/distance_fields.h"
 #include "render/camera.h"
 #include "render/view_octants.h"
+#include "shaders/device_contract.h"
 
 namespace vr {
 
@@ -18,7 +19,7 @@ constexpr int directionClass(int sx, int sy, int sz) { return (sx + 1) + 3 * (sy
 // Sign of axis a (-1, 0, +1) of class c.
 constexpr int classSign(int c, int axis) { return (axis == 0 ? c : axis == 1 ? c / 3 : c / 9) % 3 - 1; }
 constexpr int octantClass(int oct) {
-    return directionClass(octantSign(oct, 0), octantSign(oct, 1), octantSign(oct, 2));
+    return directionClass(device::octantSign(oct, 0), device::octantSign(oct, 1), device::octantSign(oct, 2));
 }
 inline int directionClassOf(const Vec3d& d) {
     auto sign = [](double x) { return (x > 0) - (x < 0); };

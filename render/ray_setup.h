@@ -1,7 +1,6 @@
 // Ray setup shared by every caster (docs/ALGORITHMS.md sections 1 and 5): world ray -> grid ray, the volume
 // interval, the sampling lattice, the voxel of a sample and the leap count n of each caster.
-// GLSL counterpart: shaders/ray_setup.glsl mirrors every function here, also in double (positions, lattice, leaps);
-// keep the two in step.
+// GLSL counterpart: shaders/ray_setup.glsl, the same functions, also in double (positions, lattice, leaps).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -13,6 +12,7 @@
 #include "core/distance_fields.h"
 #include "core/errors.h"
 #include "core/grid.h"
+#include "shaders/device_contract.h"
 
 namespace vr {
 
@@ -87,7 +87,15 @@ inline Vec3i sampleVoxel(const GridRay& r, double t, const Vec3i& dims) {
     return clampVoxel(floorVoxel(r.at(t)), dims);
 }
 
-inline int rayOctant(const GridRay& r) { return octantOf(r.d.x, r.d.y, r.d.z); }
+// Octants are numbered as the device numbers them; the preprocessor builds each octant's field by core's numbering.
+static_assert([] {
+    for (int oct = 0; oct < kOctants; ++oct)
+        for (int a = 0; a < 3; ++a)
+            if (device::octantSign(oct, a) != octantSign(oct, a)) return false;
+    return true;
+}());
+
+inline int rayOctant(const GridRay& r) { return device::octantOf(r.d.x, r.d.y, r.d.z); }
 
 // An inclusive range of voxels: the region a leap may cover.
 struct VoxelBox {
@@ -103,7 +111,7 @@ inline VoxelBox chebyshevBall(const Vec3i& v, int r) {
 inline VoxelBox octantBox(const Vec3i& v, int oct, const Vec3i& ext) {
     VoxelBox b;
     for (int a = 0; a < 3; ++a) {
-        const int far = v[a] + octantSign(oct, a) * (ext[a] - 1);
+        const int far = v[a] + device::octantSign(oct, a) * (ext[a] - 1);
         b.lo[a] = std::min(v[a], far);
         b.hi[a] = std::max(v[a], far);
     }
@@ -123,7 +131,7 @@ inline double boxExitT(const GridRay& ray, const Vec3i& v, int oct, const Vec3i&
     double t = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
         if (ray.d[a] == 0) continue;
-        const int s = octantSign(oct, a);
+        const int s = device::octantSign(oct, a);
         const double far = v[a] + s * (ext[a] - 1) + (s > 0 ? 1 : 0);
         t = std::min(t, (far - ray.o[a]) / ray.d[a]);
     }

@@ -1,12 +1,12 @@
 // Factorized span integration and shading (docs/ALGORITHMS.md sections 5 and 6), shared by every caster.
-// GLSL counterpart: shaders/span.glsl mirrors every function here (it needs its own expm1 / log1p, since GLSL
-// has none); keep the two in step.
+// GLSL counterpart: shaders/span.glsl, the same functions (with its own expm1, which GLSL lacks).
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "core/vec3.h"
+#include "shaders/device_contract.h"
 
 namespace vr {
 
@@ -33,9 +33,6 @@ struct Accumulator {
 // The optical depth at which the opacity reaches ert, -ln(1 - ert): +inf for ert = 1 (no early termination).
 inline double terminationDepth(double ert) { return -std::log1p(-ert); }
 
-// A termination count this close above an integer (relative) is taken as that integer.
-constexpr double kTerminationSlack = 1 - 1e-9;
-
 // Early ray termination belongs to the samples, not to the spans: a span of n samples stops at the sample after
 // which primitive stepping would have stopped, the first m with depth + sigma dt m >= terminationDepth(ert), so
 // every caster terminates where the primitive one does (A < ert decides, in every caster's loop). From the depth,
@@ -45,7 +42,7 @@ constexpr double kTerminationSlack = 1 - 1e-9;
 // the span never reaches ert.
 inline double samplesToTermination(double depth, double sigma, double dt, double ertDepth) {
     if (sigma <= 0) return std::numeric_limits<double>::infinity();
-    return std::max(1.0, std::ceil((ertDepth - depth) / (sigma * dt) * kTerminationSlack));
+    return std::max(1.0, std::ceil((ertDepth - depth) / (sigma * dt) * device::kTerminationSlack));
 }
 
 // Phong with one directional light; material constants shared with the GPU.

@@ -4,12 +4,13 @@
 #include <vector>
 
 #include "core/distance_fields.h"
+#include "shaders/device_contract.h"
 
 namespace vr {
 
 unsigned viewOctants(const Camera& camera) {
     if (camera.projection == Projection::Orthographic)
-        return 1u << octantOf(camera.forward.x, camera.forward.y, camera.forward.z);
+        return 1u << device::octantOf(camera.forward.x, camera.forward.y, camera.forward.z);
 
     // Unnormalised direction forward + right u + up v over the image rectangle |u| <= uMax, |v| <= vMax.
     const double vMax = camera.halfHeight;
@@ -39,7 +40,7 @@ unsigned viewOctants(const Camera& camera) {
         for (int oct = 0; oct < kOctants; ++oct) {
             bool possible = true;
             for (int a = 0; a < 3 && possible; ++a)
-                possible = std::abs(d[a]) <= eps || (d[a] < 0) == (octantSign(oct, a) < 0);
+                possible = std::abs(d[a]) <= eps || (d[a] < 0) == (device::octantSign(oct, a) < 0);
             if (possible) mask |= 1u << oct;
         }
     }

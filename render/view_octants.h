@@ -4,7 +4,7 @@
 
 namespace vr {
 
-// Bit oct set when some pixel's ray may lie in octant oct (octantOf of its direction). Orthographic: exactly
+// Bit oct set when some pixel's ray may lie in octant oct (device::octantOf of its direction). Orthographic: exactly
 // the octant of the view direction. Perspective: the direction components are linear over the image plane, so
 // every octant some pixel reaches has a vertex of its part of the image rectangle at a corner, where a
 // component's zero line crosses an edge, or where two zero lines cross; those points are tested, with a zero

@@ -4,15 +4,9 @@
 #ifndef VR_BRICK_STATE_GLSL
 #define VR_BRICK_STATE_GLSL
 
-struct RayState {
-    dvec4 composite;  // premultiplied colour, alpha
-    double k;         // the next lattice sample: also the samples the spans so far represent
-    double depth;     // optical depth so far (render/span.h Accumulator)
-    uint iterations;
-    uint flags;       // kFailed, kCutShort (caster.comp)
-};
+#include "caster_params.glsl"
 
-layout(set = 0, binding = 7, std430) buffer RayStates { RayState rayState[]; };  // one per pixel of the tile
+layout(set = 0, binding = kBindingRayStates, std430) buffer RayStates { RayState rayState[]; };
 
 // Member by member: glslang stores a whole struct into a buffer with an OpStore of mismatched types.
 RayState loadRayState(uint i) {
@@ -28,17 +22,17 @@ void storeRayState(uint i, RayState s) {
     rayState[i].flags = s.flags;
 }
 
-bool inBrick(ivec3 v) { return all(greaterThanEqual(v, uBrickLo)) && all(lessThanEqual(v, uBrickHi)); }
+bool inBrick(ivec3 v) { return all(greaterThanEqual(v, tile.brickLo.xyz)) && all(lessThanEqual(v, tile.brickHi.xyz)); }
 
-bool rayInPass(int oct) { return (oct & uPassAxes) == uPassSigns; }
+bool rayInPass(int oct) { return (oct & tile.passAxes) == tile.passSigns; }
 
 // Texel of a global voxel in this brick's classified and normal images.
-ivec3 brickTexel(ivec3 v) { return v - uImageLo; }
+ivec3 brickTexel(ivec3 v) { return v - tile.imageLo.xyz; }
 
 // Texel of a global voxel in slab `slot` of this brick's field image (ACD / EACD stack octants along z).
 ivec3 fieldTexel(ivec3 v, int slot) {
     ivec3 t = brickTexel(v);
-    return ivec3(t.xy, slot * uSlabDepth + t.z);
+    return ivec3(t.xy, slot * tile.imageDims.z + t.z);
 }
 
 #endif

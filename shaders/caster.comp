@@ -1,4 +1,4 @@
-// The four casters of docs/ALGORITHMS.md section 5 in one loop: the GLSL mirror of renderCpu's trace (keep in step).
+// The four casters of docs/ALGORITHMS.md section 5 in one loop: renderCpu's trace in GLSL.
 // Specialization constants pick the caster, the sampling and the shading, so each variant compiles to a
 // pipeline without the others' branches. One invocation per pixel of one tile and one brick (brick_state.glsl:
 // a ray's state carries over from brick to brick, so bricks change no leap). Each span is shaded once, at its
@@ -8,17 +8,18 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_ARB_gpu_shader_int64 : require
 
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "device_contract.h"
 
-layout(constant_id = 0) const int CASTER = 0;  // 0 primitive, 1 PC, 2 ACD, 3 EACD
-layout(constant_id = 1) const bool TRILINEAR = false;
-layout(constant_id = 2) const bool SHADING = true;
+layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
+
+layout(constant_id = kSpecIdCaster) const int CASTER = kPrimitive;
+layout(constant_id = kSpecIdTrilinear) const bool TRILINEAR = false;
+layout(constant_id = kSpecIdShading) const bool SHADING = true;
 // false: the volume is one brick, rendered in one dispatch per tile, so no ray state is carried (llvmpipe would
 // run the state's loads and stores, lane by lane, even where a uniform condition turns them off).
-layout(constant_id = 4) const bool BRICKED = true;
+layout(constant_id = kSpecIdBricked) const bool BRICKED = true;
 // The camera's projection: llvmpipe would compute both cameras' rays for every pixel.
-layout(constant_id = 5) const bool PERSPECTIVE = false;
-const int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
+layout(constant_id = kSpecIdPerspective) const bool PERSPECTIVE = false;
 
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
@@ -27,23 +28,14 @@ const int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
 #include "extent_code.glsl"
 
 // Storage images (volrender/vulkan/gpu_buffer.h): llvmpipe loads them more cheaply than texelFetch.
-layout(set = 0, binding = 1, rgba32f) uniform readonly image3D classified;  // rgb colour, a: extinction sigma
-layout(set = 0, binding = 2, rgba16_snorm) uniform readonly image3D normals;  // xyz: unit normal or 0 (flat)
-// The field, bound by its format (a storage image is read in the format it declares): PC, ACD and joint8 EACD in
-// R8 (PC: r; ACD: r per octant slab), log16 EACD in R16, exact EACD in RGBA8 (rgb); the other two are unused.
-layout(set = 0, binding = 3, r8ui) uniform readonly uimage3D field8;
-layout(set = 0, binding = 5, r16ui) uniform readonly uimage3D field16;
-layout(set = 0, binding = 6, rgba8ui) uniform readonly uimage3D fieldRGBA8;
-// Per pixel: the colour's four floats, two to a word, then the samples and the iteration count (with its flags).
-// One store of four 64-bit words: llvmpipe stores a buffer lane by lane and word by word, which made three outputs
-// of seven 32-bit words a seventh of a leaping caster's time.
-layout(set = 0, binding = 4, std430) writeonly buffer OutPixels { u64vec4 outPixel[]; };
-
-// Set in an iteration count: the ray hit the cap, needed an octant that was not uploaded or was in no pass over
-// the bricks (a bug); the driver ended the loops early.
-const uint kFailed = 0x80000000u, kCutShort = 0x40000000u;
-// Shorter interpolated normals than this count as flat (as the CPU reference).
-const float kFlatNormalLength = 1e-6;
+layout(set = 0, binding = kBindingClassified, rgba32f) uniform readonly image3D classified;
+layout(set = 0, binding = kBindingNormals, rgba16_snorm) uniform readonly image3D normals;
+// The field, bound by its format: PC (r), ACD (r per octant slab) and joint8 EACD in R8, log16 EACD in R16, exact
+// EACD in RGBA8 (rgb); the other two are unused.
+layout(set = 0, binding = kBindingField8, r8ui) uniform readonly uimage3D field8;
+layout(set = 0, binding = kBindingField16, r16ui) uniform readonly uimage3D field16;
+layout(set = 0, binding = kBindingFieldRGBA8, rgba8ui) uniform readonly uimage3D fieldRGBA8;
+layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels { OutPixel outPixel[]; };
 
 struct SampleValue {
     double sigma;  // double as the CPU reference's, so that opacity sums agree to rounding
@@ -81,7 +73,7 @@ SampleValue trilinearSample(dvec3 p) {
         if (SHADING) s.normal += imageLoad(normals, brickTexel(u)).xyz * float(w);
     }
     float len = length(s.normal);
-    s.normal = len > kFlatNormalLength ? s.normal / len : vec3(0.0);
+    s.normal = len > float(kFlatNormalLength) ? s.normal / len : vec3(0.0);
     return s;
 }
 
@@ -90,10 +82,11 @@ void main() {
     // llvmpipe runs the 8 invocations of a row of this 8x8 workgroup as one SIMD batch, for as long as its
     // slowest ray takes: each batch takes a 4x2 block of pixels, whose rays stay closer together than an 8x1 row's.
     uvec2 l = gl_LocalInvocationID.xy;
-    ivec2 local = ivec2(gl_WorkGroupID.xy * 8u + uvec2((l.x & 3u) | ((l.y & 1u) << 2), (l.y & ~1u) | (l.x >> 2)));
-    if (any(greaterThanEqual(local, uTileSize))) return;
-    ivec2 pixel = uTileOrigin + local;
-    uint outIndex = uint(local.y * uTileSize.x + local.x);
+    uvec2 inGroup = uvec2((l.x & 3u) | ((l.y & 1u) << 2), (l.y & ~1u) | (l.x >> 2));
+    ivec2 local = ivec2(gl_WorkGroupID.xy * uint(kWorkgroupSize) + inGroup);
+    if (any(greaterThanEqual(local, tile.tileSize))) return;
+    ivec2 pixel = tile.tileOrigin + local;
+    uint outIndex = uint(local.y * tile.tileSize.x + local.x);
 
     dvec3 direction;
     GridRay g = cameraGridRay(double(pixel.x) + 0.5LF, double(pixel.y) + 0.5LF, direction);
@@ -101,13 +94,13 @@ void main() {
     double kCount = latticeCount(iv);
     int oct = rayOctant(g);
     // Selected, not indexed: llvmpipe reads an array at a varying index lane by lane.
-    ivec4 slots = oct < 4 ? uOctantSlot[0] : uOctantSlot[1];
+    ivec4 slots = oct < 4 ? params.octantSlot[0] : params.octantSlot[1];
     int slot = (oct & 1) == 0 ? ((oct & 2) == 0 ? slots.x : slots.z) : ((oct & 2) == 0 ? slots.y : slots.w);
     vec3 toEye = -vec3(direction);
-    vec3 toLight = uLight.w != 0.0 ? uLight.xyz : toEye;
+    vec3 toLight = params.light.w != 0.0 ? params.light.xyz : toEye;
 
     bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0.0LF;
-    bool firstDispatch = !BRICKED || uFirstDispatch != 0, lastDispatch = !BRICKED || uLastDispatch != 0;
+    bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
     RayState state = firstDispatch
                          ? RayState(dvec4(0.0LF), 0.0LF, 0.0LF, 0u, missingOctant ? kFailed : 0u)
                          : loadRayState(outIndex);
@@ -121,11 +114,11 @@ void main() {
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
     bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, latticeT(iv, k)))));
     if (!mine && !firstDispatch && !lastDispatch) return;
-    for (double n = 1.0LF; mine && !failed && k < kCount && alpha < uErt; k += n) {
+    for (double n = 1.0LF; mine && !failed && k < kCount && alpha < params.ert; k += n) {
         double t = latticeT(iv, k);
         ivec3 v = sampleVoxel(g, t);
         if (BRICKED && !inBrick(v)) break;
-        if (++iterations > uMaxIterations) {
+        if (++iterations > params.maxIterations) {
             failed = true;
             break;
         }
@@ -151,7 +144,7 @@ void main() {
             n = leapCount(g, iv, k, kCount, wanted, box);
         }
 
-        precise double length = n * uDt;
+        precise double length = n * params.dt;
         double spanAlpha = spanOpacity(s.sigma, length);
         if (spanAlpha > 0.0LF) {
             vec3 shaded = SHADING ? shade(s.colour, s.normal, toEye, toLight) : s.colour;
@@ -166,13 +159,13 @@ void main() {
     // in all of them, which would silently shorten a long ray. A loop whose trip count (2) the compiler cannot
     // know runs short afterwards exactly when that happened.
     int probe = 0;
-    for (double i = 0.0LF; i < uLoopProbe; i += 1.0LF) ++probe;
-    uint flags = state.flags | (probe < 2 ? kCutShort : 0u);
-    if (lastDispatch && k < kCount && alpha < uErt) failed = true;  // in no pass: a bug
+    for (double i = 0.0LF; i < params.loopProbe; i += 1.0LF) ++probe;
+    uint flags = state.flags | (probe < kLoopProbeTrips ? kCutShort : 0u);
+    if (lastDispatch && k < kCount && alpha < params.ert) failed = true;  // in no pass: a bug
     if (failed) flags |= kFailed;
     // The next brick's dispatch reads this state; after the last one, nothing does.
     if (!lastDispatch) storeRayState(outIndex, RayState(dvec4(colour, alpha), k, depth, iterations, flags));
 
-    uvec4 rgba = floatBitsToUint(vec4(vec3(colour + dvec3(uBackground.rgb) * (1.0LF - alpha)), float(alpha)));
-    outPixel[outIndex] = u64vec4(packUint2x32(rgba.xy), packUint2x32(rgba.zw), uint64_t(k), iterations | flags);
+    uvec4 rgba = floatBitsToUint(vec4(vec3(colour + dvec3(params.background.rgb) * (1.0LF - alpha)), float(alpha)));
+    outPixel[outIndex].words = u64vec4(packUint2x32(rgba.xy), packUint2x32(rgba.zw), uint64_t(k), iterations | flags);
 }

@@ -3,11 +3,12 @@
 #ifndef VR_EXTENT_CODE_GLSL
 #define VR_EXTENT_CODE_GLSL
 
-layout(constant_id = 3) const int EACD_CODE = 0;  // ExtentCode: 0 exact (RGBA8), 1 log16 (R16), 2 joint8 (R8)
-const int kExact = 0, kLog16 = 1, kJoint8 = 2;
+#include "device_contract.h"
+
+layout(constant_id = kSpecIdExtentCode) const int EACD_CODE = kExact;  // kExact (RGBA8), kLog16 (R16), kJoint8 (R8)
 
 // Log16: entry i < 32 is the value of the 5-bit index i (x, y, z alike). Joint8: entry i is box i.
-layout(set = 0, binding = 8, std140) uniform ExtentTable { uvec4 extentTable[256]; };
+layout(set = 0, binding = kBindingExtentTable, std140) uniform ExtentTable { uvec4 extentTable[kExtentTableEntries]; };
 
 // The box extents of one texel of the EACD image (at least 1 each: a stored 0 would be a corrupt field).
 ivec3 decodeExtents(uvec4 texel) {

@@ -1,10 +1,12 @@
-// Ray setup shared by every caster: the GLSL mirror of render/ray_setup.h and Camera::ray() (keep in step).
+// Ray setup shared by every caster: render/ray_setup.h and Camera::ray() in GLSL.
 // Positions, the lattice and leap counts are computed in double with the same operations in the same order
 // as the CPU reference (`precise` forbids fused multiply-adds), so every sample picks the same voxel even
 // where the lattice lands exactly on voxel faces (axis-aligned views). Integer counts are held in doubles
 // (exact to 2^53).
 #ifndef VR_RAY_SETUP_GLSL
 #define VR_RAY_SETUP_GLSL
+
+#include "caster_params.glsl"
 
 const double kInfinity = 1.0LF / 0.0LF;
 
@@ -18,23 +20,23 @@ struct RayInterval {
 
 // Camera::ray() for the pixel centre (px, py), then toGridRay().
 GridRay cameraGridRay(double px, double py, out dvec3 worldDirection) {
-    precise double aspect = double(uImageSize.x) / double(uImageSize.y);
-    precise double u = (2.0LF * px / double(uImageSize.x) - 1.0LF) * uHalfHeight * aspect;
-    precise double v = (1.0LF - 2.0LF * py / double(uImageSize.y)) * uHalfHeight;
+    precise double aspect = double(params.imageSize.x) / double(params.imageSize.y);
+    precise double u = (2.0LF * px / double(params.imageSize.x) - 1.0LF) * params.halfHeight * aspect;
+    precise double v = (1.0LF - 2.0LF * py / double(params.imageSize.y)) * params.halfHeight;
     precise dvec3 origin, direction;
     if (!PERSPECTIVE) {  // the including shader's specialization constant (caster.comp)
-        origin = uEye + uRight * u + uUp * v;
-        direction = uForward;
+        origin = params.eye.xyz + params.right.xyz * u + params.up.xyz * v;
+        direction = params.forward.xyz;
     } else {
-        precise dvec3 w = uForward + uRight * u + uUp * v;
+        precise dvec3 w = params.forward.xyz + params.right.xyz * u + params.up.xyz * v;
         precise double len = sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
-        origin = uEye;
+        origin = params.eye.xyz;
         direction = w / len;
     }
     worldDirection = direction;
     GridRay r;
-    r.o = (origin - uGridOrigin) / uSpacing;
-    r.d = direction / uSpacing;
+    r.o = (origin - params.gridOrigin.xyz) / params.spacing.xyz;
+    r.d = direction / params.spacing.xyz;
     return r;
 }
 
@@ -58,9 +60,9 @@ void clipSlab(double o, double d, int n, inout double t0, inout double t1, inout
 RayInterval intersectGrid(GridRay r) {
     double t0 = 0.0LF, t1 = kInfinity;
     bool outside = false;
-    clipSlab(r.o.x, r.d.x, uDims.x, t0, t1, outside);
-    clipSlab(r.o.y, r.d.y, uDims.y, t0, t1, outside);
-    clipSlab(r.o.z, r.d.z, uDims.z, t0, t1, outside);
+    clipSlab(r.o.x, r.d.x, params.dims.x, t0, t1, outside);
+    clipSlab(r.o.y, r.d.y, params.dims.y, t0, t1, outside);
+    clipSlab(r.o.z, r.d.z, params.dims.z, t0, t1, outside);
     if (outside || !(t0 < t1)) return RayInterval(0.0LF, 0.0LF);
     return RayInterval(t0, t1);
 }
@@ -68,14 +70,14 @@ RayInterval intersectGrid(GridRay r) {
 bool intervalEmpty(RayInterval iv) { return !(iv.tEntry < iv.tExit); }
 
 double latticeT(RayInterval iv, double k) {
-    precise double t = iv.tEntry + k * uDt;
+    precise double t = iv.tEntry + k * params.dt;
     return t;
 }
 
 // Samples with t_k < tExit, exactly as the comparison decides.
 double latticeCount(RayInterval iv) {
     if (intervalEmpty(iv)) return 0.0LF;
-    precise double q = (iv.tExit - iv.tEntry) / uDt;
+    precise double q = (iv.tExit - iv.tEntry) / params.dt;
     double k = max(1.0LF, ceil(q));
     while (k > 1.0LF && latticeT(iv, k - 1.0LF) >= iv.tExit) k -= 1.0LF;
     while (latticeT(iv, k) < iv.tExit) k += 1.0LF;
@@ -83,11 +85,10 @@ double latticeCount(RayInterval iv) {
 }
 
 ivec3 floorVoxel(dvec3 p) { return ivec3(floor(p)); }
-ivec3 clampVoxel(ivec3 v) { return clamp(v, ivec3(0), uDims - 1); }
+ivec3 clampVoxel(ivec3 v) { return clamp(v, ivec3(0), params.dims.xyz - 1); }
 ivec3 sampleVoxel(GridRay r, double t) { return clampVoxel(floorVoxel(rayAt(r, t))); }
 
-int rayOctant(GridRay r) { return int(r.d.x < 0.0LF) | (int(r.d.y < 0.0LF) << 1) | (int(r.d.z < 0.0LF) << 2); }
-int octantSign(int oct, int axis) { return ((oct >> axis) & 1) != 0 ? -1 : 1; }
+int rayOctant(GridRay r) { return octantOf(r.d.x, r.d.y, r.d.z); }
 
 struct VoxelBox {
     ivec3 lo, hi;
@@ -107,7 +108,7 @@ VoxelBox octantBox(ivec3 v, int oct, ivec3 ext) {
 
 double pcLeapSamples(int r, GridRay ray) {
     double speed = max(max(abs(ray.d.x), abs(ray.d.y)), abs(ray.d.z));
-    precise double q = double(r) / (uDt * speed);
+    precise double q = double(r) / (params.dt * speed);
     return max(1.0LF, 1.0LF + floor(q));
 }
 
@@ -124,7 +125,7 @@ double boxExitT(GridRay ray, ivec3 v, int oct, ivec3 ext) {
 }
 
 double boxLeapSamples(double tBoxExit, double t) {
-    precise double q = (tBoxExit - t) / uDt;
+    precise double q = (tBoxExit - t) / params.dt;
     return max(1.0LF, ceil(q));
 }
 

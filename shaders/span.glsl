@@ -1,20 +1,19 @@
-// Span integration and shading: the GLSL mirror of render/span.h (keep in step). Opacity is integrated in
-// double (see numerics.glsl), the shade in float.
+// Span integration and shading: render/span.h in GLSL. Opacity is integrated in double (see numerics.glsl), the
+// shade in float.
 #ifndef VR_SPAN_GLSL
 #define VR_SPAN_GLSL
 
+#include "caster_params.glsl"
 #include "numerics.glsl"
 
 // 1 - exp(-sigma L) without cancellation for tiny sigma L; exactly 1 for an opaque span.
 double spanOpacity(double sigma, double len) { return -vrExpm1(-sigma * len); }
 
-const double kTerminationSlack = 1.0LF - 1e-9LF;  // render/span.h's: a count a hair above an integer rounds down
-
 // Samples until primitive stepping would reach ert inside a span of extinction sigma, from the optical depth
 // (+inf: never). The division runs for sigma = 0 too and its result is not picked: llvmpipe runs both sides of a
 // branch.
 double samplesToTermination(double depth, double sigma) {
-    precise double q = (uErtDepth - depth) / (sigma * uDt) * kTerminationSlack;
+    precise double q = (params.ertDepth - depth) / (sigma * params.dt) * kTerminationSlack;
     return sigma <= 0.0LF ? kInfinity : max(1.0LF, ceil(q));
 }
 
@@ -29,9 +28,9 @@ vec3 shade(vec3 colour, vec3 normal, vec3 toEye, vec3 toLight) {
     float highlight = 0.0;
     if (!isFlat && nl > 0.0) {
         vec3 reflected = n * (2.0 * nl) - toLight;
-        highlight = pow(max(0.0, dot(reflected, toEye)), uMaterial.w);
+        highlight = pow(max(0.0, dot(reflected, toEye)), params.material.w);
     }
-    return colour * (uMaterial.x + uMaterial.y * diffuse) + vec3(uMaterial.z * highlight);
+    return colour * (params.material.x + params.material.y * diffuse) + vec3(params.material.z * highlight);
 }
 
 #endif

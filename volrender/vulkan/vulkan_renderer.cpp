@@ -1,74 +1,78 @@
 #include "volrender/vulkan/vulkan_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "core/errors.h"
-#include "shaders/embedded_shaders.h"
 #include "render/ray_setup.h"
 #include "render/render_checks.h"
 #include "render/span.h"
-#include "volrender/vulkan/caster_params.h"
 #include "render/view_octants.h"
+#include "shaders/device_contract.h"
+#include "shaders/embedded_shaders.h"
 
 namespace vr {
 namespace {
 
-enum Binding : uint32_t {
-    kParams, kClassified, kNormals, kField, kOutPixels,
-    kField16, kFieldRGBA8,  // the field by its format (shaders/caster.comp): kField holds R8
-    kRayState,              // shaders/brick_state.glsl
-    kExtentTable            // shaders/extent_code.glsl
-};
+// The field's image formats, one binding each (a storage image is read in the format it declares).
 constexpr vk::Format kFieldFormats[3] = {vk::Format::eR8Uint, vk::Format::eR16Uint, vk::Format::eR8G8B8A8Uint};
-constexpr Binding kFieldBindings[3] = {kField, kField16, kFieldRGBA8};
-// RayState of shaders/brick_state.glsl: 56 B of members, its std430 array stride rounded up to its dvec4's 32.
-constexpr vk::DeviceSize kRayStateBytes = 64;
-// OutPixel of shaders/caster.comp: the colour's four floats, then the samples and the iteration count.
-struct OutPixel {
-    float colour[4];
-    uint64_t samples, iterations;
-};
-static_assert(sizeof(OutPixel) == 32);
-// Set in an iteration count by the shader (shaders/caster.comp): the ray hit the cap, needed an octant that was
-// not uploaded or was in no pass over the bricks; the driver ended the shader's loops early.
-constexpr uint32_t kFailed = 0x80000000u, kCutShort = 0x40000000u;
-constexpr uint32_t kGroup = 8;  // local_size of shaders/caster.comp
+constexpr uint32_t kFieldBindings[3] = {device::kBindingField8, device::kBindingField16, device::kBindingFieldRGBA8};
+// The uploaded decode table is the shader's array of kExtentTableEntries uvec4.
+static_assert(kExtentTableEntries == device::kExtentTableEntries && sizeof(ExtentTableEntry) == 16);
 
-
-void put(double out[4], const Vec3d& v) {
-    out[0] = v.x, out[1] = v.y, out[2] = v.z, out[3] = 0;
+// The values of the caster's and the extent code's specialization constants.
+int deviceCaster(Caster caster) {
+    switch (caster) {
+        case Caster::Primitive: return device::kPrimitive;
+        case Caster::PC: return device::kPC;
+        case Caster::ACD: return device::kACD;
+        case Caster::EACD: return device::kEACD;
+    }
+    throw std::logic_error("deviceCaster: a caster the device does not know");
 }
 
-CasterParams makeParams(const GridGeometry& grid, const Camera& camera, const RenderSettings& s,
-                        const std::array<int, kOctants>& slots) {
-    CasterParams p{};
-    put(p.eye, camera.eye);
-    put(p.forward, camera.forward);
-    put(p.right, camera.right);
-    put(p.up, camera.up);
-    put(p.gridOrigin, grid.origin);
-    put(p.spacing, grid.spacing);
+int deviceExtentCode(ExtentCode code) {
+    switch (code) {
+        case ExtentCode::Exact: return device::kExact;
+        case ExtentCode::Log16: return device::kLog16;
+        case ExtentCode::Joint8: return device::kJoint8;
+    }
+    throw std::logic_error("deviceExtentCode: an extent code the device does not know");
+}
+
+device::dvec4 toDevice(const Vec3d& v) { return {v.x, v.y, v.z, 0}; }
+device::ivec4 toDevice(const Vec3i& v) { return {v.x, v.y, v.z, 0}; }
+
+device::CasterParams makeParams(const GridGeometry& grid, const Camera& camera, const RenderSettings& s,
+                                const std::array<int, kOctants>& slots) {
+    device::CasterParams p{};
+    p.eye = toDevice(camera.eye);
+    p.forward = toDevice(camera.forward);
+    p.right = toDevice(camera.right);
+    p.up = toDevice(camera.up);
+    p.gridOrigin = toDevice(grid.origin);
+    p.spacing = toDevice(grid.spacing);
     p.halfHeight = camera.halfHeight;
     p.dt = s.stepVoxels * grid.smallestSpacing();
-    for (int a = 0; a < 3; ++a) p.dims[a] = grid.dims[a];
-    p.imageSize[0] = camera.width;
-    p.imageSize[1] = camera.height;
-    p.maxIterations = uint32_t(std::clamp<long long>(s.maxIterationsPerRay, 1, kCutShort - 1));
-    p.loopProbe = 2;
-    std::copy(slots.begin(), slots.end(), p.octantSlot);
+    p.dims = toDevice(grid.dims);
+    p.imageSize = {camera.width, camera.height};
+    p.maxIterations = uint32_t(std::clamp<long long>(s.maxIterationsPerRay, 1, device::kCutShort - 1));
+    p.loopProbe = device::kLoopProbeTrips;
+    static_assert(kOctants == 8, "octantSlot holds two ivec4 of slots");
+    p.octantSlot[0] = {slots[0], slots[1], slots[2], slots[3]};
+    p.octantSlot[1] = {slots[4], slots[5], slots[6], slots[7]};
     if (s.lightDirection) {
         const Vec3d l = normalize(*s.lightDirection);
-        p.light[0] = float(l.x), p.light[1] = float(l.y), p.light[2] = float(l.z), p.light[3] = 1;
+        p.light = {float(l.x), float(l.y), float(l.z), 1};
     }
     const ShadingModel m;
-    p.material[0] = float(m.ambient), p.material[1] = float(m.diffuse);
-    p.material[2] = float(m.specular), p.material[3] = float(m.shininess);
-    p.background[0] = float(s.background.x), p.background[1] = float(s.background.y);
-    p.background[2] = float(s.background.z);
+    p.material = {float(m.ambient), float(m.diffuse), float(m.specular), float(m.shininess)};
+    p.background = {float(s.background.x), float(s.background.y), float(s.background.z), 0};
     p.ert = s.ert;
     p.ertDepth = terminationDepth(s.ert);
     return p;
@@ -84,13 +88,15 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     using T = vk::DescriptorType;
     const auto compute = vk::ShaderStageFlagBits::eCompute;
     std::vector<vk::DescriptorSetLayoutBinding> bindings{
-        {kParams, T::eUniformBuffer, 1, compute},   {kClassified, T::eStorageImage, 1, compute},
-        {kNormals, T::eStorageImage, 1, compute},   {kField, T::eStorageImage, 1, compute},
-        {kField16, T::eStorageImage, 1, compute},   {kFieldRGBA8, T::eStorageImage, 1, compute},
-        {kOutPixels, T::eStorageBuffer, 1, compute}, {kExtentTable, T::eUniformBuffer, 1, compute},
-        {kRayState, T::eStorageBuffer, 1, compute}};
+        {device::kBindingParams, T::eUniformBuffer, 1, compute},
+        {device::kBindingClassified, T::eStorageImage, 1, compute},
+        {device::kBindingNormals, T::eStorageImage, 1, compute},
+        {device::kBindingOutPixels, T::eStorageBuffer, 1, compute},
+        {device::kBindingRayStates, T::eStorageBuffer, 1, compute},
+        {device::kBindingExtentTable, T::eUniformBuffer, 1, compute}};
+    for (uint32_t binding : kFieldBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
-    vk::PushConstantRange push(compute, 0, sizeof(TilePush));
+    vk::PushConstantRange push(compute, 0, sizeof(device::TilePush));
     vk::DescriptorSetLayout layout = *setLayout_;
     pipelineLayout_ = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, layout, push));
     shader_ = vk::raii::ShaderModule(device, vk::ShaderModuleCreateInfo({}, caster_spv));
@@ -115,13 +121,21 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear
                                      caster == Caster::EACD ? eacdCode : ExtentCode::Exact, bricked, perspective);
     auto it = pipelines_.find(key);
     if (it != pipelines_.end()) return it->second;
-    // Booleans are 32-bit VkBool32 in specialization data.
-    const uint32_t values[6] = {uint32_t(caster), trilinear ? 1u : 0u, shading ? 1u : 0u, uint32_t(std::get<3>(key)),
-                                bricked ? 1u : 0u, perspective ? 1u : 0u};
-    const std::array<vk::SpecializationMapEntry, 6> entries{
-        vk::SpecializationMapEntry(0, 0, 4),   vk::SpecializationMapEntry(1, 4, 4),
-        vk::SpecializationMapEntry(2, 8, 4),   vk::SpecializationMapEntry(3, 12, 4),  // EACD_CODE (extent_code.glsl)
-        vk::SpecializationMapEntry(4, 16, 4),  vk::SpecializationMapEntry(5, 20, 4)};  // BRICKED, PERSPECTIVE
+    // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
+    const std::array<std::pair<int, uint32_t>, 6> constants{{
+        {device::kSpecIdCaster, uint32_t(deviceCaster(caster))},
+        {device::kSpecIdTrilinear, trilinear ? 1u : 0u},
+        {device::kSpecIdShading, shading ? 1u : 0u},
+        {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(std::get<3>(key)))},
+        {device::kSpecIdBricked, bricked ? 1u : 0u},
+        {device::kSpecIdPerspective, perspective ? 1u : 0u}}};
+    std::array<uint32_t, constants.size()> values;
+    std::array<vk::SpecializationMapEntry, constants.size()> entries;
+    for (std::size_t i = 0; i < constants.size(); ++i) {
+        values[i] = constants[i].second;
+        entries[i] = vk::SpecializationMapEntry(uint32_t(constants[i].first), uint32_t(i * sizeof(uint32_t)),
+                                                sizeof(uint32_t));
+    }
     vk::SpecializationInfo spec(entries, vk::ArrayProxyNoTemporaries<const uint32_t>(values));
     vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *shader_, "main", &spec);
     vk::raii::Pipeline p(ctx_.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *pipelineLayout_));
@@ -178,14 +192,14 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                               camera.projection == Projection::Perspective);
 
     using B = vk::BufferUsageFlagBits;
-    HostBuffer params(ctx_, sizeof(CasterParams), B::eUniformBuffer);
-    const CasterParams p = makeParams(volume.grid(), camera, settings, volume.octantSlot());
+    HostBuffer params(ctx_, sizeof(device::CasterParams), B::eUniformBuffer);
+    const device::CasterParams p = makeParams(volume.grid(), camera, settings, volume.octantSlot());
     std::memcpy(params.data(), &p, sizeof(p));
     HostBuffer extentTable(ctx_, sizeof(ExtentTable), B::eUniformBuffer);  // decodes coded EACD (extent_code.glsl)
     std::memcpy(extentTable.data(), extentDecodeTable(volume.eacdCode()).data(), sizeof(ExtentTable));
     const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
-    HostBuffer out(ctx_, tilePixels * sizeof(OutPixel), B::eStorageBuffer);
-    DeviceBuffer rayState(ctx_, tilePixels * kRayStateBytes, B::eStorageBuffer);
+    HostBuffer out(ctx_, tilePixels * sizeof(device::OutPixel), B::eStorageBuffer);
+    DeviceBuffer rayState(ctx_, tilePixels * sizeof(device::RayState), B::eStorageBuffer);
 
     // One descriptor set per brick: its images, the rest shared.
     const std::vector<Brick>& bricks = volume.bricks().bricks();
@@ -217,12 +231,12 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             fields[i] = imageInfo(field && field->format() == kFieldFormats[i] ? *field : *unusedFields_[i]);
         using T = vk::DescriptorType;
         std::vector<vk::WriteDescriptorSet> writes{
-            {set, kParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
-            {set, kClassified, 0, 1, T::eStorageImage, &images[0]},
-            {set, kNormals, 0, 1, T::eStorageImage, &images[1]},
-            {set, kOutPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
-            {set, kRayState, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
-            {set, kExtentTable, 0, 1, T::eUniformBuffer, nullptr, &table}};
+            {set, device::kBindingParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
+            {set, device::kBindingClassified, 0, 1, T::eStorageImage, &images[0]},
+            {set, device::kBindingNormals, 0, 1, T::eStorageImage, &images[1]},
+            {set, device::kBindingOutPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
+            {set, device::kBindingRayStates, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
+            {set, device::kBindingExtentTable, 0, 1, T::eUniformBuffer, nullptr, &table}};
         for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
         device.updateDescriptorSets(writes, {});
     }
@@ -246,9 +260,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
 
     for (int y0 = 0; y0 < camera.height; y0 += tileSize_) {
         for (int x0 = 0; x0 < camera.width; x0 += tileSize_) {
-            TilePush tile{};
-            tile.origin[0] = x0, tile.origin[1] = y0;
-            tile.size[0] = std::min(tileSize_, camera.width - x0), tile.size[1] = std::min(tileSize_, camera.height - y0);
+            device::TilePush tile{};
+            tile.tileOrigin = {x0, y0};
+            tile.tileSize = {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)};
             submitAndWait(ctx_, pool_, [&](const vk::raii::CommandBuffer& cmd) {
                 using S = vk::PipelineStageFlagBits;
                 using A = vk::AccessFlagBits;
@@ -260,16 +274,16 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     const auto& [signs, order] = passes[pass];
                     for (std::size_t i = 0; i < order.size(); ++i) {
                         const Brick& b = bricks[order[i]];
-                        for (int a = 0; a < 3; ++a) {
-                            tile.brickLo[a] = b.lo[a], tile.brickHi[a] = b.hi[a];
-                            tile.imageLo[a] = b.imageLo[a], tile.imageDims[a] = b.imageDims[a];
-                        }
+                        tile.brickLo = toDevice(b.lo), tile.brickHi = toDevice(b.hi);
+                        tile.imageLo = toDevice(b.imageLo), tile.imageDims = toDevice(b.imageDims);
                         tile.lastDispatch = pass + 1 == passes.size() && i + 1 == order.size();
                         tile.passAxes = int(splitAxes), tile.passSigns = int(signs);
                         cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout_, 0,
                                                *sets[order[i]], {});
-                        cmd.pushConstants<TilePush>(*pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0, tile);
-                        cmd.dispatch((tile.size[0] + kGroup - 1) / kGroup, (tile.size[1] + kGroup - 1) / kGroup, 1);
+                        cmd.pushConstants<device::TilePush>(*pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0,
+                                                            tile);
+                        constexpr int group = device::kWorkgroupSize;
+                        cmd.dispatch((tile.tileSize.x + group - 1) / group, (tile.tileSize.y + group - 1) / group, 1);
                         // The next brick reads the ray states this one wrote.
                         vk::MemoryBarrier carried(A::eShaderWrite, A::eShaderRead | A::eShaderWrite);
                         cmd.pipelineBarrier(S::eComputeShader, S::eComputeShader, {}, carried, {}, {});
@@ -288,28 +302,28 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                 result.deviceMilliseconds +=
                     double((stamps[1] - stamps[0]) & timestampMask_) * timestampPeriodNs_ * 1e-6;
             }
-            const auto* pixelsOut = static_cast<const OutPixel*>(out.data());
-            for (int ly = 0; ly < tile.size[1]; ++ly) {
-                for (int lx = 0; lx < tile.size[0]; ++lx) {
-                    const std::size_t local = std::size_t(ly) * tile.size[0] + lx;
+            const auto* pixelsOut = static_cast<const device::OutPixel*>(out.data());
+            for (int ly = 0; ly < tile.tileSize.y; ++ly) {
+                for (int lx = 0; lx < tile.tileSize.x; ++lx) {
+                    const std::size_t local = std::size_t(ly) * tile.tileSize.x + lx;
                     const int px = x0 + lx, py = y0 + ly;
                     const std::size_t index = std::size_t(py) * camera.width + px;
-                    const OutPixel& o = pixelsOut[local];
-                    const uint32_t iterations = uint32_t(o.iterations);  // with the shader's flags
-                    if (iterations & kCutShort)
+                    const device::u64vec4& o = pixelsOut[local].words;
+                    const uint32_t iterations = uint32_t(o.w);  // with the shader's flags
+                    if (iterations & device::kCutShort)
                         throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) + " caster: " +
                                                  ctx_.info().name + " ended the shader's loops before the ray at pixel (" +
                                                  std::to_string(px) + ", " + std::to_string(py) +
                                                  ") was done (llvmpipe allows 65535 loop iterations per shader "
                                                  "invocation); render with the CPU reference or a hardware device");
-                    if (iterations & kFailed)
+                    if (iterations & device::kFailed)
                         throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) +
                                                  " caster: the ray at pixel (" + std::to_string(px) + ", " +
                                                  std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
                                                  "pass (a bug)");
-                    std::memcpy(result.image.pixel(px, py), o.colour, sizeof(o.colour));
+                    std::memcpy(result.image.pixel(px, py), &o, 4 * sizeof(float));  // words x and y
                     result.iterations[index] = iterations;
-                    result.samples[index] = o.samples;
+                    result.samples[index] = o.z;
                 }
             }
         }

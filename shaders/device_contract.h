@@ -1,0 +1,138 @@
+// What the host (volrender/vulkan) and the casters (shaders/caster.comp) agree on, stated once: the C++ compiler
+// and glslang both read this file. It holds the descriptor bindings, the specialization-constant ids and values,
+// the flags and constants both sides use, and the structs of the uniform block, the push constants and the
+// per-pixel buffers, written in GLSL types (C++ takes them from glsl_layout_types.h, aligned as std140 / std430
+// align them; the static_asserts at the end pin the offsets). The shaders declare the blocks around these structs.
+#ifndef VR_DEVICE_CONTRACT_H
+#define VR_DEVICE_CONTRACT_H
+
+#ifdef __cplusplus
+#include <cstddef>
+
+#include "glsl_layout_types.h"
+#define VR_CONSTANT inline constexpr
+#define VR_FUNCTION constexpr
+namespace vr::device {
+#else
+#define VR_CONSTANT const
+#define VR_FUNCTION
+#endif
+
+// Descriptor set 0.
+VR_CONSTANT int kBindingParams = 0;        // uniform: CasterParams
+VR_CONSTANT int kBindingClassified = 1;    // storage image rgba32f: rgb colour, a: extinction sigma
+VR_CONSTANT int kBindingNormals = 2;       // storage image rgba16_snorm: xyz unit normal, or 0 (flat)
+VR_CONSTANT int kBindingField8 = 3;        // storage images of the distance field, one per format (a storage
+VR_CONSTANT int kBindingField16 = 5;       // image is read in the format it declares): R8 (PC, ACD, joint8
+VR_CONSTANT int kBindingFieldRGBA8 = 6;    // EACD), R16 (log16 EACD), RGBA8 (exact EACD)
+VR_CONSTANT int kBindingOutPixels = 4;     // storage buffer: OutPixel per pixel of the tile
+VR_CONSTANT int kBindingRayStates = 7;     // storage buffer: RayState per pixel of the tile
+VR_CONSTANT int kBindingExtentTable = 8;   // uniform: uvec4 per entry of extentDecodeTable() (core/extent_code.h)
+VR_CONSTANT int kExtentTableEntries = 256;
+
+// Specialization constants: each variant compiles to a pipeline without the others' branches.
+VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
+VR_CONSTANT int kSpecIdTrilinear = 1;    // bool
+VR_CONSTANT int kSpecIdShading = 2;      // bool
+VR_CONSTANT int kSpecIdExtentCode = 3;   // one of the extent codes below
+VR_CONSTANT int kSpecIdBricked = 4;      // bool: false for a volume of one brick (no ray state is carried)
+VR_CONSTANT int kSpecIdPerspective = 5;  // bool: the camera's projection
+VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
+VR_CONSTANT int kExact = 0, kLog16 = 1, kJoint8 = 2;  // how EACD extents are stored (core/extent_code.h)
+
+// One workgroup takes kWorkgroupSize x kWorkgroupSize pixels (caster.comp orders 8 x 8 of them in 4 x 2 blocks).
+VR_CONSTANT int kWorkgroupSize = 8;
+
+// Set in a pixel's iteration count: the ray hit the iteration cap, needed an octant that was not uploaded or was
+// in no pass over the bricks (a bug); the driver ended the shader's loops early.
+VR_CONSTANT uint kFailed = 0x80000000u, kCutShort = 0x40000000u;
+// The trip count of the loop that detects a driver's loop limit: uploaded (CasterParams::loopProbe), so the
+// compiler cannot know it, and compared with what the loop counted.
+VR_CONSTANT int kLoopProbeTrips = 2;
+
+// Spelled without double literals, which C++ and GLSL write differently (1e-9 in GLSL is a float).
+// A termination count this close above an integer (relative) is taken as that integer (render/span.h).
+VR_CONSTANT double kTerminationSlack = double(1) - double(1) / double(1000000000);
+// Shorter interpolated normals than this count as flat (the classification's floor is on the gradient; this
+// guards the renormalisation of a blend of opposite normals). The device compares in float.
+VR_CONSTANT double kFlatNormalLength = double(1) / double(1000000);
+
+// Octant of a direction: bit a set when component a is negative (a zero counts as positive).
+VR_FUNCTION int octantOf(double dx, double dy, double dz) {
+    return (dx < 0.0 ? 1 : 0) | (dy < 0.0 ? 2 : 0) | (dz < 0.0 ? 4 : 0);
+}
+// Step sign of axis a in octant oct.
+VR_FUNCTION int octantSign(int oct, int axis) { return ((oct >> axis) & 1) != 0 ? -1 : 1; }
+
+// The render parameters, uploaded once per frame (std140).
+struct CasterParams {
+    dvec4 eye;          // Camera::eye
+    dvec4 forward;      // Camera basis
+    dvec4 right;
+    dvec4 up;
+    dvec4 gridOrigin;   // GridGeometry::origin
+    dvec4 spacing;      // GridGeometry::spacing
+    double halfHeight;  // Camera::halfHeight
+    double dt;          // step in world units
+    double ert;         // early ray termination threshold
+    double ertDepth;    // the optical depth where opacity reaches ert (render/span.h terminationDepth)
+    double loopProbe;   // kLoopProbeTrips
+    ivec4 dims;         // voxels per axis
+    ivec2 imageSize;    // width, height
+    uint maxIterations;
+    ivec4 octantSlot[2];  // ACD/EACD: z-slab of each octant in the field image, -1 when not uploaded
+    vec4 light;           // xyz: unit direction toward the light; w = 1 when set, 0 for a headlight
+    vec4 material;        // ambient, diffuse, specular, shininess
+    vec4 background;      // rgb
+};
+
+// One dispatch renders one brick of one tile for the rays of one pass (push constants).
+struct TilePush {
+    ivec2 tileOrigin;   // first pixel of this dispatch
+    ivec2 tileSize;     // pixels of this dispatch (the output buffers hold one tile)
+    ivec4 brickLo;      // the brick's core (inclusive, global voxels): samples whose voxel lies in it are this
+    ivec4 brickHi;      // dispatch's
+    ivec4 imageLo;      // global voxel of texel (0, 0, 0) of the brick's images
+    ivec4 imageDims;    // texels of one slab of the brick's images
+    int firstDispatch;  // 1: start every ray of the tile
+    int lastDispatch;   // 1: a ray left unfinished was in no pass (a bug)
+    int passAxes;       // this pass takes the rays whose octant bits on passAxes ...
+    int passSigns;      // ... are passSigns (the bricks come in an order they all cross them in)
+};
+
+// A ray's state between the dispatches of its bricks (std430; shaders/brick_state.glsl).
+struct RayState {
+    dvec4 composite;  // premultiplied colour, alpha
+    double k;         // the next lattice sample: also the samples the spans so far represent
+    double depth;     // optical depth so far (render/span.h Accumulator)
+    uint iterations;
+    uint flags;       // kFailed, kCutShort
+};
+
+// A pixel's result (std430): x, y: the colour's four floats, two to a word, low word first; z: the samples; w: the
+// iteration count with its flags. One store of four 64-bit words: llvmpipe stores a buffer lane by lane and word
+// by word, which made three outputs of seven 32-bit words a seventh of a leaping caster's time.
+struct OutPixel {
+    u64vec4 words;
+};
+
+#ifdef __cplusplus
+static_assert(offsetof(CasterParams, halfHeight) == 192);
+static_assert(offsetof(CasterParams, dims) == 240);
+static_assert(offsetof(CasterParams, imageSize) == 256);
+static_assert(offsetof(CasterParams, maxIterations) == 264);
+static_assert(offsetof(CasterParams, octantSlot) == 272);
+static_assert(offsetof(CasterParams, light) == 304);
+static_assert(sizeof(CasterParams) == 352);
+static_assert(offsetof(TilePush, brickLo) == 16);
+static_assert(offsetof(TilePush, firstDispatch) == 80);
+static_assert(sizeof(TilePush) == 96);
+static_assert(offsetof(RayState, iterations) == 48);
+static_assert(sizeof(RayState) == 64);  // std430 rounds the array stride up to the dvec4's 32
+static_assert(sizeof(OutPixel) == 32);
+}  // namespace vr::device
+#endif
+
+#undef VR_CONSTANT
+#undef VR_FUNCTION
+#endif
