@@ -25,4 +25,22 @@ inline int runTool(const char* tool, CLI::App& app, int argc, char** argv, const
     return 1;
 }
 
+// What --help says of a tool: its name, what it does and its exit statuses.
+struct ToolText {
+    const char* name;
+    const char* description;
+    const char* exitStatus;
+};
+
+// runTool over the flags that addFlags declares, which `run` receives once parsed.
+template <typename Flags>
+int runTool(const ToolText& text, int argc, char** argv, void (*addFlags)(CLI::App&, Flags&),
+            const std::function<int(const Flags&)>& run) {
+    CLI::App app{text.description};
+    app.footer(text.exitStatus);
+    Flags flags;
+    addFlags(app, flags);
+    return runTool(text.name, app, argc, argv, [&] { return run(flags); });
+}
+
 }  // namespace vr

@@ -11,6 +11,14 @@
 #include "tools/tool_main.h"
 
 namespace {
+
+constexpr vr::ToolText kText{
+    "volprep",
+    "Prepares a volume for volrender: classifies it with a transfer function or iso-contours, segments it into "
+    "homogeneous regions (thresholds T_o, T_a) and builds the distance fields (PC, ACD, EACD) that let rays "
+    "leap through them. Prints statistics and stage times.",
+    "Exit status: 0 done, 1 bad input (file, transfer function, thresholds), 2 bad command line."};
+
 namespace fs = std::filesystem;
 
 struct Flags {
@@ -101,13 +109,7 @@ vr::PrepareOptions optionsFrom(const Flags& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Prepares a volume for volrender: classifies it with a transfer function or iso-contours, "
-                 "segments it into homogeneous regions (thresholds T_o, T_a) and builds the distance fields "
-                 "(PC, ACD, EACD) that let rays leap through them. Prints statistics and stage times."};
-    app.footer("Exit status: 0 done, 1 bad input (file, transfer function, thresholds), 2 bad command line.");
-    Flags flags;
-    addFlags(app, flags);
-    return vr::runTool("volprep", app, argc, argv, [&] {
+    return vr::runTool<Flags>(kText, argc, argv, addFlags, [](const Flags& flags) {
         checkBeforeRunning(flags);
         const vr::RawOptions raw = rawOptionsFrom(flags);
         const vr::PrepareOptions options = optionsFrom(flags);  // a bad transfer function fails before the load

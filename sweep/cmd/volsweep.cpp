@@ -12,6 +12,14 @@
 
 namespace {
 
+constexpr vr::ToolText kText{
+    "volsweep",
+    "Sweeps the homogeneity thresholds (T_o, T_a) of one volume: per setting the preprocessing time, every "
+    "caster's render time on the Vulkan device and its error against the primitive caster at thresholds 0 "
+    "(RMSE, PSNR, max error, SSIM, % pixels off by > 1/255, % with CIEDE2000 > 2.3). Appends OUTDIR/sweep.csv "
+    "and rewrites OUTDIR/report.md with plots and image strips.",
+    "Exit status: 0 done, 1 bad input or device failure, 2 bad command line."};
+
 struct Flags {
     std::string input, tf, name, size = "512x512", type, outDir, peers;
     std::vector<double> spacing, to{0, 0.005, 0.01, 0.02, 0.05, 0.1}, ta{0, 1, 3, 10, 20}, elevations{0};
@@ -81,14 +89,7 @@ vr::SweepOptions options(const Flags& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Sweeps the homogeneity thresholds (T_o, T_a) of one volume: per setting the preprocessing time, "
-                 "every caster's render time on the Vulkan device and its error against the primitive caster at "
-                 "thresholds 0 (RMSE, PSNR, max error, SSIM, % pixels off by > 1/255, % with CIEDE2000 > 2.3). "
-                 "Appends OUTDIR/sweep.csv and rewrites OUTDIR/report.md with plots and image strips."};
-    app.footer("Exit status: 0 done, 1 bad input or device failure, 2 bad command line.");
-    Flags flags;
-    addFlags(app, flags);
-    return vr::runTool("volsweep", app, argc, argv, [&] {
+    return vr::runTool<Flags>(kText, argc, argv, addFlags, [](const Flags& flags) {
         if (flags.outDir.empty()) throw vr::InputError("no output folder given: -o OUTDIR");
         if (!flags.reportOnly) {
             if (flags.input.empty()) throw vr::InputError("no input volume given (see --help)");

@@ -21,6 +21,14 @@
 #include "volrender/vulkan/vulkan_renderer.h"
 
 namespace {
+
+constexpr vr::ToolText kText{
+    "volrender",
+    "Renders a prepared volume (see volprep) by ray casting with homogeneous-region leaping: the primitive "
+    "caster samples every step; pc, acd and eacd leap through regions with their distance fields and give the "
+    "same image at thresholds 0. Runs on a Vulkan device (or --cpu).",
+    "Exit status: 0 done, 1 bad input or device failure, 2 bad command line."};
+
 namespace fs = std::filesystem;
 
 struct Flags {
@@ -235,13 +243,7 @@ int run(const Flags& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Renders a prepared volume (see volprep) by ray casting with homogeneous-region leaping: the "
-                 "primitive caster samples every step; pc, acd and eacd leap through regions with their distance "
-                 "fields and give the same image at thresholds 0. Runs on a Vulkan device (or --cpu)."};
-    app.footer("Exit status: 0 done, 1 bad input or device failure, 2 bad command line.");
-    Flags flags;
-    addFlags(app, flags);
-    return vr::runTool("volrender", app, argc, argv, [&] {
+    return vr::runTool<Flags>(kText, argc, argv, addFlags, [](const Flags& flags) {
         try {
             return run(flags);
         } catch (const vk::SystemError& e) {  // e.g. no driver: say it is Vulkan's, and what still works
