@@ -233,12 +233,22 @@ std::array<double, 5> fitModel(const std::vector<RenderSample>& samples) {
     return x;
 }
 
-// The Vulkan device the renders ran on, and now: what volrender matches a calibration file against.
+// The driver's name and version (VK_KHR_driver_properties: "Mesa 22.3.6" where VkPhysicalDeviceProperties has a
+// vendor's number), or its raw version number where the device lacks the extension.
+std::string driverVersion(const vk::raii::PhysicalDevice& device) {
+    for (const vk::ExtensionProperties& e : device.enumerateDeviceExtensionProperties())
+        if (std::string_view(e.extensionName) == VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME) {
+            const auto chain = device.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
+            const vk::PhysicalDeviceDriverProperties& driver = chain.get<vk::PhysicalDeviceDriverProperties>();
+            return std::string(driver.driverName.data()) + " " + driver.driverInfo.data();
+        }
+    return std::to_string(device.getProperties().driverVersion);
+}
+
+// The Vulkan device the renders ran on, and now: volrender matches a calibration file to its device by name.
 void describeDevice(const VulkanContext& context, CasterCalibration& c) {
-    const uint32_t driver = context.physicalDevice().getProperties().driverVersion;
     c.deviceName = context.info().name;
-    c.driverVersion = std::to_string(VK_API_VERSION_MAJOR(driver)) + "." +
-                      std::to_string(VK_API_VERSION_MINOR(driver)) + "." + std::to_string(VK_API_VERSION_PATCH(driver));
+    c.driverVersion = driverVersion(context.physicalDevice());
     const std::time_t now = std::time(nullptr);
     char utc[32];
     std::strftime(utc, sizeof utc, "%FT%TZ", std::gmtime(&now));

@@ -28,8 +28,8 @@ constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caste
 // in three runs; 0.58-0.66 when uploads went through a staging copy); a field pays off only when it saves more
 // iterations than its bytes cost. The tie: the probe samples a few hundred rays per direction class, and the
 // constants are not finer than 5 %.
-const CasterCalibration kBuiltIn{38, {11, 15, 17, 20}, 0.44, 0.05, "llvmpipe (LLVM 15.0.6, 256 bits)", "22.3.6",
-                                 "2026-11-21"};
+const CasterCalibration kBuiltIn{38, {11, 15, 17, 20}, 0.44, 0.05, "llvmpipe (LLVM 15.0.6, 256 bits)",
+                                 "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)", "2026-11-21"};
 
 // The probe's counts of caster c; null where the volume had no field for it.
 const ProbeCounts* countsOf(const RayProbe& probe, Caster c) {
