@@ -238,8 +238,9 @@ std::array<double, 5> fitModel(const std::vector<RenderSample>& samples) {
 std::string driverVersion(const vk::raii::PhysicalDevice& device) {
     for (const vk::ExtensionProperties& e : device.enumerateDeviceExtensionProperties())
         if (std::string_view(e.extensionName) == VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME) {
-            const auto chain = device.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>();
-            const vk::PhysicalDeviceDriverProperties& driver = chain.get<vk::PhysicalDeviceDriverProperties>();
+            using Driver = vk::PhysicalDeviceDriverProperties;
+            const auto chain = device.getProperties2<vk::PhysicalDeviceProperties2, Driver>();
+            const Driver& driver = chain.get<Driver>();
             return std::string(driver.driverName.data()) + " " + driver.driverInfo.data();
         }
     return std::to_string(device.getProperties().driverVersion);

@@ -103,9 +103,11 @@ CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes
         estimates.push_back({c, iterations, uploaded});
     }
     const double views = double(d.views.size());
-    for (Estimate& e : estimates)
-        e.cost = double(d.pixels) * (calibration.rayNs + e.iterations * calibration.iterationNs[std::size_t(e.caster)]) +
+    for (Estimate& e : estimates) {
+        const double iterationNs = calibration.iterationNs[std::size_t(e.caster)];
+        e.cost = double(d.pixels) * (calibration.rayNs + e.iterations * iterationNs) +
                  e.bytes * calibration.uploadNsPerByte / views;
+    }
 
     const Estimate* best = &*std::min_element(estimates.begin(), estimates.end(),
                                               [](const Estimate& a, const Estimate& b) { return a.cost < b.cost; });

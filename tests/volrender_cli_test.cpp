@@ -104,7 +104,8 @@ TEST(VolrenderCli, OrbitWritesNumberedViews) {
 TEST(VolrenderCli, HelpAndDeviceList) {
     const Outcome help = volrender("--help");
     EXPECT_EQ(help.status, 0);
-    for (const char* flag : {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear"})
+    for (const char* flag :
+         {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear"})
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     const Outcome list = volrender("--list-devices");
     EXPECT_EQ(list.status, 0);

@@ -173,13 +173,13 @@ int run(const Flags& f) {
     vr::ViewParams view;
     vr::RenderSettings settings;
     checkFlags(f, view, settings);
+    // The device is opened before the file is read: auto weighs the casters with the constants measured on it.
     std::unique_ptr<vr::VulkanContext> context;
     std::unique_ptr<vr::VulkanRenderer> renderer;
     if (!f.cpu) {
         context = std::make_unique<vr::VulkanContext>(vr::VulkanOptions{f.device, false});
         renderer = std::make_unique<vr::VulkanRenderer>(*context);
     }
-    // Before the file is read: auto weighs the casters with the constants measured on this device.
     const vr::CalibrationInUse calibration =
         vr::calibrationInUse(f.calibration, context ? std::optional(context->info().name) : std::nullopt);
     std::string choice;  // why --caster auto chose its caster
