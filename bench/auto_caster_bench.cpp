@@ -4,15 +4,18 @@
 // auto's one choice for the views (render/caster_choice.h, from the ray probe volprep stores) and its ratio to
 // the fastest fixed caster (target: at most 1.10), the run-to-run spread of the fastest fixed caster (the noise
 // the ratio sits in), and a least-squares fit of the choice model's constants to the renders (re-run it when the
-// shader loop or the device changes). Prints a Markdown table. --short: one tiny dataset at 64x64 (CTest).
+// shader loop or the device changes; --write-calibration FILE stores it for volrender --calibration). Prints a
+// Markdown table. --short: one tiny dataset at 64x64 (CTest).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <ctime>
 #include <functional>
 #include <map>
 
 #include "datasets/phantoms.h"
+#include "io/caster_calibration_file.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"
@@ -24,6 +27,7 @@ namespace fs = std::filesystem;
 using namespace vr;
 
 constexpr double kTarget = 1.10;  // auto within 10 % of the fastest fixed caster
+constexpr int kRowsToFit = 10;  // 5 unknowns: fewer rows leave the ray's ns ill-determined
 const Caster kFixed[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
 
 struct Scene {
@@ -204,7 +208,7 @@ struct RenderSample {
     double nsPerPixel;
 };
 
-// Least squares of the relative error of ns per pixel = kRayNs + iterations x iterationNs(caster) over the
+// Least squares of the relative error of ns per pixel = rayNs + iterations x iterationNs[caster] over the
 // renders (normal equations of 5 unknowns: the ray's ns, then one per caster in kFixed order).
 std::array<double, 5> fitModel(const std::vector<RenderSample>& samples) {
     constexpr int n = 5;
@@ -229,6 +233,29 @@ std::array<double, 5> fitModel(const std::vector<RenderSample>& samples) {
     return x;
 }
 
+// The driver's name and version (VK_KHR_driver_properties: "Mesa 22.3.6" where VkPhysicalDeviceProperties has a
+// vendor's number), or its raw version number where the device lacks the extension.
+std::string driverVersion(const vk::raii::PhysicalDevice& device) {
+    for (const vk::ExtensionProperties& e : device.enumerateDeviceExtensionProperties())
+        if (std::string_view(e.extensionName) == VK_KHR_DRIVER_PROPERTIES_EXTENSION_NAME) {
+            using Driver = vk::PhysicalDeviceDriverProperties;
+            const auto chain = device.getProperties2<vk::PhysicalDeviceProperties2, Driver>();
+            const Driver& driver = chain.get<Driver>();
+            return std::string(driver.driverName.data()) + " " + driver.driverInfo.data();
+        }
+    return std::to_string(device.getProperties().driverVersion);
+}
+
+// The Vulkan device the renders ran on, and now: volrender matches a calibration file to its device by name.
+void describeDevice(const VulkanContext& context, CasterCalibration& c) {
+    c.deviceName = context.info().name;
+    c.driverVersion = driverVersion(context.physicalDevice());
+    const std::time_t now = std::time(nullptr);
+    char utc[32];
+    std::strftime(utc, sizeof utc, "%FT%TZ", std::gmtime(&now));
+    c.measuredAt = utc;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -239,6 +266,7 @@ int main(int argc, char** argv) {
     double step = 0.5;
     std::vector<double> to{0, 0.02}, ta{0, 10};
     std::vector<std::string> datasets;
+    std::string calibrationFile;
     app.add_flag("--short", shortMode, "one tiny dataset (vtk_headmr), 64x64, 2 views, once: a few seconds (CTest)");
     app.add_flag("--explain", explain, "print auto's estimates for every view below each row");
     app.add_option("--datasets", datasets, "dataset name prefixes (MANIFEST.tsv files, phantom_NAME); default all")
@@ -251,6 +279,9 @@ int main(int argc, char** argv) {
     app.add_option("--ta", ta, "T_a per setting (as many as --to), degrees")->delimiter(',')->capture_default_str();
     app.add_option("--step", step, "step in voxels")->capture_default_str();
     app.add_option("--device", device, "Vulkan device index");
+    app.add_option("--write-calibration", calibrationFile,
+                   "write the fit, the upload rate and the device as a calibration file for volrender "
+                   "--calibration (needs 10 rows or more)");
     CLI11_PARSE(app, argc, argv);
     if (shortMode) {
         datasets = {"vtk_headmr"};
@@ -258,6 +289,13 @@ int main(int argc, char** argv) {
     }
     if (to.size() != ta.size()) {
         std::fprintf(stderr, "auto_caster_bench: --to and --ta need as many values\n");
+        return 2;
+    }
+    const std::vector<Scene> measured = scenes(datasets, phantomSize);
+    const std::size_t rowCount = measured.size() * to.size();
+    if (!calibrationFile.empty() && rowCount < std::size_t(kRowsToFit)) {
+        std::fprintf(stderr, "auto_caster_bench: --write-calibration: the fit needs %d rows (datasets x settings) "
+                     "or more, these options give %zu\n", kRowsToFit, rowCount);
         return 2;
     }
 
@@ -280,7 +318,7 @@ int main(int argc, char** argv) {
         std::vector<double> spreads;
         std::vector<RenderSample> renderSamples;             // every caster's renders, per row
         std::vector<double> perByte;                         // wall ns per field byte uploaded, per row
-        for (const Scene& scene : scenes(datasets, phantomSize)) {
+        for (const Scene& scene : measured) {
             StagedPreparation staged(scene.load());
             PrepareOptions options;
             options.classify.transferFunction = loadTransferFunction(scene.tf);
@@ -336,13 +374,23 @@ int main(int argc, char** argv) {
         std::printf("Run-to-run spread of the fastest fixed caster ((max - min) / median of its per-repeat sums over "
                     "the views): median %.0f %%, largest %.0f %%.\n",
                     100 * median(spreads), 100 * *std::max_element(spreads.begin(), spreads.end()));
-        if (rows >= 10) {  // 5 unknowns: fewer rows leave the ray's ns ill-determined
+        const double uploadNsPerByte = median(perByte);
+        if (rows >= kRowsToFit) {
             const std::array<double, 5> fit = fitModel(renderSamples);
             std::printf("Fit of the renders, device ns per pixel = ray + iterations x per-iteration "
-                        "(caster_choice.cpp's kRayNs and iterationNs): ray %.0f;", fit[0]);
+                        "(a calibration's rayNs and iterationNs): ray %.0f;", fit[0]);
             for (Caster c : kFixed) std::printf(" %s %.0f;", casterName(c).data(), fit[1 + int(c)]);
+            if (!calibrationFile.empty()) {
+                CasterCalibration fitted = builtInCalibration();  // the tie stays: it is the probe's precision
+                fitted.rayNs = fit[0];
+                std::copy(fit.begin() + 1, fit.end(), fitted.iterationNs.begin());
+                fitted.uploadNsPerByte = uploadNsPerByte;
+                describeDevice(ctx, fitted);
+                writeCasterCalibration(calibrationFile, fitted);
+            }
         }
-        std::printf("\nWall ns per field byte uploaded (median over rows): %.2f.\n", median(perByte));
+        std::printf("\nWall ns per field byte uploaded (median over rows): %.2f.\n", uploadNsPerByte);
+        if (!calibrationFile.empty()) std::printf("Calibration written to %s.\n", calibrationFile.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "auto_caster_bench: %s\n", e.what());
         return 1;

@@ -1,7 +1,6 @@
 #include "render/caster_choice.h"
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cstdio>
 #include <stdexcept>
@@ -13,30 +12,24 @@ namespace {
 // The model: a render costs pixels x (a fixed cost per ray + iterations per pixel x the caster's time per
 // iteration), plus the upload of its field, shared by the views. Iterations per pixel come from the ray probe
 // volprep stores (probeRays): a count per direction class (axis, plane quadrant, octant) on
-// the renderer's own lattice, early ray termination included, so the only constants are the times below. They are
-// few on purpose, and the only thing to re-measure when the shader loop or the device changes:
-// bench/auto_caster_bench prints the data to fit them.
-struct CasterCost {
-    Caster caster;
-    double iterationNs;  // device time of one loop iteration
-};
-// Lavapipe on this project's 2-core machine: least squares of device ms = pixels x (kRayNs + iterations x
+// the renderer's own lattice, early ray termination included, so the only constants are the calibration's times.
+// They are few on purpose, and the only thing to re-measure when the shader loop or the device changes:
+// bench/auto_caster_bench --write-calibration fits them.
+constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+
+// Lavapipe on this project's 2-core machine: least squares of device ms = pixels x (rayNs + iterations x
 // iterationNs) over bench/auto_caster_bench's 136 renders (34 rows x 4 casters: the shared datasets and the
 // phantoms, T = 0 and 0.02/10, 256x256, 4 views). A leaping iteration adds a field fetch, a box exit and the
 // leap's bounds check to the sample; EACD also decodes its extents. Kept after later shader changes made every
 // iteration cheaper (primitive 2.8x, EACD 1.2x): they still pick within 10 % on 33 of 34 rows, where a fit to
 // the faster shaders (ray 27; 5, 9, 11, 13) picks so on 29-30. An iteration's time grows with the
 // volume (primitive: 3 ns on 2 MB of classified voxels, 10 ns on 268 MB), which these constants do not model.
-constexpr double kRayNs = 38;
-constexpr std::array<CasterCost, 4> kCasters{
-    {{Caster::Primitive, 11}, {Caster::PC, 15}, {Caster::ACD, 17}, {Caster::EACD, 20}}};
-// Wall time to upload one byte of a field (lavapipe: written in place into the image's memory): a field pays off
-// only when it saves more iterations than its bytes cost. The bench's median over its rows (0.40-0.45 in three
-// runs; 0.58-0.66 when uploads went through a staging copy).
-constexpr double kUploadNsPerByte = 0.44;
-// Casters whose estimates lie within this fraction of the cheapest are a tie, which the one with less to upload
-// wins: the probe samples a few hundred rays per direction class, and the constants above are not finer than this.
-constexpr double kTie = 0.05;
+// Uploading a field byte (written in place into the image's memory): the bench's median over its rows (0.40-0.45
+// in three runs; 0.58-0.66 when uploads went through a staging copy); a field pays off only when it saves more
+// iterations than its bytes cost. The tie: the probe samples a few hundred rays per direction class, and the
+// constants are not finer than 5 %.
+const CasterCalibration kBuiltIn{38, {11, 15, 17, 20}, 0.44, 0.05, "llvmpipe (LLVM 15.0.6, 256 bits)",
+                                 "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)", "2026-11-21"};
 
 // The probe's counts of caster c; null where the volume had no field for it.
 const ProbeCounts* countsOf(const RayProbe& probe, Caster c) {
@@ -69,7 +62,7 @@ double classMean(const PerDirectionClass& counts, unsigned classes) {
 }
 
 struct Estimate {
-    const CasterCost* caster;
+    Caster caster;
     double iterations;  // per pixel
     double bytes;       // field bytes uploaded for the views
     double cost = 0;
@@ -77,13 +70,10 @@ struct Estimate {
 
 }  // namespace
 
-double iterationNanoseconds(Caster caster) {
-    for (const CasterCost& c : kCasters)
-        if (c.caster == caster) return c.iterationNs;
-    return kCasters.front().iterationNs;
-}
+const CasterCalibration& builtInCalibration() { return kBuiltIn; }
 
-CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes& bytes, const CasterDemand& d) {
+CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes& bytes, const CasterDemand& d,
+                          const CasterCalibration& calibration) {
     const unsigned octants = d.octants & 0xffu;
     const unsigned anyClass = (1u << kDirectionClasses) - 1 - (1u << kNoDirection);
     if (d.views.empty() || std::any_of(d.views.begin(), d.views.end(), [&](unsigned v) { return !v || v & ~anyClass; }))
@@ -97,28 +87,31 @@ CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes
     const double stepScale = probe->stepVoxels / std::max(d.stepVoxels, 1e-6);
     std::vector<Estimate> estimates;
     std::vector<double> primitivePerView;
-    for (const CasterCost& c : kCasters) {  // primitive first
-        const ProbeCounts* counts = countsOf(*probe, c.caster);
-        const double fieldBytes = fieldBytesOf(bytes, c.caster);
-        if (!counts || (c.caster != Caster::Primitive && fieldBytes <= 0)) continue;
+    for (const Caster c : kCasters) {  // primitive first
+        const ProbeCounts* counts = countsOf(*probe, c);
+        const double fieldBytes = fieldBytesOf(bytes, c);
+        if (!counts || (c != Caster::Primitive && fieldBytes <= 0)) continue;
         double iterations = 0;  // per pixel, mean over the views
         for (std::size_t v = 0; v < d.views.size(); ++v) {
             const double perView =
                 classMean(counts->leaps, d.views[v]) + classMean(counts->singleSamples, d.views[v]) * stepScale;
-            if (c.caster == Caster::Primitive) primitivePerView.push_back(perView);
+            if (c == Caster::Primitive) primitivePerView.push_back(perView);
             iterations += std::min(perView, primitivePerView[v]) / double(d.views.size());
         }
         // PC has one field for every direction; ACD and EACD upload the octants the view's rays have.
-        const double uploaded = c.caster == Caster::PC ? fieldBytes : fieldBytes * std::popcount(octants) / kOctants;
-        estimates.push_back({&c, iterations, uploaded});
+        const double uploaded = c == Caster::PC ? fieldBytes : fieldBytes * std::popcount(octants) / kOctants;
+        estimates.push_back({c, iterations, uploaded});
     }
     const double views = double(d.views.size());
-    for (Estimate& e : estimates)
-        e.cost = double(d.pixels) * (kRayNs + e.iterations * e.caster->iterationNs) + e.bytes * kUploadNsPerByte / views;
+    for (Estimate& e : estimates) {
+        const double iterationNs = calibration.iterationNs[std::size_t(e.caster)];
+        e.cost = double(d.pixels) * (calibration.rayNs + e.iterations * iterationNs) +
+                 e.bytes * calibration.uploadNsPerByte / views;
+    }
 
     const Estimate* best = &*std::min_element(estimates.begin(), estimates.end(),
                                               [](const Estimate& a, const Estimate& b) { return a.cost < b.cost; });
-    const double tie = best->cost * (1 + kTie);
+    const double tie = best->cost * (1 + calibration.tie);
     for (const Estimate& e : estimates)
         if (e.cost <= tie && e.bytes < best->bytes) best = &e;
 
@@ -127,12 +120,12 @@ CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes
                          " view(s) sharing the upload):";
     for (const Estimate& e : estimates) {
         char part[96];
-        std::snprintf(part, sizeof part, " %s %.1f, %.3f;", casterName(e.caster->caster).data(), e.iterations,
+        std::snprintf(part, sizeof part, " %s %.1f, %.3f;", casterName(e.caster).data(), e.iterations,
                       e.cost / estimates.front().cost);
         reason += part;
     }
     reason.pop_back();
-    return {best->caster->caster, reason};
+    return {best->caster, reason};
 }
 
 }  // namespace vr

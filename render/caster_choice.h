@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/prepared_volume.h"
+#include "io/caster_calibration_file.h"
 #include "render/direction_class.h"
 #include "render/render_settings.h"
 
@@ -37,15 +38,17 @@ struct CasterChoice {
     std::string reason;  // one line: each candidate's estimated iterations per pixel and relative cost
 };
 
+// The model's constants measured on lavapipe with 2 cores (see caster_choice.cpp): what --caster auto uses on a
+// device without a calibration file of its own.
+const CasterCalibration& builtInCalibration();
+
 // Estimates each available caster's time as pixels x (a cost per ray + iterations per pixel x its time per
 // iteration) per view, the iterations from the probe for the view's direction classes (rescaled to the step), plus
 // the upload of its field (`fieldBytes`, per octant uploaded) shared by the views, and returns the cheapest; when a
-// leaner caster is within a few percent of it, the one with less to upload. Without a probe (an old or foreign
-// file, or rays too long to probe) the primitive caster, which needs no field, and a reason that says so.
+// leaner caster is within the calibration's tie of it, the one with less to upload. Without a probe (an old or
+// foreign file, or rays too long to probe) the primitive caster, which needs no field, and a reason that says so.
 CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes& fieldBytes,
-                          const CasterDemand& demand);
-
-// The model's device time of one loop iteration of a caster (measured: see caster_choice.cpp).
-double iterationNanoseconds(Caster caster);
+                          const CasterDemand& demand,
+                          const CasterCalibration& calibration = builtInCalibration());
 
 }  // namespace vr

@@ -106,7 +106,8 @@ TEST(CasterChoice, OnlySingleSampleIterationsFollowTheStep) {
 TEST(CasterChoice, NearTiesGoToTheLeanerField) {
     // EACD estimated 1 % cheaper than ACD: not worth three times the bytes; a fifth cheaper: worth them. (Long rays,
     // so that the cost per ray does not count.)
-    const double perAcdIteration = iterationNanoseconds(Caster::ACD) / iterationNanoseconds(Caster::EACD);
+    const std::array<double, 4>& ns = builtInCalibration().iterationNs;
+    const double perAcdIteration = ns[std::size_t(Caster::ACD)] / ns[std::size_t(Caster::EACD)];
     auto eacdAt = [&](double fraction) {
         return choose(probed({{"primitive", {0, 1e5}}, {"acd", {1000, 0}},
                                         {"eacd", {1000 * perAcdIteration * fraction, 0}}}),

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "io/caster_calibration_file.h"
 #include "io/prepared_file.h"
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
@@ -12,6 +13,7 @@
 #include "preprocess/segment/segment.h"
 #include "support/cli.h"
 #include "support/datasets.h"
+#include "render/caster_choice.h"
 #include "render/image.h"
 
 namespace vr {
@@ -102,7 +104,8 @@ TEST(VolrenderCli, OrbitWritesNumberedViews) {
 TEST(VolrenderCli, HelpAndDeviceList) {
     const Outcome help = volrender("--help");
     EXPECT_EQ(help.status, 0);
-    for (const char* flag : {"--caster", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear"})
+    for (const char* flag :
+         {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear"})
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     const Outcome list = volrender("--list-devices");
     EXPECT_EQ(list.status, 0);
@@ -134,6 +137,47 @@ TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
     expectRejected(q(dir / "garbage.vrp") + out, "garbage.vrp");
     expectRejected(in + out + " --device 99", "device 99");
     EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+TEST(VolrenderCli, AutoTakesTheCalibrationOfItsDeviceAndSaysWhich) {
+    const fs::path dir = test::scratchDir("volrender_cli_calibration"), user = dir / "config" / "volrender";
+    const std::string home = "XDG_CONFIG_HOME=" + q(dir / "config");
+    const std::string run = q(preparedHead()) + " -o " + q(dir / "x.png") + " --size 16x16 --caster auto --stats " +
+                            q(dir / "stats.json");
+    auto calibrationUsed = [&](const std::string& args) {
+        const Outcome r = test::runCli(kVolrender, run + args, home);
+        EXPECT_EQ(r.status, 0) << r.err;
+        return nlohmann::json::parse(slurp(dir / "stats.json"));
+    };
+    const nlohmann::json builtIn = calibrationUsed("");
+    EXPECT_EQ(builtIn["calibration"]["source"], "built-in");
+    EXPECT_EQ(builtIn["calibration"]["rayNs"], builtInCalibration().rayNs);
+
+    CasterCalibration here = builtInCalibration(), elsewhere = builtInCalibration();
+    here.deviceName = builtIn["renderer"];
+    here.rayNs = 99;
+    elsewhere.deviceName = "another GPU";
+    writeCasterCalibration(dir / "here.json", here);
+    writeCasterCalibration(dir / "elsewhere.json", elsewhere);
+    const nlohmann::json explicitFile = calibrationUsed(" --calibration " + q(dir / "here.json"));
+    EXPECT_EQ(explicitFile["calibration"]["source"], (dir / "here.json").string());
+    EXPECT_EQ(explicitFile["calibration"]["rayNs"], 99);
+
+    fs::create_directories(user);
+    writeCasterCalibration(user / "calibration.json", here);
+    EXPECT_EQ(calibrationUsed("")["calibration"]["source"], (user / "calibration.json").string());
+    writeCasterCalibration(user / "calibration.json", elsewhere);
+    const Outcome passedOver = test::runCli(kVolrender, run, home);
+    EXPECT_EQ(passedOver.status, 0) << passedOver.err;
+    EXPECT_NE(passedOver.err.find("measured on 'another GPU'"), std::string::npos) << passedOver.err;
+    EXPECT_NE(passedOver.err.find("using the built-in constants"), std::string::npos) << passedOver.err;
+
+    const std::string out = q(preparedHead()) + " -o " + q(dir / "y.png") + " --caster auto --calibration ";
+    expectRejected(out + q(dir / "elsewhere.json"), "elsewhere.json: measured on 'another GPU'");
+    std::ofstream(dir / "malformed.json") << "{";
+    expectRejected(out + q(dir / "malformed.json"), "malformed.json: not valid JSON");
+    expectRejected(out + q(dir / "absent.json"), "absent.json: no such file");
+    EXPECT_FALSE(fs::exists(dir / "y.png"));
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "tools/tool_main.h"
 #include "core/errors.h"
 #include "io/prepared_file.h"
+#include "volrender/cmd/calibration_in_use.h"
 #include "volrender/cmd/heatmap.h"
 #include "render/caster_choice.h"
 #include "volrender/cmd/render_stats.h"
@@ -36,15 +37,20 @@ struct Flags {
     double fov = 30, azimuth = 0, elevation = 0, step = 0.5, ert = 0.99;
     std::vector<double> light, background{0, 0, 0};
     bool noShading = false, trilinear = false, listDevices = false, cpu = false;
-    std::string stats, heatmap;
+    std::string stats, heatmap, calibration;
     int views = 1, device = -1;
 };
 
 void addFlags(CLI::App& app, Flags& f) {
     app.add_option("prepared", f.prepared, "prepared volume written by volprep");
     app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...");
-    app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, or auto (chosen from the file's statistics "
-                                         "and the view)")->capture_default_str();
+    app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, or auto (chosen from the file's ray probe and "
+                                         "the views by a cost model: see --calibration)")->capture_default_str();
+    app.add_option("--calibration", f.calibration,
+                   "the auto caster's cost constants, as auto_caster_bench --write-calibration measures them on a "
+                   "device (default: $XDG_CONFIG_HOME/volrender/calibration.json, else "
+                   "~/.config/volrender/calibration.json, when measured on the device rendering; else built-in "
+                   "constants measured on lavapipe with 2 cores)");
     app.add_option("--size", f.size, "image size WIDTHxHEIGHT (1..16384 each)")->capture_default_str();
     app.add_option("--projection", f.projection, "ortho or persp")->capture_default_str();
     app.add_option("--fov", f.fov, "vertical field of view of persp, degrees")->capture_default_str();
@@ -144,7 +150,8 @@ unsigned fieldsFor(vr::Caster c) {
 
 // --caster auto: the caster for the orbit's views, from the ray probe and the field sizes in the prepared file's
 // header (the chunks are read once the caster is known).
-vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s) {
+vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s,
+                            const vr::CasterCalibration& calibration) {
     const vr::PreparedHeader header = vr::readPreparedHeader(f.prepared);
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (int i = 0; i < f.views; ++i) {
@@ -152,7 +159,7 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
         view.elevationDeg = f.elevation;
         d.addView(vr::Camera::fit(header.grid, view));
     }
-    return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d);
+    return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
 }
 
 int run(const Flags& f) {
@@ -166,9 +173,19 @@ int run(const Flags& f) {
     vr::ViewParams view;
     vr::RenderSettings settings;
     checkFlags(f, view, settings);
+    // The device is opened before the file is read: auto weighs the casters with the constants measured on it.
+    std::unique_ptr<vr::VulkanContext> context;
+    std::unique_ptr<vr::VulkanRenderer> renderer;
+    if (!f.cpu) {
+        context = std::make_unique<vr::VulkanContext>(vr::VulkanOptions{f.device, false});
+        renderer = std::make_unique<vr::VulkanRenderer>(*context);
+    }
+    const vr::CalibrationInUse calibration =
+        vr::calibrationInUse(f.calibration, context ? std::optional(context->info().name) : std::nullopt);
     std::string choice;  // why --caster auto chose its caster
     if (f.caster == "auto") {
-        const vr::CasterChoice c = autoCaster(f, view, settings);
+        if (!calibration.note.empty()) std::fprintf(stderr, "volrender: %s\n", calibration.note.c_str());
+        const vr::CasterChoice c = autoCaster(f, view, settings, calibration.constants);
         settings.caster = c.caster;
         choice = c.reason;
         std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(c.caster).data(),
@@ -176,12 +193,6 @@ int run(const Flags& f) {
     }
     const vr::PreparedVolume prepared = vr::readPrepared(f.prepared, fieldsFor(settings.caster), settings.shading);
 
-    std::unique_ptr<vr::VulkanContext> context;
-    std::unique_ptr<vr::VulkanRenderer> renderer;
-    if (!f.cpu) {
-        context = std::make_unique<vr::VulkanContext>(vr::VulkanOptions{f.device, false});
-        renderer = std::make_unique<vr::VulkanRenderer>(*context);
-    }
     std::vector<vr::Camera> cameras;
     unsigned octants = 0;  // of every view's rays: the orbit shares one upload
     for (int i = 0; i < f.views; ++i) {
@@ -233,6 +244,7 @@ int run(const Flags& f) {
               {"azimuth", f.azimuth}, {"elevation", f.elevation}, {"step", f.step}, {"ert", f.ert},
               {"shading", settings.shading}, {"trilinear", settings.trilinear}, {"light", f.light},
               {"background", f.background}, {"views", f.views}}},
+            {"calibration", vr::calibrationStatistics(calibration)},
             {"upload", uploadStats},
             {"views", viewStats}};
         std::ofstream(f.stats) << stats.dump(2) << "\n";
