@@ -6,12 +6,12 @@
 
 namespace vr {
 
-// Per voxel, the smallest and largest scalar of its interpolation footprint: the 2x2x2 cells around every point of
-// the voxel's cell, together its 3x3x3 neighbourhood, clamped at the volume's edge (cell-centred sampling).
-struct FootprintRanges {
-    std::vector<float> lo, hi;
+struct ScalarRange {
+    float lo, hi;
 };
 
-FootprintRanges footprintRanges(const Vec3i& dims, const std::vector<float>& scalars);
+// Per voxel, the smallest and largest scalar of its interpolation footprint: the 2x2x2 cells around every point of
+// the voxel's cell, together its 3x3x3 neighbourhood, clamped at the volume's edge (cell-centred sampling).
+std::vector<ScalarRange> footprintRanges(const Vec3i& dims, const std::vector<float>& scalars);
 
 }  // namespace vr

@@ -14,27 +14,30 @@
 namespace vr {
 namespace {
 
-// Voxels that can join no region: their own footprint spreads beyond T_o, or they sit where normals mix.
-std::vector<uint8_t> borderVoxels(const Vec3i& dims, const FootprintRanges& footprints,
-                                  const ClassificationSpread& spread, double threshold, const NormalClasses& normals) {
-    std::vector<uint8_t> border =
-        normals.used()
-            ? mixedNeighbourhoods(dims, [&](std::size_t a, std::size_t b) { return normals.alike(a, b); })
-            : std::vector<uint8_t>(footprints.lo.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, border.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-        float lastLo = 1, lastHi = 0;  // an empty interval: never a footprint's
+constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
+constexpr uint32_t kBorder = kUnset - 1;  // a border voxel before its label: joins no region
+
+// Labels kBorder where a voxel can join no region: its own footprint spreads beyond T_o, or normals mix around it
+// (normals in use); kUnset elsewhere.
+void markBorderVoxels(const Vec3i& dims, const std::vector<ScalarRange>& footprints,
+                      const ClassificationSpread& spread, double threshold, const NormalClasses& normals,
+                      std::vector<uint32_t>& label) {
+    const std::vector<uint8_t> mixed =
+        normals.used() ? mixedNeighbourhoods(dims, [&](std::size_t a, std::size_t b) { return normals.alike(a, b); })
+                       : std::vector<uint8_t>(footprints.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, label.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+        ScalarRange last{1, 0};  // an empty range: never a footprint's
         bool lastAlike = false;
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            if (border[i]) continue;
             // Neighbours often share their footprint's range (air, flat tissue): ask once per run of them.
-            if (footprints.lo[i] != lastLo || footprints.hi[i] != lastHi) {
-                lastLo = footprints.lo[i], lastHi = footprints.hi[i];
-                lastAlike = spread.alike(lastLo, lastHi, threshold);
+            const ScalarRange f = footprints[i];
+            if (!mixed[i] && (f.lo != last.lo || f.hi != last.hi)) {
+                last = f;
+                lastAlike = spread.alike(f.lo, f.hi, threshold);
             }
-            border[i] = !lastAlike;
+            label[i] = mixed[i] || !lastAlike ? kBorder : kUnset;
         }
     });
-    return border;
 }
 
 }  // namespace
@@ -43,52 +46,54 @@ void growPostClassifiedRegions(const ClassifiedVolume& classified, const Segment
                                const std::vector<float>& scalars, const ClassificationSpread& spread, Regions& regions) {
     const Vec3i d = classified.grid.dims;
     const std::size_t n = voxelCount(d);
-    if (n >= std::numeric_limits<uint32_t>::max())
-        throw InputError("segmentation: " + std::to_string(n) + " voxels; at most 2^32 - 1 are supported");
+    if (n >= kBorder)
+        throw InputError("segmentation: " + std::to_string(n) + " voxels; at most 2^32 - 2 are supported");
     if (scalars.size() != n) throw InputError("segmentation: the scalars do not match the classified volume");
     const RegionKeyer keyer(classified, params);  // checks the thresholds
     const NormalClasses normals(keyer, n);
-    const FootprintRanges footprints = footprintRanges(d, scalars);
+    const std::vector<ScalarRange> footprints = footprintRanges(d, scalars);
     const double threshold = params.opacityThreshold;
-    const std::vector<uint8_t> border = borderVoxels(d, footprints, spread, threshold, normals);
-
-    constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
     regions.dims = d;
-    regions.label.assign(n, kUnset);
+    regions.label.resize(n);
     std::vector<uint32_t>& label = regions.label;
+    markBorderVoxels(d, footprints, spread, threshold, normals, label);
+
     const std::size_t nx = std::size_t(d.x), slice = nx * std::size_t(d.y);
-    std::vector<uint32_t> queue;
+    std::vector<uint32_t> pending;  // joined, neighbours not yet considered
     uint32_t count = 0;
     // Every voxel before the seed is labelled, so the seed is its region's first voxel: labels in first-voxel order.
     for (std::size_t seed = 0; seed < n; ++seed) {
-        if (label[seed] != kUnset) continue;
+        if (label[seed] < kBorder) continue;
+        const bool border = label[seed] == kBorder;
         const uint32_t id = count++;
         label[seed] = id;
-        if (border[seed]) continue;
-        float lo = footprints.lo[seed], hi = footprints.hi[seed];
-        // The interval only widens as voxels join, so a voxel refused once would be refused again: each voxel is
+        if (border) continue;
+        ScalarRange range = footprints[seed];
+        // The range only widens as voxels join, so a voxel refused once would be refused again: each voxel is
         // asked at most once per neighbour that joins a region.
         const auto consider = [&](std::size_t u) {
-            if (label[u] != kUnset || border[u] || !normals.alike(seed, u)) return;
-            const float uLo = footprints.lo[u], uHi = footprints.hi[u];
-            if (uLo < lo || uHi > hi) {
-                const float wideLo = std::min(lo, uLo), wideHi = std::max(hi, uHi);
-                if (!spread.alike(wideLo, wideHi, threshold)) return;
-                lo = wideLo, hi = wideHi;
+            if (label[u] != kUnset || !normals.alike(seed, u)) return;
+            const ScalarRange f = footprints[u];
+            if (f.lo < range.lo || f.hi > range.hi) {
+                const ScalarRange wide{std::min(range.lo, f.lo), std::max(range.hi, f.hi)};
+                if (!spread.alike(wide.lo, wide.hi, threshold)) return;
+                range = wide;
             }
             label[u] = id;
-            queue.push_back(uint32_t(u));
+            pending.push_back(uint32_t(u));
         };
-        queue.assign(1, uint32_t(seed));
-        for (std::size_t head = 0; head < queue.size(); ++head) {
-            const std::size_t v = queue[head];
+        // Depth first, the +x neighbour taken next: the walk follows rows through memory.
+        pending.assign(1, uint32_t(seed));
+        while (!pending.empty()) {
+            const std::size_t v = pending.back();
+            pending.pop_back();
             const std::size_t x = v % nx, y = v / nx % std::size_t(d.y), z = v / slice;
-            if (x > 0) consider(v - 1);
-            if (x + 1 < nx) consider(v + 1);
-            if (y > 0) consider(v - nx);
-            if (y + 1 < std::size_t(d.y)) consider(v + nx);
             if (z > 0) consider(v - slice);
             if (z + 1 < std::size_t(d.z)) consider(v + slice);
+            if (y > 0) consider(v - nx);
+            if (y + 1 < std::size_t(d.y)) consider(v + nx);
+            if (x > 0) consider(v - 1);
+            if (x + 1 < nx) consider(v + 1);
         }
     }
     regions.count = count;
