@@ -20,8 +20,9 @@ constexpr uint32_t kBorder = kUnset - 1;  // a border voxel before its label: jo
 // Labels kBorder where a voxel can join no region: its own footprint spreads beyond T_o, or normals mix around it
 // (normals in use); kUnset elsewhere.
 void markBorderVoxels(const Vec3i& dims, const std::vector<ScalarRange>& footprints,
-                      const ClassificationSpread& spread, double threshold, const NormalClasses& normals,
+                      const ClassificationSpread& spread, double threshold, const RegionKeyer& keyer,
                       std::vector<uint32_t>& label) {
+    const NormalClasses normals(keyer, label.size());
     const std::vector<uint8_t> mixed =
         normals.used() ? mixedNeighbourhoods(dims, [&](std::size_t a, std::size_t b) { return normals.alike(a, b); })
                        : std::vector<uint8_t>(footprints.size());
@@ -50,13 +51,12 @@ void growPostClassifiedRegions(const ClassifiedVolume& classified, const Segment
         throw InputError("segmentation: " + std::to_string(n) + " voxels; at most 2^32 - 2 are supported");
     if (scalars.size() != n) throw InputError("segmentation: the scalars do not match the classified volume");
     const RegionKeyer keyer(classified, params);  // checks the thresholds
-    const NormalClasses normals(keyer, n);
     const std::vector<ScalarRange> footprints = footprintRanges(d, scalars);
     const double threshold = params.opacityThreshold;
     regions.dims = d;
     regions.label.resize(n);
     std::vector<uint32_t>& label = regions.label;
-    markBorderVoxels(d, footprints, spread, threshold, normals, label);
+    markBorderVoxels(d, footprints, spread, threshold, keyer, label);
 
     const std::size_t nx = std::size_t(d.x), slice = nx * std::size_t(d.y);
     std::vector<uint32_t> pending;  // joined, neighbours not yet considered
@@ -70,9 +70,10 @@ void growPostClassifiedRegions(const ClassifiedVolume& classified, const Segment
         if (border) continue;
         ScalarRange range = footprints[seed];
         // The range only widens as voxels join, so a voxel refused once would be refused again: each voxel is
-        // asked at most once per neighbour that joins a region.
+        // asked at most once per neighbour that joins a region. Normals need no test: a voxel that is not a border
+        // voxel has the normal key of all its neighbours, so the whole region has the seed's.
         const auto consider = [&](std::size_t u) {
-            if (label[u] != kUnset || !normals.alike(seed, u)) return;
+            if (label[u] != kUnset) return;
             const ScalarRange f = footprints[u];
             if (f.lo < range.lo || f.hi > range.hi) {
                 const ScalarRange wide{std::min(range.lo, f.lo), std::max(range.hi, f.hi)};
