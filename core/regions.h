@@ -11,8 +11,17 @@ struct SegmentationParams {
     double opacityThreshold = 0.0;  // T_o: opacity (and colour) variation allowed within a region
     double angleThresholdDeg = 0.0; // T_a: normal angle allowed within a region, degrees
     bool useNormals = true;         // false when shading is off: normals are then ignored
-    bool trilinear = false;         // border voxels of the 2x2x2 footprint become regions of their own
+    bool trilinear = false;         // regions whose interpolation footprints stay homogeneous (section 3 and 9)
     bool operator==(const SegmentationParams&) const = default;
+};
+
+// What post-classified segmentation asks of a transfer function (docs/ALGORITHMS.md section 9): an interpolated
+// scalar anywhere in [lo, hi] may be classified, so the region is homogeneous only if the classification varies
+// by at most the threshold over the whole interval. Implemented by the classification's TfRangeTable.
+class ClassificationSpread {
+public:
+    virtual ~ClassificationSpread() = default;
+    virtual bool alike(float lo, float hi, double threshold) const = 0;
 };
 
 struct Regions {

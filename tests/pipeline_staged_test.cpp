@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "datasets/phantoms.h"
+#include "preprocess/classify/tf_range_table.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "preprocess/segment/segment.h"
@@ -154,7 +155,9 @@ TEST(StagedPreparation, AVolumeInMemoryIsNeverLoaded) {
     const ClassifiedVolume c = classify(engine, o.classify);
     EXPECT_EQ(p.classified.sigma, c.sigma);
     EXPECT_EQ(p.classified.normal, c.normal);
-    EXPECT_EQ(p.regions.label, segment(c, o.segmentation).label);
+    // Trilinear from a transfer function: regions for post-classification, built on the scalars.
+    const TfRangeTable spread(transferTable(engine, *o.classify.transferFunction));
+    EXPECT_EQ(p.regions.label, segment(c, o.segmentation, ClassifiedScalars{engine.values, spread}).label);
     EXPECT_EQ(p.fields.pc, buildFields(p.regions, kFieldPC).pc);
     o.classify.normals = false;
     staged.prepare(o);
@@ -177,8 +180,8 @@ TEST(StagedPreparation, AStageThatThrowsRunsAgainNextTime) {
                  InputError);
 }
 
-// A preparation that runs once frees the scalars as soon as they are classified (volprep's peak memory), after a
-// classification that threw only.
+// A preparation that runs once frees the scalars as soon as they are used (volprep's peak memory): once classified,
+// or once segmented where a trilinear segmentation reads them; never after a classification that threw.
 TEST(StagedPreparation, FreesTheScalarsOnceClassifiedWhenAskedTo) {
     StagedPreparation staged(enginePhantom({20, 17, 12}), ScalarsOnceClassified::Free);
     PrepareOptions o;
@@ -193,6 +196,16 @@ TEST(StagedPreparation, FreesTheScalarsOnceClassifiedWhenAskedTo) {
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
     o.classify.normals = false;
     EXPECT_THROW(staged.prepare(o), std::logic_error);
+
+    // A trilinear segmentation from a transfer function reads the scalars: they are freed after it instead.
+    StagedPreparation trilinear(enginePhantom({20, 17, 12}), ScalarsOnceClassified::Free);
+    o.segmentation.trilinear = true;
+    trilinear.prepare(o, PrepStage::Classify);
+    EXPECT_FALSE(trilinear.volume().values.empty());
+    trilinear.prepare(o, PrepStage::Segment);
+    EXPECT_TRUE(trilinear.volume().values.empty());
+    o.segmentation.opacityThreshold = 0.5;
+    EXPECT_THROW(trilinear.prepare(o), std::logic_error);
 }
 
 // volprep's stages: the write comes last, timed, after the statistics the file holds (which cannot include it).

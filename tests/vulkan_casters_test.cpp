@@ -8,6 +8,7 @@
 #include "core/errors.h"
 #include "datasets/phantoms.h"
 #include "preprocess/classify/classify.h"
+#include "preprocess/classify/tf_range_table.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
@@ -54,7 +55,8 @@ PreparedVolume prepare(const Volume& volume, const TransferFunction& tf, double 
     cp.transferFunction = tf;
     p.classified = classify(volume, cp);
     p.meta.segmentation = {to, ta, true, trilinear};
-    p.regions = segment(p.classified, p.meta.segmentation);
+    const TfRangeTable spread(transferTable(volume, tf));  // trilinear regions as volprep makes them
+    p.regions = segment(p.classified, p.meta.segmentation, ClassifiedScalars{volume.values, spread});
     p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
     return p;
 }

@@ -208,6 +208,11 @@ void classify(const Volume& volume, const ClassifyParams& params, ClassifiedVolu
     });
 }
 
+SampledTransferFunction transferTable(const Volume& volume, const TransferFunction& tf) {
+    const std::string source = volume.source.empty() ? std::string("transfer table") : volume.source;
+    return sampleForVolume(tf, volume, valueRange(volume.values, source));
+}
+
 ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params) {
     ClassifiedVolume out;
     classify(volume, params, out);

@@ -30,4 +30,8 @@ ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params);
 // pages (about half the cost of a first one). On a throw `out` is left in an unspecified state.
 void classify(const Volume& volume, const ClassifyParams& params, ClassifiedVolume& out);
 
+// The table of `tf` that classify() samples for `volume` (exactly its entries). Throws InputError for a volume with
+// non-finite values.
+SampledTransferFunction transferTable(const Volume& volume, const TransferFunction& tf);
+
 }  // namespace vr

@@ -7,6 +7,7 @@
 #include "io/prepared_file.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/prepared_statistics.h"
+#include "preprocess/classify/tf_range_table.h"
 #include "preprocess/segment/segment.h"
 #include "render/caster_choice.h"
 
@@ -52,6 +53,11 @@ DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCo
     });
     bar.finish();
     return f;
+}
+
+// Trilinear regions from a transfer function are built on the scalars (post-classification, section 9).
+bool segmentsScalars(const PrepareOptions& options) {
+    return options.segmentation.trilinear && options.classify.transferFunction.has_value();
 }
 
 }  // namespace
@@ -110,18 +116,24 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
             prepared_.classified = std::exchange(spareClassified_, {});
         });
         classifiedWith_ = std::move(classifying);
-        if (scalarsOnceClassified_ == ScalarsOnceClassified::Free) {
-            volume_ = {};
-            scalarsFreed_ = true;
-        }
+        if (!segmentsScalars(options)) freeScalarsIfAsked();
     }
     prepared_.meta.classification = classificationText(options.classify);  // the TF's text may differ
     if (last >= PrepStage::Segment && segmentedWith_ != options.segmentation) {
+        if (segmentsScalars(options) && scalarsFreed_)
+            throw std::logic_error("StagedPreparation: the scalars were freed before a trilinear segmentation");
         run(PrepStage::Segment, [&](std::vector<StageTime>& times) {
-            runStage("segment", times, [&] { segment(prepared_.classified, options.segmentation, spareRegions_); });
+            runStage("segment", times, [&] {
+                if (!segmentsScalars(options))
+                    return segment(prepared_.classified, options.segmentation, spareRegions_);
+                const TfRangeTable spread(transferTable(volume_, *options.classify.transferFunction));
+                segment(prepared_.classified, options.segmentation, ClassifiedScalars{volume_.values, spread},
+                        spareRegions_);
+            });
             prepared_.regions = std::exchange(spareRegions_, {});
         });
         segmentedWith_ = options.segmentation;
+        freeScalarsIfAsked();
         prepared_.meta.segmentation = options.segmentation;
     }
     const std::pair<unsigned, ExtentCode> fields{options.fields, options.eacdCode};
@@ -132,6 +144,12 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
         fieldsWith_ = fields;
     }
     return prepared_;
+}
+
+void StagedPreparation::freeScalarsIfAsked() {
+    if (scalarsOnceClassified_ != ScalarsOnceClassified::Free) return;
+    volume_ = {};
+    scalarsFreed_ = true;
 }
 
 const PreparedVolume& StagedPreparation::withStatistics() {

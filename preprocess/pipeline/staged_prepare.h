@@ -27,8 +27,10 @@ struct PrepareOptions {
 enum class PrepStage { Classify, Segment, Fields };
 constexpr int kPrepStages = 3;
 
-// What becomes of the scalars once classified: kept for another classification, or freed so that the later stages
-// have their memory (a preparation that runs once, as volprep's; classifying again is then a logic error).
+// What becomes of the scalars once used: kept for another classification, or freed so that the later stages have
+// their memory (a preparation that runs once, as volprep's; classifying again is then a logic error). They are
+// used by classification, and by segmentation too where it is trilinear from a transfer function (post-
+// classification, docs/ALGORITHMS.md section 9): freed after it then.
 enum class ScalarsOnceClassified { Keep, Free };
 
 class StagedPreparation {
@@ -69,6 +71,8 @@ private:
     // Discards the results of `stage` and of every stage after it (the classification's and the regions' arrays
     // are kept aside for the next run of their stage to reuse: no fresh pages to fault in).
     void invalidateFrom(PrepStage stage);
+    // Frees the scalars where the preparation was made with ScalarsOnceClassified::Free.
+    void freeScalarsIfAsked();
     // Runs `work` as `stage`, counting it; `work` appends its times.
     template <typename Work>
     void run(PrepStage stage, Work work);

@@ -101,6 +101,14 @@ RegionKey RegionKeyer::operator()(std::size_t i) const {
     return key;
 }
 
+RegionKey RegionKeyer::normalKey(std::size_t i) const {
+    RegionKey key;
+    if (!(classified_.sigma[i] > 0)) return key;
+    key.opacity = 1;
+    if (useNormals_) normal(i, key);
+    return key;
+}
+
 PackedKey RegionKeyer::pack(const RegionKey& key) const {
     PackedKey p = key.opacity;
     for (int c = 0; c < 3; ++c) p |= PackedKey(key.colour[c]) << ((c + 1) * binBits_);

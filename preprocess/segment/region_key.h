@@ -42,6 +42,12 @@ public:
     // Throws InputError for a negative or NaN threshold.
     RegionKeyer(const ClassifiedVolume& classified, const SegmentationParams& params);
     RegionKey operator()(std::size_t voxel) const;
+    // The key's normal part alone: a default key where the voxel is transparent, else opacity 1 and the normal
+    // binned (or its bits) as operator() has it; default normals where normals are ignored.
+    RegionKey normalKey(std::size_t voxel) const;
+    bool usesNormals() const { return useNormals_; }
+    // Whether normals are binned into cube-map cells (T_a > 0): the normal key is then normal[0] alone.
+    bool binsNormals() const { return !exactNormals_; }
     // The keys of voxels first .. first + count - 1 into out: operator() for each, but the bins of a (sigma, colour)
     // seen recently in the run are looked up, not recomputed (a volume classified by a TF has few distinct ones).
     void keys(std::size_t first, std::size_t count, RegionKey* out) const;

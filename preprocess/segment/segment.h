@@ -1,5 +1,7 @@
-// Homogeneous regions (docs/ALGORITHMS.md section 3): a partition with bounded variation.
+// Homogeneous regions (docs/ALGORITHMS.md sections 3 and 9): a partition with bounded variation.
 #pragma once
+#include <vector>
+
 #include "core/classified_volume.h"
 #include "core/regions.h"
 
@@ -15,5 +17,16 @@ Regions segment(const ClassifiedVolume& classified, const SegmentationParams& pa
 // The same into `regions`, reusing the memory of its labels: a segmentation of the same size then takes no fresh
 // pages. On a throw `regions` is left in an unspecified state.
 void segment(const ClassifiedVolume& classified, const SegmentationParams& params, Regions& regions);
+
+// The scalars that a transfer function classified, and how that function spreads over scalar intervals.
+struct ClassifiedScalars {
+    const std::vector<float>& values;  // x fastest, as the classified volume
+    const ClassificationSpread& spread;
+};
+// With params.trilinear, regions for post-classification (grown_regions.h): the interval of scalars that each
+// region's interpolation footprints span classifies alike within T_o. Without it, segment() above.
+void segment(const ClassifiedVolume& classified, const SegmentationParams& params, const ClassifiedScalars& scalars,
+             Regions& regions);
+Regions segment(const ClassifiedVolume& classified, const SegmentationParams& params, const ClassifiedScalars& scalars);
 
 }  // namespace vr
