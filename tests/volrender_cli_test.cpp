@@ -6,51 +6,29 @@
 #include <nlohmann/json.hpp>
 
 #include "io/prepared_file.h"
-#include "preprocess/classify/classify.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/load/load_volume.h"
-#include "preprocess/segment/segment.h"
-#include "support/cli.h"
-#include "support/datasets.h"
 #include "render/image.h"
+#include "support/cli.h"
+#include "support/load_dataset.h"
+#include "support/prepare.h"
 
 namespace vr {
 namespace {
 namespace fs = std::filesystem;
 
-const fs::path kVolrender = test::volrenderExecutable();
 using test::slurp;
 using Outcome = test::CliOutcome;
-
-Outcome volrender(const std::string& args) {
-    EXPECT_TRUE(fs::exists(kVolrender)) << "build the volrender target first: " << kVolrender;
-    return test::runCli(kVolrender, args);
-}
-
-std::string q(const fs::path& p) { return test::shellQuote(p); }
+constexpr auto volrender = [](const std::string& args) { return test::runVolrender(args); };
+constexpr auto q = test::shellQuote;
 
 // vtk_headsq_ct with its transfer function and spacing, thresholds (0.02, 10 deg), every field: prepared once.
 const fs::path& preparedHead() {
     static const fs::path path = [] {
-        for (const auto& e : test::rawManifest()) {
-            if (e.file != "vtk_headsq_ct_64x64x93_uint16.raw.gz") continue;
-            RawOptions raw;
-            raw.dims = e.dims;
-            raw.type = e.type;
-            raw.spacing = e.spacing;
-            PreparedVolume p;
-            ClassifyParams cp;
-            cp.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
-            p.classified = classify(loadVolume(test::datasetsDir() / e.file, raw), cp);
-            p.meta.source = e.file;
-            p.meta.segmentation = {0.02, 10, true, false};
-            p.regions = segment(p.classified, p.meta.segmentation);
-            p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
-            const fs::path out = test::scratchDir("volrender_cli_prepared") / "headsq.vrp";
-            writePrepared(out, p);
-            return out;
-        }
-        throw std::runtime_error("vtk_headsq_ct is not in the manifest");
+        const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+        const PreparedVolume p = test::prepareVolume(test::loadDataset(e), test::datasetTransferFunction(e.tf),
+                                                     {0.02, 10, true, false});
+        const fs::path out = test::scratchDir("volrender_cli_prepared") / "headsq.vrp";
+        writePrepared(out, p);
+        return out;
     }();
     return path;
 }
@@ -110,10 +88,7 @@ TEST(VolrenderCli, HelpAndDeviceList) {
 }
 
 void expectRejected(const std::string& args, const std::string& mentions) {
-    const Outcome r = volrender(args);
-    EXPECT_NE(r.status, 0) << args;
-    EXPECT_EQ(r.err.rfind("volrender: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(mentions), std::string::npos) << "expected '" << mentions << "' in: " << r.err;
+    test::expectRefusal(volrender(args), "volrender", args, {mentions});
 }
 
 TEST(VolrenderCli, BadInputsExitWithReadableErrors) {

@@ -130,7 +130,7 @@ void expectRejected(const fs::path& p, const std::string& problem, unsigned fiel
     }
 }
 
-class PreparedFile : public ::testing::Test {
+class IoPreparedFile : public ::testing::Test {
 protected:
     void SetUp() override {
         dir = test::scratchDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
@@ -143,7 +143,7 @@ protected:
     PreparedVolume prepared;
 };
 
-TEST_F(PreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
+TEST_F(IoPreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
     PreparedVolume r = readPrepared(good);
     const PreparedVolume& p = prepared;
     EXPECT_EQ(r.classified.grid, p.classified.grid);
@@ -170,7 +170,7 @@ TEST_F(PreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
 }
 
 // The probe is stored among the statistics as before it had a type: files from either side read alike.
-TEST_F(PreparedFile, KeepsTheRayProbeAmongTheStatistics) {
+TEST_F(IoPreparedFile, KeepsTheRayProbeAmongTheStatistics) {
     const json probe = split(good).header["metadata"]["statistics"]["rayProbe"];
     EXPECT_EQ(probe["stepVoxels"], 0.5);
     EXPECT_EQ(probe["ert"], 0.99);
@@ -190,7 +190,7 @@ TEST_F(PreparedFile, KeepsTheRayProbeAmongTheStatistics) {
 
 // An older volprep's probe (per-octant counts, no views) is no probe, and a caster's malformed counts no counts:
 // the file still reads, and --caster auto chooses among what is left.
-TEST_F(PreparedFile, ReadsAnOlderRayProbeAsNone) {
+TEST_F(IoPreparedFile, ReadsAnOlderRayProbeAsNone) {
     Parts parts = split(good);
     json& probe = parts.header["metadata"]["statistics"]["rayProbe"];
     probe["casters"]["acd"]["singleSamples"] = std::vector<double>(kOctants, 1.0);
@@ -210,7 +210,7 @@ TEST_F(PreparedFile, ReadsAnOlderRayProbeAsNone) {
     EXPECT_FALSE(older.meta.statistics.contains("rayProbe"));
 }
 
-TEST_F(PreparedFile, ReadsTheHeaderAlone) {
+TEST_F(IoPreparedFile, ReadsTheHeaderAlone) {
     const PreparedHeader h = readPreparedHeader(good);
     EXPECT_EQ(h.grid, prepared.classified.grid);
     EXPECT_EQ(h.meta.source, prepared.meta.source);
@@ -242,7 +242,7 @@ TEST_F(PreparedFile, ReadsTheHeaderAlone) {
     EXPECT_EQ(bytes.eacd, 0u);
 }
 
-TEST_F(PreparedFile, ReadsOnlyWhatIsAskedFor) {
+TEST_F(IoPreparedFile, ReadsOnlyWhatIsAskedFor) {
     PreparedVolume pc = readPrepared(good, kFieldPC, false);
     EXPECT_EQ(pc.fields.pc, prepared.fields.pc);
     EXPECT_FALSE(pc.fields.hasACD());
@@ -261,7 +261,7 @@ TEST_F(PreparedFile, ReadsOnlyWhatIsAskedFor) {
     EXPECT_EQ(none.regions.label, prepared.regions.label);
 }
 
-TEST_F(PreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
+TEST_F(IoPreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
     // Proof that a field not asked for is seeked past, not read: damage only the ACD chunks.
     std::vector<char> b = readBytes(good);
     uint64_t at = dataStart(good) + chunkEntry(split(good).header, "acd3")["offset"].get<uint64_t>();
@@ -271,7 +271,7 @@ TEST_F(PreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
     expectRejected(bad, "chunk 'acd3' checksum mismatch");
 }
 
-TEST_F(PreparedFile, OptionalChunksMayBeAbsentButNotWhenRequested) {
+TEST_F(IoPreparedFile, OptionalChunksMayBeAbsentButNotWhenRequested) {
     PreparedVolume p = prepared;
     p.classified.normal.clear();
     p.fields = {};
@@ -289,9 +289,9 @@ TEST_F(PreparedFile, OptionalChunksMayBeAbsentButNotWhenRequested) {
     expectRejected(bad, "has no PC distance field", kFieldPC);
 }
 
-TEST_F(PreparedFile, RejectsAMissingFile) { expectRejected(dir / "absent.vprep", "no such file"); }
+TEST_F(IoPreparedFile, RejectsAMissingFile) { expectRejected(dir / "absent.vprep", "no such file"); }
 
-TEST_F(PreparedFile, RejectsAForeignFile) {
+TEST_F(IoPreparedFile, RejectsAForeignFile) {
     std::vector<char> b = readBytes(good);
     b[0] = 'W';
     writeBytes(bad, b);
@@ -300,7 +300,7 @@ TEST_F(PreparedFile, RejectsAForeignFile) {
     expectRejected(bad, "not a prepared file");
 }
 
-TEST_F(PreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
+TEST_F(IoPreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
     const std::size_t exactBytes = split(good).data.size();
     const std::size_t voxels = prepared.classified.grid.voxels();
     for (ExtentCode code : {ExtentCode::Log16, ExtentCode::Joint8}) {
@@ -331,7 +331,7 @@ TEST_F(PreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
     EXPECT_THROW(writePrepared(bad, mixed), InputError);
 }
 
-TEST_F(PreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
+TEST_F(IoPreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
     Parts parts = split(good);
     parts.header["eacdCode"] = "log12";
     join(bad, parts);
@@ -346,7 +346,7 @@ TEST_F(PreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
     expectRejected(bad, "chunk 'eacd0' should be 1 x uint8");
 }
 
-TEST_F(PreparedFile, RejectsTheVersionBeforeCodedExtents) {
+TEST_F(IoPreparedFile, RejectsTheVersionBeforeCodedExtents) {
     // Version 1 stored EACD as 3 bytes per octant with no eacdCode: refused with the way out, not misread.
     std::vector<char> b = readBytes(good);
     const uint32_t v = 1;
@@ -355,7 +355,7 @@ TEST_F(PreparedFile, RejectsTheVersionBeforeCodedExtents) {
     expectRejected(bad, "prepared format version 1, this build reads version 2 (run volprep again)");
 }
 
-TEST_F(PreparedFile, RejectsAnotherVersion) {
+TEST_F(IoPreparedFile, RejectsAnotherVersion) {
     std::vector<char> b = readBytes(good);
     uint32_t v = kPreparedFormatVersion + 1;
     std::memcpy(b.data() + 8, &v, 4);
@@ -364,7 +364,7 @@ TEST_F(PreparedFile, RejectsAnotherVersion) {
                             std::to_string(kPreparedFormatVersion));
 }
 
-TEST_F(PreparedFile, RejectsATruncatedFileAtEveryPart) {
+TEST_F(IoPreparedFile, RejectsATruncatedFileAtEveryPart) {
     std::vector<char> b = readBytes(good);
     uint64_t data = dataStart(good);
     json header = split(good).header;
@@ -388,7 +388,7 @@ TEST_F(PreparedFile, RejectsATruncatedFileAtEveryPart) {
     }
 }
 
-TEST_F(PreparedFile, RejectsAFlippedByteInAChunk) {
+TEST_F(IoPreparedFile, RejectsAFlippedByteInAChunk) {
     json header = split(good).header;
     for (const char* name : {"sigma", "colour", "normal", "labels", "pc", "acd0", "eacd7"}) {
         SCOPED_TRACE(name);
@@ -400,7 +400,7 @@ TEST_F(PreparedFile, RejectsAFlippedByteInAChunk) {
     }
 }
 
-TEST_F(PreparedFile, RejectsAnEditedHeader) {
+TEST_F(IoPreparedFile, RejectsAnEditedHeader) {
     std::vector<char> b = readBytes(good);
     std::string text(b.begin() + 20, b.begin() + std::ptrdiff_t(dataStart(good) - 4));
     std::size_t at = text.find("\"referenceStep\": 0.5");
@@ -410,14 +410,14 @@ TEST_F(PreparedFile, RejectsAnEditedHeader) {
     expectRejected(bad, "header checksum mismatch");
 }
 
-TEST_F(PreparedFile, RejectsDimsInconsistentWithTheChunks) {
+TEST_F(IoPreparedFile, RejectsDimsInconsistentWithTheChunks) {
     Parts parts = split(good);
     parts.header["grid"]["dims"] = {13, 7, 6};
     join(bad, parts);
     expectRejected(bad, "chunk 'sigma' holds 1820 bytes but grid 13x7x6 needs 2184");
 }
 
-TEST_F(PreparedFile, RejectsAbsurdDims) {
+TEST_F(IoPreparedFile, RejectsAbsurdDims) {
     Parts parts = split(good);
     for (json dims : {json{100000, 100000, 100000}, json{60000, 60000, 60000}, json{0, 7, 5}, json{13, -7, 5}}) {
         SCOPED_TRACE(dims.dump());
@@ -427,7 +427,7 @@ TEST_F(PreparedFile, RejectsAbsurdDims) {
     }
 }
 
-TEST_F(PreparedFile, RejectsABadChunkTable) {
+TEST_F(IoPreparedFile, RejectsABadChunkTable) {
     Parts parts = split(good);
     json& chunks = parts.header["chunks"];
     chunks[0]["type"] = "float64";
@@ -455,7 +455,7 @@ TEST_F(PreparedFile, RejectsABadChunkTable) {
     expectRejected(bad, "truncated: chunk 'sigma'");
 }
 
-TEST_F(PreparedFile, RejectsNumbersThatDoNotFit) {
+TEST_F(IoPreparedFile, RejectsNumbersThatDoNotFit) {
     for (auto [key, value] : std::vector<std::pair<std::string, json>>{
              {"offset", -5}, {"offset", 1e30}, {"bytes", 12.5}, {"crc32", uint64_t(1) << 40}, {"components", "3"}}) {
         SCOPED_TRACE(key + " = " + value.dump());
@@ -470,14 +470,14 @@ TEST_F(PreparedFile, RejectsNumbersThatDoNotFit) {
     expectRejected(bad, "absurd grid dims 13x7.5x5");
 }
 
-TEST_F(PreparedFile, RejectsLabelsBeyondTheRegionCount) {
+TEST_F(IoPreparedFile, RejectsLabelsBeyondTheRegionCount) {
     Parts parts = split(good);
     parts.header["regionCount"] = 15;  // the labels go up to 15
     join(bad, parts);
     expectRejected(bad, "labels hold region id 15 but regionCount is 15");
 }
 
-TEST_F(PreparedFile, RejectsHeaderThatIsNotJson) {
+TEST_F(IoPreparedFile, RejectsHeaderThatIsNotJson) {
     std::vector<char> b = readBytes(good);
     uint64_t len;
     std::memcpy(&len, b.data() + 12, 8);
@@ -488,7 +488,7 @@ TEST_F(PreparedFile, RejectsHeaderThatIsNotJson) {
     expectRejected(bad, "bad header: ");
 }
 
-TEST_F(PreparedFile, WritingIsAtomic) {
+TEST_F(IoPreparedFile, WritingIsAtomic) {
     // A folder that does not exist: nothing written, a clear error.
     fs::path missing = dir / "no-such-folder" / "out.vprep";
     try {
@@ -509,7 +509,7 @@ TEST_F(PreparedFile, WritingIsAtomic) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
 
-TEST_F(PreparedFile, RefusesPartialOctants) {
+TEST_F(IoPreparedFile, RefusesPartialOctants) {
     PreparedVolume p = prepared;
     p.fields.acd[5].clear();
     EXPECT_THROW(writePrepared(bad, p), InputError);
