@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <functional>
 
 #include "core/errors.h"
 #include "core/extent_code.h"
@@ -138,6 +139,13 @@ protected:
         prepared = samplePrepared({13, 7, 5});
         writePrepared(good, prepared);
         bad = dir / "bad.vprep";
+    }
+    // The good file, its header edited by `edit` (and its checksum updated), is rejected naming `problem`.
+    void expectEditedHeaderRejected(const std::function<void(json&)>& edit, const std::string& problem) {
+        Parts parts = split(good);
+        edit(parts.header);
+        join(bad, parts);
+        expectRejected(bad, problem);
     }
     fs::path dir, good, bad;
     PreparedVolume prepared;
@@ -332,18 +340,11 @@ TEST_F(IoPreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
 }
 
 TEST_F(IoPreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
-    Parts parts = split(good);
-    parts.header["eacdCode"] = "log12";
-    join(bad, parts);
-    expectRejected(bad, "bad header: 'eacdCode': unknown EACD code 'log12' (expected exact, log16 or joint8)");
-
-    parts.header.erase("eacdCode");
-    join(bad, parts);
-    expectRejected(bad, "bad header: missing or invalid 'eacdCode'");
-
-    parts.header["eacdCode"] = "joint8";  // the chunks hold 3 exact bytes per voxel
-    join(bad, parts);
-    expectRejected(bad, "chunk 'eacd0' should be 1 x uint8");
+    expectEditedHeaderRejected([](json& h) { h["eacdCode"] = "log12"; },
+                               "bad header: 'eacdCode': unknown EACD code 'log12' (expected exact, log16 or joint8)");
+    expectEditedHeaderRejected([](json& h) { h.erase("eacdCode"); }, "bad header: missing or invalid 'eacdCode'");
+    expectEditedHeaderRejected([](json& h) { h["eacdCode"] = "joint8"; },  // the chunks hold 3 exact bytes per voxel
+                               "chunk 'eacd0' should be 1 x uint8");
 }
 
 TEST_F(IoPreparedFile, RejectsTheVersionBeforeCodedExtents) {
@@ -411,70 +412,40 @@ TEST_F(IoPreparedFile, RejectsAnEditedHeader) {
 }
 
 TEST_F(IoPreparedFile, RejectsDimsInconsistentWithTheChunks) {
-    Parts parts = split(good);
-    parts.header["grid"]["dims"] = {13, 7, 6};
-    join(bad, parts);
-    expectRejected(bad, "chunk 'sigma' holds 1820 bytes but grid 13x7x6 needs 2184");
+    expectEditedHeaderRejected([](json& h) { h["grid"]["dims"] = {13, 7, 6}; },
+                               "chunk 'sigma' holds 1820 bytes but grid 13x7x6 needs 2184");
 }
 
 TEST_F(IoPreparedFile, RejectsAbsurdDims) {
-    Parts parts = split(good);
     for (json dims : {json{100000, 100000, 100000}, json{60000, 60000, 60000}, json{0, 7, 5}, json{13, -7, 5}}) {
         SCOPED_TRACE(dims.dump());
-        parts.header["grid"]["dims"] = dims;
-        join(bad, parts);
-        expectRejected(bad, "absurd grid dims");
+        expectEditedHeaderRejected([&](json& h) { h["grid"]["dims"] = dims; }, "absurd grid dims");
     }
 }
 
 TEST_F(IoPreparedFile, RejectsABadChunkTable) {
-    Parts parts = split(good);
-    json& chunks = parts.header["chunks"];
-    chunks[0]["type"] = "float64";
-    join(bad, parts);
-    expectRejected(bad, "chunk 'sigma' should be 1 x float32");
-
-    parts = split(good);
-    parts.header["chunks"][1]["name"] = "sigma";
-    join(bad, parts);
-    expectRejected(bad, "chunk 'sigma' appears twice");
-
-    parts = split(good);
-    parts.header["chunks"][0]["name"] = "opacity";
-    join(bad, parts);
-    expectRejected(bad, "unknown chunk 'opacity'");
-
-    parts = split(good);
-    parts.header.erase("grid");
-    join(bad, parts);
-    expectRejected(bad, "bad header: missing or invalid 'grid'");
-
-    parts = split(good);
-    parts.header["chunks"][0]["offset"] = uint64_t(1) << 40;
-    join(bad, parts);
-    expectRejected(bad, "truncated: chunk 'sigma'");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][0]["type"] = "float64"; },
+                               "chunk 'sigma' should be 1 x float32");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][1]["name"] = "sigma"; }, "chunk 'sigma' appears twice");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][0]["name"] = "opacity"; }, "unknown chunk 'opacity'");
+    expectEditedHeaderRejected([](json& h) { h.erase("grid"); }, "bad header: missing or invalid 'grid'");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][0]["offset"] = uint64_t(1) << 40; },
+                               "truncated: chunk 'sigma'");
 }
 
 TEST_F(IoPreparedFile, RejectsNumbersThatDoNotFit) {
     for (auto [key, value] : std::vector<std::pair<std::string, json>>{
              {"offset", -5}, {"offset", 1e30}, {"bytes", 12.5}, {"crc32", uint64_t(1) << 40}, {"components", "3"}}) {
         SCOPED_TRACE(key + " = " + value.dump());
-        Parts parts = split(good);
-        parts.header["chunks"][2][key] = value;
-        join(bad, parts);
-        expectRejected(bad, "bad header: '" + key + "' must be an integer");
+        expectEditedHeaderRejected([&](json& h) { h["chunks"][2][key] = value; },
+                                   "bad header: '" + key + "' must be an integer");
     }
-    Parts parts = split(good);
-    parts.header["grid"]["dims"] = {13, 7.5, 5};
-    join(bad, parts);
-    expectRejected(bad, "absurd grid dims 13x7.5x5");
+    expectEditedHeaderRejected([](json& h) { h["grid"]["dims"] = {13, 7.5, 5}; }, "absurd grid dims 13x7.5x5");
 }
 
 TEST_F(IoPreparedFile, RejectsLabelsBeyondTheRegionCount) {
-    Parts parts = split(good);
-    parts.header["regionCount"] = 15;  // the labels go up to 15
-    join(bad, parts);
-    expectRejected(bad, "labels hold region id 15 but regionCount is 15");
+    expectEditedHeaderRejected([](json& h) { h["regionCount"] = 15; },  // the labels go up to 15
+                               "labels hold region id 15 but regionCount is 15");
 }
 
 TEST_F(IoPreparedFile, RejectsHeaderThatIsNotJson) {

@@ -16,7 +16,6 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::slurp;
-using Outcome = test::CliOutcome;
 constexpr auto volrender = [](const std::string& args) { return test::runVolrender(args); };
 constexpr auto q = test::shellQuote;
 
@@ -35,9 +34,10 @@ const fs::path& preparedHead() {
 
 TEST(VolrenderCli, RendersImageHeatmapAndStatistics) {
     const fs::path dir = test::scratchDir("volrender_cli_render");
-    const Outcome r = volrender(q(preparedHead()) + " -o " + q(dir / "head.png") + " --caster eacd --size 64x48" +
-                                " --azimuth 30 --elevation 10 --stats " + q(dir / "stats.json") + " --heatmap " +
-                                q(dir / "heat.png"));
+    const test::CliOutcome r =
+        volrender(q(preparedHead()) + " -o " + q(dir / "head.png") + " --caster eacd --size 64x48" +
+                  " --azimuth 30 --elevation 10 --stats " + q(dir / "stats.json") + " --heatmap " +
+                  q(dir / "heat.png"));
     ASSERT_EQ(r.status, 0) << r.err;
     const Image image = readImage(dir / "head.png");
     EXPECT_EQ(image.width, 64);
@@ -69,7 +69,7 @@ TEST(VolrenderCli, VulkanAndCpuImagesAgree) {
 
 TEST(VolrenderCli, OrbitWritesNumberedViews) {
     const fs::path dir = test::scratchDir("volrender_cli_orbit");
-    const Outcome r =
+    const test::CliOutcome r =
         volrender(q(preparedHead()) + " -o " + q(dir / "orbit.png") + " --caster pc --size 24x24 --views 3");
     ASSERT_EQ(r.status, 0) << r.err;
     for (const char* name : {"orbit_000.png", "orbit_001.png", "orbit_002.png"})
@@ -78,11 +78,11 @@ TEST(VolrenderCli, OrbitWritesNumberedViews) {
 }
 
 TEST(VolrenderCli, HelpAndDeviceList) {
-    const Outcome help = volrender("--help");
+    const test::CliOutcome help = volrender("--help");
     EXPECT_EQ(help.status, 0);
     for (const char* flag : {"--caster", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear"})
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
-    const Outcome list = volrender("--list-devices");
+    const test::CliOutcome list = volrender("--list-devices");
     EXPECT_EQ(list.status, 0);
     EXPECT_EQ(list.out.rfind("0: ", 0), 0u) << list.out;
 }

@@ -36,7 +36,9 @@ const fs::path& preparedBlock() {
     return path;
 }
 
-test::CliOutcome volrender(const std::string& args, const std::string& env = "") { return test::runVolrender(args, env); }
+test::CliOutcome volrender(const std::string& args, const std::string& env = "") {
+    return test::runVolrender(args, env);
+}
 
 void expectRefused(const std::string& args, const std::vector<std::string>& mentions, const std::string& env = "") {
     test::expectRefusal(volrender(args, env), "volrender", args, mentions);

@@ -25,7 +25,9 @@ TEST(VulkanExtremeGeometry, TransparentOpaqueAndRegionsBeyondTheCap) {
     reportValidated("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kVulkan));
 }
 
-TEST(VulkanExtremeGeometry, IterationCapIsAnError) { reportValidated("iteration cap", test::iterationCapIsAnError(kVulkan)); }
+TEST(VulkanExtremeGeometry, IterationCapIsAnError) {
+    reportValidated("iteration cap", test::iterationCapIsAnError(kVulkan));
+}
 
 // One voxel longer than the device's largest 3D image: split into bricks, never a driver crash or a silently
 // clipped image. A volume that fits once but not with two octants stacked along z (ACD, a view needing two

@@ -14,7 +14,8 @@ Volume centralBlock(const Volume& v, int edge) {
     block.values.resize(voxelCount(size));
     for (int z = 0; z < size.z; ++z)
         for (int y = 0; y < size.y; ++y)
-            for (int x = 0; x < size.x; ++x) block.values[linearIndex(size, x, y, z)] = v.at(lo.x + x, lo.y + y, lo.z + z);
+            for (int x = 0; x < size.x; ++x)
+                block.values[linearIndex(size, x, y, z)] = v.at(lo.x + x, lo.y + y, lo.z + z);
     return block;
 }
 
