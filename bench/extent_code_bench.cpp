@@ -2,7 +2,7 @@
 // EACD caster on the device with exact extents (3 bytes per octant), log16 (2) and joint8 (1): bytes per voxel
 // stored and uploaded, mean iterations per ray and median device time over an orbit after one warm-up frame, both
 // as ratios to exact and to log16, the wall and process CPU time of the orbit, and the worst view's PSNR against
-// the exact code's image. Iterations do not depend on the device; times do (the lead re-measures on a quiet GPU).
+// the exact code's image. Iterations do not depend on the device; times do (measure them on a quiet GPU).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <bit>

@@ -169,6 +169,7 @@ void expectBrickFigures(const GpuVolume& volume, const PreparedVolume& p, int sl
         }
     }
     EXPECT_EQ(cores, p.classified.grid.voxels());
+    EXPECT_FALSE(volume.uploads().empty());
     const auto& bricks = volume.bricks().bricks();
     for (const UploadedResource& u : volume.uploads()) {
         ASSERT_LT(std::size_t(u.brick), bricks.size());
