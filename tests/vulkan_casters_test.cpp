@@ -8,8 +8,6 @@
 #include "core/errors.h"
 #include "datasets/phantoms.h"
 #include "preprocess/classify/transfer_function.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/segment/segment.h"
 #include "render/cpu_renderer.h"
 #include "render/view_octants.h"
 #include "support/load_dataset.h"
@@ -221,17 +219,14 @@ TEST(VulkanCasters, LeapingCutsIterationsOnCtDatasets) {
 // 64^3 voxels of opacity 1e-9 each (per voxel step), seen along an axis: alpha = 1 - (1 - 1e-9)^64 at the
 // centre, which float arithmetic of 1 - (1 - alpha)^n would lose entirely.
 TEST(VulkanCasters, TinyOpacityAccumulatesOverConstantVolume) {
-    PreparedVolume p;
-    ClassifiedVolume& cv = p.classified;
-    cv.grid.dims = {64, 64, 64};
-    cv.sigma.assign(cv.grid.voxels(), float(extinctionFromOpacity(1e-9, 1.0)));
-    cv.colour.assign(cv.grid.voxels(), {1.f, 1.f, 1.f});
-    p.regions = segment(cv, p.meta.segmentation);
-    p.fields = buildFields(p.regions, test::kAllFields);
+    const GridGeometry grid{{64, 64, 64}, {1, 1, 1}, {0, 0, 0}};
+    const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i&) {
+        return test::VoxelClass{1e-9, {1, 1, 1}};
+    });
     const double expected = 1 - std::pow(1 - 1e-9, 64);
     ViewParams vp = view(0, 0);
     vp.width = vp.height = 33;  // an odd size: the centre pixel's ray is the volume's axis
-    const Camera cam = Camera::fit(cv.grid, vp);
+    const Camera cam = Camera::fit(grid, vp);
     for (Caster c : kCasters) {
         const RenderResult r = renderer().render(p, cam, renderSettings(c, false));
         EXPECT_NEAR(r.image.pixel(16, 16)[3], expected, 0.01 * expected) << casterName(c);
