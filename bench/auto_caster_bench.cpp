@@ -9,11 +9,14 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <functional>
 #include <map>
+#include <string>
 
+#include "bench_checks.h"
 #include "datasets/phantoms.h"
 #include "io/caster_calibration_file.h"
 #include "preprocess/pipeline/staged_prepare.h"
@@ -256,6 +259,45 @@ void describeDevice(const VulkanContext& context, CasterCalibration& c) {
     c.measuredAt = utc;
 }
 
+// Whether the prepared volume holds the field caster c needs.
+bool hasFieldOf(const PreparedVolume& p, Caster c) {
+    switch (c) {
+        case Caster::Primitive: return true;
+        case Caster::PC: return p.fields.hasPC();
+        case Caster::ACD: return p.fields.hasACD();
+        case Caster::EACD: return p.fields.hasEACD();
+    }
+    return false;
+}
+
+// What a row of the table says: the regions partition the voxels; every fixed caster rendered every view in a
+// positive time and looped in it; a field costs bytes to upload (primitive has none); auto chose a caster whose field
+// the volume has, for a reason; and its ratio to the fastest is a ratio of times. (Whether auto is within the target
+// is what the table measures, not a check: one repeat on a shared machine scatters by more than the target's 10 %.)
+void checkRow(bench::Checks& checks, const std::string& row, const PreparedVolume& p, std::size_t voxels,
+              const Timings& t, const std::map<Caster, double>& renders, double ratio, double spread) {
+    checks.expect(p.regions.count >= 1 && p.regions.count <= voxels, "%s: %u regions, not within 1..%zu voxels",
+                  row.c_str(), p.regions.count, voxels);
+    for (Caster c : kFixed) {
+        const char* name = casterName(c).data();
+        checks.expect(renders.at(c) > 0, "%s: %s renders took %g device ms, not > 0", row.c_str(), name,
+                      renders.at(c));
+        for (std::size_t v = 0; v < t.iterations.at(c).size(); ++v)
+            checks.expect(t.iterations.at(c)[v] > 0, "%s: %s took %g iterations per pixel in view %zu, not > 0",
+                          row.c_str(), name, t.iterations.at(c)[v], v);
+        checks.expect(c == Caster::Primitive ? t.fieldBytes.at(c) == 0 : t.fieldBytes.at(c) > 0,
+                      "%s: %s's field is %g bytes", row.c_str(), name, t.fieldBytes.at(c));
+        checks.expect(std::isfinite(t.fieldUploadMs.at(c)) && t.fieldUploadMs.at(c) >= 0,
+                      "%s: %s's field upload of %g ms", row.c_str(), name, t.fieldUploadMs.at(c));
+    }
+    checks.expect(hasFieldOf(p, t.chosen.caster), "%s: auto chose %s, whose field the volume lacks", row.c_str(),
+                  casterName(t.chosen.caster).data());
+    checks.expect(!t.chosen.reason.empty(), "%s: auto's choice gives no reason", row.c_str());
+    checks.expect(std::isfinite(ratio) && ratio >= 1, "%s: auto / fastest is %g, not a ratio >= 1", row.c_str(),
+                  ratio);
+    checks.expect(std::isfinite(spread) && spread >= 0, "%s: spread %g", row.c_str(), spread);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -299,6 +341,7 @@ int main(int argc, char** argv) {
         return 2;
     }
 
+    bench::Checks checks("auto_caster_bench");
     try {
         VulkanContext ctx(VulkanOptions{device, false});
         VulkanRenderer renderer(ctx);
@@ -367,8 +410,12 @@ int main(int argc, char** argv) {
                     }
                 }
                 std::fflush(stdout);
+                checkRow(checks, scene.name + " at " + std::to_string(to[k]) + ", " + std::to_string(ta[k]), p,
+                         scene.voxels, t, renders, ratio, spreads.back());
             }
         }
+        if (!checks.expect(rows > 0, "no row: no dataset or phantom matched %zu prefix(es)", datasets.size()))
+            return checks.exitStatus();
         std::printf("\nauto within %.0f %% of the fastest fixed caster on %d of %d rows; worst ratio %.2f.\n",
                     (kTarget - 1) * 100, within, rows, worst);
         std::printf("Run-to-run spread of the fastest fixed caster ((max - min) / median of its per-repeat sums over "
@@ -390,10 +437,12 @@ int main(int argc, char** argv) {
             }
         }
         std::printf("\nWall ns per field byte uploaded (median over rows): %.2f.\n", uploadNsPerByte);
+        checks.expect(std::isfinite(uploadNsPerByte) && uploadNsPerByte >= 0, "wall ns per field byte %g, not >= 0",
+                      uploadNsPerByte);
         if (!calibrationFile.empty()) std::printf("Calibration written to %s.\n", calibrationFile.c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "auto_caster_bench: %s\n", e.what());
         return 1;
     }
-    return 0;
+    return checks.exitStatus();
 }

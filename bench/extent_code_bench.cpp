@@ -2,13 +2,15 @@
 // EACD caster on the device with exact extents (3 bytes per octant), log16 (2) and joint8 (1): bytes per voxel
 // stored and uploaded, mean iterations per ray and median device time over an orbit after one warm-up frame, both
 // as ratios to exact and to log16, the wall and process CPU time of the orbit, and the worst view's PSNR against
-// the exact code's image. Iterations do not depend on the device; times do (the lead re-measures on a quiet GPU).
+// the exact code's image. Iterations do not depend on the device; times do (measure them on a quiet GPU).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
 
+#include "bench_checks.h"
 #include "core/errors.h"
 #include "core/extent_code.h"
 #include "preprocess/classify/classify.h"
@@ -19,6 +21,7 @@
 #include "support/datasets.h"
 #include "sweep/metrics/rmse.h"
 #include "sweep/order_statistics.h"
+#include "render/cpu_renderer.h"
 #include "render/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -35,6 +38,54 @@ struct CodeRun {
     StageTime orbit;
     double worstPsnr = INFINITY;
 };
+
+constexpr uint32_t kIterationMask = 0x3fffffffu;  // the renderer's flags sit above the count
+
+// Iterations do not depend on the device: the device's loop counts of one view, pixel by pixel, are the CPU
+// reference's on the same coded volume (rendered again, after the orbit was timed).
+void checkIterationsMatchCpu(bench::Checks& checks, const std::string& row, VulkanRenderer& renderer,
+                             const GpuVolume& volume, const PreparedVolume& p, const Camera& camera,
+                             const RenderSettings& s) {
+    const RenderResult device = renderer.render(volume, camera, s);
+    const RenderResult cpu = renderCpu(p, camera, s);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < cpu.iterations.size(); ++i)
+        differ += (device.iterations[i] & kIterationMask) != (cpu.iterations[i] & kIterationMask);
+    checks.expect(device.iterations.size() == cpu.iterations.size() && differ == 0,
+                  "%s: %zu of %zu pixels of the first view took other iterations on the device than on the CPU",
+                  row.c_str(), differ, cpu.iterations.size());
+}
+
+// What the rows of one setting say: every code looped, took device and wall time, and uploaded the bytes of its
+// texels for each octant of the orbit (exact's 3 bytes travel in a 4-byte RGBA8 texel); the exact code's image is
+// its own reference. At thresholds 0 a box rounded down is still homogeneous, so every code renders the exact
+// code's image (the primitive image, up to float rounding) and needs no fewer fetches than a finer code (within
+// the 2 % by which paths differ once leaps do).
+void checkSetting(bench::Checks& checks, const std::string& setting, const std::array<CodeRun, 3>& runs,
+                  unsigned octants, bool zeroThresholds) {
+    for (ExtentCode code : kCodes) {
+        const CodeRun& r = runs[int(code)];
+        const std::string row = setting + " " + std::string(extentCodeName(code));
+        checks.expect(r.iterations > 0, "%s: %g iterations per ray, not > 0", row.c_str(), r.iterations);
+        checks.expect(r.deviceMs > 0, "%s: median device ms %g, not > 0", row.c_str(), r.deviceMs);
+        checks.expect(r.orbit.seconds > 0 && r.orbit.cpuSeconds >= 0, "%s: orbit took %g wall s, %g CPU s",
+                      row.c_str(), r.orbit.seconds, r.orbit.cpuSeconds);
+        const double texelBytes = code == ExtentCode::Exact ? 4.0 : double(extentCodeBytes(code));
+        checks.expect(r.deviceBytesPerVoxel == texelBytes * std::popcount(octants),
+                      "%s: %g device bytes per voxel, not %g bytes for each of %d octants", row.c_str(),
+                      r.deviceBytesPerVoxel, texelBytes, std::popcount(octants));
+        if (code == ExtentCode::Exact) {
+            checks.expect(r.worstPsnr == INFINITY, "%s: PSNR %g dB against its own images", row.c_str(), r.worstPsnr);
+        } else if (zeroThresholds) {
+            checks.expect(r.worstPsnr >= 90, "%s: PSNR %g dB against exact at thresholds 0, not >= 90 (equal images)",
+                          row.c_str(), r.worstPsnr);
+            const CodeRun& finer = runs[int(code) - 1];
+            checks.expect(r.iterations >= finer.iterations / 1.02,
+                          "%s: %g iterations per ray at thresholds 0, fewer than the finer code's %g", row.c_str(),
+                          r.iterations, finer.iterations);
+        }
+    }
+}
 
 }  // namespace
 
@@ -55,6 +106,8 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     if (quick) size = 64, views = 2, datasets = {"boston_teapot"};
 
+    bench::Checks checks("extent_code_bench");
+    int rowsPrinted = 0;
     try {
         VulkanContext ctx(VulkanOptions{device, false});
         VulkanRenderer renderer(ctx);
@@ -118,6 +171,10 @@ int main(int argc, char** argv) {
                     }
                     run.orbit = clock.stop("orbit");
                     run.deviceMs = median(ms);
+                    checkIterationsMatchCpu(checks,
+                                            row->file + " " + std::to_string(settingTo) + ", " +
+                                                std::to_string(settingTa) + " " + std::string(extentCodeName(code)),
+                                            renderer, volume, p, cameras[0], s);
                 }
                 for (ExtentCode code : kCodes) {
                     const CodeRun& r = runs[int(code)];
@@ -128,12 +185,16 @@ int main(int argc, char** argv) {
                                 r.iterations / l.iterations, r.deviceMs, r.deviceMs / e.deviceMs, r.deviceMs / l.deviceMs,
                                 r.orbit.seconds, r.orbit.cpuSeconds, r.worstPsnr);
                     std::fflush(stdout);
+                    ++rowsPrinted;
                 }
+                checkSetting(checks, row->file + " at " + std::to_string(settingTo) + ", " + std::to_string(settingTa),
+                             runs, octants, settingTo == 0 && settingTa == 0);
             }
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "extent_code_bench: %s\n", e.what());
         return 1;
     }
-    return 0;
+    checks.expect(rowsPrinted > 0, "no row printed: no dataset was given");
+    return checks.exitStatus();
 }

@@ -18,6 +18,7 @@
 #include <map>
 #include <utility>
 
+#include "bench_checks.h"
 #include "io/crc32.h"
 #include "core/errors.h"
 #include "datasets/phantoms.h"
@@ -82,6 +83,7 @@ struct SizeResult {
     std::map<std::string, std::map<std::string, std::vector<double>>> wall, cpu;
     uint32_t regions = 0;
     double peakBytes = 0;  // the process's peak resident memory while this size ran
+    std::map<std::string, std::string> checksums;  // per scenario, of its first run (--checksums)
 };
 
 // The process's peak resident memory (VmHWM), reset to the current one by resetPeakResident (Linux 4.0 and later);
@@ -96,18 +98,19 @@ double peakResidentBytes() {
 }
 void resetPeakResident() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
-// Checksums of every array of a full preparation, so that a faster stage can be checked bit for bit.
-void printChecksums(const std::string& name, int edge, const vr::PreparedVolume& p) {
+// Checksums of every array of a preparation, so that a faster stage can be checked bit for bit.
+std::string checksums(const vr::PreparedVolume& p) {
     using vr::crc32Of;
     uint32_t acd = 0, eacd = 0;
     for (int o = 0; o < vr::kOctants; ++o) {
         acd = crc32Of(p.fields.acd[o], acd);
         eacd = crc32Of(p.fields.eacd[o].data(), p.fields.eacd[o].bytes(), eacd);
     }
-    std::fprintf(stderr,
-                 "%s %d^3 CRC-32: sigma %08x colour %08x normal %08x labels %08x PC %08x ACD %08x EACD %08x\n",
-                 name.c_str(), edge, crc32Of(p.classified.sigma), crc32Of(p.classified.colour),
-                 crc32Of(p.classified.normal), crc32Of(p.regions.label), crc32Of(p.fields.pc), acd, eacd);
+    char text[160];
+    std::snprintf(text, sizeof text, "sigma %08x colour %08x normal %08x labels %08x PC %08x ACD %08x EACD %08x",
+                  crc32Of(p.classified.sigma), crc32Of(p.classified.colour), crc32Of(p.classified.normal),
+                  crc32Of(p.regions.label), crc32Of(p.fields.pc), acd, eacd);
+    return text;
 }
 
 void record(SizeResult& r, const std::string& scenario, const vr::StagedPreparation& staged,
@@ -124,8 +127,8 @@ void record(SizeResult& r, const std::string& scenario, const vr::StagedPreparat
 // opacity scaled by 0.8). While a run is timed, its preparation holds the only copy of the volume, as volprep's
 // does (a second one took 0.5 GB more at 512^3, where fresh pages cost more as the footprint grows).
 SizeResult benchSize(const std::string& name, vr::Volume volume, const vr::PrepareOptions& base, int runs,
-                     bool checksums) {
-    SizeResult r{name, volume.grid.dims.x, {}, {}, 0, 0};
+                     bool withChecksums, vr::bench::Checks& checks) {
+    SizeResult r{name, volume.grid.dims.x, {}, {}, 0, 0, {}};
     resetPeakResident();
     vr::PrepareOptions thresholdChanged = base;
     thresholdChanged.segmentation.opacityThreshold *= 2;
@@ -140,7 +143,16 @@ SizeResult benchSize(const std::string& name, vr::Volume volume, const vr::Prepa
             const vr::PreparedVolume& p = staged.prepare(*options);
             record(r, scenario, staged, clock.stop("total"));
             if (scenario == "full") r.regions = p.regions.count;
-            if (checksums && run == 0) printChecksums(name + " " + scenario, r.edge, p);
+            if (!withChecksums) continue;
+            // Printed for the first run; every later run must make the same arrays, bit for bit.
+            const std::string sums = checksums(p);
+            if (run == 0) {
+                r.checksums[scenario] = sums;
+                std::fprintf(stderr, "%s %s %d^3 CRC-32: %s\n", name.c_str(), scenario.c_str(), r.edge, sums.c_str());
+            } else {
+                checks.expect(sums == r.checksums[scenario], "%s %s %d^3: run %d made other arrays (%s) than the first",
+                              name.c_str(), scenario.c_str(), r.edge, run + 1, sums.c_str());
+            }
         }
         volume = staged.volume();  // for the next run
     }
@@ -150,6 +162,44 @@ SizeResult benchSize(const std::string& name, vr::Volume volume, const vr::Prepa
         std::fprintf(stderr, " %s %.3f s (%.3f CPU s)", s.c_str(), median(r.wall[s]["total"]), median(r.cpu[s]["total"]));
     std::fprintf(stderr, "\n");
     return r;
+}
+
+// What the tables say of one size: regions partition the voxels; the full preparation ran every stage, the
+// threshold change segmentation and the fields only, the TF change classification too; every prepare() call took
+// time, and at least as long as its stages together; the process's peak memory was measured.
+void checkSize(vr::bench::Checks& checks, const SizeResult& r, int runs) {
+    const std::string size = r.volume + " " + std::to_string(r.edge) + "^3";
+    const double voxels = std::pow(double(r.edge), 3);
+    checks.expect(r.regions >= 1 && r.regions <= voxels, "%s: %u regions, not within 1..%.0f voxels", size.c_str(),
+                  r.regions, voxels);
+    const std::map<std::string, std::vector<std::string>> ran{
+        {"full", kStages}, {"threshold change", {"segment", "pc", "acd", "eacd"}}, {"TF change", kStages}};
+    for (const auto& scenario : kScenarios) {
+        const auto& wall = r.wall.at(scenario);
+        for (const auto& stage : kStages) {
+            const bool expected = std::find(ran.at(scenario).begin(), ran.at(scenario).end(), stage) !=
+                                  ran.at(scenario).end();
+            checks.expect(wall.count(stage) == expected, "%s: %s %s the stage %s", size.c_str(), scenario.c_str(),
+                          expected ? "did not run" : "ran", stage.c_str());
+        }
+        checks.expect(wall.count("total") && int(wall.at("total").size()) == runs, "%s: %s timed %zu of %d runs",
+                      size.c_str(), scenario.c_str(), wall.count("total") ? wall.at("total").size() : 0, runs);
+        for (std::size_t run = 0; wall.count("total") && run < wall.at("total").size(); ++run) {
+            double stages = 0;
+            for (const auto& [stage, times] : wall)
+                if (stage != "total" && run < times.size()) stages += times[run];
+            const double total = wall.at("total")[run];
+            checks.expect(total > 0 && stages > 0 && stages <= total * (1 + 1e-9) + 1e-6,
+                          "%s: %s run %zu took %g s in all but %g s in its stages", size.c_str(), scenario.c_str(),
+                          run + 1, total, stages);
+        }
+        for (const auto& [stage, times] : r.cpu.at(scenario))
+            for (double t : times)
+                checks.expect(t >= 0, "%s: %s %s took %g CPU s", size.c_str(), scenario.c_str(), stage.c_str(), t);
+    }
+    if (std::ifstream("/proc/self/status")) {
+        checks.expect(r.peakBytes > 0, "%s: peak resident memory %g bytes", size.c_str(), r.peakBytes);
+    }
 }
 
 void printTable(const char* title, const std::vector<SizeResult>& results,
@@ -219,6 +269,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     if (shortMode) edges = {64, 128}, runs = 1;
 
+    vr::bench::Checks checks("scaling_bench");
     try {
         const fs::path dir = vr::test::datasetsDir();
         const vr::test::DatasetEntry entry = findDataset(real);
@@ -241,10 +292,11 @@ int main(int argc, char** argv) {
             if (volumes != "real") {
                 results.push_back(benchSize("phantom " + phantom,
                                             phantom == "shells" ? vr::shellsPhantom(dims) : vr::enginePhantom(dims),
-                                            phantomOptions, runs, checksums));
+                                            phantomOptions, runs, checksums, checks));
             }
             if (volumes != "phantom") {
-                results.push_back(benchSize(realName, resample(source, dims), realOptions, runs, checksums));
+                results.push_back(
+                    benchSize(realName, resample(source, dims), realOptions, runs, checksums, checks));
             }
         }
         std::stable_sort(results.begin(), results.end(),
@@ -261,9 +313,11 @@ int main(int argc, char** argv) {
         printTable("CPU seconds (all threads; steadier than wall time on a shared machine):", results,
                    &SizeResult::cpu);
         printPeakMemory(results);
+        checks.expect(!results.empty(), "no size was timed");
+        for (const SizeResult& r : results) checkSize(checks, r, runs);
     } catch (const vr::InputError& e) {
         std::fprintf(stderr, "scaling_bench: %s\n", e.what());
         return 1;
     }
-    return 0;
+    return checks.exitStatus();
 }

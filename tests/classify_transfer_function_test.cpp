@@ -6,7 +6,7 @@
 
 #include "core/errors.h"
 #include "preprocess/classify/transfer_function.h"
-#include "support/datasets.h"
+#include "support/load_dataset.h"
 
 namespace vr {
 namespace {
@@ -39,7 +39,7 @@ std::string errorOf(const std::string& json, const std::string& source = "bad.tf
     return "";
 }
 
-TEST(TransferFunction, ParsesEveryShippedPreset) {
+TEST(ClassifyTransferFunction, ParsesEveryShippedPreset) {
     int presets = 0;
     for (const auto& entry : std::filesystem::directory_iterator(test::datasetsDir())) {
         const std::string file = entry.path().filename().string();
@@ -65,7 +65,7 @@ TEST(TransferFunction, ParsesEveryShippedPreset) {
     }
     EXPECT_GE(presets, 6);
 
-    const TransferFunction cranium = loadTransferFunction(test::datasetsDir() / "cranium_ct.tf.json");
+    const TransferFunction cranium = test::datasetTransferFunction("cranium_ct.tf.json");
     ASSERT_EQ(cranium.opacity.size(), 7u);
     EXPECT_EQ(cranium.name, "ct-head");
     EXPECT_DOUBLE_EQ(cranium.opacity[4].x, 300);
@@ -78,7 +78,7 @@ TEST(TransferFunction, ParsesEveryShippedPreset) {
     EXPECT_NEAR(cranium.opacityAt(200), 0.265, 1e-12);
 }
 
-TEST(TransferFunction, AcceptsOneObjectAsWellAsAList) {
+TEST(ClassifyTransferFunction, AcceptsOneObjectAsWellAsAList) {
     const std::string preset = R"({"Name": "one", "Points": [0, 0, 0.5, 0, 10, 1, 0.5, 0]})";
     EXPECT_EQ(parseTransferFunction(preset, "one.json").name, "one");
     EXPECT_EQ(parseTransferFunction("[" + preset + ", {\"Points\": []}]", "list.json").name, "one");
@@ -87,7 +87,7 @@ TEST(TransferFunction, AcceptsOneObjectAsWellAsAList) {
     EXPECT_EQ(tf.colourAt(5), (std::array<double, 3>{1, 1, 1}));
 }
 
-TEST(TransferFunction, LinearSegmentsAndClamping) {
+TEST(ClassifyTransferFunction, LinearSegmentsAndClamping) {
     const TransferFunction tf = ramp(0, 0.2, 100, 1.0);
     EXPECT_NEAR(tf.opacityAt(0), 0.2, 1e-12);
     EXPECT_NEAR(tf.opacityAt(25), 0.4, 1e-12);
@@ -97,7 +97,7 @@ TEST(TransferFunction, LinearSegmentsAndClamping) {
     EXPECT_NEAR(tf.opacityAt(1e9), 1.0, 1e-12);
 }
 
-TEST(TransferFunction, MidpointAndSharpnessFollowParaView) {
+TEST(ClassifyTransferFunction, MidpointAndSharpnessFollowParaView) {
     // Midpoint 0.25: the halfway value is reached a quarter of the way along the segment.
     const TransferFunction early = ramp(0, 0, 100, 1, 0.25, 0.0);
     EXPECT_NEAR(early.opacityAt(25), 0.5, 1e-12);
@@ -117,7 +117,7 @@ TEST(TransferFunction, MidpointAndSharpnessFollowParaView) {
         }
 }
 
-TEST(TransferFunction, ColourIsLinearInRgbAndClamped) {
+TEST(ClassifyTransferFunction, ColourIsLinearInRgbAndClamped) {
     TransferFunction tf = ramp(0, 0, 1, 1);
     tf.colour = {{0, 0, 0.5, 1}, {10, 1, 0.5, 0}};
     const auto mid = tf.colourAt(2.5);
@@ -128,8 +128,8 @@ TEST(TransferFunction, ColourIsLinearInRgbAndClamped) {
     EXPECT_NEAR(tf.colourAt(50)[0], 1.0, 1e-9);
 }
 
-TEST(TransferFunction, SampledTableIsExactAtSamplesAndInterpolatesBetween) {
-    TransferFunction tf = loadTransferFunction(test::datasetsDir() / "cranium_ct.tf.json");
+TEST(ClassifyTransferFunction, SampledTableIsExactAtSamplesAndInterpolatesBetween) {
+    TransferFunction tf = test::datasetTransferFunction("cranium_ct.tf.json");
     const SampledTransferFunction exact = sampleTransferFunction(tf, -1024, 2986, 4011);  // one per integer
     for (int f = -1024; f <= 2986; f += 7) {
         EXPECT_NEAR(exact.opacityAt(f), tf.opacityAt(f), 1e-12) << f;
@@ -146,7 +146,7 @@ TEST(TransferFunction, SampledTableIsExactAtSamplesAndInterpolatesBetween) {
     for (double f = -1024; f <= 2986; f += 3.7) EXPECT_NEAR(coarse.opacityAt(f), tf.opacityAt(f), 2e-5) << f;
 }
 
-TEST(TransferFunction, BadInputNamesTheFileAndTheProblem) {
+TEST(ClassifyTransferFunction, BadInputNamesTheFileAndTheProblem) {
     const auto expectError = [](const std::string& json, const std::string& problem) {
         const std::string message = errorOf(json);
         EXPECT_NE(message.find("bad.tf.json"), std::string::npos) << message;
@@ -184,7 +184,7 @@ TEST(TransferFunction, BadInputNamesTheFileAndTheProblem) {
     }
 }
 
-TEST(TransferFunction, MissingFileIsAnInputError) {
+TEST(ClassifyTransferFunction, MissingFileIsAnInputError) {
     const auto path = test::scratchDir("classify_tf") / "absent.tf.json";
     try {
         loadTransferFunction(path);

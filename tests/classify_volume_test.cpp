@@ -8,7 +8,7 @@
 #include "preprocess/classify/classify.h"
 #include "preprocess/classify/gradient.h"
 #include "preprocess/load/load_volume.h"
-#include "support/datasets.h"
+#include "support/load_dataset.h"
 
 namespace vr {
 namespace {
@@ -32,7 +32,7 @@ TransferFunction linearTF(double x0, double x1) {
     return tf;
 }
 
-TEST(Levoy, HandComputedValues) {
+TEST(ClassifyVolumeLevoy, HandComputedValues) {
     const IsoContour c{100, 2, 0.8};
     EXPECT_DOUBLE_EQ(levoyOpacity(c, 100, 1), 0.8);
     EXPECT_DOUBLE_EQ(levoyOpacity(c, 99, 1), 0.4);       // |100-99| / (2*1) = 0.5
@@ -46,7 +46,7 @@ TEST(Levoy, HandComputedValues) {
     EXPECT_DOUBLE_EQ(levoyOpacity(two, 99, 1), 1 - 0.6 * 0.75);
 }
 
-TEST(Classify, GradientOfALinearRampIsInPhysicalUnits) {
+TEST(ClassifyVolume, GradientOfALinearRampIsInPhysicalUnits) {
     const Vec3d spacing{0.5, 2.0, 4.0};
     const Volume v = makeVolume({7, 5, 4}, spacing, ScalarType::Float32,
                                 [](int x, int y, int z) { return 2.0 * x + 3.0 * y + 5.0 * z; });
@@ -78,7 +78,7 @@ TEST(Classify, GradientOfALinearRampIsInPhysicalUnits) {
     }
 }
 
-TEST(Classify, NormalsAreTheNormalisedCentralGradientBitForBit) {
+TEST(ClassifyVolume, NormalsAreTheNormalisedCentralGradientBitForBit) {
     // Any shape (axes of 1 and 2 voxels included) and uneven spacing: classify's row-wise gradients are gradient.h's.
     std::mt19937 rng(9);
     std::uniform_int_distribution<int> values(0, 255);
@@ -101,7 +101,7 @@ TEST(Classify, NormalsAreTheNormalisedCentralGradientBitForBit) {
     }
 }
 
-TEST(Classify, IntoAUsedVolumeEqualsAFreshOne) {
+TEST(ClassifyVolume, IntoAUsedVolumeEqualsAFreshOne) {
     std::mt19937 rng(4);
     std::uniform_int_distribution<int> values(0, 255);
     const Volume big = makeVolume({9, 8, 7}, {1, 1, 1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
@@ -122,7 +122,7 @@ TEST(Classify, IntoAUsedVolumeEqualsAFreshOne) {
         }
 }
 
-TEST(Classify, LevoyUsesThePhysicalGradient) {
+TEST(ClassifyVolume, LevoyUsesThePhysicalGradient) {
     // f = 10 x with spacing 2: |grad| = 5 per world unit. Iso 40, width 1: alpha = 0.9 (1 - |40 - f| / 5).
     const Volume v = makeVolume({9, 2, 2}, {2, 1, 1}, ScalarType::Float32, [](int x, int, int) { return 10.0 * x; });
     ClassifyParams params;
@@ -138,7 +138,7 @@ TEST(Classify, LevoyUsesThePhysicalGradient) {
     }
 }
 
-TEST(Classify, FlatRegionsHaveZeroNormals) {
+TEST(ClassifyVolume, FlatRegionsHaveZeroNormals) {
     // A plateau (x < 4) beside a ramp: zero gradient is flat, never normalize(0).
     const Volume v = makeVolume({10, 3, 3}, {1, 1, 1}, ScalarType::UInt8,
                                 [](int x, int, int) { return x < 4 ? 7.0 : 7.0 + 10 * (x - 4); });
@@ -163,7 +163,7 @@ TEST(Classify, FlatRegionsHaveZeroNormals) {
     EXPECT_FALSE(classify(constant, params).hasNormals());
 }
 
-TEST(Classify, ExtinctionRoundTrip) {
+TEST(ClassifyVolume, ExtinctionRoundTrip) {
     for (double dt0 : {1.0, 0.5, 3.0}) {
         EXPECT_EQ(extinctionFromOpacity(0.0, dt0), 0.0);
         EXPECT_EQ(opacityFromExtinction(0.0, dt0), 0.0);
@@ -182,13 +182,13 @@ TEST(Classify, ExtinctionRoundTrip) {
     }
 }
 
-TEST(Classify, OpacityAndColourFollowTheTransferFunctionPerReferenceStep) {
+TEST(ClassifyVolume, OpacityAndColourFollowTheTransferFunctionPerReferenceStep) {
     std::mt19937 rng(5);
     std::uniform_int_distribution<int> values(-1024, 2986);
     const Volume ct = makeVolume({11, 9, 7}, {0.7, 0.7, 1.5}, ScalarType::Int16,
                                  [&](int, int, int) { return values(rng); });
     ClassifyParams params;
-    params.transferFunction = loadTransferFunction(test::datasetsDir() / "cranium_ct.tf.json");
+    params.transferFunction = test::datasetTransferFunction("cranium_ct.tf.json");
     params.transferFunction->opacity.back().opacity = 1.0;  // include opaque voxels
     for (double referenceStep : {0.0, 2.5}) {
         params.referenceStep = referenceStep;
@@ -217,7 +217,7 @@ TEST(Classify, OpacityAndColourFollowTheTransferFunctionPerReferenceStep) {
     for (std::size_t i = 0; i < f.values.size(); ++i) EXPECT_NEAR(c.opacity(i), tf.opacityAt(f.values[i]), 1e-4);
 }
 
-TEST(Classify, BadParametersAreInputErrors) {
+TEST(ClassifyVolume, BadParametersAreInputErrors) {
     const Volume v = makeVolume({3, 3, 3}, {1, 1, 1}, ScalarType::UInt8, [](int x, int, int) { return x; });
     ClassifyParams none;
     EXPECT_THROW(classify(v, none), InputError);
@@ -246,12 +246,10 @@ TEST(Classify, BadParametersAreInputErrors) {
     EXPECT_THROW(classify(v, unsorted), InputError);
 }
 
-TEST(Classify, RealCtDataset) {
-    RawOptions raw;
-    raw.spacing = Vec3d{3.2, 3.2, 1.5};  // MANIFEST.tsv
-    const Volume ct = loadVolume(test::datasetsDir() / "vtk_headsq_ct_64x64x93_uint16.raw.gz", raw);
+TEST(ClassifyVolume, RealCtDataset) {
+    const Volume ct = test::loadDataset("vtk_headsq_ct_64x64x93_uint16");  // spacing 3.2, 3.2, 1.5
     ClassifyParams params;
-    params.transferFunction = loadTransferFunction(test::datasetsDir() / "vtk_headsq_ct.tf.json");
+    params.transferFunction = test::datasetTransferFunction("vtk_headsq_ct.tf.json");
     const ClassifiedVolume c = classify(ct, params);
     ASSERT_EQ(c.sigma.size(), ct.values.size());
     EXPECT_DOUBLE_EQ(c.referenceStep, 1.5);

@@ -11,7 +11,7 @@
 #include "preprocess/fields/axial_runs.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/load/load_volume.h"
-#include "support/datasets.h"
+#include "support/load_dataset.h"
 
 namespace vr {
 namespace {
@@ -171,7 +171,7 @@ Box bruteEACD(const Regions& r, Vec3i v, int octant) {
 
 // ---- Brute-force equality, exhaustive -----------------------------------------------------------------------
 
-TEST(FieldsBruteForce, ACDAndPCEqualTheDefinitionsEverywhere) {
+TEST(FieldsBuildBruteForce, ACDAndPCEqualTheDefinitionsEverywhere) {
     for (const auto& [name, r] : smallVolumes()) {
         SCOPED_TRACE(name);
         const std::vector<uint8_t> pc = buildPC(r);
@@ -186,7 +186,7 @@ TEST(FieldsBruteForce, ACDAndPCEqualTheDefinitionsEverywhere) {
     }
 }
 
-TEST(FieldsBruteForce, AxialRunsEqualTheWalk) {
+TEST(FieldsBuildBruteForce, AxialRunsEqualTheWalk) {
     for (const auto& [name, r] : smallVolumes()) {
         SCOPED_TRACE(name);
         for (int axis = 0; axis < 3; ++axis)
@@ -199,7 +199,7 @@ TEST(FieldsBruteForce, AxialRunsEqualTheWalk) {
     }
 }
 
-TEST(FieldsBruteForce, EACDEqualsTheNaiveGreedyEverywhere) {
+TEST(FieldsBuildBruteForce, EACDEqualsTheNaiveGreedyEverywhere) {
     for (const auto& [name, r] : smallVolumes()) {
         SCOPED_TRACE(name);
         std::array<std::vector<uint8_t>, kOctants> acd;
@@ -240,7 +240,7 @@ TEST(FieldsBuild, BuildFieldsFillsWhatIsAskedAndAgreesWithTheSingleBuilders) {
     EXPECT_FALSE(none.hasPC() || none.hasACD() || none.hasEACD());
 }
 
-TEST(FieldsBruteForce, EACDEqualsTheNaiveGreedyOnLargerRegionsSampled) {
+TEST(FieldsBuildBruteForce, EACDEqualsTheNaiveGreedyOnLargerRegionsSampled) {
     // Regions tens of voxels wide, so that extensions follow their neighbours' across many slices and slabs.
     std::mt19937 rng(99);
     const Regions r = blockyRegions({75, 40, 34}, 8, 3, rng);
@@ -395,7 +395,7 @@ void expectFieldInvariants(const Regions& r, const BorderCounts& borders, const 
     }
 }
 
-TEST(FieldsInvariants, SmallRandomVolumesExhaustively) {
+TEST(FieldsBuildInvariants, SmallRandomVolumesExhaustively) {
     for (const auto& [name, r] : smallVolumes()) {
         SCOPED_TRACE(name);
         const BorderCounts borders(r);
@@ -407,7 +407,7 @@ TEST(FieldsInvariants, SmallRandomVolumesExhaustively) {
     }
 }
 
-TEST(FieldsInvariants, TheIndependentBoxTestAgreesWithTheWalk) {
+TEST(FieldsBuildInvariants, TheIndependentBoxTestAgreesWithTheWalk) {
     std::mt19937 rng(99);
     const Regions r = blockyRegions({7, 6, 5}, 6, 3, rng);
     const BorderCounts borders(r);
@@ -424,7 +424,7 @@ TEST(FieldsInvariants, TheIndependentBoxTestAgreesWithTheWalk) {
 // Real data: labels are the raw value (any labelling is a partition), checked at 20000 random voxels.
 void checkDataset(const std::string& file, uint32_t (*labelOf)(float)) {
     SCOPED_TRACE(file);
-    const Volume vol = loadVolume(test::datasetsDir() / file);
+    const Volume vol = test::loadDataset(file);
     std::vector<uint32_t> labels(vol.values.size());
     std::transform(vol.values.begin(), vol.values.end(), labels.begin(), labelOf);
     const Regions r = regionsOf(vol.grid.dims, std::move(labels));
@@ -443,17 +443,17 @@ void checkDataset(const std::string& file, uint32_t (*labelOf)(float)) {
     EXPECT_GT(eacdVolume, acdVolume);  // real data has long thin regions that the extension finds
 }
 
-TEST(FieldsInvariants, HeadCTSampled) {
+TEST(FieldsBuildInvariants, HeadCTSampled) {
     checkDataset("vtk_headsq_ct_64x64x93_uint16.raw.gz", [](float x) { return uint32_t(x) / 64; });
 }
 
-TEST(FieldsInvariants, TeapotSampled) {
+TEST(FieldsBuildInvariants, TeapotSampled) {
     checkDataset("boston_teapot_256x256x178_uint8.raw.gz", [](float x) { return uint32_t(x); });
 }
 
 // ---- Caps ---------------------------------------------------------------------------------------------------
 
-TEST(FieldsCaps, RunsLongerThanTheCapAreCappedAndStillValid) {
+TEST(FieldsBuildCaps, RunsLongerThanTheCapAreCappedAndStillValid) {
     const Regions r = constantRegions({300, 2, 2});
     const std::vector<uint8_t> run = axialRuns(r, 0, 1);
     EXPECT_EQ(run[linearIndex(r.dims, 0, 0, 0)], kDistanceCap);      // true run 300
@@ -469,7 +469,7 @@ TEST(FieldsCaps, RunsLongerThanTheCapAreCappedAndStillValid) {
     EXPECT_EQ(f.eacd[7][linearIndex(r.dims, 50, 1, 1)], E({51, 2, 2}));
 }
 
-TEST(FieldsCaps, CubesLargerThanTheCapAreCapped) {
+TEST(FieldsBuildCaps, CubesLargerThanTheCapAreCapped) {
     const Regions r = constantRegions({260, 258, 257});
     const std::vector<uint8_t> acd = buildACD(r, 0);
     EXPECT_EQ(acd[linearIndex(r.dims, 0, 0, 0)], kDistanceCap);  // true edge 257

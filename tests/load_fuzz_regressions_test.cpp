@@ -8,7 +8,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <new>
+#include <ostream>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "core/errors.h"
 #include "preprocess/load/load_volume.h"
@@ -44,7 +47,7 @@ namespace fs = std::filesystem;
 
 // __FILE__ is relative to the build folder, where the compiler runs, when ccache's base_dir rewrites it.
 const fs::path kThisFile = fs::path(__FILE__).is_absolute() ? fs::path(__FILE__) : fs::path(VR_BINARY_DIR) / __FILE__;
-const fs::path kRegressions = kThisFile.parent_path().parent_path() / "fuzz" / "regressions";
+const fs::path kRegressionsFolder = kThisFile.parent_path().parent_path() / "fuzz" / "regressions";
 
 // Run in a child process: exits 0 only when loadVolume throws an InputError naming the file, having allocated at
 // most maxAllocation bytes at once. The alarm turns a hang into a failure instead of a stalled suite.
@@ -67,180 +70,152 @@ const fs::path kRegressions = kThisFile.parent_path().parent_path() / "fuzz" / "
 
 // What refusing a small file may allocate at once (the readers' own buffers): far below what its header claims.
 constexpr std::size_t kSmallInputAllocation = std::size_t(64) << 20;
+// No bound that matters: the input's bug was not an allocation.
+constexpr std::size_t kAnyAllocation = std::size_t(1) << 40;
 
 // In a child process, so that a crash or a hang fails this test alone.
-void expectRefused(const fs::path& input, std::size_t maxAllocation = std::size_t(1) << 40) {
+void expectRefused(const fs::path& input, std::size_t maxAllocation) {
     ASSERT_TRUE(fs::exists(input)) << input;
     GTEST_FLAG_SET(death_test_style, "threadsafe");  // TBB and VTK may have started threads
     EXPECT_EXIT(loadExpectingRefusal(input, maxAllocation), testing::ExitedWithCode(0), "") << input;
 }
 
-// A slice whose pixel data element holds fewer bytes than rows x columns x bits allocated: vtkDICOMImageReader
-// copies the full slice from it regardless (heap-buffer-overflow read inside VTK, found by ASan).
-TEST(LoadFuzzRegressions, DicomPixelDataShorterThanTheSlice) {
-    expectRefused(kRegressions / "dicom" / "short_pixel_data");
+// One kind of input fuzzing found mishandled: the files or DICOM series folders (under fuzz/regressions/) that show
+// it, and how much refusing one may allocate at once.
+struct Regression {
+    const char* name;
+    std::vector<const char*> inputs;
+    std::size_t maxAllocation = kAnyAllocation;
+};
+
+const Regression kRegressions[] = {
+    // A slice whose pixel data element holds fewer bytes than rows x columns x bits allocated: vtkDICOMImageReader
+    // copies the full slice from it regardless (heap-buffer-overflow read inside VTK, found by ASan).
+    {"DicomPixelDataShorterThanTheSlice", {"dicom/short_pixel_data"}},
+    // Zero-length values of elements that VTK's DICOMAppHelper parses in a callback: it passes the null value pointer
+    // to strcmp (TransferSyntaxUID, 0002,0010) or strtod (RescaleSlope, 0028,1053): SEGV inside VTK.
+    {"DicomEmptyElementValues", {"dicom/empty_transfer_syntax", "dicom/empty_rescale_slope"}},
+    // VTK's DICOMParser reads on past the pixel data to the end of the file: an empty Columns there reaches its
+    // callback as null (SEGV, found by CI's fuzzing), an empty SeriesInstanceUID becomes std::string(nullptr).
+    {"DicomEmptyElementsAfterThePixelData",
+     {"dicom/columns_empty_after_pixel_data", "dicom/empty_series_uid_after_pixel_data"}},
+    // vtkDICOMImageReader sizes the volume from one slice and copies each slice whole into it: a later, larger slice
+    // overflowed it (SEGV).
+    {"DicomSlicesOfDifferentSizes", {"dicom/slices_of_different_sizes"}},
+    // vtkNrrdReader reports nothing when raw or ASCII data end early: the missing voxels would be uninitialised memory.
+    {"NrrdDataShorterThanTheSizes", {"nrrd/raw_data_too_short.nrrd", "nrrd/ascii_data_too_short.nrrd"}},
+    // NUL bytes inside a "space directions" vector send vtkNrrdReader::ReadHeader into an endless loop.
+    {"NrrdHeaderWithNulBytes", {"nrrd/nul_in_space_directions.nrrd"}},
+    // vtkNrrdReader reads through a null stream (SEGV inside VTK) when the dimension field is missing, comes after the
+    // sizes (found by fuzz_nrrd), or leaves it fewer than 2 image axes once it takes the first axis for components; and
+    // when the sizes are missing because their key has a trailing space ("sizes : ...", which VTK does not take for
+    // "sizes": found by fuzz_nrrd).
+    {"NrrdHeadersVtkReadsThroughANullStream",
+     {"nrrd/no_dimension_field.nrrd", "nrrd/sizes_before_dimension.nrrd", "nrrd/one_image_axis.nrrd",
+      "nrrd/sizes_key_with_a_trailing_space.nrrd"}},
+    // " type: " (a key after a space, which vtkNrrdReader does not take for "type") sends vtkNrrdReader::ReadHeader
+    // into an endless loop (found by fuzz_nrrd): keys are matched as VTK matches them, and a header without a type is
+    // refused.
+    {"NrrdKeyAfterASpace", {"nrrd/type_key_after_a_space.nrrd"}},
+    // A header without a blank line whose last line has no line break: vtkNrrdReader rereads that line forever
+    // (std::getline keeps it once the stream has ended). Found by CI's fuzzing (timeouts).
+    {"NrrdLastHeaderLineWithoutALineBreak",
+     {"nrrd/last_header_line_without_line_break.nrrd", "nrrd/unknown_type_last_line_without_line_break.nrrd"}},
+    // Likewise vtkStructuredPointsReader, ASCII and binary, when POINT_DATA promises more values than the file holds.
+    {"LegacyVtkDataShorterThanThePoints",
+     {"vtk_legacy/ascii_data_too_short.vtk", "vtk_legacy/binary_data_too_short.vtk"}},
+    // Garbage after ORIGIN in a binary legacy file (a "field" keyword and binary bytes): vtkStructuredPointsReader::
+    // ReadMeshSimple dereferences a null pointer (SEGV inside VTK).
+    {"LegacyVtkGarbageAfterOrigin", {"vtk_legacy/garbled_after_origin.vtk"}},
+    // vtkNIFTIImageReader trusts the header: an unknown datatype code (1279) crashes RequestInformation (SIGBUS); zero
+    // dims (dim[0] = 0) divide by zero in RequestData (SIGFPE); headers without the NIfTI magic, read as Analyze 7.5
+    // with garbage datatype/bitpix/dims, crash RequestData (SEGV). The loader must validate the header (sizeof_hdr,
+    // magic, dim[0] in 1..7, positive dims, a known datatype with its bitpix, vox_offset) before VTK reads it.
+    {"NiftiHeadersVtkCrashesOn",
+     {"nifti/unknown_datatype.nii", "nifti/fpe_zero_dims.nii", "nifti/segv_in_request_data.nii",
+      "nifti/segv_in_request_data.nii.gz"}},
+    // Headers claiming 10^13 voxels or more over a few bytes of data: VTK's readers allocate the claimed image before
+    // reading it, and the std::bad_alloc ends in std::terminate (an ASan abort under the sanitizers). The loaders must
+    // check the header's extent (UpdateInformation) against the memory budget before Update().
+    {"HeaderDimsBeyondMemory",
+     {"metaimage/absurd_dims.mha", "nrrd/absurd_sizes.nrrd", "nifti/absurd_dims.nii", "vti/absurd_extent.vti"}},
+    // Compressed MetaImage data without a usable CompressedDataSize (a garbled header found by fuzz_metaimage):
+    // metaio's M_ReadElements calls new[] with (size_t)-1, so std::bad_alloc escapes VTK (an ASan abort under the
+    // sanitizers).
+    {"MetaImageCompressedWithoutSize", {"metaimage/compressed_unknown_size.mha"}},
+    // More garbled compressed headers from fuzz_metaimage that made metaio call new[] with (size_t)-1: a CompressedData
+    // value metaio takes for true ("Tr/e": it looks at the first letter) without a CompressedDataSize, and compressed
+    // data with an empty ElementDataFile. And a garbled file pattern ("LOCA%N..."), with which metaio overruns a heap
+    // buffer (strlen in MetaImage::ReadStream); lists and patterns of data files are refused.
+    {"MetaImageGarbledCompressionAndDataFile",
+     {"metaimage/compressed_flag_spelled_tr_e.mha", "metaimage/compressed_empty_data_file.mha",
+      "metaimage/garbled_data_file_pattern.mha"}},
+    // A 24-byte .raw.gz whose name claims 512x512x512 uint16 (256 MiB): the loader allocated the claimed size before
+    // decompressing anything (found with -malloc_limit_mb). Memory must follow the data actually there.
+    {"GzipRawAllocatesOnlyWhatItDecompresses", {"raw/claims_512x512x512_uint16.raw.gz"}, kSmallInputAllocation},
+    // Two active voxels 2^20 apart: densifying their bounding box needs 4 PiB, which the loader asked the allocator for
+    // without a check (std::bad_alloc, or an ASan abort, instead of an InputError).
+    {"VdbBoundingBoxTooLargeToDensify", {"vdb/far_apart_voxels.vdb"}},
+    // Active voxels at x = -2e9 and +2e9: the bounding box's extent overflows int (UBSan: signed overflow in
+    // openvdb::Coord::operator-, called from the loader). And active voxels at x = 1845493824 (found by fuzz_vdb):
+    // copyToDense splits the box at (min + max) / 2, which overflows int (UBSan, in openvdb::CoordBBox's splitting
+    // constructor).
+    {"VdbBoundingBoxBeyondIntRange", {"vdb/extreme_coordinates.vdb", "vdb/active_box_near_int_max.vdb"}},
+    // Length-prefixed strings and metadata values of up to 4 GiB in a file of a few KiB (found by fuzz_vdb): OpenVDB
+    // allocates, and zero-fills, what they state (GridDescriptor::read, MetaMap::readMeta, Transform::read,
+    // DelayedLoadMetadata::readValue), and a grid ending beyond the file let it read a zipped block's length of
+    // 0x3030300000000 bytes. The loader walks these before OpenVDB reads them. The last input: delayed-load arrays
+    // longer than their metadata's stated size: OpenVDB reads on past it, and the next metadata name's length (1.8 GiB)
+    // came from the middle of the arrays.
+    {"VdbLengthsBeyondTheFile",
+     {"vdb/grid_name_of_4gib.vdb", "vdb/instance_parent_name_of_4gib.vdb", "vdb/metadata_value_of_4gib.vdb",
+      "vdb/grid_metadata_of_1gib.vdb", "vdb/zipped_length_beyond_the_file.vdb", "vdb/transform_type_of_4gib.vdb",
+      "vdb/delayed_load_count_of_4g.vdb", "vdb/delayed_load_longer_than_stated.vdb"}, kSmallInputAllocation},
+    // An int32 grid whose zipped values overflow a heap buffer inside OpenVDB (io::unzipFromStream, found by fuzz_vdb):
+    // the loader reads only the metadata of grids that are not float grids, never their trees.
+    {"VdbTreesOfOtherGridsAreNotRead", {"vdb/int_tree_overflowing_unzip.vdb"}},
+    // Float grids' trees that OpenVDB 10 mishandles (found by fuzz_vdb, but for the one written by hand): a root tile
+    // count of 1.7 billion it loops over for minutes in a file of 6 KiB, raw values longer than the node that it reads
+    // into the node's buffer (a heap overflow in io::unzipFromStream, via readCompressedValues), and zipped lengths of
+    // 8 GiB and 0x7469736e65640000 bytes it allocates. The loader walks the float trees before OpenVDB reads them.
+    {"VdbFloatTreesOpenVdbMishandles",
+     {"vdb/float_tree_read_for_a_minute.vdb", "vdb/float_tree_overflowing_unzip.vdb",
+      "vdb/float_tree_raw_values_beyond_the_node.vdb", "vdb/float_tree_zipped_length_of_8gib.vdb",
+      "vdb/absurd_length_field.vdb"}, kSmallInputAllocation},
+    // Active tiles in a float tree of 13 KiB whose bounding box densifies to 6 GiB (found by fuzz_vdb): within this
+    // machine's memory, but not backed by the file (preprocess/load/vdb_loader.cpp: at most 256 voxels per byte).
+    {"VdbSparseGridDensifyingToGigabytes", {"vdb/float_tree_active_box_of_6gib.vdb"}, kSmallInputAllocation},
+};
+
+// Test names show the regression's name, not its bytes.
+void PrintTo(const Regression& r, std::ostream* os) { *os << r.name; }
+
+class LoadFuzzRegressions : public testing::TestWithParam<Regression> {};
+
+// Every input of the kind is refused, each in a child process.
+TEST_P(LoadFuzzRegressions, AreRefused) {
+    ASSERT_FALSE(GetParam().inputs.empty());
+    for (const char* input : GetParam().inputs) expectRefused(kRegressionsFolder / input, GetParam().maxAllocation);
 }
 
-// Zero-length values of elements that VTK's DICOMAppHelper parses in a callback: it passes the null value pointer to
-// strcmp (TransferSyntaxUID, 0002,0010) or strtod (RescaleSlope, 0028,1053): SEGV inside VTK.
-TEST(LoadFuzzRegressions, DicomEmptyElementValues) {
-    expectRefused(kRegressions / "dicom" / "empty_transfer_syntax");
-    expectRefused(kRegressions / "dicom" / "empty_rescale_slope");
-}
+INSTANTIATE_TEST_SUITE_P(, LoadFuzzRegressions, testing::ValuesIn(kRegressions),
+                         [](const testing::TestParamInfo<Regression>& info) { return std::string(info.param.name); });
 
-// VTK's DICOMParser reads on past the pixel data to the end of the file: an empty Columns there reaches its
-// callback as null (SEGV, found by CI's fuzzing), an empty SeriesInstanceUID becomes std::string(nullptr).
-TEST(LoadFuzzRegressions, DicomEmptyElementsAfterThePixelData) {
-    expectRefused(kRegressions / "dicom" / "columns_empty_after_pixel_data");
-    expectRefused(kRegressions / "dicom" / "empty_series_uid_after_pixel_data");
-}
-
-// vtkDICOMImageReader sizes the volume from one slice and copies each slice whole into it: a later, larger slice
-// overflowed it (SEGV).
-TEST(LoadFuzzRegressions, DicomSlicesOfDifferentSizes) {
-    expectRefused(kRegressions / "dicom" / "slices_of_different_sizes");
-}
-
-// vtkNrrdReader reports nothing when raw or ASCII data end early: the missing voxels would be uninitialised memory.
-TEST(LoadFuzzRegressions, NrrdDataShorterThanTheSizes) {
-    expectRefused(kRegressions / "nrrd" / "raw_data_too_short.nrrd");
-    expectRefused(kRegressions / "nrrd" / "ascii_data_too_short.nrrd");
-}
-
-// NUL bytes inside a "space directions" vector send vtkNrrdReader::ReadHeader into an endless loop.
-TEST(LoadFuzzRegressions, NrrdHeaderWithNulBytes) {
-    expectRefused(kRegressions / "nrrd" / "nul_in_space_directions.nrrd");
-}
-
-// vtkNrrdReader reads through a null stream (SEGV inside VTK) when the dimension field is missing, comes after the
-// sizes (found by fuzz_nrrd), or leaves it fewer than 2 image axes once it takes the first axis for components; and
-// when the sizes are missing because their key has a trailing space ("sizes : ...", which VTK does not take for
-// "sizes": found by fuzz_nrrd).
-TEST(LoadFuzzRegressions, NrrdHeadersVtkReadsThroughANullStream) {
-    expectRefused(kRegressions / "nrrd" / "no_dimension_field.nrrd");
-    expectRefused(kRegressions / "nrrd" / "sizes_before_dimension.nrrd");
-    expectRefused(kRegressions / "nrrd" / "one_image_axis.nrrd");
-    expectRefused(kRegressions / "nrrd" / "sizes_key_with_a_trailing_space.nrrd");
-}
-
-// " type: " (a key after a space, which vtkNrrdReader does not take for "type") sends vtkNrrdReader::ReadHeader into
-// an endless loop (found by fuzz_nrrd): keys are matched as VTK matches them, and a header without a type is refused.
-TEST(LoadFuzzRegressions, NrrdKeyAfterASpace) {
-    expectRefused(kRegressions / "nrrd" / "type_key_after_a_space.nrrd");
-}
-
-// A header without a blank line whose last line has no line break: vtkNrrdReader rereads that line forever
-// (std::getline keeps it once the stream has ended). Found by CI's fuzzing (timeouts).
-TEST(LoadFuzzRegressions, NrrdLastHeaderLineWithoutALineBreak) {
-    expectRefused(kRegressions / "nrrd" / "last_header_line_without_line_break.nrrd");
-    expectRefused(kRegressions / "nrrd" / "unknown_type_last_line_without_line_break.nrrd");
-}
-
-// Likewise vtkStructuredPointsReader, ASCII and binary, when POINT_DATA promises more values than the file holds.
-TEST(LoadFuzzRegressions, LegacyVtkDataShorterThanThePoints) {
-    expectRefused(kRegressions / "vtk_legacy" / "ascii_data_too_short.vtk");
-    expectRefused(kRegressions / "vtk_legacy" / "binary_data_too_short.vtk");
-}
-
-// Garbage after ORIGIN in a binary legacy file (a "field" keyword and binary bytes): vtkStructuredPointsReader::
-// ReadMeshSimple dereferences a null pointer (SEGV inside VTK).
-TEST(LoadFuzzRegressions, LegacyVtkGarbageAfterOrigin) {
-    expectRefused(kRegressions / "vtk_legacy" / "garbled_after_origin.vtk");
-}
-
-// vtkNIFTIImageReader trusts the header: an unknown datatype code (1279) crashes RequestInformation (SIGBUS); zero
-// dims (dim[0] = 0) divide by zero in RequestData (SIGFPE); headers without the NIfTI magic, read as Analyze 7.5
-// with garbage datatype/bitpix/dims, crash RequestData (SEGV). The loader must validate the header (sizeof_hdr,
-// magic, dim[0] in 1..7, positive dims, a known datatype with its bitpix, vox_offset) before VTK reads it.
-TEST(LoadFuzzRegressions, NiftiHeadersVtkCrashesOn) {
-    expectRefused(kRegressions / "nifti" / "unknown_datatype.nii");
-    expectRefused(kRegressions / "nifti" / "fpe_zero_dims.nii");
-    expectRefused(kRegressions / "nifti" / "segv_in_request_data.nii");
-    expectRefused(kRegressions / "nifti" / "segv_in_request_data.nii.gz");
-}
-
-// Headers claiming 10^13 voxels or more over a few bytes of data: VTK's readers allocate the claimed image before
-// reading it, and the std::bad_alloc ends in std::terminate (an ASan abort under the sanitizers). The loaders must
-// check the header's extent (UpdateInformation) against the memory budget before Update().
-TEST(LoadFuzzRegressions, HeaderDimsBeyondMemory) {
-    expectRefused(kRegressions / "metaimage" / "absurd_dims.mha");
-    expectRefused(kRegressions / "nrrd" / "absurd_sizes.nrrd");
-    expectRefused(kRegressions / "nifti" / "absurd_dims.nii");
-    expectRefused(kRegressions / "vti" / "absurd_extent.vti");
-}
-
-// Compressed MetaImage data without a usable CompressedDataSize (a garbled header found by fuzz_metaimage): metaio's
-// M_ReadElements calls new[] with (size_t)-1, so std::bad_alloc escapes VTK (an ASan abort under the sanitizers).
-TEST(LoadFuzzRegressions, MetaImageCompressedWithoutSize) {
-    expectRefused(kRegressions / "metaimage" / "compressed_unknown_size.mha");
-}
-
-// More garbled compressed headers from fuzz_metaimage that made metaio call new[] with (size_t)-1: a
-// CompressedData value metaio takes for true ("Tr/e": it looks at the first letter) without a CompressedDataSize,
-// and compressed data with an empty ElementDataFile. And a garbled file pattern ("LOCA%N..."), with which metaio
-// overruns a heap buffer (strlen in MetaImage::ReadStream); lists and patterns of data files are refused.
-TEST(LoadFuzzRegressions, MetaImageGarbledCompressionAndDataFile) {
-    expectRefused(kRegressions / "metaimage" / "compressed_flag_spelled_tr_e.mha");
-    expectRefused(kRegressions / "metaimage" / "compressed_empty_data_file.mha");
-    expectRefused(kRegressions / "metaimage" / "garbled_data_file_pattern.mha");
-}
-
-// A 24-byte .raw.gz whose name claims 512x512x512 uint16 (256 MiB): the loader allocated the claimed size before
-// decompressing anything (found with -malloc_limit_mb). Memory must follow the data actually there.
-TEST(LoadFuzzRegressions, GzipRawAllocatesOnlyWhatItDecompresses) {
-    expectRefused(kRegressions / "raw" / "claims_512x512x512_uint16.raw.gz", kSmallInputAllocation);
-}
-
-// Two active voxels 2^20 apart: densifying their bounding box needs 4 PiB, which the loader asked the allocator for
-// without a check (std::bad_alloc, or an ASan abort, instead of an InputError).
-TEST(LoadFuzzRegressions, VdbBoundingBoxTooLargeToDensify) {
-    expectRefused(kRegressions / "vdb" / "far_apart_voxels.vdb");
-}
-
-// Active voxels at x = -2e9 and +2e9: the bounding box's extent overflows int (UBSan: signed overflow in
-// openvdb::Coord::operator-, called from the loader).
-TEST(LoadFuzzRegressions, VdbBoundingBoxBeyondIntRange) {
-    expectRefused(kRegressions / "vdb" / "extreme_coordinates.vdb");
-    // Active voxels at x = 1845493824 (found by fuzz_vdb): copyToDense splits the box at (min + max) / 2, which
-    // overflows int (UBSan, in openvdb::CoordBBox's splitting constructor).
-    expectRefused(kRegressions / "vdb" / "active_box_near_int_max.vdb");
-}
-
-// Length-prefixed strings and metadata values of up to 4 GiB in a file of a few KiB (found by fuzz_vdb): OpenVDB
-// allocates, and zero-fills, what they state (GridDescriptor::read, MetaMap::readMeta, Transform::read,
-// DelayedLoadMetadata::readValue), and a grid ending beyond the file let it read a zipped block's length of
-// 0x3030300000000 bytes. The loader walks these before OpenVDB reads them.
-TEST(LoadFuzzRegressions, VdbLengthsBeyondTheFile) {
-    // The last: delayed-load arrays longer than their metadata's stated size: OpenVDB reads on past it, and the
-    // next metadata name's length (1.8 GiB) came from the middle of the arrays.
-    for (const char* file : {"grid_name_of_4gib.vdb", "instance_parent_name_of_4gib.vdb", "metadata_value_of_4gib.vdb",
-                             "grid_metadata_of_1gib.vdb", "zipped_length_beyond_the_file.vdb",
-                             "transform_type_of_4gib.vdb", "delayed_load_count_of_4g.vdb",
-                             "delayed_load_longer_than_stated.vdb"})
-        expectRefused(kRegressions / "vdb" / file, kSmallInputAllocation);
-}
-
-// An int32 grid whose zipped values overflow a heap buffer inside OpenVDB (io::unzipFromStream, found by fuzz_vdb):
-// the loader reads only the metadata of grids that are not float grids, never their trees.
-TEST(LoadFuzzRegressions, VdbTreesOfOtherGridsAreNotRead) {
-    expectRefused(kRegressions / "vdb" / "int_tree_overflowing_unzip.vdb");
-}
-
-// Float grids' trees that OpenVDB 10 mishandles (found by fuzz_vdb, but for the one written by hand): a root tile
-// count of 1.7 billion it loops over for minutes in a file of 6 KiB, raw values longer than the node that it reads
-// into the node's buffer (a heap overflow in io::unzipFromStream, via readCompressedValues), and zipped lengths of
-// 8 GiB and 0x7469736e65640000 bytes it allocates. The loader walks the float trees before OpenVDB reads them.
-TEST(LoadFuzzRegressions, VdbFloatTreesOpenVdbMishandles) {
-    for (const char* file : {"float_tree_read_for_a_minute.vdb", "float_tree_overflowing_unzip.vdb",
-                             "float_tree_raw_values_beyond_the_node.vdb", "float_tree_zipped_length_of_8gib.vdb",
-                             "absurd_length_field.vdb"})
-        expectRefused(kRegressions / "vdb" / file, kSmallInputAllocation);
-}
-
-// Active tiles in a float tree of 13 KiB whose bounding box densifies to 6 GiB (found by fuzz_vdb): within this
-// machine's memory, but not backed by the file (preprocess/load/vdb_loader.cpp: at most 256 voxels per byte).
-TEST(LoadFuzzRegressions, VdbSparseGridDensifyingToGigabytes) {
-    expectRefused(kRegressions / "vdb" / "float_tree_active_box_of_6gib.vdb", kSmallInputAllocation);
+// Every file kept in fuzz/regressions/ is an input listed above, or lies in a listed folder: an input only kept there
+// would be tested by nothing.
+TEST(LoadFuzzRegressionsFolder, HoldsOnlyListedInputs) {
+    std::set<std::string> listed;
+    for (const Regression& r : kRegressions) listed.insert(r.inputs.begin(), r.inputs.end());
+    int files = 0;
+    for (const auto& entry : fs::recursive_directory_iterator(kRegressionsFolder)) {
+        if (!entry.is_regular_file()) continue;
+        ++files;
+        const fs::path relative = fs::relative(entry.path(), kRegressionsFolder);
+        bool covered = false;
+        for (fs::path p = relative; !p.empty() && !covered; p = p.parent_path()) covered = listed.contains(p.string());
+        EXPECT_TRUE(covered) << relative << " is in no Regression of kRegressions";
+    }
+    EXPECT_GE(files, int(listed.size())) << "fewer files than listed inputs in " << kRegressionsFolder;
 }
 
 }  // namespace

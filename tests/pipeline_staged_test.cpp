@@ -9,8 +9,8 @@
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "preprocess/segment/segment.h"
-#include "support/datasets.h"
-#include "support/prepare.h"
+#include "render/caster_choice.h"
+#include "support/load_dataset.h"
 
 namespace vr {
 namespace {
@@ -21,9 +21,14 @@ StagedPreparation stagedHead() {
     return StagedPreparation::load(test::datasetsDir() / kFile, test::manifestRawOptions(kFile));
 }
 
+// The head CT loaded and prepared at once, as volprep prepares it.
+PreparedVolume freshHead(const PrepareOptions& options) {
+    return prepare(test::loadDataset(kFile), options);
+}
+
 PrepareOptions headOptions() {
     PrepareOptions o;
-    o.classify.transferFunction = loadTransferFunction(test::datasetsDir() / "vtk_headsq_ct.tf.json");
+    o.classify.transferFunction = test::datasetTransferFunction("vtk_headsq_ct.tf.json");
     o.segmentation = {0.05, 20, true, false};
     return o;
 }
@@ -44,7 +49,7 @@ nlohmann::json untimed(nlohmann::json statistics) {
 // Everything a fresh prepare() produces, compared with the staged result.
 void expectSameAsFresh(StagedPreparation& staged, const PrepareOptions& options) {
     const PreparedVolume& p = staged.withStatistics();
-    const PreparedVolume f = test::prepareDataset(kFile, options);
+    const PreparedVolume f = freshHead(options);
     EXPECT_EQ(p.classified.grid, f.classified.grid);
     EXPECT_EQ(p.classified.referenceStep, f.classified.referenceStep);
     EXPECT_EQ(p.classified.sigma, f.classified.sigma);
@@ -65,7 +70,7 @@ void expectSameAsFresh(StagedPreparation& staged, const PrepareOptions& options)
     EXPECT_EQ(p.meta.rayProbe, f.meta.rayProbe);
 }
 
-TEST(StagedPreparation, EachChangeReRunsOnlyTheStagesAfterIt) {
+TEST(PipelineStaged, EachChangeReRunsOnlyTheStagesAfterIt) {
     StagedPreparation staged = stagedHead();
     PrepareOptions o = headOptions();
     const PreparedVolume& p = staged.prepare(o);
@@ -117,7 +122,7 @@ TEST(StagedPreparation, EachChangeReRunsOnlyTheStagesAfterIt) {
     EXPECT_EQ(staged.runs(PrepStage::Fields), 5);
 }
 
-TEST(StagedPreparation, StopsAtTheStageAskedFor) {
+TEST(PipelineStaged, StopsAtTheStageAskedFor) {
     StagedPreparation staged = stagedHead();
     PrepareOptions o = headOptions();
     const PreparedVolume& p = staged.prepare(o, PrepStage::Classify);
@@ -143,11 +148,11 @@ TEST(StagedPreparation, StopsAtTheStageAskedFor) {
     expectSameAsFresh(staged, o);
 }
 
-TEST(StagedPreparation, AVolumeInMemoryIsNeverLoaded) {
+TEST(PipelineStaged, AVolumeInMemoryIsNeverLoaded) {
     const Volume engine = enginePhantom({20, 17, 12});
     StagedPreparation staged(engine);
     PrepareOptions o;
-    o.classify.transferFunction = loadTransferFunction(test::datasetsDir() / "sim.tf.json");
+    o.classify.transferFunction = test::datasetTransferFunction("sim.tf.json");
     o.segmentation = {0.1, 20, true, true};
     const PreparedVolume& p = staged.prepare(o);
     EXPECT_EQ(names(staged.stageTimes()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
@@ -165,7 +170,7 @@ TEST(StagedPreparation, AVolumeInMemoryIsNeverLoaded) {
     EXPECT_FALSE(p.classified.hasNormals());
 }
 
-TEST(StagedPreparation, AStageThatThrowsRunsAgainNextTime) {
+TEST(PipelineStaged, AStageThatThrowsRunsAgainNextTime) {
     StagedPreparation staged = stagedHead();
     PrepareOptions o = headOptions();
     staged.prepare(o);
@@ -182,10 +187,10 @@ TEST(StagedPreparation, AStageThatThrowsRunsAgainNextTime) {
 
 // A preparation that runs once frees the scalars as soon as they are used (volprep's peak memory): once classified,
 // or once segmented where a trilinear segmentation reads them; never after a classification that threw.
-TEST(StagedPreparation, FreesTheScalarsOnceClassifiedWhenAskedTo) {
+TEST(PipelineStaged, FreesTheScalarsOnceClassifiedWhenAskedTo) {
     StagedPreparation staged(enginePhantom({20, 17, 12}), ScalarsOnceClassified::Free);
     PrepareOptions o;
-    o.classify.transferFunction = loadTransferFunction(test::datasetsDir() / "sim.tf.json");
+    o.classify.transferFunction = test::datasetTransferFunction("sim.tf.json");
     PrepareOptions bad = o;
     bad.classify.referenceStep = -1;
     EXPECT_THROW(staged.prepare(bad), InputError);
@@ -209,7 +214,7 @@ TEST(StagedPreparation, FreesTheScalarsOnceClassifiedWhenAskedTo) {
 }
 
 // volprep's stages: the write comes last, timed, after the statistics the file holds (which cannot include it).
-TEST(StagedPreparation, WritesTheResultWithItsStatisticsAsTheLastStage) {
+TEST(PipelineStaged, WritesTheResultWithItsStatisticsAsTheLastStage) {
     StagedPreparation staged = stagedHead();
     const PrepareOptions o = headOptions();
     staged.prepare(o);
@@ -219,7 +224,8 @@ TEST(StagedPreparation, WritesTheResultWithItsStatisticsAsTheLastStage) {
               (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd", "write"}));
     const PreparedVolume& p = staged.withStatistics();
     EXPECT_FALSE(p.meta.statistics["seconds"].contains("write"));
-    EXPECT_TRUE(p.meta.rayProbe);
+    ASSERT_TRUE(p.meta.rayProbe);
+    EXPECT_EQ(p.meta.rayProbe, probeRays(p));  // the render core's probe of the result
     EXPECT_TRUE(std::filesystem::is_regular_file(file));
 }
 

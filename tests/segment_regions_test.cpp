@@ -16,7 +16,7 @@
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/region_key.h"
 #include "preprocess/segment/segment.h"
-#include "support/datasets.h"
+#include "support/load_dataset.h"
 
 namespace vr {
 namespace {
@@ -202,7 +202,7 @@ void expectFootprintsInsideRegions(const Regions& plain, const Regions& trilinea
     EXPECT_GE(singletons, borders);
 }
 
-TEST(Segment, BoundedVariationOnRandomVolumes) {
+TEST(SegmentRegions, BoundedVariationOnRandomVolumes) {
     const Vec3i dims{21, 17, 15};
     for (unsigned seed : {1u, 2u, 3u}) {
         const ClassifiedVolume c = smoothClassified(dims, seed);
@@ -244,7 +244,7 @@ ClassifiedVolume patchyClassified(Vec3i dims, unsigned seed, int values) {
     return c;
 }
 
-TEST(Segment, LabelsAreTheComponentsOfEqualKeysOnEveryShape) {
+TEST(SegmentRegions, LabelsAreTheComponentsOfEqualKeysOnEveryShape) {
     for (Vec3i dims : {Vec3i{1, 1, 13}, Vec3i{1, 7, 9}, Vec3i{8, 1, 5}, Vec3i{6, 5, 1}, Vec3i{33, 2, 3},
                        Vec3i{9, 9, 9}, Vec3i{2, 40, 2}})
         for (int values : {2, 3, 6}) {
@@ -262,7 +262,7 @@ TEST(Segment, LabelsAreTheComponentsOfEqualKeysOnEveryShape) {
         }
 }
 
-TEST(Segment, LabelsAreTheComponentsOfEqualKeysAcrossSlabs) {
+TEST(SegmentRegions, LabelsAreTheComponentsOfEqualKeysAcrossSlabs) {
     // Enough slices for every thread's slabs of slices: components span slabs and are joined at their seams.
     const Vec3i dims{70, 50, 41};
     for (int values : {2, 5}) {
@@ -275,7 +275,7 @@ TEST(Segment, LabelsAreTheComponentsOfEqualKeysAcrossSlabs) {
     }
 }
 
-TEST(Segment, IntoUsedRegionsEqualsFresh) {
+TEST(SegmentRegions, IntoUsedRegionsEqualsFresh) {
     Regions reused = segment(patchyClassified({9, 8, 7}, 1, 3), SegmentationParams{});
     for (Vec3i dims : {Vec3i{4, 6, 5}, Vec3i{9, 8, 7}, Vec3i{9, 8, 7}})
         for (bool trilinear : {false, true}) {
@@ -289,7 +289,7 @@ TEST(Segment, IntoUsedRegionsEqualsFresh) {
         }
 }
 
-TEST(Segment, KeysOfARunEqualSingleKeys) {
+TEST(SegmentRegions, KeysOfARunEqualSingleKeys) {
     // Many distinct (sigma, colour) pairs, more than the run's cache holds, with repeats far apart.
     const Vec3i dims{50, 40, 10};
     ClassifiedVolume c = emptyClassified(dims, true);
@@ -325,7 +325,7 @@ TEST(Segment, KeysOfARunEqualSingleKeys) {
     EXPECT_FALSE(RegionKeyer(c, {1e-6, 10, true, false}).packs());
 }
 
-TEST(Segment, SmoothRampIsNotOneRegion) {
+TEST(SegmentRegions, SmoothRampIsNotOneRegion) {
     // Opacity rises by 0.01 per voxel: every neighbour pair is similar at T_o = 0.05, the ends are not.
     const Vec3i dims{101, 3, 2};
     ClassifiedVolume c = emptyClassified(dims, false);
@@ -341,7 +341,7 @@ TEST(Segment, SmoothRampIsNotOneRegion) {
     }
 }
 
-TEST(Segment, ZeroThresholdsGiveRunsOfIdenticalVoxels) {
+TEST(SegmentRegions, ZeroThresholdsGiveRunsOfIdenticalVoxels) {
     const Vec3i dims{13, 11, 10};
     std::mt19937 rng(7);
     ClassifiedVolume c = emptyClassified(dims, true);
@@ -369,7 +369,7 @@ TEST(Segment, ZeroThresholdsGiveRunsOfIdenticalVoxels) {
     }
 }
 
-TEST(Segment, TransparentVoxelsIgnoreColourAndNormals) {
+TEST(SegmentRegions, TransparentVoxelsIgnoreColourAndNormals) {
     const Vec3i dims{8, 8, 8};
     ClassifiedVolume c = emptyClassified(dims, true);
     std::mt19937 rng(3);
@@ -384,7 +384,7 @@ TEST(Segment, TransparentVoxelsIgnoreColourAndNormals) {
     EXPECT_EQ(segment(c, SegmentationParams{0.5, 90, true, false}).count, 2u);
 }
 
-TEST(Segment, FlatNormalsAreSimilarOnlyToFlatNormals) {
+TEST(SegmentRegions, FlatNormalsAreSimilarOnlyToFlatNormals) {
     const Vec3i dims{3, 1, 1};
     ClassifiedVolume c = emptyClassified(dims, true);
     c.sigma = {1.f, 1.f, 1.f};
@@ -400,7 +400,7 @@ TEST(Segment, FlatNormalsAreSimilarOnlyToFlatNormals) {
     EXPECT_EQ(segment(c, p).count, 1u);
 }
 
-TEST(Segment, SmallerThresholdsGiveMoreRegions) {
+TEST(SegmentRegions, SmallerThresholdsGiveMoreRegions) {
     const Vec3i dims{24, 24, 20};
     const ClassifiedVolume c = smoothClassified(dims, 11);
     // Halving T_o splits every bin in two, so the partition refines and the count cannot fall.
@@ -433,7 +433,7 @@ TEST(Segment, SmallerThresholdsGiveMoreRegions) {
     }
 }
 
-TEST(Segment, CubeMapCellsHaveBoundedDiameter) {
+TEST(SegmentRegions, CubeMapCellsHaveBoundedDiameter) {
     std::mt19937 rng(13);
     std::uniform_real_distribution<double> u(0, 1);
     const auto unit = [](double x, double y, double z) {
@@ -477,7 +477,7 @@ TEST(Segment, CubeMapCellsHaveBoundedDiameter) {
     EXPECT_EQ(cubeMapCell({0.3f, -0.2f, 0.9f}, 0), 0u);
 }
 
-TEST(Segment, TrilinearBorderVoxelsAreRegionsOfTheirOwn) {
+TEST(SegmentRegions, TrilinearBorderVoxelsAreRegionsOfTheirOwn) {
     // Two slabs: transparent x < 5, opaque x >= 5. Border voxels: x = 4 and x = 5 (their footprints straddle).
     const Vec3i dims{10, 4, 3};
     ClassifiedVolume c = emptyClassified(dims, false);
@@ -505,7 +505,7 @@ TEST(Segment, TrilinearBorderVoxelsAreRegionsOfTheirOwn) {
     EXPECT_EQ(t.count, 1u + 27u);
 }
 
-TEST(Segment, BadInputIsAnInputError) {
+TEST(SegmentRegions, BadInputIsAnInputError) {
     const ClassifiedVolume c = emptyClassified({2, 2, 2}, true);
     for (double bad : {-0.01, std::nan("")}) {
         EXPECT_THROW(segment(c, SegmentationParams{bad, 1, true, false}), InputError);
@@ -524,22 +524,10 @@ TEST(Segment, BadInputIsAnInputError) {
     EXPECT_THROW(segment(broken, SegmentationParams{}), InputError);
 }
 
-Volume loadDataset(const std::string& file) {
-    for (const auto& e : test::rawManifest())
-        if (e.file == file) {
-            RawOptions raw;
-            raw.dims = e.dims;
-            raw.type = e.type;
-            raw.spacing = e.spacing;
-            return loadVolume(test::datasetsDir() / e.file, raw);
-        }
-    throw std::runtime_error(file + " not in MANIFEST.tsv");
-}
-
-TEST(SegmentDataset, HeadCtAtSeveralThresholds) {
-    const Volume ct = loadDataset("vtk_headsq_ct_64x64x93_uint16.raw.gz");
+TEST(SegmentRegionsOnDatasets, HeadCtAtSeveralThresholds) {
+    const Volume ct = test::loadDataset("vtk_headsq_ct_64x64x93_uint16");
     ClassifyParams cp;
-    cp.transferFunction = loadTransferFunction(test::datasetsDir() / "vtk_headsq_ct.tf.json");
+    cp.transferFunction = test::datasetTransferFunction("vtk_headsq_ct.tf.json");
     const ClassifiedVolume c = classify(ct, cp);
     uint32_t previous = 0;
     for (auto [to, ta] : {std::pair{0.5, 90.0}, {0.1, 20.0}, {0.02, 3.0}, {0.0, 0.0}}) {
@@ -558,10 +546,10 @@ TEST(SegmentDataset, HeadCtAtSeveralThresholds) {
     EXPECT_GT(*std::max_element(size.begin(), size.end()), c.sigma.size() / 10);
 }
 
-TEST(SegmentDataset, CraniumCtClassifyAndSegment) {
-    const Volume ct = loadDataset("cranium_ct_256x256x108_int16.raw.gz");
+TEST(SegmentRegionsOnDatasets, CraniumCtClassifyAndSegment) {
+    const Volume ct = test::loadDataset("cranium_ct_256x256x108_int16");
     ClassifyParams cp;
-    cp.transferFunction = loadTransferFunction(test::datasetsDir() / "cranium_ct.tf.json");
+    cp.transferFunction = test::datasetTransferFunction("cranium_ct.tf.json");
     using Clock = std::chrono::steady_clock;
     // Informative only (speed is asserted in benchmarks): wall and process CPU time (all threads).
     const auto t0 = Clock::now();

@@ -8,7 +8,7 @@
 namespace vr {
 namespace {
 
-TEST(Downsample, AveragesBlocksAndKeepsTheExtent) {
+TEST(SweepDownsample, AveragesBlocksAndKeepsTheExtent) {
     Volume v = rampPhantom({5, 4, 3}, 0, 0, 4, {0.5, 1, 2});  // x = 0..4 along x
     v.grid.origin = {1, 2, 3};
     const Volume d = downsample(v, 2);
@@ -25,7 +25,7 @@ TEST(Downsample, AveragesBlocksAndKeepsTheExtent) {
         }
 }
 
-TEST(Downsample, RoundsIntegerVolumesAndKeepsFactorOne) {
+TEST(SweepDownsample, RoundsIntegerVolumesAndKeepsFactorOne) {
     Volume v = checkerboardPhantom({4, 4, 4}, 0, 255);
     v.sourceType = ScalarType::UInt8;
     const Volume d = downsample(v, 2);  // four 0s and four 255s per block: 127.5 rounds to 128

@@ -33,7 +33,7 @@ Image offset(Image im, float d) {
     return im;
 }
 
-TEST(Metrics, IdenticalImages) {
+TEST(SweepMetrics, IdenticalImages) {
     const Image a = testImage(40, 30);
     const ImageError e = imageError(a, a);
     EXPECT_EQ(e.mse, 0);
@@ -44,7 +44,7 @@ TEST(Metrics, IdenticalImages) {
     EXPECT_EQ(e.percentPerceptual, 0);
 }
 
-TEST(Metrics, ConstantOffsetGivesKnownRmseAndPsnr) {
+TEST(SweepMetrics, ConstantOffsetGivesKnownRmseAndPsnr) {
     const Image a = testImage(32, 32);
     const float d = 0.01f;
     const Difference diff = difference(a, offset(a, d));
@@ -54,13 +54,13 @@ TEST(Metrics, ConstantOffsetGivesKnownRmseAndPsnr) {
     EXPECT_NEAR(difference(a, offset(a, 0.1f)).psnr(), 20.0, 1e-3);
 }
 
-TEST(Metrics, AlphaIsNotCompared) {
+TEST(SweepMetrics, AlphaIsNotCompared) {
     Image a = testImage(16, 16), b = a;
     for (std::size_t i = 3; i < b.rgba.size(); i += 4) b.rgba[i] = 0.25f;
     EXPECT_EQ(difference(a, b).mse, 0);
 }
 
-TEST(Metrics, SsimFallsWithNoiseAndIsOneForABrightnessFreeCopy) {
+TEST(SweepMetrics, SsimFallsWithNoiseAndIsOneForABrightnessFreeCopy) {
     const Image a = testImage(64, 64, 3);
     Image noisy = a;
     std::mt19937 rng(7);
@@ -78,7 +78,7 @@ TEST(Metrics, SsimFallsWithNoiseAndIsOneForABrightnessFreeCopy) {
     EXPECT_NEAR(ssim(noisy, a), s, 1e-12);
 }
 
-TEST(Metrics, SsimOfUniformImagesFollowsTheLuminanceTerm) {
+TEST(SweepMetrics, SsimOfUniformImagesFollowsTheLuminanceTerm) {
     // Two flat images of luminance m1, m2: SSIM = (2 m1 m2 + C1) / (m1^2 + m2^2 + C1) (no variance).
     Image a(20, 20), b(20, 20);
     for (std::size_t i = 0; i < a.rgba.size(); i += 4)
@@ -90,7 +90,7 @@ TEST(Metrics, SsimOfUniformImagesFollowsTheLuminanceTerm) {
     EXPECT_NEAR(ssim(a, b), (2 * m1 * m2 + c1) / (m1 * m1 + m2 * m2 + c1), 1e-6);
 }
 
-TEST(Metrics, PercentOff8BitCountsPixelsBeyondOneLevel) {
+TEST(SweepMetrics, PercentOff8BitCountsPixelsBeyondOneLevel) {
     Image a(10, 10), b(10, 10);  // black
     // 7 pixels of 100 brighter by 3/255 in sRGB terms (linear values that encode to 3 and 1).
     for (int i = 0; i < 7; ++i) b.pixel(i, 0)[1] = 3.f / 255 / 12.92f;
@@ -99,7 +99,7 @@ TEST(Metrics, PercentOff8BitCountsPixelsBeyondOneLevel) {
     EXPECT_NEAR(percentOff8Bit(a, b, 0), 12.0, 1e-12);
 }
 
-TEST(Metrics, PercentPerceptualCountsVisibleColourChanges) {
+TEST(SweepMetrics, PercentPerceptualCountsVisibleColourChanges) {
     Image a(10, 10), b(10, 10);
     for (std::size_t i = 0; i < a.rgba.size(); i += 4)
         for (int c = 0; c < 3; ++c) a.rgba[i + c] = b.rgba[i + c] = 0.5f;
@@ -109,7 +109,7 @@ TEST(Metrics, PercentPerceptualCountsVisibleColourChanges) {
     EXPECT_EQ(percentPerceptual(a, a), 0);
 }
 
-TEST(Metrics, SummaryTakesMeansAndWorstViews) {
+TEST(SweepMetrics, SummaryTakesMeansAndWorstViews) {
     ImageError exact{0, INFINITY, 0, 1, 0, 0};
     ImageError off{1e-4, 40, 0.02, 0.9, 2, 1};
     const ErrorSummary s = summarize({exact, off});
@@ -122,7 +122,7 @@ TEST(Metrics, SummaryTakesMeansAndWorstViews) {
     EXPECT_EQ(s.mean.percentPerceptual, 0.5);
 }
 
-TEST(Metrics, ErrorMapIsScaledAbsoluteDifference) {
+TEST(SweepMetrics, ErrorMapIsScaledAbsoluteDifference) {
     const Image a = testImage(8, 8);
     const Image map = errorMap(a, offset(a, -0.01f), 10);
     for (std::size_t i = 0; i < map.rgba.size(); i += 4) {
@@ -131,7 +131,7 @@ TEST(Metrics, ErrorMapIsScaledAbsoluteDifference) {
     }
 }
 
-TEST(Metrics, BadSizesAreInputErrors) {
+TEST(SweepMetrics, BadSizesAreInputErrors) {
     EXPECT_THROW(difference(Image(4, 4), Image(4, 5)), InputError);
     EXPECT_THROW(ssim(Image(10, 10), Image(10, 10)), InputError);  // smaller than the 11x11 window
     EXPECT_THROW(percentPerceptual(Image(4, 4), Image(5, 4)), InputError);

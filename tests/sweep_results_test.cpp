@@ -27,7 +27,7 @@ SweepRow row(const std::string& caster, double to, double ta, double ratio, doub
     return r;
 }
 
-TEST(SweepCsv, RowsRoundTripThroughTheFile) {
+TEST(SweepResultsCsv, RowsRoundTripThroughTheFile) {
     SweepRow r = row("eacd", 0.005, 3, 0.125, 41.5, 0.25);
     r.views = 8;
     r.width = 256;
@@ -59,7 +59,7 @@ TEST(SweepCsv, RowsRoundTripThroughTheFile) {
     EXPECT_NE(toCsvLine(exact).find(",inf,inf,"), std::string::npos);
 }
 
-TEST(SweepCsv, MalformedFilesAreInputErrors) {
+TEST(SweepResultsCsv, MalformedFilesAreInputErrors) {
     const auto dir = test::scratchDir("sweep_csv_bad");
     EXPECT_TRUE(readSweepCsv(dir / "missing.csv").empty());
     std::ofstream(dir / "foreign.csv") << "a,b,c\n1,2,3\n";
@@ -72,14 +72,14 @@ TEST(SweepCsv, MalformedFilesAreInputErrors) {
     EXPECT_THROW(readSweepCsv(dir / "nan.csv"), InputError);
 }
 
-TEST(Pareto, KeepsExactlyTheNonDominatedPoints) {
+TEST(SweepResultsPareto, KeepsExactlyTheNonDominatedPoints) {
     //  (1,5) (2,3) (3,4) (4,1) (2,3) (5,5)
     const std::vector<bool> f = paretoFront({{1, 5}, {2, 3}, {3, 4}, {4, 1}, {2, 3}, {5, 5}});
     EXPECT_EQ(f, (std::vector<bool>{true, true, false, true, true, false}));
     EXPECT_TRUE(paretoFront({}).empty());
 }
 
-TEST(Selection, BestSettingMeetsTheTargetInTheWorstView) {
+TEST(SweepResultsSelection, BestSettingMeetsTheTargetInTheWorstView) {
     const std::vector<SweepRow> rows{
         row("primitive", 0, 0, 1, INFINITY, 0),  row("eacd", 0, 0, 0.2, INFINITY, 0),
         row("eacd", 0.01, 3, 0.1, 45, 0.5),      row("eacd", 0.1, 20, 0.05, 39.9, 0.1),  // PSNR too low
@@ -97,7 +97,7 @@ TEST(Selection, BestSettingMeetsTheTargetInTheWorstView) {
     EXPECT_EQ(psnrFront(rows), (std::vector<bool>{false, true, false, true, true, true}));
 }
 
-TEST(SweepOptions, ValidatesTheGridAndNamesTheDataset) {
+TEST(SweepResultsOptions, ValidatesTheGridAndNamesTheDataset) {
     SweepOptions o;
     o.input = "/data/cranium_ct_256x256x108_int16.raw.gz";
     o.transferFunction = "tf.json";

@@ -32,7 +32,7 @@ bool hasFlag(const std::string& vmFlags, const std::string& flag) {
     return (vmFlags + " ").find(" " + flag + " ") != std::string::npos;
 }
 
-TEST(HugePageAllocations, LargeBlocksAreAdvised) {
+TEST(ToolsHugePageAllocations, LargeBlocksAreAdvised) {
 #ifndef VR_HUGE_PAGE_ALLOCATIONS
     GTEST_SKIP() << "sanitizer build: the sanitizer's operator new is in use";
 #endif

@@ -18,23 +18,12 @@ namespace vr {
 namespace {
 namespace fs = std::filesystem;
 
-const fs::path kVolprep = test::volprepExecutable();
 using test::slurp;
 using Outcome = test::CliOutcome;
+constexpr auto volprep = [](const std::string& args) { return test::runVolprep(args); };
+constexpr auto q = test::shellQuote;
 
-// Runs volprep with `args` (already quoted where needed), capturing both streams.
-Outcome volprep(const std::string& args) {
-    EXPECT_TRUE(fs::exists(kVolprep)) << "build the volprep target first: " << kVolprep;
-    return test::runCli(kVolprep, args);
-}
-
-std::string q(const fs::path& p) { return test::shellQuote(p); }
-
-test::DatasetEntry headsq() {
-    for (const auto& e : test::rawManifest())
-        if (e.file == "vtk_headsq_ct_64x64x93_uint16.raw.gz") return e;
-    throw std::runtime_error("vtk_headsq_ct_64x64x93_uint16.raw.gz is not in the manifest");
-}
+test::DatasetEntry headsq() { return test::rawDataset("vtk_headsq_ct_64x64x93_uint16"); }
 
 std::string spacingFlag(const Vec3d& s) {
     std::ostringstream o;
@@ -58,7 +47,7 @@ double mean(const Field& v, Get get) {
     return s / double(v.size());
 }
 
-TEST(Volprep, PreparesTheHeadCtAndItReadsBackConsistently) {
+TEST(VolprepCli, PreparesTheHeadCtAndItReadsBackConsistently) {
     fs::path dir = test::scratchDir("volprep_headsq");
     fs::path out = dir / "headsq.vprep";
     Outcome r = volprep(headsqArgs(out));
@@ -109,7 +98,7 @@ TEST(Volprep, PreparesTheHeadCtAndItReadsBackConsistently) {
     EXPECT_TRUE(p.meta.rayProbe->pc && p.meta.rayProbe->acd && p.meta.rayProbe->eacd);
 }
 
-TEST(Volprep, StoresEacdInTheCodeAsked) {
+TEST(VolprepCli, StoresEacdInTheCodeAsked) {
     fs::path dir = test::scratchDir("volprep_eacd_code");
     std::map<ExtentCode, PreparedVolume> p;
     for (ExtentCode code : {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8}) {
@@ -131,7 +120,7 @@ TEST(Volprep, StoresEacdInTheCodeAsked) {
     }
 }
 
-TEST(Volprep, BuildsOnlyTheRequestedFieldsAndNormals) {
+TEST(VolprepCli, BuildsOnlyTheRequestedFieldsAndNormals) {
     fs::path dir = test::scratchDir("volprep_fields");
     fs::path out = dir / "pc.vprep";
     Outcome r = volprep(headsqArgs(out) + " --fields pc --no-normals --to 0.05 --ta 10 --trilinear");
@@ -148,7 +137,7 @@ TEST(Volprep, BuildsOnlyTheRequestedFieldsAndNormals) {
 }
 
 // A raw file whose name says nothing: dims, type, spacing and byte order come from the flags.
-TEST(Volprep, ReadsHeaderlessRawWithFlagsInEitherByteOrder) {
+TEST(VolprepCli, ReadsHeaderlessRawWithFlagsInEitherByteOrder) {
     fs::path dir = test::scratchDir("volprep_raw");
     Volume shells = shellsPhantom({24, 20, 16});
     for (bool big : {false, true}) {
@@ -175,7 +164,7 @@ TEST(Volprep, ReadsHeaderlessRawWithFlagsInEitherByteOrder) {
 }
 
 // volphantom writes NAME_DxDxD_TYPE.raw, which volprep reads with no raw flags.
-TEST(Volprep, PreparesAPhantomWrittenByVolphantom) {
+TEST(VolprepCli, PreparesAPhantomWrittenByVolphantom) {
     fs::path dir = test::scratchDir("volprep_phantom");
     fs::path volphantom = test::volphantomExecutable();
     std::string cmd = volphantom.string() + " engine --dims 32x24x16 -o " + q(dir) + " >/dev/null";
@@ -195,7 +184,7 @@ TEST(Volprep, PreparesAPhantomWrittenByVolphantom) {
     EXPECT_EQ(p.regions.label[0], p.regions.label[voxelCount(p.regions.dims) - 1]);
 }
 
-TEST(Volprep, HelpDescribesEveryFlag) {
+TEST(VolprepCli, HelpDescribesEveryFlag) {
     fs::path dir = test::scratchDir("volprep_help");
     Outcome r = volprep("--help");
     EXPECT_EQ(r.status, 0);
@@ -205,7 +194,7 @@ TEST(Volprep, HelpDescribesEveryFlag) {
 }
 
 // Each bad run: non-zero exit, "volprep: " and the problem on stderr, and no file at the output path.
-TEST(Volprep, BadInputFailsClearlyAndWritesNothing) {
+TEST(VolprepCli, BadInputFailsClearlyAndWritesNothing) {
     fs::path dir = test::scratchDir("volprep_bad");
     test::DatasetEntry e = headsq();
     std::string in = q(test::datasetsDir() / e.file), tf = " --tf " + q(test::datasetsDir() / e.tf);
@@ -230,17 +219,13 @@ TEST(Volprep, BadInputFailsClearlyAndWritesNothing) {
              {in + tf + " -o " + q(dir), "it is a folder"},
              {in + tf, "--output is required"},
          }) {
-        SCOPED_TRACE(c.args);
-        Outcome r = volprep(c.args);
-        EXPECT_NE(r.status, 0);
-        EXPECT_EQ(r.err.rfind("volprep: ", 0), 0u) << r.err;
-        EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        test::expectRefusal(volprep(c.args), "volprep", c.args, {c.message});
         EXPECT_FALSE(fs::exists(out));
         EXPECT_FALSE(fs::exists(dir / "missing"));
     }
 }
 
-TEST(Volprep, AFailedRunLeavesTheExistingOutputUntouched) {
+TEST(VolprepCli, AFailedRunLeavesTheExistingOutputUntouched) {
     fs::path dir = test::scratchDir("volprep_keep");
     fs::path out = dir / "keep.vprep";
     ASSERT_EQ(volprep(headsqArgs(out) + " --fields pc").status, 0);

@@ -14,16 +14,10 @@ namespace {
 namespace fs = std::filesystem;
 using test::shellQuote;
 
-test::CliOutcome volprep(const std::string& args) {
-    EXPECT_TRUE(fs::exists(test::volprepExecutable())) << "build the volprep target first";
-    return test::runCli(test::volprepExecutable(), args);
-}
+constexpr auto volprep = [](const std::string& args) { return test::runVolprep(args); };
 
 void expectRefused(const std::string& args, const std::string& mentions) {
-    const test::CliOutcome r = volprep(args);
-    EXPECT_NE(r.status, 0) << args;
-    EXPECT_EQ(r.err.rfind("volprep: ", 0), 0u) << args << "\n" << r.err;
-    EXPECT_NE(r.err.find(mentions), std::string::npos) << "expected '" << mentions << "' for " << args << " in:\n" << r.err;
+    test::expectRefusal(volprep(args), "volprep", args, {mentions});
 }
 
 // A small raw volume named so that volprep knows its dims and type: a bright block in a dark box.
@@ -57,8 +51,8 @@ TEST(VolprepFaults, AbsurdSpacingThresholdsAndDimsAreRefused) {
     // Positive and finite but absurd: prepared, and then refused by volrender, naming the spacing (it renders the
     // step in voxels of the smallest spacing, so a ray would take ~1e320 samples).
     ASSERT_EQ(volprep(in + " --spacing 1e-320,1,1").status, 0);
-    const test::CliOutcome render = test::runCli(test::volrenderExecutable(),
-                                                 shellQuote(dir / "x.vprep") + " -o " + shellQuote(dir / "x.png") + " --cpu");
+    const test::CliOutcome render =
+        test::runVolrender(shellQuote(dir / "x.vprep") + " -o " + shellQuote(dir / "x.png") + " --cpu");
     EXPECT_EQ(render.status, 1);
     EXPECT_NE(render.err.find("smallest spacing"), std::string::npos) << render.err;
     fs::remove(dir / "x.vprep");

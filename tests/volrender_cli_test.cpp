@@ -7,61 +7,39 @@
 
 #include "io/caster_calibration_file.h"
 #include "io/prepared_file.h"
-#include "preprocess/classify/classify.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/load/load_volume.h"
-#include "preprocess/segment/segment.h"
-#include "support/cli.h"
-#include "support/datasets.h"
 #include "render/caster_choice.h"
 #include "render/image.h"
+#include "support/cli.h"
+#include "support/load_dataset.h"
+#include "support/prepare.h"
 
 namespace vr {
 namespace {
 namespace fs = std::filesystem;
 
-const fs::path kVolrender = test::volrenderExecutable();
 using test::slurp;
-using Outcome = test::CliOutcome;
-
-Outcome volrender(const std::string& args) {
-    EXPECT_TRUE(fs::exists(kVolrender)) << "build the volrender target first: " << kVolrender;
-    return test::runCli(kVolrender, args);
-}
-
-std::string q(const fs::path& p) { return test::shellQuote(p); }
+constexpr auto volrender = [](const std::string& args) { return test::runVolrender(args); };
+constexpr auto q = test::shellQuote;
 
 // vtk_headsq_ct with its transfer function and spacing, thresholds (0.02, 10 deg), every field: prepared once.
 const fs::path& preparedHead() {
     static const fs::path path = [] {
-        for (const auto& e : test::rawManifest()) {
-            if (e.file != "vtk_headsq_ct_64x64x93_uint16.raw.gz") continue;
-            RawOptions raw;
-            raw.dims = e.dims;
-            raw.type = e.type;
-            raw.spacing = e.spacing;
-            PreparedVolume p;
-            ClassifyParams cp;
-            cp.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
-            p.classified = classify(loadVolume(test::datasetsDir() / e.file, raw), cp);
-            p.meta.source = e.file;
-            p.meta.segmentation = {0.02, 10, true, false};
-            p.regions = segment(p.classified, p.meta.segmentation);
-            p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
-            const fs::path out = test::scratchDir("volrender_cli_prepared") / "headsq.vrp";
-            writePrepared(out, p);
-            return out;
-        }
-        throw std::runtime_error("vtk_headsq_ct is not in the manifest");
+        const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+        const PreparedVolume p = test::prepareVolume(test::loadDataset(e), test::datasetTransferFunction(e.tf),
+                                                     {0.02, 10, true, false});
+        const fs::path out = test::scratchDir("volrender_cli_prepared") / "headsq.vrp";
+        writePrepared(out, p);
+        return out;
     }();
     return path;
 }
 
 TEST(VolrenderCli, RendersImageHeatmapAndStatistics) {
     const fs::path dir = test::scratchDir("volrender_cli_render");
-    const Outcome r = volrender(q(preparedHead()) + " -o " + q(dir / "head.png") + " --caster eacd --size 64x48" +
-                                " --azimuth 30 --elevation 10 --stats " + q(dir / "stats.json") + " --heatmap " +
-                                q(dir / "heat.png"));
+    const test::CliOutcome r =
+        volrender(q(preparedHead()) + " -o " + q(dir / "head.png") + " --caster eacd --size 64x48" +
+                  " --azimuth 30 --elevation 10 --stats " + q(dir / "stats.json") + " --heatmap " +
+                  q(dir / "heat.png"));
     ASSERT_EQ(r.status, 0) << r.err;
     const Image image = readImage(dir / "head.png");
     EXPECT_EQ(image.width, 64);
@@ -93,7 +71,7 @@ TEST(VolrenderCli, VulkanAndCpuImagesAgree) {
 
 TEST(VolrenderCli, OrbitWritesNumberedViews) {
     const fs::path dir = test::scratchDir("volrender_cli_orbit");
-    const Outcome r =
+    const test::CliOutcome r =
         volrender(q(preparedHead()) + " -o " + q(dir / "orbit.png") + " --caster pc --size 24x24 --views 3");
     ASSERT_EQ(r.status, 0) << r.err;
     for (const char* name : {"orbit_000.png", "orbit_001.png", "orbit_002.png"})
@@ -102,21 +80,18 @@ TEST(VolrenderCli, OrbitWritesNumberedViews) {
 }
 
 TEST(VolrenderCli, HelpAndDeviceList) {
-    const Outcome help = volrender("--help");
+    const test::CliOutcome help = volrender("--help");
     EXPECT_EQ(help.status, 0);
     for (const char* flag :
          {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear"})
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
-    const Outcome list = volrender("--list-devices");
+    const test::CliOutcome list = volrender("--list-devices");
     EXPECT_EQ(list.status, 0);
     EXPECT_EQ(list.out.rfind("0: ", 0), 0u) << list.out;
 }
 
 void expectRejected(const std::string& args, const std::string& mentions) {
-    const Outcome r = volrender(args);
-    EXPECT_NE(r.status, 0) << args;
-    EXPECT_EQ(r.err.rfind("volrender: ", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find(mentions), std::string::npos) << "expected '" << mentions << "' in: " << r.err;
+    test::expectRefusal(volrender(args), "volrender", args, {mentions});
 }
 
 TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
@@ -145,7 +120,7 @@ TEST(VolrenderCli, AutoTakesTheCalibrationOfItsDeviceAndSaysWhich) {
     const std::string run = q(preparedHead()) + " -o " + q(dir / "x.png") + " --size 16x16 --caster auto --stats " +
                             q(dir / "stats.json");
     auto calibrationUsed = [&](const std::string& args) {
-        const Outcome r = test::runCli(kVolrender, run + args, home);
+        const test::CliOutcome r = test::runVolrender(run + args, home);
         EXPECT_EQ(r.status, 0) << r.err;
         return nlohmann::json::parse(slurp(dir / "stats.json"));
     };
@@ -167,7 +142,7 @@ TEST(VolrenderCli, AutoTakesTheCalibrationOfItsDeviceAndSaysWhich) {
     writeCasterCalibration(user / "calibration.json", here);
     EXPECT_EQ(calibrationUsed("")["calibration"]["source"], (user / "calibration.json").string());
     writeCasterCalibration(user / "calibration.json", elsewhere);
-    const Outcome passedOver = test::runCli(kVolrender, run, home);
+    const test::CliOutcome passedOver = test::runVolrender(run, home);
     EXPECT_EQ(passedOver.status, 0) << passedOver.err;
     EXPECT_NE(passedOver.err.find("measured on 'another GPU'"), std::string::npos) << passedOver.err;
     EXPECT_NE(passedOver.err.find("using the built-in constants"), std::string::npos) << passedOver.err;

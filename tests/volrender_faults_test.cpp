@@ -37,16 +37,11 @@ const fs::path& preparedBlock() {
 }
 
 test::CliOutcome volrender(const std::string& args, const std::string& env = "") {
-    EXPECT_TRUE(fs::exists(test::volrenderExecutable())) << "build the volrender target first";
-    return test::runCli(test::volrenderExecutable(), args, env);
+    return test::runVolrender(args, env);
 }
 
 void expectRefused(const std::string& args, const std::vector<std::string>& mentions, const std::string& env = "") {
-    const test::CliOutcome r = volrender(args, env);
-    EXPECT_NE(r.status, 0) << args;
-    EXPECT_EQ(r.err.rfind("volrender: ", 0), 0u) << args << "\n" << r.err;
-    for (const std::string& m : mentions)
-        EXPECT_NE(r.err.find(m), std::string::npos) << "expected '" << m << "' for " << args << " in:\n" << r.err;
+    test::expectRefusal(volrender(args, env), "volrender", args, mentions);
 }
 void expectRefused(const std::string& args, const std::string& mentions, const std::string& env = "") {
     expectRefused(args, std::vector<std::string>{mentions}, env);

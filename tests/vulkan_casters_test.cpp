@@ -7,37 +7,23 @@
 
 #include "core/errors.h"
 #include "datasets/phantoms.h"
-#include "preprocess/classify/classify.h"
-#include "preprocess/classify/tf_range_table.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/load/load_volume.h"
-#include "preprocess/segment/segment.h"
-#include "support/datasets.h"
-#include "support/render_cases.h"
+#include "preprocess/classify/transfer_function.h"
 #include "render/cpu_renderer.h"
 #include "render/view_octants.h"
-#include "volrender/vulkan/vulkan_renderer.h"
+#include "support/load_dataset.h"
+#include "support/prepare.h"
+#include "support/volumes.h"
+#include "support/vulkan.h"
 
 namespace vr {
 namespace {
 
+using test::expectNoValidationErrors;
 using test::kCasters;
+using test::renderSettings;
 
-VulkanContext& context() {
-    static VulkanContext ctx(VulkanOptions{-1, true});  // validation on in every test
-    return ctx;
-}
 // 40-pixel tiles on 64x48 images: full and partial tiles in both directions.
-VulkanRenderer& renderer() {
-    static VulkanRenderer r(context(), 40);
-    return r;
-}
-
-void expectNoValidationErrors() {
-    EXPECT_TRUE(context().validationEnabled()) << "VK_LAYER_KHRONOS_validation is not installed";
-    const auto errors = context().validationErrors();
-    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
-}
+VulkanRenderer& renderer() { return test::vulkanRenderer(40); }
 
 // Covers HU phantoms and datasets (-1000..3000) and 8-bit ones (0..255); opacity 1 at the top (the stiff case).
 const TransferFunction& phantomTf() {
@@ -50,32 +36,7 @@ const TransferFunction& phantomTf() {
 }
 
 PreparedVolume prepare(const Volume& volume, const TransferFunction& tf, double to, double ta, bool trilinear = false) {
-    PreparedVolume p;
-    ClassifyParams cp;
-    cp.transferFunction = tf;
-    p.classified = classify(volume, cp);
-    p.meta.segmentation = {to, ta, true, trilinear};
-    const TfRangeTable spread(transferTable(volume, tf));  // trilinear regions as volprep makes them
-    p.regions = segment(p.classified, p.meta.segmentation, ClassifiedScalars{volume.values, spread});
-    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
-    return p;
-}
-
-// The centred block of at most `edge` voxels per axis: the large real volumes are sampled, not rendered whole.
-Volume cropCentre(const Volume& v, int edge) {
-    Volume out = v;
-    Vec3i lo;
-    for (int a = 0; a < 3; ++a) {
-        out.grid.dims[a] = std::min(edge, v.grid.dims[a]);
-        lo[a] = (v.grid.dims[a] - out.grid.dims[a]) / 2;
-    }
-    out.grid.origin = v.grid.origin + Vec3d(lo) * v.grid.spacing;
-    out.values.assign(out.grid.voxels(), 0);
-    for (int z = 0; z < out.grid.dims.z; ++z)
-        for (int y = 0; y < out.grid.dims.y; ++y)
-            for (int x = 0; x < out.grid.dims.x; ++x)
-                out.values[linearIndex(out.grid.dims, x, y, z)] = v.at(lo.x + x, lo.y + y, lo.z + z);
-    return out;
+    return test::prepareVolume(volume, tf, {to, ta, true, trilinear});
 }
 
 struct Dataset {
@@ -84,20 +45,13 @@ struct Dataset {
     TransferFunction tf;
 };
 
+// A shared dataset's centred block of at most `edge` voxels per axis: the large real volumes are sampled, not
+// rendered whole.
 Dataset loadDataset(const test::DatasetEntry& e, int edge) {
-    RawOptions raw;
-    raw.dims = e.dims;
-    raw.type = e.type;
-    raw.spacing = e.spacing;
-    return {e.file, cropCentre(loadVolume(test::datasetsDir() / e.file, raw), edge),
-            loadTransferFunction(test::datasetsDir() / e.tf)};
+    return {e.file, test::centralBlock(test::loadDataset(e), edge), test::datasetTransferFunction(e.tf)};
 }
 
-Dataset loadDataset(const std::string& prefix, int edge) {
-    for (const auto& e : test::rawManifest())
-        if (e.file.rfind(prefix, 0) == 0) return loadDataset(e, edge);
-    throw std::runtime_error("no dataset " + prefix + " in the manifest");
-}
+Dataset loadDataset(const std::string& prefix, int edge) { return loadDataset(test::rawDataset(prefix), edge); }
 
 std::vector<Dataset> phantoms() {
     return {{"constant", constantPhantom({24, 20, 28}, 150), phantomTf()},
@@ -112,14 +66,6 @@ ViewParams view(double az, double el, Projection projection = Projection::Orthog
     return test::orbitView(az, el, 64, 48, projection);
 }
 
-RenderSettings settings(Caster caster, bool shading = true, bool trilinear = false) {
-    RenderSettings s;
-    s.caster = caster;
-    s.shading = shading;
-    s.trilinear = trilinear;
-    return s;
-}
-
 double meanIterations(const RenderResult& r) {
     return std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0) / double(r.iterations.size());
 }
@@ -131,7 +77,7 @@ void expectMatchesCpu(const std::string& name, const PreparedVolume& p, bool tri
     for (const ViewParams& vp : views) {
         const Camera cam = Camera::fit(p.classified.grid, vp);
         for (Caster c : kCasters) {
-            const RenderSettings s = settings(c, true, trilinear);
+            const RenderSettings s = renderSettings(c, true, trilinear);
             const RenderResult gpu = renderer().render(p, cam, s);
             const RenderResult cpu = renderCpu(p, cam, s);
             SCOPED_TRACE(name + " " + std::string(casterName(c)) + " az " + std::to_string(vp.azimuthDeg) +
@@ -172,7 +118,7 @@ TEST(VulkanCasters, MatchCpuReferenceWithDirectionalLightBackgroundAndOtherSteps
         const Camera cam = Camera::fit(p.classified.grid, vp);
         for (Caster c : kCasters) {
             for (double step : {0.25, 1.7}) {  // 1.7: dt larger than a voxel
-                RenderSettings s = settings(c);
+                RenderSettings s = renderSettings(c);
                 s.lightDirection = Vec3d{1, -2, 0.5};
                 s.background = {0.1, 0.2, 0.3};
                 s.stepVoxels = step;
@@ -196,7 +142,7 @@ TEST(VulkanCasters, LeapsOfThousandsOfSamplesMatchCpuReference) {
     vp.width = vp.height = 16;
     const Camera cam = Camera::fit(v.grid, vp);
     for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
-        RenderSettings s = settings(c, false);
+        RenderSettings s = renderSettings(c, false);
         s.stepVoxels = 0.002;
         const RenderResult gpu = renderer().render(p, cam, s);
         const RenderResult cpu = renderCpu(p, cam, s);
@@ -211,14 +157,14 @@ TEST(VulkanCasters, MissingFieldsAndIterationCapAreReported) {
     const Volume v = shellsPhantom({12, 12, 12});
     PreparedVolume p = prepare(v, phantomTf(), 0, 0);
     const Camera cam = Camera::fit(v.grid, view(0, 0));
-    RenderSettings capped = settings(Caster::Primitive);
+    RenderSettings capped = renderSettings(Caster::Primitive);
     capped.maxIterationsPerRay = 2;
     EXPECT_THROW(renderer().render(p, cam, capped), std::runtime_error);
     p.fields = {};
-    EXPECT_THROW(renderer().render(p, cam, settings(Caster::EACD)), InputError);
+    EXPECT_THROW(renderer().render(p, cam, renderSettings(Caster::EACD)), InputError);
     p.classified.normal.clear();
-    EXPECT_THROW(renderer().render(p, cam, settings(Caster::Primitive)), InputError);
-    EXPECT_NO_THROW(renderer().render(p, cam, settings(Caster::Primitive, false)));
+    EXPECT_THROW(renderer().render(p, cam, renderSettings(Caster::Primitive)), InputError);
+    EXPECT_NO_THROW(renderer().render(p, cam, renderSettings(Caster::Primitive, false)));
     expectNoValidationErrors();
 }
 
@@ -229,11 +175,11 @@ void expectCastersEqualPrimitive(const std::string& name, const PreparedVolume& 
                                         view(45, 35.264389682754654), view(-30, 20)};
     for (const ViewParams& vp : views) {
         const Camera cam = Camera::fit(p.classified.grid, vp);
-        const RenderResult primitive = renderer().render(p, cam, settings(Caster::Primitive));
+        const RenderResult primitive = renderer().render(p, cam, renderSettings(Caster::Primitive));
         for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
             SCOPED_TRACE(name + " " + std::string(casterName(c)) + " az " + std::to_string(vp.azimuthDeg) +
                          " el " + std::to_string(vp.elevationDeg));
-            const RenderResult r = renderer().render(p, cam, settings(c));
+            const RenderResult r = renderer().render(p, cam, renderSettings(c));
             EXPECT_LT(maxAbsDifference(r.image, primitive.image), 1e-4);
             EXPECT_LE(meanIterations(r), meanIterations(primitive));
         }
@@ -261,7 +207,7 @@ TEST(VulkanCasters, LeapingCutsIterationsOnCtDatasets) {
         const PreparedVolume p = prepare(d.volume, d.tf, 0.05, 20);
         const Camera cam = Camera::fit(p.classified.grid, view(30, 20));
         double it[4];
-        for (Caster c : kCasters) it[int(c)] = meanIterations(renderer().render(p, cam, settings(c)));
+        for (Caster c : kCasters) it[int(c)] = meanIterations(renderer().render(p, cam, renderSettings(c)));
         SCOPED_TRACE(d.name);
         EXPECT_GT(it[0], it[1]);
         EXPECT_GT(it[1], it[2]);
@@ -273,19 +219,16 @@ TEST(VulkanCasters, LeapingCutsIterationsOnCtDatasets) {
 // 64^3 voxels of opacity 1e-9 each (per voxel step), seen along an axis: alpha = 1 - (1 - 1e-9)^64 at the
 // centre, which float arithmetic of 1 - (1 - alpha)^n would lose entirely.
 TEST(VulkanCasters, TinyOpacityAccumulatesOverConstantVolume) {
-    PreparedVolume p;
-    ClassifiedVolume& cv = p.classified;
-    cv.grid.dims = {64, 64, 64};
-    cv.sigma.assign(cv.grid.voxels(), float(extinctionFromOpacity(1e-9, 1.0)));
-    cv.colour.assign(cv.grid.voxels(), {1.f, 1.f, 1.f});
-    p.regions = segment(cv, p.meta.segmentation);
-    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
+    const GridGeometry grid{{64, 64, 64}, {1, 1, 1}, {0, 0, 0}};
+    const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i&) {
+        return test::VoxelClass{1e-9, {1, 1, 1}};
+    });
     const double expected = 1 - std::pow(1 - 1e-9, 64);
     ViewParams vp = view(0, 0);
     vp.width = vp.height = 33;  // an odd size: the centre pixel's ray is the volume's axis
-    const Camera cam = Camera::fit(cv.grid, vp);
+    const Camera cam = Camera::fit(grid, vp);
     for (Caster c : kCasters) {
-        const RenderResult r = renderer().render(p, cam, settings(c, false));
+        const RenderResult r = renderer().render(p, cam, renderSettings(c, false));
         EXPECT_NEAR(r.image.pixel(16, 16)[3], expected, 0.01 * expected) << casterName(c);
     }
     expectNoValidationErrors();
@@ -293,14 +236,13 @@ TEST(VulkanCasters, TinyOpacityAccumulatesOverConstantVolume) {
 
 std::set<std::string> uploadedNames() {
     std::set<std::string> names;
-    for (const auto& u : renderer().lastUploads()) names.insert(u.name);
+    for (const auto& [name, bytes] : test::bytesByName(renderer().lastUploads())) names.insert(name);
     return names;
 }
 
 std::size_t uploadedBytes(const std::string& name) {
-    for (const auto& u : renderer().lastUploads())
-        if (u.name == name) return u.bytes;
-    return 0;
+    const auto bytes = test::bytesByName(renderer().lastUploads());
+    return bytes.contains(name) ? bytes.at(name) : 0;
 }
 
 TEST(VulkanCasters, UploadOnlyWhatTheCasterAndViewUse) {
@@ -310,20 +252,20 @@ TEST(VulkanCasters, UploadOnlyWhatTheCasterAndViewUse) {
     const Camera ortho = Camera::fit(v.grid, view(30, 20));
     const Camera persp = Camera::fit(v.grid, view(0, 0, Projection::Perspective));
 
-    renderer().render(p, ortho, settings(Caster::Primitive));
+    renderer().render(p, ortho, renderSettings(Caster::Primitive));
     EXPECT_EQ(uploadedNames(), (std::set<std::string>{"classified", "normals"}));
-    renderer().render(p, ortho, settings(Caster::Primitive, false));
+    renderer().render(p, ortho, renderSettings(Caster::Primitive, false));
     EXPECT_EQ(uploadedNames(), (std::set<std::string>{"classified"}));
     EXPECT_EQ(uploadedBytes("classified"), voxels * 16);
-    renderer().render(p, ortho, settings(Caster::PC, false));
+    renderer().render(p, ortho, renderSettings(Caster::PC, false));
     EXPECT_EQ(uploadedBytes("pc"), voxels);
-    renderer().render(p, ortho, settings(Caster::ACD, false));
+    renderer().render(p, ortho, renderSettings(Caster::ACD, false));
     EXPECT_EQ(uploadedBytes("acd"), voxels);  // one octant
-    renderer().render(p, ortho, settings(Caster::EACD));
+    renderer().render(p, ortho, renderSettings(Caster::EACD));
     EXPECT_EQ(uploadedBytes("eacd"), voxels * 4);
     // Looking down -z from the centre line: the rays spread over x and y, never toward +z.
     EXPECT_EQ(viewOctants(persp), 0b11110000u);
-    renderer().render(p, persp, settings(Caster::ACD));
+    renderer().render(p, persp, renderSettings(Caster::ACD));
     EXPECT_EQ(uploadedBytes("acd"), voxels * 4);
     expectNoValidationErrors();
 }

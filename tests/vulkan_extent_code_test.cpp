@@ -4,38 +4,21 @@
 #include <gtest/gtest.h>
 
 #include "datasets/phantoms.h"
-#include "preprocess/classify/classify.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/load/load_volume.h"
-#include "preprocess/segment/segment.h"
-#include "support/datasets.h"
-#include "support/render_cases.h"
 #include "render/cpu_renderer.h"
-#include "volrender/vulkan/vulkan_renderer.h"
+#include "support/load_dataset.h"
+#include "support/prepare.h"
+#include "support/volumes.h"
+#include "support/vulkan.h"
 
 namespace vr {
 namespace {
 
 constexpr ExtentCode kCodes[] = {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8};
 
-VulkanContext& context() {
-    static VulkanContext ctx(VulkanOptions{-1, true});  // validation on
-    return ctx;
-}
-VulkanRenderer& renderer() {
-    static VulkanRenderer r(context(), 40);
-    return r;
-}
+VulkanRenderer& renderer() { return test::vulkanRenderer(40); }
 
 PreparedVolume prepare(const Volume& volume, const std::string& tf, double to, double ta, bool trilinear) {
-    ClassifyParams cp;
-    cp.transferFunction = loadTransferFunction(test::datasetsDir() / tf);
-    PreparedVolume p;
-    p.classified = classify(volume, cp);
-    p.meta.segmentation = {to, ta, true, trilinear};
-    p.regions = segment(p.classified, p.meta.segmentation);
-    p.fields = buildFields(p.regions, kFieldEACD);
-    return p;
+    return test::prepareVolume(volume, test::datasetTransferFunction(tf), {to, ta, true, trilinear}, kFieldEACD);
 }
 
 ViewParams view(double az, double el, Projection projection = Projection::Orthographic) {
@@ -73,30 +56,15 @@ TEST(VulkanExtentCode, EveryCodeMatchesTheCpuReferenceOnPhantoms) {
 TEST(VulkanExtentCode, EveryCodeMatchesTheCpuReferenceOnTheTeapot) {
     // The long runs of air around the teapot give extents past 16 (log16's geometric part) and past 50 (joint8's
     // top level); a downsampled copy keeps the test quick.
-    for (const auto& row : test::rawManifest()) {
-        if (row.file.rfind("boston_teapot", 0) != 0) continue;
-        RawOptions raw;
-        raw.spacing = row.spacing;
-        const Volume full = loadVolume(test::datasetsDir() / row.file, raw);
-        Volume half = full;
-        half.grid.dims = full.grid.dims / 2;
-        half.grid.spacing = full.grid.spacing * 2.0;
-        half.values.resize(voxelCount(half.grid.dims));
-        for (int z = 0; z < half.grid.dims.z; ++z)
-            for (int y = 0; y < half.grid.dims.y; ++y)
-                for (int x = 0; x < half.grid.dims.x; ++x)
-                    half.values[linearIndex(half.grid.dims, x, y, z)] = full.at(2 * x, 2 * y, 2 * z);
-        const PreparedVolume p = prepare(half, row.tf, 0.02, 10, false);
-        int longest = 0;
-        for (std::size_t v = 0; v < p.fields.eacd[0].size(); ++v) {
-            const Extents e = p.fields.eacd[0][v];
-            longest = std::max({longest, int(e[0]), int(e[1]), int(e[2])});
-        }
-        EXPECT_GT(longest, 50);
-        expectEveryCodeMatchesCpu(p, false, row.file);
-        return;
+    const test::DatasetEntry teapot = test::rawDataset("boston_teapot");
+    const PreparedVolume p = prepare(test::everyOtherVoxel(test::loadDataset(teapot)), teapot.tf, 0.02, 10, false);
+    int longest = 0;
+    for (std::size_t v = 0; v < p.fields.eacd[0].size(); ++v) {
+        const Extents e = p.fields.eacd[0][v];
+        longest = std::max({longest, int(e[0]), int(e[1]), int(e[2])});
     }
-    FAIL() << "no boston_teapot in the manifest";
+    EXPECT_GT(longest, 50);
+    expectEveryCodeMatchesCpu(p, false, teapot.file);
 }
 
 TEST(VulkanExtentCode, UploadsTheCodedBytes) {
@@ -111,13 +79,9 @@ TEST(VulkanExtentCode, UploadsTheCodedBytes) {
         PreparedVolume p = exact;
         quantiseEACD(p.fields, code);
         renderer().render(p, ortho, s);
-        std::size_t uploaded = 0;
-        for (const auto& u : renderer().lastUploads())
-            if (u.name == "eacd") uploaded += u.bytes;
-        EXPECT_EQ(uploaded, voxels * bytes) << extentCodeName(code);
+        EXPECT_EQ(test::bytesByName(renderer().lastUploads())["eacd"], voxels * bytes) << extentCodeName(code);
     }
-    const auto errors = context().validationErrors();
-    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
+    test::expectNoValidationErrors();
 }
 
 }  // namespace

@@ -6,48 +6,34 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "support/render_cases.h"
 #include "render/cpu_renderer.h"
-#include "volrender/vulkan/vulkan_renderer.h"
+#include "support/vulkan.h"
 
 namespace vr {
 namespace {
 
-VulkanContext& context() {
-    static VulkanContext ctx(VulkanOptions{-1, true});  // validation on
-    return ctx;
-}
+using test::reportValidated;
 
-VulkanRenderer& renderer() {
-    static VulkanRenderer r(context(), 32);
-    return r;
-}
-
-const test::RenderFn kVulkan = [](const PreparedVolume& p, const Camera& c, const RenderSettings& s) {
-    return renderer().render(p, c, s);
-};
-
-void reportClean(const char* family, const test::CaseCount& n) {
-    test::report(family, n);
-    const auto errors = context().validationErrors();
-    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
-}
+VulkanRenderer& renderer() { return test::vulkanRenderer(32); }
+const test::RenderFn kVulkan = test::vulkanRender(32);
 
 TEST(VulkanExtremeGeometry, CastersEqualPrimitiveOnEveryShapeContentAndView) {
-    reportClean("extreme geometry", test::extremeGeometry(kVulkan));
+    reportValidated("extreme geometry", test::extremeGeometry(kVulkan));
 }
 
 TEST(VulkanExtremeGeometry, TransparentOpaqueAndRegionsBeyondTheCap) {
-    reportClean("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kVulkan));
+    reportValidated("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kVulkan));
 }
 
-TEST(VulkanExtremeGeometry, IterationCapIsAnError) { reportClean("iteration cap", test::iterationCapIsAnError(kVulkan)); }
+TEST(VulkanExtremeGeometry, IterationCapIsAnError) {
+    reportValidated("iteration cap", test::iterationCapIsAnError(kVulkan));
+}
 
 // One voxel longer than the device's largest 3D image: split into bricks, never a driver crash or a silently
 // clipped image. A volume that fits once but not with two octants stacked along z (ACD, a view needing two
 // octants) is split the same way.
 TEST(VulkanExtremeGeometry, VolumeBeyondTheDeviceLimitRendersInBricks) {
-    const int limit = int(context().physicalDevice().getProperties().limits.maxImageDimension3D);
+    const int limit = int(test::vulkanContext().physicalDevice().getProperties().limits.maxImageDimension3D);
     auto expectBricks = [&](const GridGeometry& grid, const Camera& cam, Caster caster, const std::string& what) {
         const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i&) {
             return test::VoxelClass{0.1, {1, 1, 1}};
@@ -70,8 +56,7 @@ TEST(VulkanExtremeGeometry, VolumeBeyondTheDeviceLimitRendersInBricks) {
     // Two rays, one along +x and one along -x of the same perspective view: octants 0 and 1 both needed.
     const Camera both = test::perspectiveCamera({1, 0.5, limit / 4.0}, {0, 0, 1}, {1, 0, 0}, 2, 1, 90);
     expectBricks(half, both, Caster::ACD, "two stacked octants of 2x1x(limit/2+1)");
-    const auto errors = context().validationErrors();
-    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
+    test::expectNoValidationErrors();
 }
 
 }  // namespace

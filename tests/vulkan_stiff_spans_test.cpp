@@ -6,47 +6,34 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "support/render_cases.h"
-#include "volrender/vulkan/vulkan_renderer.h"
+#include "support/vulkan.h"
 
 namespace vr {
 namespace {
 
-VulkanContext& context() {
-    static VulkanContext ctx(VulkanOptions{-1, true});  // validation on
-    return ctx;
-}
+using test::reportValidated;
 
-const test::RenderFn kVulkan = [](const PreparedVolume& p, const Camera& c, const RenderSettings& s) {
-    static VulkanRenderer renderer(context(), 32);
-    return renderer.render(p, c, s);
-};
-
-void reportClean(const char* family, const test::CaseCount& n) {
-    test::report(family, n);
-    const auto errors = context().validationErrors();
-    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
-}
+const test::RenderFn kVulkan = test::vulkanRender(32);
 
 // llvmpipe ends a shader after 65535 loop iterations in all, about 3,000 fetches of a ray that checks its leaps
 // (a loop per fetch): there, rays asking primitive or PC stepping for more samples are left to the CPU test (and
 // to the test below); a hardware device runs them all.
 test::CaseOptions options() {
     test::CaseOptions o;
-    if (context().info().name.find("llvmpipe") != std::string::npos) o.maxSteppedSamples = 2000;
+    if (test::vulkanContext().info().name.find("llvmpipe") != std::string::npos) o.maxSteppedSamples = 2000;
     return o;
 }
 
 TEST(VulkanStiffSpans, RenderedSpanOpacityOverTheOpacityAndLengthGrid) {
-    reportClean("span opacity grid", test::spanOpacityGrid(kVulkan, options()));
+    reportValidated("span opacity grid", test::spanOpacityGrid(kVulkan, options()));
 }
 
 TEST(VulkanStiffSpans, ThinSlabsMatchTheLatticeSum) {
-    reportClean("thin slabs", test::thinSlabsAgainstTheLatticeSum(kVulkan, options()));
+    reportValidated("thin slabs", test::thinSlabsAgainstTheLatticeSum(kVulkan, options()));
 }
 
 TEST(VulkanStiffSpans, HugeRegionMatchesTheClosedForm) {
-    reportClean("huge region", test::hugeRegionAgainstTheClosedForm(kVulkan, options()));
+    reportValidated("huge region", test::hugeRegionAgainstTheClosedForm(kVulkan, options()));
 }
 
 // 64,000 samples stepped one by one along one ray. Where a driver ends loops on its own (llvmpipe) the render must
@@ -84,7 +71,7 @@ TEST(VulkanStiffSpans, RayLongerThanTheDriverLoopLimitIsAnErrorOrComplete) {
 }
 
 TEST(VulkanStiffSpans, EarlyTerminationHitExactly) {
-    reportClean("ert hit exactly", test::earlyTerminationHitExactly(kVulkan));
+    reportValidated("ert hit exactly", test::earlyTerminationHitExactly(kVulkan));
 }
 
 }  // namespace

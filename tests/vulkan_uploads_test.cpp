@@ -9,41 +9,28 @@
 #include <string>
 
 #include "datasets/phantoms.h"
-#include "preprocess/classify/classify.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/segment/segment.h"
-#include "support/render_cases.h"
+#include "preprocess/classify/transfer_function.h"
 #include "render/view_octants.h"
-#include "volrender/vulkan/vulkan_renderer.h"
+#include "support/prepare.h"
+#include "support/vulkan.h"
 
 namespace vr {
 namespace {
 
+using test::bytesByName;
+using test::expectNoValidationErrors;
 using test::kCasters;
-
-VulkanContext& context() {
-    static VulkanContext ctx(VulkanOptions{-1, true});  // validation on in every test
-    return ctx;
-}
+using test::renderSettings;
 
 // 20-pixel tiles on 32x24 images: full and partial tiles.
-VulkanRenderer& whole() {
-    static VulkanRenderer r(context(), 20);
-    return r;
-}
+VulkanRenderer& whole() { return test::vulkanRenderer(20); }
 
 // Images of at most 6^3 RGBA32F texels and 24 texels along an axis: the test volumes split along every axis, and
 // ACD / EACD, whose octant slabs stack along z, split along z again. One tile per image: the dispatches are many.
 constexpr ImageLimits kSmallImages{24, 16 * 6 * 6 * 6};
 VulkanRenderer& bricked() {
-    static VulkanRenderer r(context(), 32, kSmallImages);
+    static VulkanRenderer r(test::vulkanContext(), 32, kSmallImages);
     return r;
-}
-
-void expectNoValidationErrors() {
-    EXPECT_TRUE(context().validationEnabled()) << "VK_LAYER_KHRONOS_validation is not installed";
-    const auto errors = context().validationErrors();
-    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
 }
 
 const TransferFunction& phantomTf() {
@@ -55,33 +42,11 @@ const TransferFunction& phantomTf() {
 }
 
 PreparedVolume prepare(const Volume& volume, double to, double ta, bool trilinear) {
-    PreparedVolume p;
-    ClassifyParams cp;
-    cp.transferFunction = phantomTf();
-    p.classified = classify(volume, cp);
-    p.meta.segmentation = {to, ta, true, trilinear};
-    p.regions = segment(p.classified, p.meta.segmentation);
-    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
-    return p;
+    return test::prepareVolume(volume, phantomTf(), {to, ta, true, trilinear});
 }
 
 ViewParams view(double az, double el, Projection projection = Projection::Orthographic, double fov = 30) {
     return test::orbitView(az, el, 32, 24, projection, fov);
-}
-
-RenderSettings settings(Caster caster, bool shading, bool trilinear = false) {
-    RenderSettings s;
-    s.caster = caster;
-    s.shading = shading;
-    s.trilinear = trilinear;
-    return s;
-}
-
-// Bytes per resource name, summed over bricks.
-std::map<std::string, std::size_t> bytesByName(const std::vector<UploadedResource>& uploads) {
-    std::map<std::string, std::size_t> out;
-    for (const UploadedResource& u : uploads) out[u.name] += u.bytes;
-    return out;
 }
 
 std::size_t texels(const Vec3i& d) { return std::size_t(d.x) * d.y * d.z; }
@@ -94,16 +59,16 @@ TEST(VulkanUploads, ARenderUploadsOnlyWhatItReads) {
     const Camera persp = Camera::fit(v.grid, view(0, 0, Projection::Perspective));
     using Bytes = std::map<std::string, std::size_t>;
 
-    whole().render(p, ortho, settings(Caster::Primitive, false));
+    whole().render(p, ortho, renderSettings(Caster::Primitive, false));
     EXPECT_EQ(bytesByName(whole().lastUploads()), (Bytes{{"classified", voxels * 16}}));  // no field, no normals
-    whole().render(p, ortho, settings(Caster::Primitive, true));
+    whole().render(p, ortho, renderSettings(Caster::Primitive, true));
     EXPECT_EQ(bytesByName(whole().lastUploads()), (Bytes{{"classified", voxels * 16}, {"normals", voxels * 8}}));
-    whole().render(p, ortho, settings(Caster::PC, false));
+    whole().render(p, ortho, renderSettings(Caster::PC, false));
     EXPECT_EQ(bytesByName(whole().lastUploads()), (Bytes{{"classified", voxels * 16}, {"pc", voxels}}));
     // Orthographic: exactly the one octant of the view direction.
-    whole().render(p, ortho, settings(Caster::ACD, false));
+    whole().render(p, ortho, renderSettings(Caster::ACD, false));
     EXPECT_EQ(bytesByName(whole().lastUploads()), (Bytes{{"classified", voxels * 16}, {"acd", voxels}}));
-    whole().render(p, ortho, settings(Caster::EACD, true));
+    whole().render(p, ortho, renderSettings(Caster::EACD, true));
     EXPECT_EQ(bytesByName(whole().lastUploads()),
               (Bytes{{"classified", voxels * 16}, {"normals", voxels * 8}, {"eacd", voxels * 4}}));
 
@@ -118,7 +83,7 @@ TEST(VulkanUploads, ARenderUploadsOnlyWhatItReads) {
     EXPECT_EQ(viewOctants(persp), seen);
     EXPECT_EQ(seen, 0b11110000u);
     for (Caster c : {Caster::ACD, Caster::EACD}) {
-        whole().render(p, persp, settings(c, false));
+        whole().render(p, persp, renderSettings(c, false));
         const std::size_t texel = c == Caster::ACD ? 1 : 4;
         EXPECT_EQ(bytesByName(whole().lastUploads()),
                   (Bytes{{"classified", voxels * 16}, {std::string(casterName(c)), 4 * voxels * texel}}));
@@ -131,15 +96,15 @@ TEST(VulkanUploads, ARenderUploadsOnlyWhatItReads) {
 // a slice); a GPU's go through a staging buffer. Both give the same images and leaps, shaded and unshaded, with
 // volume sides that are no multiple of the padding.
 TEST(VulkanUploads, StagedUploadsRenderWhatInPlaceUploadsRender) {
-    static VulkanRenderer staged(context(), 20, ImageLimits{0, 0, true});
+    static VulkanRenderer staged(test::vulkanContext(), 20, ImageLimits{0, 0, true});
     const PreparedVolume p = prepare(shellsPhantom({21, 18, 13}), 0.02, 10, false);
     for (const Camera& cam : {Camera::fit(p.classified.grid, view(30, 20)),
                               Camera::fit(p.classified.grid, view(200, -25, Projection::Perspective))})
         for (Caster c : kCasters)
             for (bool shading : {false, true}) {
                 SCOPED_TRACE(std::string(casterName(c)) + (shading ? " shaded" : ""));
-                const RenderResult inPlace = whole().render(p, cam, settings(c, shading));
-                const RenderResult copied = staged.render(p, cam, settings(c, shading));
+                const RenderResult inPlace = whole().render(p, cam, renderSettings(c, shading));
+                const RenderResult copied = staged.render(p, cam, renderSettings(c, shading));
                 EXPECT_EQ(maxAbsDifference(copied.image, inPlace.image), 0.0);
                 EXPECT_EQ(copied.iterations, inPlace.iterations);
                 EXPECT_EQ(bytesByName(staged.lastUploads()), bytesByName(whole().lastUploads()));
@@ -171,23 +136,23 @@ TEST(VulkanUploads, OneUploadServesAnOrbitOfEveryCaster) {
         for (Caster c : kCasters)
             for (bool shading : {true, false}) {
                 SCOPED_TRACE(std::string(casterName(c)) + (shading ? " shaded" : " unshaded"));
-                const RenderResult shared = whole().render(volume, cam, settings(c, shading));
+                const RenderResult shared = whole().render(volume, cam, renderSettings(c, shading));
                 std::map<std::string, std::size_t> read{{"classified", all.at("classified")}};
                 if (shading) read["normals"] = all.at("normals");
                 if (c != Caster::Primitive) read[std::string(casterName(c))] = all.at(std::string(casterName(c)));
                 EXPECT_EQ(bytesByName(whole().lastUploads()), read);
-                const RenderResult own = whole().render(p, cam, settings(c, shading));
+                const RenderResult own = whole().render(p, cam, renderSettings(c, shading));
                 EXPECT_EQ(maxAbsDifference(shared.image, own.image), 0.0);
                 EXPECT_EQ(shared.iterations, own.iterations);
             }
 
     // What the upload lacks is the caller's error, named.
     const Camera persp = Camera::fit(v.grid, view(0, 0, Projection::Perspective));
-    EXPECT_THROW(whole().render(volume, persp, settings(Caster::ACD, false)), std::invalid_argument);  // octants
+    EXPECT_THROW(whole().render(volume, persp, renderSettings(Caster::ACD, false)), std::invalid_argument);  // octants
     const GpuVolume plain = whole().upload(p, {{Caster::Primitive}, false, 0});
-    EXPECT_THROW(whole().render(plain, cameras[0], settings(Caster::Primitive, true)), std::invalid_argument);
-    EXPECT_THROW(whole().render(plain, cameras[0], settings(Caster::PC, false)), std::invalid_argument);
-    EXPECT_NO_THROW(whole().render(plain, cameras[0], settings(Caster::Primitive, false)));
+    EXPECT_THROW(whole().render(plain, cameras[0], renderSettings(Caster::Primitive, true)), std::invalid_argument);
+    EXPECT_THROW(whole().render(plain, cameras[0], renderSettings(Caster::PC, false)), std::invalid_argument);
+    EXPECT_NO_THROW(whole().render(plain, cameras[0], renderSettings(Caster::Primitive, false)));
     expectNoValidationErrors();
 }
 
@@ -204,6 +169,7 @@ void expectBrickFigures(const GpuVolume& volume, const PreparedVolume& p, int sl
         }
     }
     EXPECT_EQ(cores, p.classified.grid.voxels());
+    EXPECT_FALSE(volume.uploads().empty());
     const auto& bricks = volume.bricks().bricks();
     for (const UploadedResource& u : volume.uploads()) {
         ASSERT_LT(std::size_t(u.brick), bricks.size());
@@ -232,7 +198,7 @@ void expectSplitEqualsUnsplit(const std::string& name, const PreparedVolume& p) 
             for (bool trilinear : {false, true}) {
                 SCOPED_TRACE(name + " " + camName + " " + std::string(casterName(c)) +
                              (trilinear ? " trilinear" : " nearest"));
-                const RenderSettings s = settings(c, true, trilinear);
+                const RenderSettings s = renderSettings(c, true, trilinear);
                 const RenderResult unsplit = whole().render(p, cam, s);
                 ASSERT_EQ(whole().lastUploads().size(), c == Caster::Primitive ? 2u : 3u);  // one brick
                 const RenderResult split = bricked().render(p, cam, s);
@@ -250,7 +216,7 @@ void expectSplitEqualsUnsplit(const std::string& name, const PreparedVolume& p) 
     expectBrickFigures(volume, p, 7);
 }
 
-TEST(VulkanBricks, SplitRendersEqualUnsplitOnPhantoms) {
+TEST(VulkanUploadsInBricks, SplitRendersEqualUnsplitOnPhantoms) {
     expectSplitEqualsUnsplit("shells", prepare(shellsPhantom({16, 14, 12}), 0.02, 10, true));
     expectSplitEqualsUnsplit("engine", prepare(enginePhantom({18, 14, 12}), 0, 0, true));
     expectSplitEqualsUnsplit("noise", prepare(noisePhantom({12, 10, 14}, 3), 0.05, 20, true));
@@ -259,7 +225,7 @@ TEST(VulkanBricks, SplitRendersEqualUnsplitOnPhantoms) {
 
 // The synthetic volumes of the stiff and extreme cases (render_cases.h): a long thin stack seen along it, and
 // white noise with opaque and transparent voxels under odd spacings.
-TEST(VulkanBricks, SplitRendersEqualUnsplitOnSyntheticVolumes) {
+TEST(VulkanUploadsInBricks, SplitRendersEqualUnsplitOnSyntheticVolumes) {
     const PreparedVolume slabs = test::syntheticPrepared({{2, 3, 60}, {1, 1, 1}, {0, 0, 0}}, 1.0, [](const Vec3i& v) {
         return test::VoxelClass{v.z % 2 ? 0.02 : 1e-4, {1, 0.2, 0}};
     });
@@ -277,7 +243,7 @@ TEST(VulkanBricks, SplitRendersEqualUnsplitOnSyntheticVolumes) {
         for (const Camera& cam : cameras)
             for (Caster c : kCasters)
                 for (double step : {0.25, 1.7}) {
-                    RenderSettings s = settings(c, false);
+                    RenderSettings s = renderSettings(c, false);
                     s.stepVoxels = step;
                     s.ert = step > 1 ? 1.0 : 0.99;
                     const RenderResult unsplit = whole().render(*p, cam, s);
@@ -293,10 +259,10 @@ TEST(VulkanBricks, SplitRendersEqualUnsplitOnSyntheticVolumes) {
 
 // A limit on one image dimension alone: unsplit where one octant fits, split along z only where the stacked
 // octant slabs of a perspective view exceed it (as a 512^3 volume's four slabs exceed 2048 texels).
-TEST(VulkanBricks, StackedOctantSlabsSplitAlongZ) {
+TEST(VulkanUploadsInBricks, StackedOctantSlabsSplitAlongZ) {
     const Volume v = shellsPhantom({16, 16, 16});
     const PreparedVolume p = prepare(v, 0.02, 10, false);
-    VulkanRenderer slabLimited(context(), 20, ImageLimits{32, 0});
+    VulkanRenderer slabLimited(test::vulkanContext(), 20, ImageLimits{32, 0});
     const Camera ortho = Camera::fit(v.grid, view(30, 20));
     const Camera persp = Camera::fit(v.grid, view(0, 0, Projection::Perspective));
     const GpuVolume one = slabLimited.upload(p, {{Caster::ACD}, false, viewOctants(ortho)});
@@ -308,8 +274,8 @@ TEST(VulkanBricks, StackedOctantSlabsSplitAlongZ) {
     EXPECT_LE(four.bricks().largestImage().z * 4, 32);
     expectBrickFigures(four, p, 4);
     for (Caster c : {Caster::ACD, Caster::EACD}) {
-        const RenderResult split = slabLimited.render(p, persp, settings(c, true));
-        const RenderResult unsplit = whole().render(p, persp, settings(c, true));
+        const RenderResult split = slabLimited.render(p, persp, renderSettings(c, true));
+        const RenderResult unsplit = whole().render(p, persp, renderSettings(c, true));
         EXPECT_LT(maxAbsDifference(split.image, unsplit.image), 1e-4) << casterName(c);
         EXPECT_EQ(split.iterations, unsplit.iterations) << casterName(c);
     }
@@ -317,12 +283,12 @@ TEST(VulkanBricks, StackedOctantSlabsSplitAlongZ) {
 }
 
 // Only what cannot be split is refused: an image limit below one voxel and its neighbours.
-TEST(VulkanBricks, UnsplittableVolumeIsRefusedClearly) {
+TEST(VulkanUploadsInBricks, UnsplittableVolumeIsRefusedClearly) {
     const Volume v = shellsPhantom({8, 8, 8});
     const PreparedVolume p = prepare(v, 0, 0, false);
-    VulkanRenderer tiny(context(), 20, ImageLimits{0, 64});
+    VulkanRenderer tiny(test::vulkanContext(), 20, ImageLimits{0, 64});
     try {
-        tiny.render(p, Camera::fit(v.grid, view(0, 0)), settings(Caster::Primitive, false));
+        tiny.render(p, Camera::fit(v.grid, view(0, 0)), renderSettings(Caster::Primitive, false));
         FAIL() << "no error";
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("cannot be split"), std::string::npos) << e.what();
@@ -331,7 +297,7 @@ TEST(VulkanBricks, UnsplittableVolumeIsRefusedClearly) {
 }
 
 // Front-to-back orders: along every axis a ray of the given signs crosses bricks in increasing order.
-TEST(VulkanBricks, FrontToBackOrderFollowsEveryAxisSign) {
+TEST(VulkanUploadsInBricks, FrontToBackOrderFollowsEveryAxisSign) {
     const BrickGrid grid({10, 9, 8}, {3, 2, 4});
     ASSERT_EQ(grid.bricks().size(), 24u);
     EXPECT_EQ(grid.splitAxes(), 7u);

@@ -6,6 +6,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -42,6 +44,27 @@ CliOutcome runCli(const fs::path& executable, const std::string& args, const std
                             " >" + shellQuote(out) + " 2>" + shellQuote(err);
     const int raw = std::system(cmd.c_str());
     return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
+}
+
+static CliOutcome runBuilt(const fs::path& executable, const std::string& args, const std::string& environment) {
+    EXPECT_TRUE(fs::exists(executable)) << "build the " << executable.filename() << " target first: " << executable;
+    return runCli(executable, args, environment);
+}
+
+CliOutcome runVolprep(const std::string& args, const std::string& environment) {
+    return runBuilt(volprepExecutable(), args, environment);
+}
+
+CliOutcome runVolrender(const std::string& args, const std::string& environment) {
+    return runBuilt(volrenderExecutable(), args, environment);
+}
+
+void expectRefusal(const CliOutcome& r, const std::string& tool, const std::string& args,
+                   const std::vector<std::string>& mentions) {
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(r.err.rfind(tool + ": ", 0), 0u) << args << "\n" << r.err;
+    for (const std::string& m : mentions)
+        EXPECT_NE(r.err.find(m), std::string::npos) << "expected '" << m << "' for " << args << " in:\n" << r.err;
 }
 
 bool killWhileWriting(const fs::path& executable, const std::vector<std::string>& args, const fs::path& folder,

@@ -23,6 +23,14 @@ struct CliOutcome {
 // Runs `environment executable args` through the shell (args quoted by the caller), capturing stdout and stderr.
 CliOutcome runCli(const std::filesystem::path& executable, const std::string& args, const std::string& environment = "");
 
+// runCli on the built volprep / volrender, failing the test (non-fatally) when that executable is not built.
+CliOutcome runVolprep(const std::string& args, const std::string& environment = "");
+CliOutcome runVolrender(const std::string& args, const std::string& environment = "");
+
+// A refusal by `tool` of `args`: a non-zero exit status, stderr starting with "TOOL: " and naming each of `mentions`.
+void expectRefusal(const CliOutcome& r, const std::string& tool, const std::string& args,
+                   const std::vector<std::string>& mentions);
+
 // Starts executable with args (no shell, output discarded) and SIGKILLs it as soon as a file whose name starts with
 // `temporaryPrefix` appears in `folder`. Returns whether it was killed while that file existed (false: the run
 // ended, or timeoutSeconds passed, before it was seen).

@@ -42,6 +42,7 @@ std::vector<DatasetEntry> manifest() {
         e.tf = c[8];
         rows.push_back(e);
     }
+    if (rows.empty()) throw std::runtime_error((datasetsDir() / "MANIFEST.tsv").string() + " lists no dataset");
     return rows;
 }
 
@@ -49,7 +50,14 @@ std::vector<DatasetEntry> rawManifest() {
     std::vector<DatasetEntry> rows;
     for (auto& e : manifest())
         if (e.isRaw()) rows.push_back(e);
+    if (rows.empty()) throw std::runtime_error((datasetsDir() / "MANIFEST.tsv").string() + " lists no .raw.gz dataset");
     return rows;
+}
+
+DatasetEntry rawDataset(const std::string& prefix) {
+    for (const DatasetEntry& e : rawManifest())
+        if (e.file.starts_with(prefix)) return e;
+    throw std::runtime_error("no raw dataset named " + prefix + "... in " + (datasetsDir() / "MANIFEST.tsv").string());
 }
 
 fs::path scratchDir(const std::string& name) {

@@ -20,9 +20,14 @@ struct DatasetEntry {
     bool isRaw() const;     // a headerless .raw.gz (the ones named NAME_DxDxD_TYPE.raw.gz)
 };
 
-// Rows of MANIFEST.tsv.
+// Rows of MANIFEST.tsv; each throws when it finds none, so that a test looping over them cannot pass having
+// looped over nothing.
 std::vector<DatasetEntry> manifest();
 std::vector<DatasetEntry> rawManifest();  // only the .raw.gz rows
+
+// The row of the raw dataset whose file name starts with `prefix` (the first such); throws naming the prefix when
+// there is none.
+DatasetEntry rawDataset(const std::string& prefix);
 
 // A fresh empty folder under the build tree for one test's outputs (unique to this process).
 std::filesystem::path scratchDir(const std::string& name);

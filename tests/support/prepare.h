@@ -1,27 +1,17 @@
-// The pipeline on a shared dataset, for the tests that link it (volpipeline): loaded as MANIFEST.tsv says.
+// A volume prepared for rendering in tests: classified, segmented and given its distance fields, the stages run
+// directly (no statistics, no ray probe: the pipeline's own prepare() adds those, and its test compares with it).
 #pragma once
-#include <stdexcept>
-#include <string>
-
-#include "preprocess/pipeline/staged_prepare.h"
-#include "support/datasets.h"
+#include "core/prepared_volume.h"
+#include "core/volume.h"
+#include "preprocess/classify/transfer_function.h"
 
 namespace vr::test {
 
-// How a shared dataset loads: with the spacing the manifest gives (dims and type come from its name).
-inline RawOptions manifestRawOptions(const std::string& file) {
-    for (const DatasetEntry& e : manifest()) {
-        if (e.file != file) continue;
-        RawOptions raw;
-        raw.spacing = e.spacing;
-        return raw;
-    }
-    throw std::invalid_argument(file + ": not in MANIFEST.tsv");
-}
+inline constexpr unsigned kAllFields = kFieldPC | kFieldACD | kFieldEACD;
 
-// A shared dataset loaded and prepared at once, as volprep prepares it.
-inline PreparedVolume prepareDataset(const std::string& file, const PrepareOptions& options) {
-    return prepare(loadVolume(datasetsDir() / file, manifestRawOptions(file)), options);
-}
+// Classifies `volume` with `tf` (normals when segmentation.useNormals), segments it with `segmentation` and builds
+// `fields`; meta.source and meta.segmentation say so.
+PreparedVolume prepareVolume(const Volume& volume, const TransferFunction& tf, const SegmentationParams& segmentation,
+                             unsigned fields = kAllFields);
 
 }  // namespace vr::test

@@ -8,26 +8,18 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <stdexcept>
 
 #include "core/classified_volume.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/segment/segment.h"
+#include "render/cpu_renderer.h"
 
 namespace vr::test {
 
-ViewParams orbitView(double azimuthDeg, double elevationDeg, int width, int height, Projection projection,
-                     double fovDeg) {
-    ViewParams v;
-    v.projection = projection;
-    v.azimuthDeg = azimuthDeg;
-    v.elevationDeg = elevationDeg;
-    v.fovDeg = fovDeg;
-    v.width = width;
-    v.height = height;
-    return v;
-}
+const RenderFn kCpuReference = [](const PreparedVolume& p, const Camera& c, const RenderSettings& s) {
+    return renderCpu(p, c, s);
+};
 
 namespace {
 
@@ -144,27 +136,6 @@ PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
     p.regions = segment(cv, p.meta.segmentation);
     p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
     return p;
-}
-
-Camera orthoCamera(const Vec3d& eye, const Vec3d& forward, const Vec3d& right, int width, int height,
-                   double halfHeight) {
-    Camera c;
-    c.projection = Projection::Orthographic;
-    c.width = width;
-    c.height = height;
-    c.eye = eye;
-    c.forward = forward;
-    c.right = right;
-    c.up = cross(right, forward);  // so that right == cross(forward, up)
-    c.halfHeight = halfHeight;
-    return c;
-}
-
-Camera perspectiveCamera(const Vec3d& eye, const Vec3d& forward, const Vec3d& right, int width, int height,
-                         double fovDeg) {
-    Camera c = orthoCamera(eye, forward, right, width, height, std::tan(fovDeg * std::numbers::pi / 360));
-    c.projection = Projection::Perspective;
-    return c;
 }
 
 // Span opacity 1 - (1 - alpha)^N for per-sample opacity alpha and spans of N samples: one voxel seen along z from
@@ -369,13 +340,7 @@ std::vector<Content> contents() {
 }
 
 ViewParams fitView(double az, double el, Projection proj = Projection::Orthographic) {
-    ViewParams v;
-    v.projection = proj;
-    v.azimuthDeg = az;
-    v.elevationDeg = el;
-    v.width = 25;
-    v.height = 19;
-    return v;
+    return orbitView(az, el, 25, 19, proj);
 }
 
 struct NamedCamera {
@@ -565,8 +530,11 @@ CaseCount iterationCapIsAnError(const RenderFn& render) {
         for (Caster c : kCasters) {
             RenderSettings s = unshaded(0.5, 0.99);
             s.caster = c;
-            const unsigned needed = maxOf(render(p, cam, s).iterations);
+            const RenderResult first = render(p, cam, s);
+            const unsigned needed = maxOf(first.iterations);
             ++count.renders;
+            count.rays += cam.width * cam.height;
+            for (uint64_t n : first.samples) count.hits += n > 0;
             const std::string what = content.name + " " + casterText(c) + " needing " + std::to_string(needed);
             EXPECT_GE(needed, 1u) << what;
             s.maxIterationsPerRay = needed;
@@ -583,6 +551,9 @@ CaseCount iterationCapIsAnError(const RenderFn& render) {
 
 void report(const char* family, const CaseCount& n) {
     std::printf("%s: %d renders, %d rays, %d of them hitting the volume\n", family, n.renders, n.rays, n.hits);
+    EXPECT_GT(n.renders, 0) << family << ": no render";
+    EXPECT_GT(n.rays, 0) << family << ": no ray cast";
+    EXPECT_GT(n.hits, 0) << family << ": no ray sampled the volume";
 }
 
 }  // namespace vr::test

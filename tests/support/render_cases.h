@@ -10,16 +10,16 @@
 #include "core/prepared_volume.h"
 #include "render/camera.h"
 #include "render/render_result.h"
+#include "support/views.h"
 
 namespace vr::test {
 
 using RenderFn = std::function<RenderResult(const PreparedVolume&, const Camera&, const RenderSettings&)>;
 
-inline constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+// The CPU reference renderer (renderCpu) as a RenderFn.
+extern const RenderFn kCpuReference;
 
-// A view of the orbit around the volume, of width x height pixels.
-ViewParams orbitView(double azimuthDeg, double elevationDeg, int width, int height,
-                     Projection projection = Projection::Orthographic, double fovDeg = 30);
+inline constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
 
 struct VoxelClass {
     double alpha;  // opacity per reference step
@@ -30,14 +30,6 @@ struct VoxelClass {
 PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
                                  const std::function<VoxelClass(const Vec3i&)>& voxel);
 
-// Orthographic camera with a given frame; right must be unit and orthogonal to the unit forward. With odd
-// width and height and halfHeight = height / 2, pixel centres sit exactly 1 world unit apart along right and up
-// and the centre pixel's ray starts exactly at eye.
-Camera orthoCamera(const Vec3d& eye, const Vec3d& forward, const Vec3d& right, int width, int height,
-                   double halfHeight);
-Camera perspectiveCamera(const Vec3d& eye, const Vec3d& forward, const Vec3d& right, int width, int height,
-                         double fovDeg);
-
 // How many inputs (renders) a case family tried, for the report.
 struct CaseCount {
     int renders = 0;
@@ -45,7 +37,8 @@ struct CaseCount {
     int hits = 0;  // of them, rays that sampled the volume (compared samples where casters are compared)
 };
 
-// Prints what a case family tried (the figures of the closing notes' tables).
+// Prints what a case family tried, and fails the test where it rendered nothing, cast no ray or no ray sampled the
+// volume: a family that tried nothing has checked nothing.
 void report(const char* family, const CaseCount& n);
 
 // Every case family runs on one renderer; this bounds what it is asked where it cannot do it all (llvmpipe).

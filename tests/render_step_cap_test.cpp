@@ -33,7 +33,7 @@ std::string refusal(const RenderSettings& s) {
     return {};
 }
 
-TEST(CpuStepCap, StepsBeyondTheIterationCapAreRefusedNamingTheFlag) {
+TEST(RenderStepCap, StepsBeyondTheIterationCapAreRefusedNamingTheFlag) {
     const double diagonal = length(kGrid.extent());
     const double cap = double(RenderSettings{}.maxIterationsPerRay);
     for (double step : {1e-9, 1e-7, 1e-300}) {
@@ -55,7 +55,7 @@ TEST(CpuStepCap, StepsBeyondTheIterationCapAreRefusedNamingTheFlag) {
     EXPECT_EQ(refusal(lowered), "");
 }
 
-TEST(CpuStepCap, TheRendererRefusesBeforeCasting) {
+TEST(RenderStepCap, TheRendererRefusesBeforeCasting) {
     const PreparedVolume p =
         test::syntheticPrepared(kGrid, 1.0, [](const Vec3i&) { return test::VoxelClass{0, {1, 1, 1}}; });
     const Camera cam = Camera::fit(kGrid, ViewParams{Projection::Orthographic, 30, 0, 0, 4, 4});

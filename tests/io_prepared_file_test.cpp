@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <functional>
 
 #include "core/errors.h"
 #include "core/extent_code.h"
@@ -130,7 +131,7 @@ void expectRejected(const fs::path& p, const std::string& problem, unsigned fiel
     }
 }
 
-class PreparedFile : public ::testing::Test {
+class IoPreparedFile : public ::testing::Test {
 protected:
     void SetUp() override {
         dir = test::scratchDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
@@ -139,11 +140,18 @@ protected:
         writePrepared(good, prepared);
         bad = dir / "bad.vprep";
     }
+    // The good file, its header edited by `edit` (and its checksum updated), is rejected naming `problem`.
+    void expectEditedHeaderRejected(const std::function<void(json&)>& edit, const std::string& problem) {
+        Parts parts = split(good);
+        edit(parts.header);
+        join(bad, parts);
+        expectRejected(bad, problem);
+    }
     fs::path dir, good, bad;
     PreparedVolume prepared;
 };
 
-TEST_F(PreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
+TEST_F(IoPreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
     PreparedVolume r = readPrepared(good);
     const PreparedVolume& p = prepared;
     EXPECT_EQ(r.classified.grid, p.classified.grid);
@@ -170,7 +178,7 @@ TEST_F(PreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
 }
 
 // The probe is stored among the statistics as before it had a type: files from either side read alike.
-TEST_F(PreparedFile, KeepsTheRayProbeAmongTheStatistics) {
+TEST_F(IoPreparedFile, KeepsTheRayProbeAmongTheStatistics) {
     const json probe = split(good).header["metadata"]["statistics"]["rayProbe"];
     EXPECT_EQ(probe["stepVoxels"], 0.5);
     EXPECT_EQ(probe["ert"], 0.99);
@@ -190,7 +198,7 @@ TEST_F(PreparedFile, KeepsTheRayProbeAmongTheStatistics) {
 
 // An older volprep's probe (per-octant counts, no views) is no probe, and a caster's malformed counts no counts:
 // the file still reads, and --caster auto chooses among what is left.
-TEST_F(PreparedFile, ReadsAnOlderRayProbeAsNone) {
+TEST_F(IoPreparedFile, ReadsAnOlderRayProbeAsNone) {
     Parts parts = split(good);
     json& probe = parts.header["metadata"]["statistics"]["rayProbe"];
     probe["casters"]["acd"]["singleSamples"] = std::vector<double>(kOctants, 1.0);
@@ -210,7 +218,7 @@ TEST_F(PreparedFile, ReadsAnOlderRayProbeAsNone) {
     EXPECT_FALSE(older.meta.statistics.contains("rayProbe"));
 }
 
-TEST_F(PreparedFile, ReadsTheHeaderAlone) {
+TEST_F(IoPreparedFile, ReadsTheHeaderAlone) {
     const PreparedHeader h = readPreparedHeader(good);
     EXPECT_EQ(h.grid, prepared.classified.grid);
     EXPECT_EQ(h.meta.source, prepared.meta.source);
@@ -242,7 +250,7 @@ TEST_F(PreparedFile, ReadsTheHeaderAlone) {
     EXPECT_EQ(bytes.eacd, 0u);
 }
 
-TEST_F(PreparedFile, ReadsOnlyWhatIsAskedFor) {
+TEST_F(IoPreparedFile, ReadsOnlyWhatIsAskedFor) {
     PreparedVolume pc = readPrepared(good, kFieldPC, false);
     EXPECT_EQ(pc.fields.pc, prepared.fields.pc);
     EXPECT_FALSE(pc.fields.hasACD());
@@ -261,7 +269,7 @@ TEST_F(PreparedFile, ReadsOnlyWhatIsAskedFor) {
     EXPECT_EQ(none.regions.label, prepared.regions.label);
 }
 
-TEST_F(PreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
+TEST_F(IoPreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
     // Proof that a field not asked for is seeked past, not read: damage only the ACD chunks.
     std::vector<char> b = readBytes(good);
     uint64_t at = dataStart(good) + chunkEntry(split(good).header, "acd3")["offset"].get<uint64_t>();
@@ -271,7 +279,7 @@ TEST_F(PreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
     expectRejected(bad, "chunk 'acd3' checksum mismatch");
 }
 
-TEST_F(PreparedFile, OptionalChunksMayBeAbsentButNotWhenRequested) {
+TEST_F(IoPreparedFile, OptionalChunksMayBeAbsentButNotWhenRequested) {
     PreparedVolume p = prepared;
     p.classified.normal.clear();
     p.fields = {};
@@ -289,9 +297,9 @@ TEST_F(PreparedFile, OptionalChunksMayBeAbsentButNotWhenRequested) {
     expectRejected(bad, "has no PC distance field", kFieldPC);
 }
 
-TEST_F(PreparedFile, RejectsAMissingFile) { expectRejected(dir / "absent.vprep", "no such file"); }
+TEST_F(IoPreparedFile, RejectsAMissingFile) { expectRejected(dir / "absent.vprep", "no such file"); }
 
-TEST_F(PreparedFile, RejectsAForeignFile) {
+TEST_F(IoPreparedFile, RejectsAForeignFile) {
     std::vector<char> b = readBytes(good);
     b[0] = 'W';
     writeBytes(bad, b);
@@ -300,7 +308,7 @@ TEST_F(PreparedFile, RejectsAForeignFile) {
     expectRejected(bad, "not a prepared file");
 }
 
-TEST_F(PreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
+TEST_F(IoPreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
     const std::size_t exactBytes = split(good).data.size();
     const std::size_t voxels = prepared.classified.grid.voxels();
     for (ExtentCode code : {ExtentCode::Log16, ExtentCode::Joint8}) {
@@ -331,22 +339,15 @@ TEST_F(PreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
     EXPECT_THROW(writePrepared(bad, mixed), InputError);
 }
 
-TEST_F(PreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
-    Parts parts = split(good);
-    parts.header["eacdCode"] = "log12";
-    join(bad, parts);
-    expectRejected(bad, "bad header: 'eacdCode': unknown EACD code 'log12' (expected exact, log16 or joint8)");
-
-    parts.header.erase("eacdCode");
-    join(bad, parts);
-    expectRejected(bad, "bad header: missing or invalid 'eacdCode'");
-
-    parts.header["eacdCode"] = "joint8";  // the chunks hold 3 exact bytes per voxel
-    join(bad, parts);
-    expectRejected(bad, "chunk 'eacd0' should be 1 x uint8");
+TEST_F(IoPreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
+    expectEditedHeaderRejected([](json& h) { h["eacdCode"] = "log12"; },
+                               "bad header: 'eacdCode': unknown EACD code 'log12' (expected exact, log16 or joint8)");
+    expectEditedHeaderRejected([](json& h) { h.erase("eacdCode"); }, "bad header: missing or invalid 'eacdCode'");
+    expectEditedHeaderRejected([](json& h) { h["eacdCode"] = "joint8"; },  // the chunks hold 3 exact bytes per voxel
+                               "chunk 'eacd0' should be 1 x uint8");
 }
 
-TEST_F(PreparedFile, RejectsTheVersionBeforeCodedExtents) {
+TEST_F(IoPreparedFile, RejectsTheVersionBeforeCodedExtents) {
     // Version 1 stored EACD as 3 bytes per octant with no eacdCode: refused with the way out, not misread.
     std::vector<char> b = readBytes(good);
     const uint32_t v = 1;
@@ -355,7 +356,7 @@ TEST_F(PreparedFile, RejectsTheVersionBeforeCodedExtents) {
     expectRejected(bad, "prepared format version 1, this build reads version 2 (run volprep again)");
 }
 
-TEST_F(PreparedFile, RejectsAnotherVersion) {
+TEST_F(IoPreparedFile, RejectsAnotherVersion) {
     std::vector<char> b = readBytes(good);
     uint32_t v = kPreparedFormatVersion + 1;
     std::memcpy(b.data() + 8, &v, 4);
@@ -364,7 +365,7 @@ TEST_F(PreparedFile, RejectsAnotherVersion) {
                             std::to_string(kPreparedFormatVersion));
 }
 
-TEST_F(PreparedFile, RejectsATruncatedFileAtEveryPart) {
+TEST_F(IoPreparedFile, RejectsATruncatedFileAtEveryPart) {
     std::vector<char> b = readBytes(good);
     uint64_t data = dataStart(good);
     json header = split(good).header;
@@ -388,7 +389,7 @@ TEST_F(PreparedFile, RejectsATruncatedFileAtEveryPart) {
     }
 }
 
-TEST_F(PreparedFile, RejectsAFlippedByteInAChunk) {
+TEST_F(IoPreparedFile, RejectsAFlippedByteInAChunk) {
     json header = split(good).header;
     for (const char* name : {"sigma", "colour", "normal", "labels", "pc", "acd0", "eacd7"}) {
         SCOPED_TRACE(name);
@@ -400,7 +401,7 @@ TEST_F(PreparedFile, RejectsAFlippedByteInAChunk) {
     }
 }
 
-TEST_F(PreparedFile, RejectsAnEditedHeader) {
+TEST_F(IoPreparedFile, RejectsAnEditedHeader) {
     std::vector<char> b = readBytes(good);
     std::string text(b.begin() + 20, b.begin() + std::ptrdiff_t(dataStart(good) - 4));
     std::size_t at = text.find("\"referenceStep\": 0.5");
@@ -410,74 +411,44 @@ TEST_F(PreparedFile, RejectsAnEditedHeader) {
     expectRejected(bad, "header checksum mismatch");
 }
 
-TEST_F(PreparedFile, RejectsDimsInconsistentWithTheChunks) {
-    Parts parts = split(good);
-    parts.header["grid"]["dims"] = {13, 7, 6};
-    join(bad, parts);
-    expectRejected(bad, "chunk 'sigma' holds 1820 bytes but grid 13x7x6 needs 2184");
+TEST_F(IoPreparedFile, RejectsDimsInconsistentWithTheChunks) {
+    expectEditedHeaderRejected([](json& h) { h["grid"]["dims"] = {13, 7, 6}; },
+                               "chunk 'sigma' holds 1820 bytes but grid 13x7x6 needs 2184");
 }
 
-TEST_F(PreparedFile, RejectsAbsurdDims) {
-    Parts parts = split(good);
+TEST_F(IoPreparedFile, RejectsAbsurdDims) {
     for (json dims : {json{100000, 100000, 100000}, json{60000, 60000, 60000}, json{0, 7, 5}, json{13, -7, 5}}) {
         SCOPED_TRACE(dims.dump());
-        parts.header["grid"]["dims"] = dims;
-        join(bad, parts);
-        expectRejected(bad, "absurd grid dims");
+        expectEditedHeaderRejected([&](json& h) { h["grid"]["dims"] = dims; }, "absurd grid dims");
     }
 }
 
-TEST_F(PreparedFile, RejectsABadChunkTable) {
-    Parts parts = split(good);
-    json& chunks = parts.header["chunks"];
-    chunks[0]["type"] = "float64";
-    join(bad, parts);
-    expectRejected(bad, "chunk 'sigma' should be 1 x float32");
-
-    parts = split(good);
-    parts.header["chunks"][1]["name"] = "sigma";
-    join(bad, parts);
-    expectRejected(bad, "chunk 'sigma' appears twice");
-
-    parts = split(good);
-    parts.header["chunks"][0]["name"] = "opacity";
-    join(bad, parts);
-    expectRejected(bad, "unknown chunk 'opacity'");
-
-    parts = split(good);
-    parts.header.erase("grid");
-    join(bad, parts);
-    expectRejected(bad, "bad header: missing or invalid 'grid'");
-
-    parts = split(good);
-    parts.header["chunks"][0]["offset"] = uint64_t(1) << 40;
-    join(bad, parts);
-    expectRejected(bad, "truncated: chunk 'sigma'");
+TEST_F(IoPreparedFile, RejectsABadChunkTable) {
+    expectEditedHeaderRejected([](json& h) { h["chunks"][0]["type"] = "float64"; },
+                               "chunk 'sigma' should be 1 x float32");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][1]["name"] = "sigma"; }, "chunk 'sigma' appears twice");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][0]["name"] = "opacity"; }, "unknown chunk 'opacity'");
+    expectEditedHeaderRejected([](json& h) { h.erase("grid"); }, "bad header: missing or invalid 'grid'");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][0]["offset"] = uint64_t(1) << 40; },
+                               "truncated: chunk 'sigma'");
 }
 
-TEST_F(PreparedFile, RejectsNumbersThatDoNotFit) {
+TEST_F(IoPreparedFile, RejectsNumbersThatDoNotFit) {
     for (auto [key, value] : std::vector<std::pair<std::string, json>>{
              {"offset", -5}, {"offset", 1e30}, {"bytes", 12.5}, {"crc32", uint64_t(1) << 40}, {"components", "3"}}) {
         SCOPED_TRACE(key + " = " + value.dump());
-        Parts parts = split(good);
-        parts.header["chunks"][2][key] = value;
-        join(bad, parts);
-        expectRejected(bad, "bad header: '" + key + "' must be an integer");
+        expectEditedHeaderRejected([&](json& h) { h["chunks"][2][key] = value; },
+                                   "bad header: '" + key + "' must be an integer");
     }
-    Parts parts = split(good);
-    parts.header["grid"]["dims"] = {13, 7.5, 5};
-    join(bad, parts);
-    expectRejected(bad, "absurd grid dims 13x7.5x5");
+    expectEditedHeaderRejected([](json& h) { h["grid"]["dims"] = {13, 7.5, 5}; }, "absurd grid dims 13x7.5x5");
 }
 
-TEST_F(PreparedFile, RejectsLabelsBeyondTheRegionCount) {
-    Parts parts = split(good);
-    parts.header["regionCount"] = 15;  // the labels go up to 15
-    join(bad, parts);
-    expectRejected(bad, "labels hold region id 15 but regionCount is 15");
+TEST_F(IoPreparedFile, RejectsLabelsBeyondTheRegionCount) {
+    expectEditedHeaderRejected([](json& h) { h["regionCount"] = 15; },  // the labels go up to 15
+                               "labels hold region id 15 but regionCount is 15");
 }
 
-TEST_F(PreparedFile, RejectsHeaderThatIsNotJson) {
+TEST_F(IoPreparedFile, RejectsHeaderThatIsNotJson) {
     std::vector<char> b = readBytes(good);
     uint64_t len;
     std::memcpy(&len, b.data() + 12, 8);
@@ -488,7 +459,7 @@ TEST_F(PreparedFile, RejectsHeaderThatIsNotJson) {
     expectRejected(bad, "bad header: ");
 }
 
-TEST_F(PreparedFile, WritingIsAtomic) {
+TEST_F(IoPreparedFile, WritingIsAtomic) {
     // A folder that does not exist: nothing written, a clear error.
     fs::path missing = dir / "no-such-folder" / "out.vprep";
     try {
@@ -509,7 +480,7 @@ TEST_F(PreparedFile, WritingIsAtomic) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
 
-TEST_F(PreparedFile, RefusesPartialOctants) {
+TEST_F(IoPreparedFile, RefusesPartialOctants) {
     PreparedVolume p = prepared;
     p.fields.acd[5].clear();
     EXPECT_THROW(writePrepared(bad, p), InputError);

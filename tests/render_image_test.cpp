@@ -39,7 +39,7 @@ std::size_t filesIn(const fs::path& dir) {
     return std::size_t(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }
 
-TEST(Image, ExrRoundTripIsExact) {
+TEST(RenderImage, ExrRoundTripIsExact) {
     const fs::path dir = test::scratchDir("cpu_image_exr");
     const Image img = gradientImage(37, 23);
     writeImage(dir / "a.exr", img);
@@ -50,7 +50,7 @@ TEST(Image, ExrRoundTripIsExact) {
     EXPECT_EQ(filesIn(dir), 1u);  // no temporary left behind
 }
 
-TEST(Image, PngIsClampedSrgbOverTheBackground) {
+TEST(RenderImage, PngIsClampedSrgbOverTheBackground) {
     const fs::path dir = test::scratchDir("cpu_image_png");
     const Image img = gradientImage(40, 30);
     writeImage(dir / "a.png", img);
@@ -87,7 +87,7 @@ TEST(Image, PngIsClampedSrgbOverTheBackground) {
     EXPECT_EQ(back.pixel(5, 5)[3], 1.f);
 }
 
-TEST(Image, FailedWritesLeaveTheOldFileAndNoTemporary) {
+TEST(RenderImage, FailedWritesLeaveTheOldFileAndNoTemporary) {
     const fs::path dir = test::scratchDir("cpu_image_fail");
     const Image img = gradientImage(8, 8);
     // A folder that does not exist: InputError naming the path.
@@ -114,7 +114,7 @@ TEST(Image, FailedWritesLeaveTheOldFileAndNoTemporary) {
     EXPECT_THROW(readImage(dir / "nothing.exr"), InputError);
 }
 
-TEST(Image, MaxAbsDifference) {
+TEST(RenderImage, MaxAbsDifference) {
     Image a(3, 2), b(3, 2);
     EXPECT_EQ(maxAbsDifference(a, b), 0.0);
     b.pixel(2, 1)[3] = -0.25f;

@@ -1,6 +1,7 @@
-// The ray probe behind --caster auto (render/caster_choice.h: probeRays): its form, and its counts against the
-// iterations the CPU reference takes on whole views of each kind of direction (along an axis, in a coordinate
-// plane, in general position), on a real CT volume with anisotropic voxels.
+// The ray probe behind --caster auto (render/caster_choice.h: probeRays, render/ray_probe.cpp): its form, and its
+// counts against the iterations the CPU reference takes on whole views of each kind of direction (along an axis, in
+// a coordinate plane, in general position), on a real CT volume with anisotropic voxels. (That the pipeline stores
+// this probe in what it prepares: tests/pipeline_staged_test.cpp.)
 #include <gtest/gtest.h>
 
 #include <numeric>
@@ -8,36 +9,36 @@
 #include "render/caster_choice.h"
 #include "render/cpu_renderer.h"
 #include "render/direction_class.h"
-#include "support/datasets.h"
+#include "support/load_dataset.h"
 #include "support/prepare.h"
+#include "support/views.h"
 
 namespace vr {
 namespace {
 
 PreparedVolume preparedHead(unsigned fields) {
-    PrepareOptions o;
-    o.classify.transferFunction = loadTransferFunction(test::datasetsDir() / "vtk_headsq_ct.tf.json");
-    o.segmentation = {0.02, 10, true, false};
-    o.fields = fields;
-    return test::prepareDataset("vtk_headsq_ct_64x64x93_uint16.raw.gz", o);
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    return test::prepareVolume(test::loadDataset(e), test::datasetTransferFunction(e.tf), {0.02, 10, true, false},
+                               fields);
 }
 
 const PreparedVolume& head() {
-    static const PreparedVolume p = preparedHead(kFieldPC | kFieldACD | kFieldEACD);
+    static const PreparedVolume p = preparedHead(test::kAllFields);
     return p;
 }
 
-// The probe of head(), as the preparation stored it.
+// The probe of head().
 const RayProbe& headProbe() {
-    EXPECT_TRUE(head().meta.rayProbe);
-    return *head().meta.rayProbe;
+    static const std::optional<RayProbe> probe = probeRays(head());
+    EXPECT_TRUE(probe);
+    return *probe;
 }
 
 double mean(const std::vector<uint32_t>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size()); }
 
-TEST(RayProbe, CountsEveryDirectionClassOfEveryCasterTheFieldsAllow) {
+TEST(RenderRayProbe, CountsEveryDirectionClassOfEveryCasterTheFieldsAllow) {
     const RayProbe& probe = headProbe();
-    EXPECT_EQ(probeRays(head()), probe);  // the preparation's is the probe's
+    EXPECT_EQ(probeRays(head()), probe);  // the same every time
     EXPECT_EQ(probe.stepVoxels, 0.5);
     EXPECT_EQ(probe.ert, 0.99);
     ASSERT_TRUE(probe.pc && probe.acd && probe.eacd);
@@ -62,7 +63,7 @@ TEST(RayProbe, CountsEveryDirectionClassOfEveryCasterTheFieldsAllow) {
         }
     }
     // Only the casters whose fields the volume has.
-    const std::optional<RayProbe> pcOnly = preparedHead(kFieldPC).meta.rayProbe;
+    const std::optional<RayProbe> pcOnly = probeRays(preparedHead(kFieldPC));
     ASSERT_TRUE(pcOnly);
     EXPECT_TRUE(pcOnly->pc);
     EXPECT_FALSE(pcOnly->acd);
@@ -73,18 +74,14 @@ TEST(RayProbe, CountsEveryDirectionClassOfEveryCasterTheFieldsAllow) {
 // whole view, within 15 % (here they agree within 1-12 %). The probe's first form could not tell an axis-aligned view
 // from its octant, and its unshifted 4 x 4 pixels missed the image centre: on the 128^3 engine phantom it estimated
 // 25 primitive iterations per pixel where views took 43 to 55.
-TEST(RayProbe, MatchesWholeViewsAlongAxesInPlanesAndInGeneralPosition) {
+TEST(RenderRayProbe, MatchesWholeViewsAlongAxesInPlanesAndInGeneralPosition) {
     const RayProbe& probe = headProbe();
     struct View {
         double azimuth, elevation;
     };
     for (const View v : {View{0, 0}, View{90, 0}, View{180, 90}, View{30, 0}, View{0, -40}, View{30, 20},
                          View{200, -25}}) {
-        ViewParams params;
-        params.width = params.height = 64;
-        params.azimuthDeg = v.azimuth;
-        params.elevationDeg = v.elevation;
-        const Camera camera = Camera::fit(head().classified.grid, params);
+        const Camera camera = Camera::fit(head().classified.grid, test::orbitView(v.azimuth, v.elevation, 64, 64));
         const int c = directionClassOf(camera.forward);
         for (const Caster caster : {Caster::Primitive, Caster::EACD}) {
             RenderSettings s;

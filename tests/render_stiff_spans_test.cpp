@@ -8,18 +8,15 @@
 
 #include "core/classified_volume.h"
 #include "support/render_cases.h"
-#include "render/cpu_renderer.h"
 #include "render/span.h"
 
 namespace vr {
 namespace {
 
-const test::RenderFn kCpu = [](const PreparedVolume& p, const Camera& c, const RenderSettings& s) {
-    return renderCpu(p, c, s);
-};
+using test::kCpuReference;
 
 // The span function itself, from the stored (float) extinction as the renderer calls it: 1 - (1 - alpha)^N.
-TEST(CpuStiffSpans, SpanFunctionOverTheOpacityAndLengthGrid) {
+TEST(RenderStiffSpans, SpanFunctionOverTheOpacityAndLengthGrid) {
     int tried = 0;
     for (const double n : {1.0, 10.0, 1e4, 1e7})
         for (const double alpha : {0.0, 1e-12, 1e-9, 1e-6, 1e-3, 0.5, 1 - 1e-7, 1.0}) {
@@ -39,17 +36,21 @@ TEST(CpuStiffSpans, SpanFunctionOverTheOpacityAndLengthGrid) {
     std::printf("span function: %d inputs\n", tried);
 }
 
-TEST(CpuStiffSpans, RenderedSpanOpacityOverTheOpacityAndLengthGrid) {
-    test::report("span opacity grid", test::spanOpacityGrid(kCpu, {}));
+TEST(RenderStiffSpans, RenderedSpanOpacityOverTheOpacityAndLengthGrid) {
+    test::report("span opacity grid", test::spanOpacityGrid(kCpuReference, {}));
 }
 
-TEST(CpuStiffSpans, ThinSlabsMatchTheLatticeSum) { test::report("thin slabs", test::thinSlabsAgainstTheLatticeSum(kCpu, {})); }
-
-TEST(CpuStiffSpans, HugeRegionMatchesTheClosedForm) {
-    test::report("huge region", test::hugeRegionAgainstTheClosedForm(kCpu, {}));
+TEST(RenderStiffSpans, ThinSlabsMatchTheLatticeSum) {
+    test::report("thin slabs", test::thinSlabsAgainstTheLatticeSum(kCpuReference, {}));
 }
 
-TEST(CpuStiffSpans, EarlyTerminationHitExactly) { test::report("ert hit exactly", test::earlyTerminationHitExactly(kCpu)); }
+TEST(RenderStiffSpans, HugeRegionMatchesTheClosedForm) {
+    test::report("huge region", test::hugeRegionAgainstTheClosedForm(kCpuReference, {}));
+}
+
+TEST(RenderStiffSpans, EarlyTerminationHitExactly) {
+    test::report("ert hit exactly", test::earlyTerminationHitExactly(kCpuReference));
+}
 
 }  // namespace
 }  // namespace vr

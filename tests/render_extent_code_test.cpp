@@ -7,12 +7,11 @@
 #include <numeric>
 
 #include "datasets/phantoms.h"
-#include "preprocess/classify/classify.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/load/load_volume.h"
-#include "preprocess/segment/segment.h"
-#include "support/datasets.h"
 #include "render/cpu_renderer.h"
+#include "support/load_dataset.h"
+#include "support/prepare.h"
+#include "support/volumes.h"
+#include "support/views.h"
 
 namespace vr {
 namespace {
@@ -20,39 +19,10 @@ namespace {
 constexpr ExtentCode kCodes[] = {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8};
 
 PreparedVolume prepare(const Volume& volume, const std::string& tf, bool trilinear) {
-    ClassifyParams cp;
-    cp.transferFunction = loadTransferFunction(test::datasetsDir() / tf);
-    PreparedVolume p;
-    p.classified = classify(volume, cp);
-    p.meta.segmentation = {0, 0, true, trilinear};
-    p.regions = segment(p.classified, p.meta.segmentation);
-    p.fields = buildFields(p.regions, kFieldEACD);
-    return p;
+    return test::prepareVolume(volume, test::datasetTransferFunction(tf), {0, 0, true, trilinear}, kFieldEACD);
 }
 
-// The central block of at most `edge` voxels per axis.
-Volume centralBlock(const Volume& v, int edge) {
-    const Vec3i& d = v.grid.dims;
-    const Vec3i size{std::min(d.x, edge), std::min(d.y, edge), std::min(d.z, edge)};
-    const Vec3i lo = Vec3i{d.x - size.x, d.y - size.y, d.z - size.z} / 2;
-    Volume block = v;
-    block.grid.dims = size;
-    block.grid.origin = v.grid.origin + Vec3d(lo) * v.grid.spacing;
-    block.values.resize(voxelCount(size));
-    for (int z = 0; z < size.z; ++z)
-        for (int y = 0; y < size.y; ++y)
-            for (int x = 0; x < size.x; ++x) block.values[linearIndex(size, x, y, z)] = v.at(lo.x + x, lo.y + y, lo.z + z);
-    return block;
-}
-
-ViewParams view(Projection p, double az, double el, int size) {
-    ViewParams v;
-    v.projection = p;
-    v.azimuthDeg = az;
-    v.elevationDeg = el;
-    v.width = v.height = size;
-    return v;
-}
+ViewParams view(Projection p, double az, double el, int size) { return test::orbitView(az, el, size, size, p); }
 
 double meanOf(const std::vector<uint32_t>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size()); }
 
@@ -86,7 +56,7 @@ std::array<double, 3> expectEveryCodeEqualsPrimitive(const PreparedVolume& exact
     return mean;
 }
 
-TEST(ExtentCodeCpu, EveryCodeRendersThePrimitiveImageOnPhantoms) {
+TEST(RenderExtentCode, EveryCodeRendersThePrimitiveImageOnPhantoms) {
     struct Phantom {
         std::string name;
         Volume volume;
@@ -106,12 +76,10 @@ TEST(ExtentCodeCpu, EveryCodeRendersThePrimitiveImageOnPhantoms) {
     }
 }
 
-TEST(ExtentCodeCpu, EveryCodeRendersThePrimitiveImageOnRealDatasets) {
-    for (const auto& row : test::rawManifest()) {
-        if (row.file.rfind("boston_teapot", 0) != 0 && row.file.rfind("cranium_ct", 0) != 0) continue;
-        RawOptions raw;
-        raw.spacing = row.spacing;
-        const Volume volume = centralBlock(loadVolume(test::datasetsDir() / row.file, raw), 96);
+TEST(RenderExtentCode, EveryCodeRendersThePrimitiveImageOnRealDatasets) {
+    for (const char* prefix : {"boston_teapot", "cranium_ct"}) {
+        const test::DatasetEntry row = test::rawDataset(prefix);
+        const Volume volume = test::centralBlock(test::loadDataset(row), 96);
         RenderSettings s;
         s.stepVoxels = 0.5;
         expectEveryCodeEqualsPrimitive(prepare(volume, row.tf, false), s, row.file);

@@ -38,19 +38,19 @@ const Pair kPairs[] = {
     {34, {2.0776, 0.0795, -1.1350}, {0.9033, -0.0636, -0.5514}, 0.9082},
 };
 
-TEST(Ciede2000, MatchesSharmaTestData) {
+TEST(SweepColourCiede2000, MatchesSharmaTestData) {
     for (const Pair& p : kPairs) {
         EXPECT_NEAR(ciede2000(p.lab1, p.lab2), p.deltaE, 1e-4) << "pair " << p.number;
         EXPECT_NEAR(ciede2000(p.lab2, p.lab1), p.deltaE, 1e-4) << "pair " << p.number << " swapped";
     }
 }
 
-TEST(Ciede2000, ZeroForEqualColours) {
+TEST(SweepColourCiede2000, ZeroForEqualColours) {
     EXPECT_EQ(ciede2000({50, 10, -20}, {50, 10, -20}), 0.0);
     EXPECT_EQ(ciede2000({0, 0, 0}, {0, 0, 0}), 0.0);
 }
 
-TEST(Colour, LabOfWhiteBlackAndPrimaries) {
+TEST(SweepColourConversions, LabOfWhiteBlackAndPrimaries) {
     const Lab white = linearRgbToLab(1, 1, 1);
     EXPECT_NEAR(white[0], 100, 1e-6);
     EXPECT_NEAR(white[1], 0, 1e-6);
@@ -66,7 +66,7 @@ TEST(Colour, LabOfWhiteBlackAndPrimaries) {
     EXPECT_EQ(linearRgbToLab(2, -1, 1.5), linearRgbToLab(1, 0, 1));
 }
 
-TEST(Colour, EightBitSrgbAndLuminance) {
+TEST(SweepColourConversions, EightBitSrgbAndLuminance) {
     EXPECT_EQ(srgb8(0), 0);
     EXPECT_EQ(srgb8(1), 255);
     EXPECT_EQ(srgb8(0.5), 188);  // 1.055 * 0.5^(1/2.4) - 0.055 = 0.7354

@@ -8,24 +8,23 @@
 #include <cstdio>
 
 #include "support/render_cases.h"
-#include "render/cpu_renderer.h"
 
 namespace vr {
 namespace {
 
-const test::RenderFn kCpu = [](const PreparedVolume& p, const Camera& c, const RenderSettings& s) {
-    return renderCpu(p, c, s);
-};
+using test::kCpuReference;
 
-TEST(CpuExtremeGeometry, CastersEqualPrimitiveOnEveryShapeContentAndView) {
-    test::report("extreme geometry", test::extremeGeometry(kCpu));
+TEST(RenderExtremeGeometry, CastersEqualPrimitiveOnEveryShapeContentAndView) {
+    test::report("extreme geometry", test::extremeGeometry(kCpuReference));
 }
 
-TEST(CpuExtremeGeometry, TransparentOpaqueAndRegionsBeyondTheCap) {
-    test::report("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kCpu));
+TEST(RenderExtremeGeometry, TransparentOpaqueAndRegionsBeyondTheCap) {
+    test::report("transparent / opaque / capped", test::transparentOpaqueAndCappedRegions(kCpuReference));
 }
 
-TEST(CpuExtremeGeometry, IterationCapIsAnError) { test::report("iteration cap", test::iterationCapIsAnError(kCpu)); }
+TEST(RenderExtremeGeometry, IterationCapIsAnError) {
+    test::report("iteration cap", test::iterationCapIsAnError(kCpuReference));
+}
 
 }  // namespace
 }  // namespace vr

@@ -8,13 +8,11 @@
 #include <numeric>
 
 #include "datasets/phantoms.h"
-#include "preprocess/classify/classify.h"
-#include "preprocess/classify/tf_range_table.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/load/load_volume.h"
-#include "preprocess/segment/segment.h"
-#include "support/datasets.h"
 #include "render/cpu_renderer.h"
+#include "support/load_dataset.h"
+#include "support/prepare.h"
+#include "support/volumes.h"
+#include "support/views.h"
 
 namespace vr {
 namespace {
@@ -22,27 +20,10 @@ namespace {
 constexpr double kTolerance = 1e-6;
 
 PreparedVolume prepare(const Volume& volume, const TransferFunction& tf, bool normals, bool trilinear = false) {
-    ClassifyParams cp;
-    cp.transferFunction = tf;
-    cp.normals = normals;
-    PreparedVolume p;
-    p.classified = classify(volume, cp);
-    p.meta.segmentation.useNormals = normals;
-    p.meta.segmentation.trilinear = trilinear;
-    const TfRangeTable spread(transferTable(volume, tf));  // trilinear regions as volprep makes them
-    p.regions = segment(p.classified, p.meta.segmentation, ClassifiedScalars{volume.values, spread});
-    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
-    return p;
+    return test::prepareVolume(volume, tf, {0, 0, normals, trilinear});
 }
 
-ViewParams view(Projection p, double az, double el, int size) {
-    ViewParams v;
-    v.projection = p;
-    v.azimuthDeg = az;
-    v.elevationDeg = el;
-    v.width = v.height = size;
-    return v;
-}
+ViewParams view(Projection p, double az, double el, int size) { return test::orbitView(az, el, size, size, p); }
 
 // Exactly axis-aligned along -z, -x and +y, two diagonals in different octants, and a perspective view.
 std::vector<ViewParams> views(int size) {
@@ -99,36 +80,22 @@ std::array<double, 4> sum(const std::array<double, 4>& a, const std::array<doubl
     return {a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3]};
 }
 
-TransferFunction sharedTF(const std::string& name) { return loadTransferFunction(test::datasetsDir() / name); }
+using test::datasetTransferFunction;
 
 // The central block of at most `edge` voxels per axis, at full resolution: the large volumes are sampled so that
 // building their distance fields stays quick. VR_FULL_DATASETS=1 renders them whole (about 20 s each in fields).
 Volume centralBlock(const Volume& v, int edge) {
-    if (std::getenv("VR_FULL_DATASETS")) return v;
-    const Vec3i& d = v.grid.dims;
-    const Vec3i size{std::min(d.x, edge), std::min(d.y, edge), std::min(d.z, edge)};
-    const Vec3i lo = Vec3i{d.x - size.x, d.y - size.y, d.z - size.z} / 2;
-    Volume block = v;
-    block.grid.dims = size;
-    block.grid.origin = v.grid.origin + Vec3d(lo) * v.grid.spacing;
-    block.values.resize(voxelCount(size));
-    for (int z = 0; z < size.z; ++z)
-        for (int y = 0; y < size.y; ++y)
-            for (int x = 0; x < size.x; ++x)
-                block.values[linearIndex(size, x, y, z)] = v.at(lo.x + x, lo.y + y, lo.z + z);
-    return block;
+    return std::getenv("VR_FULL_DATASETS") ? v : test::centralBlock(v, edge);
 }
 
-TEST(CastersEqual, EveryRealDataset) {
+TEST(RenderCastersEqual, EveryRealDataset) {
     const auto rows = test::rawManifest();
     ASSERT_GE(rows.size(), 9u);
     RenderSettings settings;
     settings.stepVoxels = 1.0;  // small images at step 1 keep the big volumes quick
     for (const auto& row : rows) {
-        RawOptions raw;
-        raw.spacing = row.spacing;
-        const Volume volume = centralBlock(loadVolume(test::datasetsDir() / row.file, raw), 96);
-        const PreparedVolume p = prepare(volume, sharedTF(row.tf), true);
+        const Volume volume = centralBlock(test::loadDataset(row), 96);
+        const PreparedVolume p = prepare(volume, datasetTransferFunction(row.tf), true);
         std::array<double, 4> total{};
         for (const ViewParams& v : views(48)) total = sum(total, expectCastersEqual(p, v, settings, row.file));
         expectFewerIterations(total, row.file);
@@ -150,10 +117,10 @@ std::vector<Phantom> phantoms() {
             {"constant", constantPhantom({20, 20, 20}, 200), "mri.tf.json"}};
 }
 
-TEST(CastersEqual, PhantomsWithShadingStepsAndErt) {
+TEST(RenderCastersEqual, PhantomsWithShadingStepsAndErt) {
     for (const Phantom& ph : phantoms()) {
-        const PreparedVolume shaded = prepare(ph.volume, sharedTF(ph.tf), true);
-        const PreparedVolume unshaded = prepare(ph.volume, sharedTF(ph.tf), false);
+        const PreparedVolume shaded = prepare(ph.volume, datasetTransferFunction(ph.tf), true);
+        const PreparedVolume unshaded = prepare(ph.volume, datasetTransferFunction(ph.tf), false);
         std::array<double, 4> total{};
         // dt smaller than, not dividing, and larger than a voxel; without early termination too.
         for (double step : {0.37, 1.0, 2.5})
@@ -175,11 +142,11 @@ TEST(CastersEqual, PhantomsWithShadingStepsAndErt) {
     }
 }
 
-TEST(CastersEqual, PhantomsTrilinear) {
+TEST(RenderCastersEqual, PhantomsTrilinear) {
     // Border voxels of the 2x2x2 footprint are regions of their own, so a leap never crosses interpolation
     // between regions: with thresholds 0 leaping is exact with trilinear sampling too.
     for (const Phantom& ph : phantoms()) {
-        const PreparedVolume p = prepare(ph.volume, sharedTF(ph.tf), true, true);
+        const PreparedVolume p = prepare(ph.volume, datasetTransferFunction(ph.tf), true, true);
         RenderSettings s;
         s.trilinear = true;
         s.stepVoxels = 0.5;

@@ -44,7 +44,7 @@ RenderSettings unshaded(Caster c, double step = 0.5) {
     return s;
 }
 
-TEST(CpuRenderer, TinyOpacityAccumulatesAlongAnAxis) {
+TEST(RenderCpuRenderer, TinyOpacityAccumulatesAlongAnAxis) {
     // 64 voxels of opacity 1e-9: alpha = 1 - (1 - 1e-9)^64, which float stepping would round away.
     const PreparedVolume p = constantVolume({64, 64, 64}, 1e-9);
     const Camera cam = Camera::fit(p.classified.grid, axisView(9));
@@ -58,7 +58,7 @@ TEST(CpuRenderer, TinyOpacityAccumulatesAlongAnAxis) {
     }
 }
 
-TEST(CpuRenderer, MillionsOfSamplesInOneLeap) {
+TEST(RenderCpuRenderer, MillionsOfSamplesInOneLeap) {
     // dt = 1e-5 voxels: 6.4 million samples per ray; leaping casters cover them in a handful of fetches.
     const PreparedVolume p = constantVolume({64, 64, 64}, 1e-6);
     const Camera cam = Camera::fit(p.classified.grid, axisView(1));
@@ -75,7 +75,7 @@ TEST(CpuRenderer, MillionsOfSamplesInOneLeap) {
     }
 }
 
-TEST(CpuRenderer, OpaqueVolumeTerminatesAtTheFirstSample) {
+TEST(RenderCpuRenderer, OpaqueVolumeTerminatesAtTheFirstSample) {
     const PreparedVolume p = constantVolume({16, 16, 16}, 1.0, true);
     const Camera cam = Camera::fit(p.classified.grid, axisView(5));
     for (Caster c : kCasters) {
@@ -90,7 +90,7 @@ TEST(CpuRenderer, OpaqueVolumeTerminatesAtTheFirstSample) {
     }
 }
 
-TEST(CpuRenderer, BackgroundAndMissingRays) {
+TEST(RenderCpuRenderer, BackgroundAndMissingRays) {
     const PreparedVolume p = constantVolume({8, 8, 8}, 0.1);
     const Camera cam = Camera::fit(p.classified.grid, axisView(32));
     RenderSettings s = unshaded(Caster::EACD, 1.0);
@@ -110,7 +110,7 @@ TEST(CpuRenderer, BackgroundAndMissingRays) {
     EXPECT_NEAR(c[2], 1.0 * a + 1.0 * (1 - a), 1e-6);
 }
 
-TEST(CpuRenderer, CameraInsideTheVolume) {
+TEST(RenderCpuRenderer, CameraInsideTheVolume) {
     const PreparedVolume p = constantVolume({32, 32, 32}, 0.01);
     Camera cam = Camera::fit(p.classified.grid, axisView(11));
     cam.projection = Projection::Perspective;
@@ -129,7 +129,7 @@ TEST(CpuRenderer, CameraInsideTheVolume) {
     }
 }
 
-TEST(CpuRenderer, CountsAndShadedConstant) {
+TEST(RenderCpuRenderer, CountsAndShadedConstant) {
     const PreparedVolume p = constantVolume({20, 20, 20}, 0.001, true);
     const Camera cam = Camera::fit(p.classified.grid, axisView(3));
     RenderSettings s;
@@ -147,7 +147,7 @@ TEST(CpuRenderer, CountsAndShadedConstant) {
     EXPECT_EQ(prim.iterations.size(), 9u);
 }
 
-TEST(CpuRenderer, ErrorsAreReported) {
+TEST(RenderCpuRenderer, ErrorsAreReported) {
     PreparedVolume p = constantVolume({16, 16, 16}, 0.01);
     const Camera cam = Camera::fit(p.classified.grid, axisView(4));
     // A runaway ray is reported, not hung.

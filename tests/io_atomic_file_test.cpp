@@ -59,7 +59,7 @@ pid_t killWriterMidway(const fs::path& path) {
     return child;
 }
 
-TEST(AtomicFile, KilledWriterLeavesThePreviousOutputAndTheNextWriteCleansUp) {
+TEST(IoAtomicFile, KilledWriterLeavesThePreviousOutputAndTheNextWriteCleansUp) {
     const fs::path dir = test::scratchDir("atomic_file_killed");
     for (const auto& entry : fs::directory_iterator(dir)) fs::remove_all(entry.path());
     const fs::path out = dir / "image.png";
@@ -95,7 +95,7 @@ TEST(AtomicFile, KilledWriterLeavesThePreviousOutputAndTheNextWriteCleansUp) {
 }
 
 // The same for writers that need a path (OpenImageIO): the leftover of a killed one goes on the next write.
-TEST(AtomicFile, PathWritersCleanUpToo) {
+TEST(IoAtomicFile, PathWritersCleanUpToo) {
     const fs::path dir = test::scratchDir("atomic_file_path");
     for (const auto& entry : fs::directory_iterator(dir)) fs::remove_all(entry.path());
     const fs::path out = dir / "volume.vprep";

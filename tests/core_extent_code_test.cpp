@@ -32,7 +32,7 @@ std::vector<int> axisValues(ExtentCode code) {
     return values;
 }
 
-TEST(ExtentCode, NeverRoundsUpAndIsMonotoneOverEveryTriple) {
+TEST(CoreExtentCode, NeverRoundsUpAndIsMonotoneOverEveryTriple) {
     for (ExtentCode code : kCoded) {
         SCOPED_TRACE(extentCodeName(code));
         std::size_t up = 0, zero = 0, notMonotone = 0, notIdempotent = 0;
@@ -57,7 +57,7 @@ TEST(ExtentCode, NeverRoundsUpAndIsMonotoneOverEveryTriple) {
     }
 }
 
-TEST(ExtentCode, Log16IsExactTo16ReachesTheCapAndLosesAtMost16PercentBeyond) {
+TEST(CoreExtentCode, Log16IsExactTo16ReachesTheCapAndLosesAtMost16PercentBeyond) {
     const std::vector<int> values = axisValues(ExtentCode::Log16);
     EXPECT_EQ(values.size(), 32u);  // 5 bits per axis, all used
     for (int e = 1; e <= 16; ++e) EXPECT_EQ(quantiseExtents(ExtentCode::Log16, {uint8_t(e), 3, 200})[0], e);
@@ -70,7 +70,7 @@ TEST(ExtentCode, Log16IsExactTo16ReachesTheCapAndLosesAtMost16PercentBeyond) {
     EXPECT_EQ(extentCodeBytes(ExtentCode::Log16), 2u);
 }
 
-TEST(ExtentCode, Joint8KeepsItsLevelsAndTheLargestBoxOfItsTable) {
+TEST(CoreExtentCode, Joint8KeepsItsLevelsAndTheLargestBoxOfItsTable) {
     const std::vector<int> levels = axisValues(ExtentCode::Joint8);
     EXPECT_EQ(levels.size(), 6u);
     EXPECT_EQ(levels.front(), 1);
@@ -81,7 +81,7 @@ TEST(ExtentCode, Joint8KeepsItsLevelsAndTheLargestBoxOfItsTable) {
     std::vector<Extents> boxes;
     for (int i = 0; i < kExtentTableEntries; ++i) {
         const Extents e = decodeExtents(ExtentCode::Joint8, uint16_t(i));
-        if (encodeExtents(ExtentCode::Joint8, e) == i) boxes.push_back(e);
+        if (encodeExtents(ExtentCode::Joint8, e) == uint32_t(i)) boxes.push_back(e);
     }
     EXPECT_EQ(boxes.size(), 216u);
     // Against a search of the whole table: the chosen box fits and no fitting box is larger.
@@ -92,12 +92,14 @@ TEST(ExtentCode, Joint8KeepsItsLevelsAndTheLargestBoxOfItsTable) {
         const Extents q = quantiseExtents(ExtentCode::Joint8, e);
         const int volume = q[0] * q[1] * q[2];
         for (const Extents& b : boxes) {
-            if (b[0] <= e[0] && b[1] <= e[1] && b[2] <= e[2]) ASSERT_LE(b[0] * b[1] * b[2], volume);
+            if (b[0] <= e[0] && b[1] <= e[1] && b[2] <= e[2]) {
+                ASSERT_LE(b[0] * b[1] * b[2], volume);
+            }
         }
     }
 }
 
-TEST(ExtentCode, EveryCodeDecodesThroughTheTableAndEncodesBack) {
+TEST(CoreExtentCode, EveryCodeDecodesThroughTheTableAndEncodesBack) {
     const ExtentTable& log16 = extentDecodeTable(ExtentCode::Log16);
     for (uint32_t c = 0; c < (1u << 15); ++c) {
         const Extents e = decodeExtents(ExtentCode::Log16, uint16_t(c));
@@ -113,7 +115,7 @@ TEST(ExtentCode, EveryCodeDecodesThroughTheTableAndEncodesBack) {
     }
 }
 
-TEST(ExtentCode, FieldsHoldEachBoxRoundedDownInTheCodesBytes) {
+TEST(CoreExtentCode, FieldsHoldEachBoxRoundedDownInTheCodesBytes) {
     std::mt19937 rng(5);
     std::uniform_int_distribution<int> extent(1, 255);
     std::vector<Extents> boxes;
@@ -143,7 +145,7 @@ TEST(ExtentCode, FieldsHoldEachBoxRoundedDownInTheCodesBytes) {
     EXPECT_EQ(extentCodeBytes(ExtentCode::Exact), 3u);
 }
 
-TEST(ExtentCode, NamesParseAndAnUnknownNameIsAnInputError) {
+TEST(CoreExtentCode, NamesParseAndAnUnknownNameIsAnInputError) {
     for (ExtentCode code : {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8})
         EXPECT_EQ(parseExtentCode(extentCodeName(code), "--eacd-code"), code);
     try {

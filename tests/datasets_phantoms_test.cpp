@@ -17,13 +17,13 @@ void expectGrid(const Volume& v, Vec3i dims, Vec3d spacing) {
     EXPECT_EQ(v.source.rfind("phantom:", 0), 0u) << v.source;
 }
 
-TEST(Phantoms, ConstantIsOneValue) {
+TEST(DatasetsPhantoms, ConstantIsOneValue) {
     Volume v = constantPhantom({5, 6, 7}, 42, {1, 2, 3});
     expectGrid(v, {5, 6, 7}, {1, 2, 3});
     EXPECT_TRUE(std::all_of(v.values.begin(), v.values.end(), [](float f) { return f == 42; }));
 }
 
-TEST(Phantoms, RampRisesAlongItsAxisOnly) {
+TEST(DatasetsPhantoms, RampRisesAlongItsAxisOnly) {
     for (int axis = 0; axis < 3; ++axis) {
         Volume v = rampPhantom({4, 5, 6}, axis, 10, 20);
         Vec3i n = v.grid.dims;
@@ -38,7 +38,7 @@ TEST(Phantoms, RampRisesAlongItsAxisOnly) {
     EXPECT_THROW(rampPhantom({2, 2, 2}, 3), InputError);
 }
 
-TEST(Phantoms, ShellsHoldAirSoftTissueAndBoneInOrder) {
+TEST(DatasetsPhantoms, ShellsHoldAirSoftTissueAndBoneInOrder) {
     Volume v = shellsPhantom({40, 40, 20}, {0.5, 0.5, 1.0});  // isotropic in world space
     expectGrid(v, {40, 40, 20}, {0.5, 0.5, 1.0});
     EXPECT_EQ(v.sourceType, ScalarType::Int16);
@@ -52,7 +52,7 @@ TEST(Phantoms, ShellsHoldAirSoftTissueAndBoneInOrder) {
     EXPECT_EQ(v.at(2, 20, 10), 40);     // r = 0.875: the soft-tissue skin
 }
 
-TEST(Phantoms, CheckerboardHasNoEqualFaceNeighbours) {
+TEST(DatasetsPhantoms, CheckerboardHasNoEqualFaceNeighbours) {
     Volume v = checkerboardPhantom({5, 4, 3}, 1, 2);
     Vec3i n = v.grid.dims;
     for (int z = 0; z < n.z; ++z)
@@ -71,7 +71,7 @@ TEST(Phantoms, CheckerboardHasNoEqualFaceNeighbours) {
             }
 }
 
-TEST(Phantoms, NoiseIsReproducibleFromItsSeedAndInRange) {
+TEST(DatasetsPhantoms, NoiseIsReproducibleFromItsSeedAndInRange) {
     Volume a = noisePhantom({16, 16, 16}, 5, 10, 20), b = noisePhantom({16, 16, 16}, 5, 10, 20);
     Volume c = noisePhantom({16, 16, 16}, 6, 10, 20);
     EXPECT_EQ(a.values, b.values);
@@ -83,7 +83,7 @@ TEST(Phantoms, NoiseIsReproducibleFromItsSeedAndInRange) {
     EXPECT_THROW(noisePhantom({2, 2, 2}, 1, 5, 4), InputError);
 }
 
-TEST(Phantoms, EngineIsBlockyWithABoreAndRibs) {
+TEST(DatasetsPhantoms, EngineIsBlockyWithABoreAndRibs) {
     Volume v = enginePhantom({64, 64, 64});
     std::set<float> values(v.values.begin(), v.values.end());
     EXPECT_EQ(values, (std::set<float>{0, 200, 255}));
@@ -99,7 +99,7 @@ TEST(Phantoms, EngineIsBlockyWithABoreAndRibs) {
     EXPECT_GT(double(same) / (63.0 * 64 * 64), 0.9);
 }
 
-TEST(Phantoms, RejectEmptyGridsAndBadSpacing) {
+TEST(DatasetsPhantoms, RejectEmptyGridsAndBadSpacing) {
     EXPECT_THROW(constantPhantom({0, 4, 4}), InputError);
     EXPECT_THROW(shellsPhantom({4, 4, 4}, {1, 0, 1}), InputError);
     EXPECT_THROW(enginePhantom({4, 4, -1}), InputError);

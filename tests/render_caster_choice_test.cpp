@@ -58,14 +58,14 @@ CasterDemand ortho(Vec3d direction = {0, 0, -1}) {
     return d;
 }
 
-TEST(CasterChoice, NoProbeGivesPrimitiveAndSaysSo) {
+TEST(RenderCasterChoice, NoProbeGivesPrimitiveAndSaysSo) {
     // A file from before the probe (or of its older forms: io/ray_probe_json.h), whatever fields it has.
     const CasterChoice c = chooseCaster(std::nullopt, FieldBytes{1u << 24, 1u << 27, 1u << 28}, ortho());
     EXPECT_EQ(c.caster, Caster::Primitive);
     EXPECT_NE(c.reason.find("older volprep"), std::string::npos) << c.reason;
 }
 
-TEST(CasterChoice, TakesTheFewestWeightedIterationsAmongTheFieldsPresent) {
+TEST(RenderCasterChoice, TakesTheFewestWeightedIterationsAmongTheFieldsPresent) {
     const Counts primitive{0, 500}, pc{40, 200}, acd{30, 60}, eacd{20, 40};
     EXPECT_EQ(choose(probed({{"primitive", primitive}}), ortho()).caster, Caster::Primitive);
     EXPECT_EQ(choose(probed({{"primitive", primitive}, {"pc", pc}}), ortho()).caster, Caster::PC);
@@ -80,14 +80,14 @@ TEST(CasterChoice, TakesTheFewestWeightedIterationsAmongTheFieldsPresent) {
     EXPECT_EQ(choose(s, ortho()).caster, Caster::ACD);
 }
 
-TEST(CasterChoice, APcIterationMustSaveMoreThanItCosts) {
+TEST(RenderCasterChoice, APcIterationMustSaveMoreThanItCosts) {
     // Opaque data: every ray ends after a few samples, and a PC iteration costs more than a primitive sample.
     EXPECT_EQ(choose(probed({{"primitive", {0, 100}}, {"pc", {0, 90}}}), ortho()).caster,
               Caster::Primitive);
     EXPECT_EQ(choose(probed({{"primitive", {0, 100}}, {"pc", {10, 40}}}), ortho()).caster, Caster::PC);
 }
 
-TEST(CasterChoice, OnlySingleSampleIterationsFollowTheStep) {
+TEST(RenderCasterChoice, OnlySingleSampleIterationsFollowTheStep) {
     // ACD's iterations are leaps, EACD's are fewer but mostly single samples: at the probe's step EACD wins; at a
     // quarter of it, its single samples quadruple and ACD wins.
     const Prepared s = probed({{"primitive", {0, 400}}, {"acd", {60, 0}}, {"eacd", {10, 30}}});
@@ -103,7 +103,7 @@ TEST(CasterChoice, OnlySingleSampleIterationsFollowTheStep) {
     EXPECT_NE(reason.find("eacd 13.8,"), std::string::npos) << reason;
 }
 
-TEST(CasterChoice, NearTiesGoToTheLeanerField) {
+TEST(RenderCasterChoice, NearTiesGoToTheLeanerField) {
     // EACD estimated 1 % cheaper than ACD: not worth three times the bytes; a fifth cheaper: worth them. (Long rays,
     // so that the cost per ray does not count.)
     const std::array<double, 4>& ns = builtInCalibration().iterationNs;
@@ -118,7 +118,7 @@ TEST(CasterChoice, NearTiesGoToTheLeanerField) {
     EXPECT_EQ(eacdAt(0.8), Caster::EACD);
 }
 
-TEST(CasterChoice, OnlyTheViewsDirectionClassesCount) {
+TEST(RenderCasterChoice, OnlyTheViewsDirectionClassesCount) {
     Prepared s = probed({{"primitive", {0, 500}}, {"acd", {100, 300}}, {"eacd", {100, 300}}});
     s.probe->acd->singleSamples[octantClass(0)] = 10;          // few iterations in +x +y +z
     s.probe->eacd->singleSamples[octantClass(7)] = 10;         // and in -x -y -z
@@ -145,7 +145,7 @@ TEST(CasterChoice, OnlyTheViewsDirectionClassesCount) {
     EXPECT_NE(reason.find("eacd 255.0,"), std::string::npos) << reason;
 }
 
-TEST(CasterChoice, ATinyImageDoesNotPayForAHugeUpload) {
+TEST(RenderCasterChoice, ATinyImageDoesNotPayForAHugeUpload) {
     const Prepared s = probed({{"primitive", {0, 1000}}, {"pc", {100, 200}}, {"acd", {50, 20}}, {"eacd", {30, 10}}},
                               512.0 * 512 * 512);
     CasterDemand d = ortho();
@@ -156,7 +156,7 @@ TEST(CasterChoice, ATinyImageDoesNotPayForAHugeUpload) {
     EXPECT_EQ(choose(s, d).caster, Caster::Primitive);
 }
 
-TEST(CasterChoice, PerspectiveUploadsEveryOctantItsRaysHave) {
+TEST(RenderCasterChoice, PerspectiveUploadsEveryOctantItsRaysHave) {
     // EACD's fewer iterations pay for one octant's bytes, not for all eight: then ACD (a third of the bytes).
     const Prepared s = probed({{"primitive", {0, 1000}}, {"acd", {60, 20}}, {"eacd", {40, 10}}}, 512.0 * 512 * 512);
     CasterDemand d = ortho();
@@ -166,7 +166,7 @@ TEST(CasterChoice, PerspectiveUploadsEveryOctantItsRaysHave) {
     EXPECT_EQ(choose(s, d).caster, Caster::ACD);
 }
 
-TEST(CasterChoice, SaysWhy) {
+TEST(RenderCasterChoice, SaysWhy) {
     // Every candidate with its estimated iterations per pixel and relative cost.
     const CasterChoice c =
         choose(probed({{"primitive", {0, 500}}, {"pc", {40, 200}}, {"acd", {30, 60}}, {"eacd", {20, 40}}}),

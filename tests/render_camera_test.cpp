@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "render/camera.h"
 #include "render/ray_setup.h"
+#include "support/views.h"
 
 namespace vr {
 namespace {
@@ -19,15 +20,7 @@ GridGeometry boxGrid() {
     return g;
 }
 
-ViewParams view(Projection p, int w, int h, double az = 0, double el = 0) {
-    ViewParams v;
-    v.projection = p;
-    v.width = w;
-    v.height = h;
-    v.azimuthDeg = az;
-    v.elevationDeg = el;
-    return v;
-}
+ViewParams view(Projection p, int w, int h, double az = 0, double el = 0) { return test::orbitView(az, el, w, h, p); }
 
 double distanceToRay(const Vec3d& p, const Ray& r) { return length(cross(p - r.origin, r.direction)); }
 
@@ -37,7 +30,7 @@ void expectNear(const Vec3d& a, const Vec3d& b, double tol = 1e-12) {
     EXPECT_NEAR(a.z, b.z, tol);
 }
 
-TEST(Camera, DefaultLooksDownMinusZWithYUp) {
+TEST(RenderCamera, DefaultLooksDownMinusZWithYUp) {
     for (Projection p : {Projection::Orthographic, Projection::Perspective}) {
         const Camera cam = Camera::fit(boxGrid(), view(p, 64, 48));
         expectNear(cam.forward, {0, 0, -1});
@@ -55,7 +48,7 @@ TEST(Camera, DefaultLooksDownMinusZWithYUp) {
     }
 }
 
-TEST(Camera, AzimuthAndElevationMoveTheEyeLikeVtk) {
+TEST(RenderCamera, AzimuthAndElevationMoveTheEyeLikeVtk) {
     const GridGeometry g = boxGrid();
     const Vec3d c = g.centre();
     // Positive azimuth moves the camera toward +x, positive elevation toward +y.
@@ -93,7 +86,7 @@ TEST(Camera, AzimuthAndElevationMoveTheEyeLikeVtk) {
         }
 }
 
-TEST(Camera, CentreRayPassesThroughTheVolumeCentre) {
+TEST(RenderCamera, CentreRayPassesThroughTheVolumeCentre) {
     const GridGeometry g = boxGrid();
     for (Projection p : {Projection::Orthographic, Projection::Perspective})
         for (double azDeg : {0.0, 37.0, 200.0})
@@ -107,7 +100,7 @@ TEST(Camera, CentreRayPassesThroughTheVolumeCentre) {
             }
 }
 
-TEST(Camera, OrthographicFitsTheBoundingSphere) {
+TEST(RenderCamera, OrthographicFitsTheBoundingSphere) {
     const GridGeometry g = boxGrid();
     const double radius = 0.5 * length(g.extent());
     // Wide image: the sphere touches the top and bottom edges, the left/right edges are farther out.
@@ -129,7 +122,7 @@ TEST(Camera, OrthographicFitsTheBoundingSphere) {
     EXPECT_GT(dot(g.centre() - square.eye, square.forward), radius);
 }
 
-TEST(Camera, PerspectiveFitsTheBoundingSphereInTheFieldOfView) {
+TEST(RenderCamera, PerspectiveFitsTheBoundingSphereInTheFieldOfView) {
     const GridGeometry g = boxGrid();
     const double radius = 0.5 * length(g.extent());
     ViewParams v = view(Projection::Perspective, 64, 64, 15, -20);
@@ -151,7 +144,7 @@ TEST(Camera, PerspectiveFitsTheBoundingSphereInTheFieldOfView) {
     EXPECT_GT(distanceToRay(g.centre(), tall.ray(16, 0)), radius);
 }
 
-TEST(Camera, AnisotropicSpacing) {
+TEST(RenderCamera, AnisotropicSpacing) {
     GridGeometry g;
     g.dims = {64, 64, 20};
     g.spacing = {0.5, 0.5, 2.5};
@@ -170,7 +163,7 @@ TEST(Camera, AnisotropicSpacing) {
     EXPECT_NEAR(iv.tExit - iv.tEntry, 50, 1e-9);  // the world depth of the volume
 }
 
-TEST(Camera, RejectsBadViews) {
+TEST(RenderCamera, RejectsBadViews) {
     EXPECT_THROW(Camera::fit(boxGrid(), view(Projection::Orthographic, 0, 10)), InputError);
     ViewParams v = view(Projection::Perspective, 10, 10);
     v.fovDeg = 180;
