@@ -42,7 +42,7 @@ TransferFunction spiky() {
     return tf;
 }
 
-TEST(TfRangeTable, RandomQueriesMatchBruteForce) {
+TEST(ClassifyTfRangeTable, RandomQueriesMatchBruteForce) {
     for (const std::size_t n : {1, 2, 3, 7, 64, 100, 4011}) {
         const SampledTransferFunction t =
             sampleTransferFunction(loadTransferFunction(test::datasetsDir() / "cranium_ct.tf.json"), -1024, 2986, n);
@@ -61,7 +61,7 @@ TEST(TfRangeTable, RandomQueriesMatchBruteForce) {
     }
 }
 
-TEST(TfRangeTable, ScalarsBetweenEntriesReachBothNeighbours) {
+TEST(ClassifyTfRangeTable, ScalarsBetweenEntriesReachBothNeighbours) {
     const SampledTransferFunction t = sampleTransferFunction(spiky(), 0, 255, 256);  // one entry per integer
     const TfRangeTable table(t);
     expectEqual(table.over(20, 20), bruteForce(t, 20, 20), "an entry alone");
@@ -79,7 +79,7 @@ TEST(TfRangeTable, ScalarsBetweenEntriesReachBothNeighbours) {
     EXPECT_FALSE(table.alike(19.5, 19.5, 0)) << "an interpolated scalar sees the spike";
 }
 
-TEST(TfRangeTable, ColourCountsOnlyWhereOpaque) {
+TEST(ClassifyTfRangeTable, ColourCountsOnlyWhereOpaque) {
     TransferFunction tf;
     tf.opacity = {{0, 0}, {9, 0}, {10, 0.5}, {20, 0.5}};
     tf.colour = {{0, 1, 0, 0}, {9, 0, 1, 0}, {10, 0, 0, 1}, {20, 0, 0, 1}};
@@ -90,7 +90,7 @@ TEST(TfRangeTable, ColourCountsOnlyWhereOpaque) {
     EXPECT_TRUE(table.alike(9, 20, 0.5)) << "the transparent entry's colour does not count";
 }
 
-TEST(TfRangeTable, OneEntry) {
+TEST(ClassifyTfRangeTable, OneEntry) {
     TransferFunction tf;
     tf.opacity = {{0, 0.25}, {1, 0.25}};
     const TfRangeTable table(sampleTransferFunction(tf, 5, 5, 1));
@@ -101,7 +101,7 @@ TEST(TfRangeTable, OneEntry) {
     EXPECT_TRUE(table.alike(5, 5, 0));
 }
 
-TEST(TfRangeTable, BuiltOnTheEntriesClassificationSamples) {
+TEST(ClassifyTfRangeTable, BuiltOnTheEntriesClassificationSamples) {
     // An integer volume is tabulated once per integer from its smallest to its largest value; classify() looks
     // every voxel up there, so the table's extremes at a voxel's value are that voxel's classification.
     Volume v;

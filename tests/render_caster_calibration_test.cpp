@@ -21,12 +21,12 @@ CasterCalibration measuredElsewhere() {
     return {27, {5, 9, 11, 13}, 0.3, 0.1, "Some GPU", "1.2.3", "2026-01-02T03:04:05Z"};
 }
 
-TEST(CasterCalibration, NamesTheCastersInTheirOrder) {
+TEST(RenderCasterCalibration, NamesTheCastersInTheirOrder) {
     for (Caster c : {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD})
         EXPECT_EQ(casterName(c), kCalibratedCasters[std::size_t(c)]);
 }
 
-TEST(CasterCalibration, FileRoundTrip) {
+TEST(RenderCasterCalibration, FileRoundTrip) {
     const fs::path file = test::scratchDir("calibration_round_trip") / "calibration.json";
     writeCasterCalibration(file, measuredElsewhere());
     EXPECT_EQ(readCasterCalibration(file), measuredElsewhere());
@@ -34,7 +34,7 @@ TEST(CasterCalibration, FileRoundTrip) {
     EXPECT_EQ(readCasterCalibration(file), builtInCalibration());
 }
 
-TEST(CasterCalibration, BuiltInIsLavapipesFit) {
+TEST(RenderCasterCalibration, BuiltInIsLavapipesFit) {
     const CasterCalibration& c = builtInCalibration();
     EXPECT_EQ(c.rayNs, 38);
     EXPECT_EQ(c.iterationNs, (std::array<double, 4>{11, 15, 17, 20}));
@@ -64,7 +64,7 @@ std::string edited(const std::function<void(json&)>& change) {
     return j.dump();
 }
 
-TEST(CasterCalibration, BadFilesAreRefusedWithTheProblem) {
+TEST(RenderCasterCalibration, BadFilesAreRefusedWithTheProblem) {
     expectRefused("malformed", "{\"rayNs\": 27,", "not valid JSON");
     expectRefused("nan", "{\"rayNs\": NaN}", "not valid JSON");
     expectRefused("array", "[1, 2]", "not a calibration file");
@@ -90,7 +90,7 @@ TEST(CasterCalibration, BadFilesAreRefusedWithTheProblem) {
     }
 }
 
-TEST(CasterCalibration, NoFileIsWrittenThatWouldBeRefused) {
+TEST(RenderCasterCalibration, NoFileIsWrittenThatWouldBeRefused) {
     const fs::path file = test::scratchDir("calibration_unwritten") / "calibration.json";
     CasterCalibration c = measuredElsewhere();
     c.iterationNs[1] = std::nan("");
@@ -116,7 +116,7 @@ struct ProbedPc {
     Caster choose(const CasterCalibration& c) const { return chooseCaster(probe, bytes, demand, c).caster; }
 };
 
-TEST(CasterCalibration, TheChoiceWeighsWithTheFilesConstants) {
+TEST(RenderCasterCalibration, TheChoiceWeighsWithTheFilesConstants) {
     // 100 PC leaps against 120 samples: at the built-in 15 ns a leap against 11 a sample, primitive is cheaper.
     const ProbedPc scene(120, 100, 1u << 20);
     EXPECT_EQ(scene.choose(builtInCalibration()), Caster::Primitive);
