@@ -216,6 +216,23 @@ TEST(VulkanCasters, MissingFieldsAndIterationCapAreReported) {
     expectNoValidationErrors();
 }
 
+// The casters count a ray's samples in 32 bits: a longer lattice is refused before casting, naming --step and the
+// device.
+TEST(VulkanCasters, LatticeBeyondTheDeviceCountIsRefused) {
+    const Volume v = constantPhantom({8, 8, 8}, 20);
+    const PreparedVolume p = prepare(v, phantomTf(), 0, 0);
+    RenderSettings s = settings(Caster::EACD, false);
+    s.stepVoxels = 1e-9;                // 1.4e10 samples across the volume
+    s.maxIterationsPerRay = 1LL << 40;  // a cap that allows them
+    try {
+        renderer().render(p, Camera::fit(v.grid, view(0, 0)), s);
+        ADD_FAILURE() << "rendered a lattice of more than 2^31 samples";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("too small for this volume on a Vulkan device"), std::string::npos) << what;
+    }
+}
+
 // docs/ALGORITHMS.md section 5: with T_o = T_a = 0, nearest sampling and an orthographic view, every caster's image
 // equals the primitive one (up to float rounding), on every dataset and phantom.
 void expectCastersEqualPrimitive(const std::string& name, const PreparedVolume& p) {
