@@ -6,7 +6,6 @@
 #include <limits>
 
 #include "core/vec3.h"
-#include "shaders/device_contract.h"
 
 namespace vr {
 
@@ -41,8 +40,9 @@ inline double terminationDepth(double ert) { return -std::log1p(-ert); }
 // iteration, one sample too long would composite a sample that primitive stepping never takes. Returns +inf when
 // the span never reaches ert.
 inline double samplesToTermination(double depth, double sigma, double dt, double ertDepth) {
+    constexpr double kTerminationSlack = 1 - 1e-9;  // relative: a count this close above an integer is that integer
     if (sigma <= 0) return std::numeric_limits<double>::infinity();
-    return std::max(1.0, std::ceil((ertDepth - depth) / (sigma * dt) * device::kTerminationSlack));
+    return std::max(1.0, std::ceil((ertDepth - depth) / (sigma * dt) * kTerminationSlack));
 }
 
 // Phong with one directional light; material constants shared with the GPU.

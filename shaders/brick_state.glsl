@@ -10,14 +10,14 @@ layout(set = 0, binding = kBindingRayStates, std430) buffer RayStates { RayState
 
 // Member by member: glslang stores a whole struct into a buffer with an OpStore of mismatched types.
 RayState loadRayState(uint i) {
-    return RayState(rayState[i].composite, rayState[i].k, rayState[i].depth,
-                    rayState[i].iterations, rayState[i].flags);
+    return RayState(rayState[i].composite, rayState[i].depth, rayState[i].k, rayState[i].iterations,
+                    rayState[i].flags);
 }
 
 void storeRayState(uint i, RayState s) {
     rayState[i].composite = s.composite;
-    rayState[i].k = s.k;
     rayState[i].depth = s.depth;
+    rayState[i].k = s.k;
     rayState[i].iterations = s.iterations;
     rayState[i].flags = s.flags;
 }

@@ -6,7 +6,6 @@
 // when thresholds are 0).
 #version 450
 #extension GL_GOOGLE_include_directive : require
-#extension GL_ARB_gpu_shader_int64 : require
 
 #include "device_contract.h"
 
@@ -38,7 +37,7 @@ layout(set = 0, binding = kBindingFieldRGBA8, rgba8ui) uniform readonly uimage3D
 layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels { OutPixel outPixel[]; };
 
 struct SampleValue {
-    double sigma;  // double as the CPU reference's, so that opacity sums agree to rounding
+    float sigma;
     vec3 colour;
     vec3 normal;
 };
@@ -51,29 +50,29 @@ uvec4 loadField(ivec3 texel) {
 
 SampleValue nearestSample(ivec3 v) {
     vec4 c = imageLoad(classified, brickTexel(v));
-    SampleValue s = SampleValue(double(c.a), c.rgb, vec3(0.0));
+    SampleValue s = SampleValue(c.a, c.rgb, vec3(0.0));
     if (SHADING) s.normal = imageLoad(normals, brickTexel(v)).xyz;
     return s;
 }
 
 // Cell-centred trilinear: voxel v's value sits at v + 0.5; clamped to the edge outside.
-SampleValue trilinearSample(dvec3 p) {
-    precise dvec3 q = p - dvec3(0.5LF);
+SampleValue trilinearSample(vec3 p) {
+    precise vec3 q = p - vec3(0.5);
     ivec3 base = floorVoxel(q);
-    precise dvec3 f = q - dvec3(base);
-    SampleValue s = SampleValue(0.0LF, vec3(0.0), vec3(0.0));
+    precise vec3 f = q - vec3(base);
+    SampleValue s = SampleValue(0.0, vec3(0.0), vec3(0.0));
     for (int c = 0; c < 8; ++c) {
         ivec3 bit = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
         ivec3 u = clampVoxel(base + bit);
-        dvec3 w3 = mix(1.0LF - f, f, bvec3(bit));
-        precise double w = w3.x * w3.y * w3.z;
+        vec3 w3 = mix(1.0 - f, f, bvec3(bit));
+        precise float w = w3.x * w3.y * w3.z;
         vec4 cs = imageLoad(classified, brickTexel(u));
-        s.sigma += w * double(cs.a);
-        s.colour += cs.rgb * float(w);
-        if (SHADING) s.normal += imageLoad(normals, brickTexel(u)).xyz * float(w);
+        s.sigma += w * cs.a;
+        s.colour += cs.rgb * w;
+        if (SHADING) s.normal += imageLoad(normals, brickTexel(u)).xyz * w;
     }
     float len = length(s.normal);
-    s.normal = len > float(kFlatNormalLength) ? s.normal / len : vec3(0.0);
+    s.normal = len > kFlatNormalLength ? s.normal / len : vec3(0.0);
     return s;
 }
 
@@ -88,70 +87,77 @@ void main() {
     ivec2 pixel = tile.tileOrigin + local;
     uint outIndex = uint(local.y * tile.tileSize.x + local.x);
 
-    dvec3 direction;
-    GridRay g = cameraGridRay(double(pixel.x) + 0.5LF, double(pixel.y) + 0.5LF, direction);
+    vec3 direction;
+    GridRay g = cameraGridRay(float(pixel.x) + 0.5, float(pixel.y) + 0.5, direction);
     RayInterval iv = intersectGrid(g);
-    double kCount = latticeCount(iv);
+    uint kCount = latticeCount(iv);
+    LeapSlack slack = leapSlack(g, iv);
     int oct = rayOctant(g);
     // Selected, not indexed: llvmpipe reads an array at a varying index lane by lane.
     ivec4 slots = oct < 4 ? params.octantSlot[0] : params.octantSlot[1];
     int slot = (oct & 1) == 0 ? ((oct & 2) == 0 ? slots.x : slots.z) : ((oct & 2) == 0 ? slots.y : slots.w);
-    vec3 toEye = -vec3(direction);
+    vec3 toEye = -direction;
     vec3 toLight = params.light.w != 0.0 ? params.light.xyz : toEye;
 
-    bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0.0LF;
+    bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
     RayState state = firstDispatch
-                         ? RayState(dvec4(0.0LF), 0.0LF, 0.0LF, 0u, missingOctant ? kFailed : 0u)
+                         ? RayState(vec4(vec3(0.0), 1.0), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u)
                          : loadRayState(outIndex);
-    dvec3 colour = state.composite.rgb;
-    double alpha = state.composite.a;
-    precise double depth = state.depth;
+    vec3 colour = state.composite.rgb;
+    float transmittance = state.composite.a;  // 1 - alpha, for the colour's weights
+    vec2 depth = state.depth;                 // the optical depth: alpha and early ray termination
     uint iterations = state.iterations;
     bool failed = (state.flags & kFailed) != 0u;
-    double k = state.k;
+    uint k = state.k;
     // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
-    bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, latticeT(iv, k)))));
+    bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, iv, k))));
     if (!mine && !firstDispatch && !lastDispatch) return;
-    for (double n = 1.0LF; mine && !failed && k < kCount && alpha < params.ert; k += n) {
-        double t = latticeT(iv, k);
-        ivec3 v = sampleVoxel(g, t);
+    for (uint n = 1u; mine && !failed && k < kCount && pairLess(depth, params.ertDepth); k += n) {
+        ivec3 v = sampleVoxel(g, iv, k);
         if (BRICKED && !inBrick(v)) break;
         if (++iterations > params.maxIterations) {
             failed = true;
             break;
         }
-        SampleValue s = TRILINEAR ? trilinearSample(rayAt(g, t)) : nearestSample(v);
+        SampleValue s = TRILINEAR ? trilinearSample(samplePosition(g, iv, k)) : nearestSample(v);
+        precise float sampleDepth = s.sigma * params.dt;
 
-        double wanted = 1.0LF;
+        // What the leap wants without and with the margin of docs/ALGORITHMS.md section 8.
+        float wanted = 1.0, wantedWithMargin = 1.0;
         VoxelBox box = VoxelBox(v, v);
         if (CASTER == kPC) {
             int r = int(loadField(brickTexel(v)).r);
-            wanted = pcLeapSamples(r, g);
+            wanted = pcLeapSamples(r, g, 0.0);
+            wantedWithMargin = pcLeapSamples(r, g, slack.ball);
             box = chebyshevBall(v, r);
         } else if (CASTER == kACD || CASTER == kEACD) {
             uvec4 f = loadField(fieldTexel(v, slot));
             // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
             ivec3 ext = CASTER == kACD ? max(ivec3(1), ivec3(f.r)) : decodeExtents(f);
             box = octantBox(v, oct, ext);
-            wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t);
+            vec3 exits = boxExitsT(g, v, oct, ext);
+            float t = latticeT(iv, k);
+            wanted = boxLeapSamples(exits, vec3(0.0), t);
+            wantedWithMargin = boxLeapSamples(exits, slack.boxExit, t);
         }
-        // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap check.
+        // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count.
         if (CASTER != kPrimitive) {
+            float termination = samplesToTermination(depth, sampleDepth);
             if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
-            wanted = min(wanted, samplesToTermination(depth, s.sigma));
-            n = leapCount(g, iv, k, kCount, wanted, box);
+            n = leapCount(g, iv, k, kCount, min(wanted, termination), min(wantedWithMargin, termination), box);
         }
 
-        precise double length = n * params.dt;
-        double spanAlpha = spanOpacity(s.sigma, length);
-        if (spanAlpha > 0.0LF) {
+        // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.
+        vec2 spanDepth = CASTER == kPrimitive ? vec2(sampleDepth, 0.0) : exactProduct(float(n), sampleDepth);
+        float spanAlpha = spanOpacity(spanDepth.x);
+        if (spanAlpha > 0.0) {
             vec3 shaded = SHADING ? shade(s.colour, s.normal, toEye, toLight) : s.colour;
-            precise double w = (1.0LF - alpha) * spanAlpha;
-            colour += dvec3(shaded) * w;
-            alpha += w;
-            if (CASTER != kPrimitive) depth += s.sigma * length;  // for the termination count only
+            precise float w = transmittance * spanAlpha;
+            colour += shaded * w;
+            transmittance -= w;
+            depth = addPair(depth, spanDepth);
         }
     }
 
@@ -159,13 +165,16 @@ void main() {
     // in all of them, which would silently shorten a long ray. A loop whose trip count (2) the compiler cannot
     // know runs short afterwards exactly when that happened.
     int probe = 0;
-    for (double i = 0.0LF; i < params.loopProbe; i += 1.0LF) ++probe;
+    for (float i = 0.0; i < params.loopProbe; i += 1.0) ++probe;
     uint flags = state.flags | (probe < kLoopProbeTrips ? kCutShort : 0u);
-    if (lastDispatch && k < kCount && alpha < params.ert) failed = true;  // in no pass: a bug
+    if (lastDispatch && k < kCount && pairLess(depth, params.ertDepth)) failed = true;  // in no pass: a bug
     if (failed) flags |= kFailed;
     // The next brick's dispatch reads this state; after the last one, nothing does.
-    if (!lastDispatch) storeRayState(outIndex, RayState(dvec4(colour, alpha), k, depth, iterations, flags));
+    if (!lastDispatch) storeRayState(outIndex, RayState(vec4(colour, transmittance), depth, k, iterations, flags));
 
-    uvec4 rgba = floatBitsToUint(vec4(vec3(colour + dvec3(params.background.rgb) * (1.0LF - alpha)), float(alpha)));
-    outPixel[outIndex].words = u64vec4(packUint2x32(rgba.xy), packUint2x32(rgba.zw), uint64_t(k), iterations | flags);
+    // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.
+    float alpha = spanOpacity(depth.x + depth.y);
+    vec3 pixelColour = colour + params.background.rgb * (1.0 - alpha);
+    outPixel[outIndex].colour = floatBitsToUint(vec4(pixelColour, alpha));
+    outPixel[outIndex].counts = uvec4(k, iterations | flags, 0u, 0u);
 }

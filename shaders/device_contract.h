@@ -12,10 +12,12 @@
 #include "glsl_layout_types.h"
 #define VR_CONSTANT inline constexpr
 #define VR_FUNCTION constexpr
+#define VR_REAL double
 namespace vr::device {
 #else
 #define VR_CONSTANT const
 #define VR_FUNCTION
+#define VR_REAL float  // the casters need no double (docs/ALGORITHMS.md section 8)
 #endif
 
 // Descriptor set 0.
@@ -50,34 +52,33 @@ VR_CONSTANT uint kFailed = 0x80000000u, kCutShort = 0x40000000u;
 // compiler cannot know it, and compared with what the loop counted.
 VR_CONSTANT int kLoopProbeTrips = 2;
 
-// Spelled without double literals, which C++ and GLSL write differently (1e-9 in GLSL is a float).
-// A termination count this close above an integer (relative) is taken as that integer (render/span.h).
-VR_CONSTANT double kTerminationSlack = double(1) - double(1) / double(1000000000);
+// Reals are double in C++ and float in GLSL, spelled without literals, which the two languages write differently.
 // Shorter interpolated normals than this count as flat (the classification's floor is on the gradient; this
-// guards the renormalisation of a blend of opposite normals). The device compares in float.
-VR_CONSTANT double kFlatNormalLength = double(1) / double(1000000);
+// guards the renormalisation of a blend of opposite normals).
+VR_CONSTANT VR_REAL kFlatNormalLength = VR_REAL(1) / VR_REAL(1000000);
 
 // Octant of a direction: bit a set when component a is negative (a zero counts as positive).
-VR_FUNCTION int octantOf(double dx, double dy, double dz) {
-    return (dx < 0.0 ? 1 : 0) | (dy < 0.0 ? 2 : 0) | (dz < 0.0 ? 4 : 0);
+VR_FUNCTION int octantOf(VR_REAL dx, VR_REAL dy, VR_REAL dz) {
+    return (dx < VR_REAL(0) ? 1 : 0) | (dy < VR_REAL(0) ? 2 : 0) | (dz < VR_REAL(0) ? 4 : 0);
 }
 // Step sign of axis a in octant oct.
 VR_FUNCTION int octantSign(int oct, int axis) { return ((oct >> axis) & 1) != 0 ? -1 : 1; }
 
-// The render parameters, uploaded once per frame (std140).
+// The render parameters, uploaded once per frame (std140), in float: the casters need no double
+// (docs/ALGORITHMS.md section 8).
 struct CasterParams {
-    dvec4 eye;          // Camera::eye
-    dvec4 forward;      // Camera basis
-    dvec4 right;
-    dvec4 up;
-    dvec4 gridOrigin;   // GridGeometry::origin
-    dvec4 spacing;      // GridGeometry::spacing
-    double halfHeight;  // Camera::halfHeight
-    double dt;          // step in world units
-    double ert;         // early ray termination threshold
-    double ertDepth;    // the optical depth where opacity reaches ert (render/span.h terminationDepth)
-    double loopProbe;   // kLoopProbeTrips
-    ivec4 dims;         // voxels per axis
+    vec4 eye;          // Camera::eye
+    vec4 forward;      // Camera basis
+    vec4 right;
+    vec4 up;
+    vec4 gridOrigin;   // GridGeometry::origin
+    vec4 spacing;      // GridGeometry::spacing
+    vec2 ertDepth;     // the optical depth where opacity reaches ert (render/span.h terminationDepth) as a float
+                       // pair: x + y, y below half an ulp of x (+inf, 0 for no early termination)
+    float halfHeight;  // Camera::halfHeight
+    float dt;          // step in world units
+    float loopProbe;   // kLoopProbeTrips
+    ivec4 dims;        // voxels per axis
     ivec2 imageSize;    // width, height
     uint maxIterations;
     ivec4 octantSlot[2];  // ACD/EACD: z-slab of each octant in the field image, -1 when not uploaded
@@ -102,37 +103,40 @@ struct TilePush {
 
 // A ray's state between the dispatches of its bricks (std430; shaders/brick_state.glsl).
 struct RayState {
-    dvec4 composite;  // premultiplied colour, alpha
-    double k;         // the next lattice sample: also the samples the spans so far represent
-    double depth;     // optical depth so far (render/span.h Accumulator)
+    vec4 composite;  // premultiplied colour, transmittance 1 - alpha
+    vec2 depth;      // optical depth so far, a float pair as CasterParams::ertDepth
+    uint k;          // the next lattice sample: also the samples the spans so far represent
     uint iterations;
-    uint flags;       // kFailed, kCutShort
+    uint flags;      // kFailed, kCutShort
 };
 
-// A pixel's result (std430): x, y: the colour's four floats, two to a word, low word first; z: the samples; w: the
-// iteration count with its flags. One store of four 64-bit words: llvmpipe stores a buffer lane by lane and word
-// by word, which made three outputs of seven 32-bit words a seventh of a leaping caster's time.
+// A pixel's result (std430): the colour's four floats' bits, then the samples and the iteration count with its
+// flags. Whole vectors: llvmpipe stores a buffer lane by lane and word by word, which made three outputs of seven
+// 32-bit words a seventh of a leaping caster's time.
 struct OutPixel {
-    u64vec4 words;
+    uvec4 colour;
+    uvec4 counts;  // x: samples, y: iterations | flags
 };
 
 #ifdef __cplusplus
-static_assert(offsetof(CasterParams, halfHeight) == 192);
-static_assert(offsetof(CasterParams, dims) == 240);
-static_assert(offsetof(CasterParams, imageSize) == 256);
-static_assert(offsetof(CasterParams, maxIterations) == 264);
-static_assert(offsetof(CasterParams, octantSlot) == 272);
-static_assert(offsetof(CasterParams, light) == 304);
-static_assert(sizeof(CasterParams) == 352);
+static_assert(offsetof(CasterParams, ertDepth) == 96);
+static_assert(offsetof(CasterParams, halfHeight) == 104);
+static_assert(offsetof(CasterParams, dims) == 128);
+static_assert(offsetof(CasterParams, imageSize) == 144);
+static_assert(offsetof(CasterParams, maxIterations) == 152);
+static_assert(offsetof(CasterParams, octantSlot) == 160);
+static_assert(offsetof(CasterParams, light) == 192);
+static_assert(sizeof(CasterParams) == 240);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);
 static_assert(sizeof(TilePush) == 96);
-static_assert(offsetof(RayState, iterations) == 48);
-static_assert(sizeof(RayState) == 64);  // std430 rounds the array stride up to the dvec4's 32
+static_assert(offsetof(RayState, k) == 24);
+static_assert(sizeof(RayState) == 48);  // std430 rounds the array stride up to the vec4's 16
 static_assert(sizeof(OutPixel) == 32);
 }  // namespace vr::device
 #endif
 
 #undef VR_CONSTANT
 #undef VR_FUNCTION
+#undef VR_REAL
 #endif

@@ -14,14 +14,14 @@ struct alignas(8) ivec2 {
 struct alignas(16) ivec4 {
     std::int32_t x, y, z, w;
 };
+struct alignas(16) uvec4 {
+    std::uint32_t x, y, z, w;
+};
+struct alignas(8) vec2 {
+    float x, y;
+};
 struct alignas(16) vec4 {
     float x, y, z, w;
-};
-struct alignas(32) dvec4 {
-    double x, y, z, w;
-};
-struct alignas(32) u64vec4 {
-    std::uint64_t x, y, z, w;
 };
 
 }  // namespace vr::device

@@ -1,11 +1,11 @@
-// Evaluates vrExpm1 over a buffer of arguments so the host can compare it with the C library.
+// Evaluates vrExpm1 over a buffer of arguments so the host can compare it with the C library's double expm1.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "numerics.glsl"
 
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0, std430) readonly buffer Args { double x[]; };
-layout(set = 0, binding = 1, std430) writeonly buffer Expm1 { double expm1Out[]; };
+layout(set = 0, binding = 0, std430) readonly buffer Args { float x[]; };
+layout(set = 0, binding = 1, std430) writeonly buffer Expm1 { float expm1Out[]; };
 layout(push_constant) uniform Count { uint count; };
 
 void main() {

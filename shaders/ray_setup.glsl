@@ -1,35 +1,34 @@
-// Ray setup shared by every caster: render/ray_setup.h and Camera::ray() in GLSL.
-// Positions, the lattice and leap counts are computed in double with the same operations in the same order
-// as the CPU reference (`precise` forbids fused multiply-adds), so every sample picks the same voxel even
-// where the lattice lands exactly on voxel faces (axis-aligned views). Integer counts are held in doubles
-// (exact to 2^53).
+// Ray setup shared by every caster: render/ray_setup.h and Camera::ray() in GLSL, in float (docs/ALGORITHMS.md
+// section 8). Every caster computes a sample's position from its lattice index with one expression
+// (samplePosition), so at thresholds 0 they all fetch the same voxels; a leap counts only samples that lie in its
+// box as that expression rounds them. `precise` forbids fused multiply-adds, which would let the compiler round one
+// call site differently from another.
 #ifndef VR_RAY_SETUP_GLSL
 #define VR_RAY_SETUP_GLSL
 
 #include "caster_params.glsl"
-
-const double kInfinity = 1.0LF / 0.0LF;
+#include "numerics.glsl"
 
 struct GridRay {
-    dvec3 o, d;
+    vec3 o, d;
 };
 
 struct RayInterval {
-    double tEntry, tExit;
+    float tEntry, tExit;
 };
 
 // Camera::ray() for the pixel centre (px, py), then toGridRay().
-GridRay cameraGridRay(double px, double py, out dvec3 worldDirection) {
-    precise double aspect = double(params.imageSize.x) / double(params.imageSize.y);
-    precise double u = (2.0LF * px / double(params.imageSize.x) - 1.0LF) * params.halfHeight * aspect;
-    precise double v = (1.0LF - 2.0LF * py / double(params.imageSize.y)) * params.halfHeight;
-    precise dvec3 origin, direction;
+GridRay cameraGridRay(float px, float py, out vec3 worldDirection) {
+    precise float aspect = float(params.imageSize.x) / float(params.imageSize.y);
+    precise float u = (2.0 * px / float(params.imageSize.x) - 1.0) * params.halfHeight * aspect;
+    precise float v = (1.0 - 2.0 * py / float(params.imageSize.y)) * params.halfHeight;
+    precise vec3 origin, direction;
     if (!PERSPECTIVE) {  // the including shader's specialization constant (caster.comp)
         origin = params.eye.xyz + params.right.xyz * u + params.up.xyz * v;
         direction = params.forward.xyz;
     } else {
-        precise dvec3 w = params.forward.xyz + params.right.xyz * u + params.up.xyz * v;
-        precise double len = sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
+        precise vec3 w = params.forward.xyz + params.right.xyz * u + params.up.xyz * v;
+        precise float len = sqrt(w.x * w.x + w.y * w.y + w.z * w.z);
         origin = params.eye.xyz;
         direction = w / len;
     }
@@ -40,55 +39,80 @@ GridRay cameraGridRay(double px, double py, out dvec3 worldDirection) {
     return r;
 }
 
-dvec3 rayAt(GridRay r, double t) {
-    precise dvec3 p = r.o + r.d * t;
+vec3 rayAt(GridRay r, float t) {
+    precise vec3 p = r.o + r.d * t;
     return p;
 }
 
 // Slab test; an axis with d_a == 0 never limits t, and the ray must then lie in 0 <= o_a < N_a. Written out per
 // axis without a loop or an early return: llvmpipe neither unrolls a loop that returns nor skips the code after a
 // return, and it runs every loop's body for all invocations of a SIMD batch.
-void clipSlab(double o, double d, int n, inout double t0, inout double t1, inout bool outside) {
-    precise double ta = (0.0LF - o) / d;
-    precise double tb = (double(n) - o) / d;
-    bool parallel = d == 0.0LF;
-    outside = outside || (parallel && !(o >= 0.0LF && o < double(n)));
+void clipSlab(float o, float d, int n, inout float t0, inout float t1, inout bool outside) {
+    precise float ta = (0.0 - o) / d;
+    precise float tb = (float(n) - o) / d;
+    bool parallel = d == 0.0;
+    outside = outside || (parallel && !(o >= 0.0 && o < float(n)));
     t0 = parallel ? t0 : max(t0, min(ta, tb));
     t1 = parallel ? t1 : min(t1, max(ta, tb));
 }
 
 RayInterval intersectGrid(GridRay r) {
-    double t0 = 0.0LF, t1 = kInfinity;
+    float t0 = 0.0, t1 = kInfinity;
     bool outside = false;
     clipSlab(r.o.x, r.d.x, params.dims.x, t0, t1, outside);
     clipSlab(r.o.y, r.d.y, params.dims.y, t0, t1, outside);
     clipSlab(r.o.z, r.d.z, params.dims.z, t0, t1, outside);
-    if (outside || !(t0 < t1)) return RayInterval(0.0LF, 0.0LF);
+    if (outside || !(t0 < t1)) return RayInterval(0.0, 0.0);
     return RayInterval(t0, t1);
 }
 
 bool intervalEmpty(RayInterval iv) { return !(iv.tEntry < iv.tExit); }
 
-double latticeT(RayInterval iv, double k) {
-    precise double t = iv.tEntry + k * params.dt;
+// The lattice t_k = tEntry + k dt (k is exact in float below 2^24; beyond, t_k stays monotone in k).
+float latticeT(RayInterval iv, uint k) {
+    precise float t = iv.tEntry + float(k) * params.dt;
     return t;
 }
 
-// Samples with t_k < tExit, exactly as the comparison decides.
-double latticeCount(RayInterval iv) {
-    if (intervalEmpty(iv)) return 0.0LF;
-    precise double q = (iv.tExit - iv.tEntry) / params.dt;
-    double k = max(1.0LF, ceil(q));
-    while (k > 1.0LF && latticeT(iv, k - 1.0LF) >= iv.tExit) k -= 1.0LF;
-    while (latticeT(iv, k) < iv.tExit) k += 1.0LF;
+// The one position expression of the lattice rule: sample k of the ray.
+vec3 samplePosition(GridRay r, RayInterval iv, uint k) { return rayAt(r, latticeT(iv, k)); }
+
+// Samples with t_k < tExit, exactly as the comparison decides (t_k is monotone in k).
+uint latticeCount(RayInterval iv) {
+    if (intervalEmpty(iv)) return 0u;
+    precise float q = (iv.tExit - iv.tEntry) / params.dt;
+    uint k = uint(max(1.0, ceil(q)));
+    while (k > 1u && latticeT(iv, k - 1u) >= iv.tExit) --k;
+    while (latticeT(iv, k) < iv.tExit) ++k;
     return k;
 }
 
-ivec3 floorVoxel(dvec3 p) { return ivec3(floor(p)); }
+ivec3 floorVoxel(vec3 p) { return ivec3(floor(p)); }
 ivec3 clampVoxel(ivec3 v) { return clamp(v, ivec3(0), params.dims.xyz - 1); }
-ivec3 sampleVoxel(GridRay r, double t) { return clampVoxel(floorVoxel(rayAt(r, t))); }
+ivec3 sampleVoxel(GridRay r, RayInterval iv, uint k) { return clampVoxel(floorVoxel(samplePosition(r, iv, k))); }
 
 int rayOctant(GridRay r) { return octantOf(r.d.x, r.d.y, r.d.z); }
+
+// What a leap subtracts from the distance to its box's faces (world units) so that the last sample it counts lies
+// inside the box as samplePosition rounds it (docs/ALGORITHMS.md section 8). With u = 2^-24, T the ray's largest
+// t and N_a the grid size: t_k is within 3.01 u T of tEntry + k dt, a position within 4.01 u T |d_a| + 1.01 u N_a of
+// o_a + t d_a, and a box exit and the leap's division add 5.03 u T; the slacks take 16 u T and twice the N_a term.
+struct LeapSlack {
+    vec3 boxExit;  // per axis, for the ACD / EACD boxes (0 on an axis the ray does not move along)
+    float ball;    // for the PC ball, whose radius every axis shares
+};
+
+LeapSlack leapSlack(GridRay r, RayInterval iv) {
+    const float u = 1.0 / 16777216.0;
+    vec3 n = vec3(params.dims.xyz), speed = abs(r.d);
+    precise float lattice = 16.0 * u * iv.tExit;
+    precise vec3 position = 2.0 * u * n / speed;
+    precise float ballPosition = 4.0 * u * max(max(n.x, n.y), n.z) / max(max(speed.x, speed.y), speed.z);
+    LeapSlack s;
+    s.boxExit = mix(lattice + position, vec3(0.0), equal(speed, vec3(0.0)));
+    s.ball = lattice + ballPosition;
+    return s;
+}
 
 struct VoxelBox {
     ivec3 lo, hi;
@@ -106,49 +130,49 @@ VoxelBox octantBox(ivec3 v, int oct, ivec3 ext) {
     return b;
 }
 
-double pcLeapSamples(int r, GridRay ray) {
-    double speed = max(max(abs(ray.d.x), abs(ray.d.y)), abs(ray.d.z));
-    precise double q = double(r) / (params.dt * speed);
-    return max(1.0LF, 1.0LF + floor(q));
+// PC: samples t, t + dt, ... t + (n-1) dt stay in the ball while (n-1) dt max|d_g| <= r; slack: 0 or the ball's.
+float pcLeapSamples(int r, GridRay ray, float slack) {
+    float speed = max(max(abs(ray.d.x), abs(ray.d.y)), abs(ray.d.z));
+    precise float q = (float(r) / speed - slack) / params.dt;
+    return max(1.0, 1.0 + floor(q));
 }
 
-double boxExitT(GridRay ray, ivec3 v, int oct, ivec3 ext) {
-    double t = kInfinity;
+// ACD / EACD: per axis, the t at which the ray leaves the box through its far face (+inf on an axis the ray does
+// not move along).
+vec3 boxExitsT(GridRay ray, ivec3 v, int oct, ivec3 ext) {
+    vec3 t = vec3(kInfinity);
     for (int a = 0; a < 3; ++a) {
-        if (ray.d[a] == 0.0LF) continue;
+        if (ray.d[a] == 0.0) continue;
         int s = octantSign(oct, a);
-        double far = double(v[a] + s * (ext[a] - 1) + (s > 0 ? 1 : 0));
-        precise double ta = (far - ray.o[a]) / ray.d[a];
-        t = min(t, ta);
+        float far = float(v[a] + s * (ext[a] - 1) + (s > 0 ? 1 : 0));
+        precise float ta = (far - ray.o[a]) / ray.d[a];
+        t[a] = ta;
     }
     return t;
 }
 
-double boxLeapSamples(double tBoxExit, double t) {
-    precise double q = (tBoxExit - t) / params.dt;
-    return max(1.0LF, ceil(q));
+// ACD / EACD: the samples strictly before the box's exits, each moved closer by slack (0 or leapSlack's), at
+// least one.
+float boxLeapSamples(vec3 exits, vec3 slack, float t) {
+    precise vec3 closer = exits - slack;
+    precise float q = (min(min(closer.x, closer.y), closer.z) - t) / params.dt;
+    return max(1.0, ceil(q));
 }
 
 // Trilinear sampling: a leap whose box is the voxel alone may start in a border voxel, inside which the
 // interpolated value changes; such a voxel is stepped sample by sample.
-double trilinearLeapSamples(double wanted, VoxelBox box) { return box.lo == box.hi ? 1.0LF : wanted; }
+float trilinearLeapSamples(float wanted, VoxelBox box) { return box.lo == box.hi ? 1.0 : wanted; }
 
-// render/ray_setup.h's beforeFarFaces: whether the sample at t lies in the box that holds the span's first
-// sample's voxel, as floorVoxel places it (only the far face of each axis can be crossed).
-bool beforeFarFaces(GridRay ray, double t, VoxelBox box) {
-    dvec3 p = rayAt(ray, t);
-    bvec3 pastHi = greaterThanEqual(p, dvec3(box.hi + 1)), pastLo = lessThan(p, dvec3(box.lo));
-    bvec3 climbing = greaterThan(ray.d, dvec3(0.0LF)), descending = lessThan(ray.d, dvec3(0.0LF));
-    return !((climbing.x && pastHi.x) || (climbing.y && pastHi.y) || (climbing.z && pastHi.z) ||
-             (descending.x && pastLo.x) || (descending.y && pastLo.y) || (descending.z && pastLo.z));
-}
+bool inBox(ivec3 v, VoxelBox box) { return all(greaterThanEqual(v, box.lo)) && all(lessThanEqual(v, box.hi)); }
 
-// The leap taken from sample k of kCount: never past the volume exit, never to a sample whose floor voxel
-// rounding put outside the box. Always >= 1.
-double leapCount(GridRay ray, RayInterval iv, double k, double kCount, double wanted, VoxelBox box) {
-    double n = floor(min(wanted, kCount - k));
-    while (n > 1.0LF && !beforeFarFaces(ray, latticeT(iv, k + n - 1.0LF), box)) n -= 1.0LF;
-    return max(n, 1.0LF);
+// The leap taken from sample k of kCount, which lies in `box`: the samples wanted without a margin when the last of
+// them lies in the box as samplePosition places it (positions are monotone, so then all of them do), else the
+// samples wanted with the margin, which provably lie in it. Never past the volume exit; always >= 1.
+uint leapCount(GridRay ray, RayInterval iv, uint k, uint kCount, float wanted, float wantedWithMargin, VoxelBox box) {
+    uint n = min(uint(clamp(wanted, 1.0, 2147483648.0)), kCount - k);
+    if (n > 1u && !inBox(sampleVoxel(ray, iv, k + n - 1u), box))
+        n = min(uint(clamp(wantedWithMargin, 1.0, 2147483648.0)), kCount - k);
+    return n;
 }
 
 #endif

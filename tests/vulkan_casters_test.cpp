@@ -82,10 +82,7 @@ void expectMatchesCpu(const std::string& name, const PreparedVolume& p, bool tri
             const RenderResult cpu = renderCpu(p, cam, s);
             SCOPED_TRACE(name + " " + std::string(casterName(c)) + " az " + std::to_string(vp.azimuthDeg) +
                          (vp.projection == Projection::Perspective ? " perspective" : " ortho"));
-            EXPECT_LT(maxAbsDifference(gpu.image, cpu.image), 1e-3);
-            // Positions, leaps and opacity are computed in double as on the CPU: the same work, ray by ray.
-            EXPECT_EQ(gpu.iterations, cpu.iterations);
-            EXPECT_EQ(gpu.samples, cpu.samples);
+            test::expectNearCpuReference(gpu, cpu);
         }
     }
 }
@@ -126,8 +123,7 @@ TEST(VulkanCasters, MatchCpuReferenceWithDirectionalLightBackgroundAndOtherSteps
                 const RenderResult gpu = renderer().render(p, cam, s);
                 const RenderResult cpu = renderCpu(p, cam, s);
                 SCOPED_TRACE(std::string(casterName(c)) + " step " + std::to_string(step));
-                EXPECT_LT(maxAbsDifference(gpu.image, cpu.image), 1e-3);
-                EXPECT_EQ(gpu.iterations, cpu.iterations);
+                test::expectNearCpuReference(gpu, cpu);
             }
         }
     }
@@ -166,6 +162,23 @@ TEST(VulkanCasters, MissingFieldsAndIterationCapAreReported) {
     EXPECT_THROW(renderer().render(p, cam, renderSettings(Caster::Primitive)), InputError);
     EXPECT_NO_THROW(renderer().render(p, cam, renderSettings(Caster::Primitive, false)));
     expectNoValidationErrors();
+}
+
+// The casters count a ray's samples in 32 bits: a longer lattice is refused before casting, naming --step and the
+// device.
+TEST(VulkanCasters, LatticeBeyondTheDeviceCountIsRefused) {
+    const Volume v = constantPhantom({8, 8, 8}, 20);
+    const PreparedVolume p = prepare(v, phantomTf(), 0, 0);
+    RenderSettings s = settings(Caster::EACD, false);
+    s.stepVoxels = 1e-9;                // 1.4e10 samples across the volume
+    s.maxIterationsPerRay = 1LL << 40;  // a cap that allows them
+    try {
+        renderer().render(p, Camera::fit(v.grid, view(0, 0)), s);
+        ADD_FAILURE() << "rendered a lattice of more than 2^31 samples";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("too small for this volume on a Vulkan device"), std::string::npos) << what;
+    }
 }
 
 // docs/ALGORITHMS.md section 5: with T_o = T_a = 0, nearest sampling and an orthographic view, every caster's image

@@ -1,4 +1,4 @@
-// shaders/numerics.glsl (expm1 written in GLSL double) against the C library, evaluated on the device.
+// shaders/numerics.glsl (expm1 written in GLSL float) against the C library's double, evaluated on the device.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,14 +9,15 @@
 #include "shaders/embedded_shaders.h"
 #include "support/vulkan.h"
 #include "volrender/vulkan/gpu_buffer.h"
+#include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {
 namespace {
 
 // Runs numerics_test.comp over `x`: expm1 of each.
-std::vector<double> expm1OnDevice(const VulkanContext& ctx, const std::vector<double>& x) {
+std::vector<float> expm1OnDevice(const VulkanContext& ctx, const std::vector<float>& x) {
     const vk::raii::Device& device = ctx.device();
-    const vk::DeviceSize bytes = x.size() * sizeof(double);
+    const vk::DeviceSize bytes = x.size() * sizeof(float);
     const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
     HostBuffer in(ctx, bytes, usage), out(ctx, bytes, usage);
     std::memcpy(in.data(), x.data(), bytes);
@@ -52,7 +53,7 @@ std::vector<double> expm1OnDevice(const VulkanContext& ctx, const std::vector<do
         cmd.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, toHost,
                             {}, {});
     });
-    std::vector<double> expm1(x.size());
+    std::vector<float> expm1(x.size());
     std::memcpy(expm1.data(), out.data(), bytes);
     return expm1;
 }
@@ -62,27 +63,27 @@ double relativeError(double got, double want) {
     return std::abs(got - want) / std::abs(want);
 }
 
-// The requirement is a relative error below 1e-5 (what a float implementation could reach); the double
-// series reach close to double rounding, checked at 1e-12.
+// The requirement is a relative error below 1e-5; the float series reach a few float roundings (2^-24 each),
+// checked at 1e-6 against the double expm1 of the same float argument. Beyond 88.7 the float result overflows.
 TEST(VulkanNumerics, Expm1MatchesTheCLibraryFrom1eMinus12To1e3) {
     const VulkanContext& ctx = test::vulkanContext();
     // |x| from 1e-12 to 1e3, 200 points per decade, both signs, and the branch ends.
-    std::vector<double> x;
+    std::vector<float> x;
     for (int i = 0; i <= 15 * 200; ++i) {
-        const double m = std::pow(10.0, -12 + i / 200.0);
+        const float m = float(std::pow(10.0, -12 + i / 200.0));
         x.push_back(m);
         x.push_back(-m);
     }
-    for (double special : {0.5, -0.5, 1.0, -0.4999, 0.9999, 1e-3, -1e-3, 709.0, -745.0, 1e-300, -1e-300})
+    for (float special : {0.5f, -0.5f, 1.0f, -0.4999f, 0.9999f, 1e-3f, -1e-3f, 88.0f, -87.0f, 1e-30f, -1e-30f})
         x.push_back(special);
-    const std::vector<double> got = expm1OnDevice(ctx, x);
+    const std::vector<float> got = expm1OnDevice(ctx, x);
 
     double worst = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
-        const double want = std::expm1(x[i]);
-        const double err = relativeError(got[i], want);
+        const double want = std::expm1(double(x[i]));
+        const double err = x[i] > 88.7f ? (std::isinf(got[i]) ? 0 : 1) : relativeError(got[i], want);
         worst = std::max(worst, err);
-        EXPECT_LT(err, 1e-12) << "expm1(" << x[i] << ") = " << got[i] << ", want " << want;
+        EXPECT_LT(err, 1e-6) << "expm1(" << x[i] << ") = " << got[i] << ", want " << want;
     }
     std::printf("worst relative error of expm1: %.3g\n", worst);
     test::expectNoValidationErrors();
@@ -91,9 +92,9 @@ TEST(VulkanNumerics, Expm1MatchesTheCLibraryFrom1eMinus12To1e3) {
 TEST(VulkanNumerics, SpanOpacityOfTinyExtinctionKeepsItsValue) {
     // The stiff case of docs/ALGORITHMS.md section 6: 1 - (1 - 1e-8)^10000 in float is 0; expm1 keeps ~1e-4.
     const VulkanContext& ctx = test::vulkanContext();
-    const double sigmaL = -std::log1p(-1e-8) * 10000;
-    const std::vector<double> got = expm1OnDevice(ctx, {-sigmaL});
-    EXPECT_NEAR(-got[0], -std::expm1(-sigmaL), 1e-12 * std::expm1(sigmaL));
+    const float sigmaL = float(-std::log1p(-1e-8) * 10000);
+    const std::vector<float> got = expm1OnDevice(ctx, {-sigmaL});
+    EXPECT_NEAR(-got[0], -std::expm1(-double(sigmaL)), 1e-6 * std::expm1(double(sigmaL)));
     EXPECT_EQ(1.0f - std::pow(1.0f - 1e-8f, 10000.0f), 0.0f);  // what the naive float formula gives
 }
 

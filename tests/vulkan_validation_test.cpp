@@ -2,7 +2,14 @@
 // error (tests/support/vulkan.h: expectNoValidationErrors).
 #include <gtest/gtest.h>
 
+#include <numeric>
+#include <set>
+
+#include "shaders/embedded_shaders.h"
+#include "support/render_cases.h"
+#include "support/views.h"
 #include "volrender/vulkan/vulkan_context.h"
+#include "volrender/vulkan/vulkan_renderer.h"
 
 namespace vr {
 namespace {
@@ -18,6 +25,47 @@ TEST(VulkanValidation, MessengerRecordsErrors) {
         // The driver may refuse it too; the layer has spoken first.
     }
     EXPECT_FALSE(ctx.validationErrors().empty());
+}
+
+// The capabilities a SPIR-V module declares (OpCapability: opcode 17, one operand), walking its instructions.
+std::set<uint32_t> capabilities(const std::vector<uint32_t>& spirv) {
+    std::set<uint32_t> found;
+    for (std::size_t i = 5; i < spirv.size(); i += std::max(1u, spirv[i] >> 16))
+        if ((spirv[i] & 0xffff) == 17) found.insert(spirv[i + 1]);
+    return found;
+}
+
+// The casters compute in float and 32-bit integers: their SPIR-V declares neither Float64 (capability 10) nor
+// Int64 (11), and every caster, projection and brick layout creates its pipeline and renders on a context that
+// enables neither shaderFloat64 nor shaderInt64 (no context does) without a validation error, which the layer
+// reports for a shader using a feature the device did not enable.
+TEST(VulkanValidation, CastersNeedNeitherFloat64NorInt64) {
+    const std::set<uint32_t> used = capabilities(caster_spv);
+    EXPECT_FALSE(used.empty());
+    EXPECT_EQ(used.count(10), 0u) << "the casters declare Float64";
+    EXPECT_EQ(used.count(11), 0u) << "the casters declare Int64";
+
+    VulkanContext ctx(VulkanOptions{-1, true});
+    ASSERT_TRUE(ctx.validationEnabled()) << "VK_LAYER_KHRONOS_validation is not installed";
+    const PreparedVolume p = test::syntheticPrepared({{6, 5, 7}, {1, 1, 1}, {0, 0, 0}}, 1.0, [](const Vec3i& v) {
+        return test::VoxelClass{v.z < 3 ? 0.0 : 0.1 * (v.x % 3), {0.2, 0.5, 0.9}};
+    });
+    RenderSettings s;
+    s.shading = false;
+    // An orthographic view of one brick, then a perspective view of bricks of at most 4 texels a side.
+    const std::pair<Projection, ImageLimits> variants[] = {{Projection::Orthographic, ImageLimits{}},
+                                                           {Projection::Perspective, ImageLimits{4, 0, false}}};
+    for (const auto& [projection, limits] : variants) {
+        VulkanRenderer renderer(ctx, 16, limits);
+        const Camera camera = Camera::fit(p.classified.grid, test::orbitView(30, 20, 20, 18, projection));
+        for (const Caster c : test::kCasters) {
+            s.caster = c;
+            const RenderResult r = renderer.render(p, camera, s);
+            EXPECT_GT(std::accumulate(r.samples.begin(), r.samples.end(), uint64_t(0)), 0u) << casterName(c);
+        }
+    }
+    const auto errors = ctx.validationErrors();
+    EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
 }
 
 }  // namespace

@@ -138,6 +138,25 @@ PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
     return p;
 }
 
+void expectNearCpuReference(const RenderResult& device, const RenderResult& cpu) {
+    const std::size_t pixels = cpu.iterations.size();
+    ASSERT_EQ(device.iterations.size(), pixels);
+    std::size_t beyond = 0;
+    double sum = 0, deviceIterations = 0, cpuIterations = 0;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        double d = 0;
+        for (std::size_t ch = 4 * i; ch < 4 * i + 4; ++ch)
+            d = std::max(d, double(std::abs(device.image.rgba[ch] - cpu.image.rgba[ch])));
+        sum += d;
+        beyond += d > 1e-3;
+        deviceIterations += device.iterations[i];
+        cpuIterations += cpu.iterations[i];
+    }
+    EXPECT_LE(double(beyond), 0.005 * double(pixels)) << "pixels beyond 1e-3 of the CPU reference";
+    EXPECT_LT(sum / double(pixels), 1e-4) << "mean difference from the CPU reference";
+    EXPECT_NEAR(deviceIterations, cpuIterations, 0.01 * cpuIterations) << "iterations";
+}
+
 // Span opacity 1 - (1 - alpha)^N for per-sample opacity alpha and spans of N samples: one voxel seen along z from
 // z = 2 at dt = 1 / N, the reference step being dt, so that the voxel is one span of N samples for ACD and EACD.
 CaseCount spanOpacityGrid(const RenderFn& render, const CaseOptions& options) {
@@ -178,10 +197,11 @@ CaseCount spanOpacityGrid(const RenderFn& render, const CaseOptions& options) {
                 for (int ch = 0; ch < 3; ++ch)
                     EXPECT_LT(relativeError(r.image.pixel(0, 0)[ch], colour[ch] * want), 1e-4) << what << " channel " << ch;
                 if (want < 0.5) {  // A cannot round to 1 early
-                    EXPECT_EQ(r.samples[0], uint64_t(samples)) << what;
+                    EXPECT_LE(std::abs(int64_t(r.samples[0]) - samples), options.floatLattice ? 1 : 0) << what;
                 }
-                if (c == Caster::ACD || c == Caster::EACD) {
-                    EXPECT_EQ(r.iterations[0], 1u) << what << ": one span";
+                if (c == Caster::ACD || c == Caster::EACD) {  // the voxel's exit: T = 2
+                    const int64_t slack = options.floatLattice ? int64_t(0x1p-18 * 2 / dt) : 0;
+                    EXPECT_LE(r.iterations[0], 1 + slack) << what << ": one span";
                 }
             }
         }

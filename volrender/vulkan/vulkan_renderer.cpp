@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -45,8 +47,27 @@ int deviceExtentCode(ExtentCode code) {
     throw std::logic_error("deviceExtentCode: an extent code the device does not know");
 }
 
-device::dvec4 toDevice(const Vec3d& v) { return {v.x, v.y, v.z, 0}; }
+device::vec4 toDevice(const Vec3d& v) { return {float(v.x), float(v.y), float(v.z), 0}; }
 device::ivec4 toDevice(const Vec3i& v) { return {v.x, v.y, v.z, 0}; }
+
+// x + y: the double rounded to float, and what that rounding left (an infinity stays one, with y = 0).
+device::vec2 floatPair(double x) {
+    const float hi = float(x);
+    return {hi, std::isinf(hi) ? 0.0f : float(x - double(hi))};
+}
+
+// The casters count a ray's samples in a 32-bit integer (shaders/ray_setup.glsl).
+void requireDeviceLattice(const GridGeometry& grid, double stepVoxels) {
+    constexpr double kDeviceSamples = 0x1p31;
+    const double samples = std::ceil(length(grid.extent()) / (stepVoxels * grid.smallestSpacing()));
+    if (samples <= kDeviceSamples) return;
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "--step %g: too small for this volume on a Vulkan device: a ray across it takes up to %.3g "
+                  "samples, more than the %.0f the casters count (render with --cpu)",
+                  stepVoxels, samples, kDeviceSamples);
+    throw InputError(text);
+}
 
 device::CasterParams makeParams(const GridGeometry& grid, const Camera& camera, const RenderSettings& s,
                                 const std::array<int, kOctants>& slots) {
@@ -57,8 +78,8 @@ device::CasterParams makeParams(const GridGeometry& grid, const Camera& camera, 
     p.up = toDevice(camera.up);
     p.gridOrigin = toDevice(grid.origin);
     p.spacing = toDevice(grid.spacing);
-    p.halfHeight = camera.halfHeight;
-    p.dt = s.stepVoxels * grid.smallestSpacing();
+    p.halfHeight = float(camera.halfHeight);
+    p.dt = float(s.stepVoxels * grid.smallestSpacing());
     p.dims = toDevice(grid.dims);
     p.imageSize = {camera.width, camera.height};
     p.maxIterations = uint32_t(std::clamp<long long>(s.maxIterationsPerRay, 1, device::kCutShort - 1));
@@ -73,8 +94,7 @@ device::CasterParams makeParams(const GridGeometry& grid, const Camera& camera, 
     const ShadingModel m;
     p.material = {float(m.ambient), float(m.diffuse), float(m.specular), float(m.shininess)};
     p.background = {float(s.background.x), float(s.background.y), float(s.background.z), 0};
-    p.ert = s.ert;
-    p.ertDepth = terminationDepth(s.ert);
+    p.ertDepth = floatPair(terminationDepth(s.ert));
     return p;
 }
 
@@ -163,6 +183,7 @@ GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolume
 
 RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings) {
     checkRenderSettings(volume.grid(), volume.segmentedForTrilinear(), settings);
+    requireDeviceLattice(volume.grid(), settings.stepVoxels);
     volume.requireHolds(settings, viewOctants(camera));
     uploads_.clear();  // what this render reads of the volume
     for (const UploadedResource& u : volume.uploads())
@@ -308,8 +329,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     const std::size_t local = std::size_t(ly) * tile.tileSize.x + lx;
                     const int px = x0 + lx, py = y0 + ly;
                     const std::size_t index = std::size_t(py) * camera.width + px;
-                    const device::u64vec4& o = pixelsOut[local].words;
-                    const uint32_t iterations = uint32_t(o.w);  // with the shader's flags
+                    const device::OutPixel& o = pixelsOut[local];
+                    const uint32_t iterations = o.counts.y;  // with the shader's flags
                     if (iterations & device::kCutShort)
                         throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) + " caster: " +
                                                  ctx_.info().name + " ended the shader's loops before the ray at pixel (" +
@@ -321,9 +342,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                                  " caster: the ray at pixel (" + std::to_string(px) + ", " +
                                                  std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
                                                  "pass (a bug)");
-                    std::memcpy(result.image.pixel(px, py), &o, 4 * sizeof(float));  // words x and y
+                    std::memcpy(result.image.pixel(px, py), &o.colour, 4 * sizeof(float));
                     result.iterations[index] = iterations;
-                    result.samples[index] = o.z;
+                    result.samples[index] = o.counts.x;
                 }
             }
         }
