@@ -169,7 +169,7 @@ TEST(VulkanCasters, MissingFieldsAndIterationCapAreReported) {
 TEST(VulkanCasters, LatticeBeyondTheDeviceCountIsRefused) {
     const Volume v = constantPhantom({8, 8, 8}, 20);
     const PreparedVolume p = prepare(v, phantomTf(), 0, 0);
-    RenderSettings s = settings(Caster::EACD, false);
+    RenderSettings s = renderSettings(Caster::EACD, false);
     s.stepVoxels = 1e-9;                // 1.4e10 samples across the volume
     s.maxIterationsPerRay = 1LL << 40;  // a cap that allows them
     try {
