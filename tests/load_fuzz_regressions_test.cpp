@@ -49,9 +49,10 @@ namespace fs = std::filesystem;
 const fs::path kThisFile = fs::path(__FILE__).is_absolute() ? fs::path(__FILE__) : fs::path(VR_BINARY_DIR) / __FILE__;
 const fs::path kRegressionsFolder = kThisFile.parent_path().parent_path() / "fuzz" / "regressions";
 
-// Run in a child process: exits 0 only when loadVolume throws an InputError naming the file, having allocated at
-// most maxAllocation bytes at once. The alarm turns a hang into a failure instead of a stalled suite.
-[[noreturn]] void loadExpectingRefusal(const fs::path& input, std::size_t maxAllocation) {
+// Run in a child process: exits 0 only when loadVolume throws an InputError naming the file (and holding `problem`,
+// where given), having allocated at most maxAllocation bytes at once. The alarm turns a hang into a failure instead
+// of a stalled suite.
+[[noreturn]] void loadExpectingRefusal(const fs::path& input, std::size_t maxAllocation, const char* problem) {
     alarm(20);
     largestAllocation = 0;
     try {
@@ -60,6 +61,8 @@ const fs::path kRegressionsFolder = kThisFile.parent_path().parent_path() / "fuz
     } catch (const InputError& e) {
         if (std::string(e.what()).find(input.filename().string()) == std::string::npos)
             std::fprintf(stderr, "the message does not name the file: %s\n", e.what());
+        else if (problem && std::string(e.what()).find(problem) == std::string::npos)
+            std::fprintf(stderr, "the message does not say \"%s\": %s\n", problem, e.what());
         else if (largestAllocation > maxAllocation)
             std::fprintf(stderr, "refused, but only after allocating %zu bytes at once\n", largestAllocation.load());
         else
@@ -74,18 +77,19 @@ constexpr std::size_t kSmallInputAllocation = std::size_t(64) << 20;
 constexpr std::size_t kAnyAllocation = std::size_t(1) << 40;
 
 // In a child process, so that a crash or a hang fails this test alone.
-void expectRefused(const fs::path& input, std::size_t maxAllocation) {
+void expectRefused(const fs::path& input, std::size_t maxAllocation, const char* problem) {
     ASSERT_TRUE(fs::exists(input)) << input;
     GTEST_FLAG_SET(death_test_style, "threadsafe");  // TBB and VTK may have started threads
-    EXPECT_EXIT(loadExpectingRefusal(input, maxAllocation), testing::ExitedWithCode(0), "") << input;
+    EXPECT_EXIT(loadExpectingRefusal(input, maxAllocation, problem), testing::ExitedWithCode(0), "") << input;
 }
 
 // One kind of input fuzzing found mishandled: the files or DICOM series folders (under fuzz/regressions/) that show
-// it, and how much refusing one may allocate at once.
+// it, how much refusing one may allocate at once, and (where given) a fragment of the message refusing each.
 struct Regression {
     const char* name;
     std::vector<const char*> inputs;
     std::size_t maxAllocation = kAnyAllocation;
+    const char* problem = nullptr;
 };
 
 const Regression kRegressions[] = {
@@ -102,6 +106,12 @@ const Regression kRegressions[] = {
     // vtkDICOMImageReader sizes the volume from one slice and copies each slice whole into it: a later, larger slice
     // overflowed it (SEGV).
     {"DicomSlicesOfDifferentSizes", {"dicom/slices_of_different_sizes"}},
+    // Samples per pixel (0028,0002) of 0 and no photometric interpretation: the check required rows x columns x 0
+    // x bits allocated bytes of pixel data, but VTK, which counts one component whatever the samples say, copied
+    // whole rows (3 of 8191 16-bit pixels) from the 24 bytes there (heap-buffer-overflow read in vtkDICOMImageReader::
+    // ExecuteDataWithInformation, found by fuzz_dicom). The folder is the series fuzz_dicom made of the input.
+    {"DicomZeroSamplesPerPixel", {"dicom/zero_samples_per_pixel"}, kAnyAllocation,
+     "samples per pixel (0028,0002) is 0"},
     // vtkNrrdReader reports nothing when raw or ASCII data end early: the missing voxels would be uninitialised memory.
     {"NrrdDataShorterThanTheSizes", {"nrrd/raw_data_too_short.nrrd", "nrrd/ascii_data_too_short.nrrd"}},
     // NUL bytes inside a "space directions" vector send vtkNrrdReader::ReadHeader into an endless loop.
@@ -195,7 +205,8 @@ class LoadFuzzRegressions : public testing::TestWithParam<Regression> {};
 // Every input of the kind is refused, each in a child process.
 TEST_P(LoadFuzzRegressions, AreRefused) {
     ASSERT_FALSE(GetParam().inputs.empty());
-    for (const char* input : GetParam().inputs) expectRefused(kRegressionsFolder / input, GetParam().maxAllocation);
+    for (const char* input : GetParam().inputs)
+        expectRefused(kRegressionsFolder / input, GetParam().maxAllocation, GetParam().problem);
 }
 
 INSTANTIATE_TEST_SUITE_P(, LoadFuzzRegressions, testing::ValuesIn(kRegressions),

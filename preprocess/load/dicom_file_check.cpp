@@ -2,8 +2,9 @@
 // (magic at 0) or 132 (magic after the preamble) to the end of the file, past the pixel data, deciding each
 // element's encoding by whether the two bytes after the tag spell a VR it knows, whatever the transfer syntax says.
 // It hands a callback the null pointer for an element of length <= 0, which most of DICOMAppHelper's callbacks
-// dereference (strcmp, strtod, a 2-byte read), and its pixel data callback copies rows x columns x bits allocated
-// bytes whatever the element holds. So the check walks every file exactly as that parser does.
+// dereference (strcmp, strtod, a 2-byte read), and its pixel data callback copies rows x columns x components x
+// bits allocated bytes whatever the element holds (components: 3 for an "RGB " photometric interpretation, else 1,
+// whatever the samples per pixel say). So the check walks every file exactly as that parser does.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -144,6 +145,9 @@ DicomSliceLayout checkDicomFile(const fs::path& path) {
             if (length < 2) throw file.fail(what + " holds " + std::to_string(length) + " byte");
             std::uint64_t& field = t == kRows ? rows : t == kColumns ? columns : t == kBitsAllocated ? bits : samples;
             field = file.littleEndian<std::uint16_t>(what);
+            // VTK takes a pixel's components from the photometric interpretation ("RGB " 3, else 1), never from
+            // the samples per pixel: 0 samples would let the pixel data hold nothing while VTK copies whole rows.
+            if (t == kSamples && samples == 0) throw file.fail("samples per pixel " + tagText(t) + " is 0");
             if (t == kBitsAllocated && bits != 8 && bits != 16)
                 throw file.fail(std::to_string(bits) + " bits allocated (VTK's DICOM reader reads 8 or 16)");
         }
