@@ -434,8 +434,10 @@ TEST_F(IoPreparedFile, RejectsABadChunkTable) {
 }
 
 TEST_F(IoPreparedFile, RejectsNumbersThatDoNotFit) {
-    for (auto [key, value] : std::vector<std::pair<std::string, json>>{
+    for (const auto& entry : std::vector<std::pair<std::string, json>>{
              {"offset", -5}, {"offset", 1e30}, {"bytes", 12.5}, {"crc32", uint64_t(1) << 40}, {"components", "3"}}) {
+        const std::string& key = entry.first;  // a named reference: clang 14 cannot capture structured bindings
+        const json& value = entry.second;
         SCOPED_TRACE(key + " = " + value.dump());
         expectEditedHeaderRejected([&](json& h) { h["chunks"][2][key] = value; },
                                    "bad header: '" + key + "' must be an integer");
