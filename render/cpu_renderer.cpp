@@ -82,11 +82,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const std::optional<Vec3d> light =
         settings.lightDirection ? std::optional<Vec3d>(normalize(*settings.lightDirection)) : std::nullopt;
 
-    RenderResult result;
-    result.image = Image(camera.width, camera.height);
-    const std::size_t pixels = std::size_t(camera.width) * camera.height;
-    result.iterations.assign(pixels, 0);
-    result.samples.assign(pixels, 0);
+    RenderResult result = RenderResult::blank(camera.width, camera.height);
 
     auto trace = [&](int px, int py) {
         const Ray ray = camera.ray(px + 0.5, py + 0.5);

@@ -273,11 +273,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             passes.emplace_back(signs, volume.bricks().frontToBack(signs));
     }
 
-    RenderResult result;
-    result.image = Image(camera.width, camera.height);
-    const std::size_t pixels = std::size_t(camera.width) * camera.height;
-    result.iterations.assign(pixels, 0);
-    result.samples.assign(pixels, 0);
+    RenderResult result = RenderResult::blank(camera.width, camera.height);
 
     for (int y0 = 0; y0 < camera.height; y0 += tileSize_) {
         for (int x0 = 0; x0 < camera.width; x0 += tileSize_) {
