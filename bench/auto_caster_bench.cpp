@@ -118,10 +118,10 @@ struct Timings {
     std::vector<std::string> viewEstimates;  // auto's estimates for each view alone (--explain)
 };
 
-// Wall ms and bytes of uploading what one caster needs for the views: the classified volume, normals, its field.
+// Wall ms and bytes of uploading what one caster needs for the views: the scalars, the transfer table, its field.
 std::pair<double, double> upload(VulkanRenderer& renderer, const PreparedVolume& p, Caster c, unsigned octants) {
     const StageClock clock;
-    const GpuVolume volume = renderer.upload(p, {{c}, true, octants});
+    const GpuVolume volume = renderer.upload(p, {{c}, octants});
     return {1e3 * clock.stop("upload").seconds, double(volume.uploadedBytes())};
 }
 
@@ -135,10 +135,10 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
     RenderSettings s;
     s.stepVoxels = step;
     std::vector<Camera> cameras;
-    GpuVolumeContents contents{{std::begin(kFixed), std::end(kFixed)}, s.shading, 0};
+    GpuVolumeContents contents{{std::begin(kFixed), std::end(kFixed)}, 0};
     CasterDemand demand{0, {}, (long long)views.front().width * views.front().height, step};
     for (const ViewParams& v : views) {
-        cameras.push_back(Camera::fit(p.classified.grid, v));
+        cameras.push_back(Camera::fit(p.grid(), v));
         demand.addView(cameras.back());
     }
     contents.octants = demand.octants;
@@ -150,7 +150,7 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
         t.viewEstimates.push_back(chooseCaster(p.meta.rayProbe, fieldBytes, one).reason);
     }
 
-    // The fields' uploads: what a caster adds to the classified volume and normals every caster uploads. On a
+    // The fields' uploads: what a caster adds to the scalars and the table every caster uploads. On a
     // shared machine one upload's wall time scatters more than a small field takes, so the rate is measured on the
     // biggest fields (ACD, EACD), each timed back to back with primitive's upload, and the median rate over them
     // and the repeats prices every field's exact bytes.

@@ -13,11 +13,8 @@
 #include "bench_checks.h"
 #include "core/errors.h"
 #include "core/extent_code.h"
-#include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
-#include "preprocess/load/load_volume.h"
-#include "preprocess/pipeline/stage_time.h"
-#include "preprocess/segment/segment.h"
+#include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
 #include "sweep/metrics/rmse.h"
 #include "sweep/order_statistics.h"
@@ -128,10 +125,11 @@ int main(int argc, char** argv) {
             if (row == rows.end()) throw InputError("no raw dataset starting with '" + name + "' in the manifest");
             RawOptions raw;
             raw.spacing = row->spacing;
-            ClassifyParams cp;
-            cp.transferFunction = loadTransferFunction(test::datasetsDir() / row->tf);
-            PreparedVolume exact;
-            exact.classified = classify(loadVolume(test::datasetsDir() / row->file, raw), cp);
+            PrepareOptions options;
+            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / row->tf);
+            options.fields = kFieldEACD;
+            options.eacdCode = ExtentCode::Exact;
+            StagedPreparation staged(loadVolume(test::datasetsDir() / row->file, raw));
             std::vector<Camera> cameras;
             unsigned octants = 0;
             for (int v = 0; v < views; ++v) {
@@ -139,13 +137,12 @@ int main(int argc, char** argv) {
                 vp.width = vp.height = size;
                 vp.azimuthDeg = 360.0 * v / views;
                 vp.elevationDeg = 20;
-                cameras.push_back(Camera::fit(exact.classified.grid, vp));
+                cameras.push_back(Camera::fit(staged.volume().grid, vp));
                 octants |= viewOctants(cameras.back());
             }
             for (auto [settingTo, settingTa] : {std::pair{0.0, 0.0}, std::pair{to, ta}}) {
-                exact.meta.segmentation = {settingTo, settingTa, true, false};
-                exact.regions = segment(exact.classified, exact.meta.segmentation);
-                exact.fields = buildFields(exact.regions, kFieldEACD);
+                options.segmentation = {settingTo, settingTa, true, false};
+                const PreparedVolume& exact = staged.prepare(options);
                 RenderSettings s;
                 s.caster = Caster::EACD;
                 s.stepVoxels = step;
@@ -154,10 +151,10 @@ int main(int argc, char** argv) {
                 for (ExtentCode code : kCodes) {
                     PreparedVolume p = exact;
                     quantiseEACD(p.fields, code);
-                    const GpuVolume volume = renderer.upload(p, {{Caster::EACD}, s.shading, octants});
+                    const GpuVolume volume = renderer.upload(p, {{Caster::EACD}, octants});
                     CodeRun& run = runs[int(code)];
                     for (const UploadedResource& u : volume.uploads())
-                        if (u.name == "eacd") run.deviceBytesPerVoxel += double(u.bytes) / double(p.classified.grid.voxels());
+                        if (u.name == "eacd") run.deviceBytesPerVoxel += double(u.bytes) / double(p.grid().voxels());
                     renderer.render(volume, cameras[0], s);  // warm-up
                     std::vector<double> ms;
                     const StageClock clock;

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 using vr::median;
 
 const std::vector<std::string> kStages = {"load", "classify", "segment", "pc", "acd", "eacd", "write", "read"};
-const std::vector<std::string> kChunks = {"sigma", "colour", "normal", "labels", "pc", "acd", "eacd"};
+const std::vector<std::string> kChunks = {"scalars", "table", "labels", "pc", "acd", "eacd"};
 
 
 double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
@@ -29,8 +29,8 @@ double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 struct DatasetResult {
     std::string name;
     // Per stage, one entry per run. Besides the pipeline's stages: "read" (readPrepared of every chunk), and the
-    // comparison with OpenVDB: "core read" (readPrepared of sigma, colour and labels only), "vdb write" and
-    // "vdb read" (sigma alone as an OpenVDB FloatGrid, read back and densified).
+    // comparison with OpenVDB: "core read" (readPrepared of the scalars, the table and the labels only), "vdb
+    // write" and "vdb read" (the scalars as an OpenVDB FloatGrid, read back and densified).
     std::map<std::string, std::vector<double>> wall, cpu;
     nlohmann::json statistics;  // from the last run (the same every run)
     std::uintmax_t fileBytes = 0, vdbBytes = 0;
@@ -41,18 +41,18 @@ void record(DatasetResult& result, const vr::StageTime& t) {
     result.cpu[t.stage].push_back(t.cpuSeconds);
 }
 
-// The dense sigma array through OpenVDB with its default file compression: the format the prepared file is meant
-// to beat on dense grids. Zero (transparent) voxels stay inactive background, which favours OpenVDB.
-std::uintmax_t vdbRoundTrip(const std::vector<float>& sigma, vr::Vec3i dims, const fs::path& path,
+// The dense scalars (as float) through OpenVDB with its default file compression: the format the prepared file is
+// meant to beat on dense grids. Zero voxels stay inactive background, which favours OpenVDB.
+std::uintmax_t vdbRoundTrip(const std::vector<float>& scalars, vr::Vec3i dims, const fs::path& path,
                             DatasetResult& result) {
     using namespace openvdb;
     const CoordBBox box(Coord(0), Coord(dims.x - 1, dims.y - 1, dims.z - 1));
     vr::StageClock write;
     {
-        tools::Dense<const float, tools::LayoutXYZ> dense(box, sigma.data());
+        tools::Dense<const float, tools::LayoutXYZ> dense(box, scalars.data());
         FloatGrid::Ptr grid = FloatGrid::create(0.0f);
         tools::copyFromDense(dense, *grid, 0.0f);
-        grid->setName("sigma");
+        grid->setName("scalars");
         io::File(path.string()).write({grid});
     }
     record(result, write.stop("vdb write"));
@@ -60,13 +60,13 @@ std::uintmax_t vdbRoundTrip(const std::vector<float>& sigma, vr::Vec3i dims, con
     vr::StageClock read;
     io::File file(path.string());
     file.open();
-    FloatGrid::Ptr grid = gridPtrCast<FloatGrid>(file.readGrid("sigma"));
+    FloatGrid::Ptr grid = gridPtrCast<FloatGrid>(file.readGrid("scalars"));
     file.close();
-    std::vector<float> back(sigma.size());
+    std::vector<float> back(scalars.size());
     tools::Dense<float, tools::LayoutXYZ> dense(box, back.data());
     tools::copyToDense(*grid, dense);
     record(result, read.stop("vdb read"));
-    if (back != sigma) throw std::runtime_error("OpenVDB changed sigma on the round trip");
+    if (back != scalars) throw std::runtime_error("OpenVDB changed the scalars on the round trip");
     std::uintmax_t bytes = fs::file_size(path);
     fs::remove(path);
     return bytes;
@@ -78,10 +78,10 @@ vr::test::DatasetEntry findDataset(const std::string& file) {
     throw vr::InputError(file + ": not in " + (vr::test::datasetsDir() / "MANIFEST.tsv").string());
 }
 
-// Every stage as volprep runs them (the scalars freed once classified), the write included.
+// Every stage as volprep runs them (the classified volume freed once segmented), the write included.
 void prepareFile(const fs::path& input, const vr::RawOptions& raw, const vr::PrepareOptions& options,
                  const fs::path& out, DatasetResult& result) {
-    vr::StagedPreparation staged = vr::StagedPreparation::load(input, raw, vr::ScalarsOnceClassified::Free);
+    vr::StagedPreparation staged = vr::StagedPreparation::load(input, raw, vr::ClassifiedOnceSegmented::Free);
     staged.prepare(options);
     staged.write(out);
     for (const vr::StageTime& t : staged.stageTimes()) record(result, t);
@@ -101,13 +101,13 @@ DatasetResult benchDataset(const std::string& file, const vr::PrepareOptions& ba
         prepareFile(vr::test::datasetsDir() / file, raw, options, out, result);  // freed before reading it back
 
         vr::StageClock all;
-        vr::PreparedVolume back = vr::readPrepared(out, options.fields, options.classify.normals);
+        vr::PreparedVolume back = vr::readPrepared(out, options.fields);
         record(result, all.stop("read"));
         back = {};
         vr::StageClock core;
-        back = vr::readPrepared(out, 0, false);
+        back = vr::readPrepared(out, 0);
         record(result, core.stop("core read"));
-        result.vdbBytes = vdbRoundTrip(back.classified.sigma, back.classified.grid.dims, scratch / (file + ".vdb"), result);
+        result.vdbBytes = vdbRoundTrip(back.scalars.values, back.grid().dims, scratch / (file + ".vdb"), result);
         std::fprintf(stderr, "%s: run %d of %d done\n", file.c_str(), run + 1, runs);
     }
     fs::remove(out);
@@ -149,20 +149,20 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
                &DatasetResult::cpu);
 
     std::printf("Dense float data through this format and through OpenVDB %s (file compression flags %u), "
-                "median wall (CPU) seconds. Prepared: readPrepared of sigma, colour and labels only. OpenVDB: sigma "
-                "alone as a FloatGrid (zero voxels inactive), read and densified.\n\n"
-                "| dataset | prepared MiB | read s | MiB/s | OpenVDB sigma MiB (file) | write s | read s | MiB/s |\n"
+                "median wall (CPU) seconds. Prepared: readPrepared of the scalars, the table and the labels only. "
+                "OpenVDB: the scalars as a FloatGrid (zero voxels inactive), read and densified.\n\n"
+                "| dataset | prepared MiB | read s | MiB/s | OpenVDB scalars MiB (file) | write s | read s | MiB/s |\n"
                 "|---|---:|---:|---:|---:|---:|---:|---:|\n",
                 openvdb::getLibraryVersionString(), openvdb::io::Archive::DEFAULT_COMPRESSION_FLAGS);
     for (const auto& r : results) {
         const nlohmann::json& b = r.statistics["bytes"];
-        double ours = mib(b["sigma"].get<double>() + b["colour"].get<double>() + b["labels"].get<double>());
-        double sigma = mib(b["sigma"].get<double>());
+        double ours = mib(b["scalars"].get<double>() + b["table"].get<double>() + b["labels"].get<double>());
+        double dense = mib(r.statistics["voxels"].get<double>() * sizeof(float));
         double read = median(r.wall.at("core read")), vdbRead = median(r.wall.at("vdb read"));
         std::printf("| %s | %.1f | %.3f (%.3f) | %.0f | %.1f (%.1f) | %.3f (%.3f) | %.3f (%.3f) | %.0f |\n", r.name.c_str(),
-                    ours, read, median(r.cpu.at("core read")), ours / read, sigma, mib(double(r.vdbBytes)),
+                    ours, read, median(r.cpu.at("core read")), ours / read, dense, mib(double(r.vdbBytes)),
                     median(r.wall.at("vdb write")), median(r.cpu.at("vdb write")), vdbRead,
-                    median(r.cpu.at("vdb read")), sigma / vdbRead);
+                    median(r.cpu.at("vdb read")), dense / vdbRead);
     }
 
     std::printf("\nMiB per chunk:\n\n| dataset |");
@@ -217,11 +217,13 @@ int main(int argc, char** argv) {
     app.add_option("datasets", datasets, "file names in MANIFEST.tsv")->capture_default_str();
     app.add_option("--to", options.segmentation.opacityThreshold, "T_o")->capture_default_str();
     app.add_option("--ta", options.segmentation.angleThresholdDeg, "T_a, degrees")->capture_default_str();
-    app.add_flag("--trilinear", options.segmentation.trilinear, "regions for trilinear sampling");
+    bool nearest = false;
+    app.add_flag("--nearest", nearest, "regions for nearest sampling only (default: trilinear, as volprep makes)");
     app.add_flag("--no-normals", noNormals, "no gradients (T_a ignored)");
     app.add_option("--runs", runs, "runs per dataset (the median is printed)")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--scratch", scratch, "folder for the prepared files")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
+    options.segmentation.trilinear = !nearest;
     openvdb::initialize();
     options.classify.normals = options.segmentation.useNormals = !noNormals;
 

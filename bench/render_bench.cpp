@@ -12,10 +12,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "preprocess/classify/classify.h"
-#include "preprocess/fields/build_fields.h"
-#include "preprocess/load/load_volume.h"
-#include "preprocess/segment/segment.h"
+#include "preprocess/pipeline/staged_prepare.h"
 #include "sweep/metrics/rmse.h"
 #include "sweep/order_statistics.h"
 #include "render/view_octants.h"
@@ -54,17 +51,6 @@ ManifestRow manifestRow(const fs::path& dir, const std::string& prefix) {
     throw std::runtime_error("no raw dataset starting with '" + prefix + "' in " + (dir / "MANIFEST.tsv").string());
 }
 
-PreparedVolume prepare(const ClassifiedVolume& classified, double to, double ta) {
-    PreparedVolume p;
-    p.classified = classified;
-    p.meta.segmentation = {to, ta, true, false};
-    p.regions = segment(p.classified, p.meta.segmentation);
-    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
-    return p;
-}
-
-
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,6 +58,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> datasets{"boston_teapot", "cranium_ct"};
     int size = 512, views = 8, device = -1;
     double to = 0.02, ta = 10, step = 0.5;
+    bool nearest = false;
     std::string dir = VR_DATASETS_DIR;
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->capture_default_str();
     app.add_option("--size", size, "image width = height")->capture_default_str();
@@ -79,6 +66,7 @@ int main(int argc, char** argv) {
     app.add_option("--to", to, "T_o of the threshold setting")->capture_default_str();
     app.add_option("--ta", ta, "T_a of the threshold setting, degrees")->capture_default_str();
     app.add_option("--step", step, "step in voxels")->capture_default_str();
+    app.add_flag("--nearest", nearest, "nearest sampling and regions for it (default: trilinear, as users render)");
     app.add_option("--device", device, "Vulkan device index");
     app.add_option("--data", dir, "datasets folder")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
@@ -86,25 +74,27 @@ int main(int argc, char** argv) {
     try {
         VulkanContext ctx(VulkanOptions{device, false});
         VulkanRenderer renderer(ctx);
-        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, nearest, Phong headlight, "
+        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, %s, Phong headlight, "
                     "ERT 0.99.\n\n",
-                    ctx.info().name.c_str(), size, size, views, step);
+                    ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear");
         std::printf("| dataset | T_o, T_a | caster | upload ms (MB) | median device ms | x primitive (time) | "
                     "iterations/ray | x primitive (iterations) | PSNR vs primitive T=0, worst view (dB) |\n");
         std::printf("|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : datasets) {
             const ManifestRow row = manifestRow(dir, name);
-            ClassifyParams cp;
-            cp.transferFunction = loadTransferFunction(fs::path(dir) / row.tf);
-            const ClassifiedVolume classified = classify(loadVolume(fs::path(dir) / row.file, row.raw), cp);
+            PrepareOptions options;
+            options.classify.transferFunction = loadTransferFunction(fs::path(dir) / row.tf);
+            StagedPreparation staged(loadVolume(fs::path(dir) / row.file, row.raw));
             std::vector<Image> reference;  // primitive at thresholds 0, per view
             for (auto [settingTo, settingTa] : {std::pair{0.0, 0.0}, std::pair{to, ta}}) {
-                const PreparedVolume p = prepare(classified, settingTo, settingTa);
+                options.segmentation = {settingTo, settingTa, true, !nearest};
+                const PreparedVolume& p = staged.prepare(options);
                 double primitiveMs = 0, primitiveIterations = 0;
                 for (Caster c : {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD}) {
                     RenderSettings s;
                     s.caster = c;
                     s.stepVoxels = step;
+                    s.trilinear = !nearest;
                     std::vector<double> ms, psnrs;
                     double iterations = 0;
                     std::vector<Camera> cameras;
@@ -114,11 +104,11 @@ int main(int argc, char** argv) {
                         vp.width = vp.height = size;
                         vp.azimuthDeg = 360.0 * v / views;
                         vp.elevationDeg = 20;
-                        cameras.push_back(Camera::fit(classified.grid, vp));
+                        cameras.push_back(Camera::fit(p.grid(), vp));
                         octants |= viewOctants(cameras.back());
                     }
                     const auto start = std::chrono::steady_clock::now();
-                    const GpuVolume volume = renderer.upload(p, {{c}, s.shading, octants});
+                    const GpuVolume volume = renderer.upload(p, {{c}, octants});
                     const double uploadMs =
                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                     for (int v = -1; v < views; ++v) {  // v = -1: the warm-up frame

@@ -107,8 +107,8 @@ std::string checksums(const vr::PreparedVolume& p) {
         eacd = crc32Of(p.fields.eacd[o].data(), p.fields.eacd[o].bytes(), eacd);
     }
     char text[160];
-    std::snprintf(text, sizeof text, "sigma %08x colour %08x normal %08x labels %08x PC %08x ACD %08x EACD %08x",
-                  crc32Of(p.classified.sigma), crc32Of(p.classified.colour), crc32Of(p.classified.normal),
+    std::snprintf(text, sizeof text, "table %08x %08x labels %08x PC %08x ACD %08x EACD %08x",
+                  crc32Of(p.classification.table.sigma), crc32Of(p.classification.table.colour),
                   crc32Of(p.regions.label), crc32Of(p.fields.pc), acd, eacd);
     return text;
 }

@@ -1,20 +1,13 @@
-// The classified volume (docs/ALGORITHMS.md section 2): per voxel extinction, colour and normal.
+// The classified volume (docs/ALGORITHMS.md section 2): per voxel extinction, colour and normal, as nearest samples
+// classify; what segmentation keys its regions on.
 #pragma once
 #include <array>
-#include <cmath>
 #include <vector>
 
 #include "grid.h"
+#include "scalar_classification.h"
 
 namespace vr {
-
-// Opacity alpha per reference step dt0 <-> extinction sigma per world unit.
-// alpha = 1 is clamped to a large finite sigma so that spans stay finite.
-constexpr double kMaxOpacityPerStep = 1.0 - 1e-12;
-inline double extinctionFromOpacity(double alpha, double dt0) {
-    return -std::log1p(-std::min(alpha, kMaxOpacityPerStep)) / dt0;
-}
-inline double opacityFromExtinction(double sigma, double length) { return -std::expm1(-sigma * length); }
 
 struct ClassifiedVolume {
     GridGeometry grid;

@@ -4,10 +4,11 @@
 #include <optional>
 #include <string>
 
-#include "classified_volume.h"
 #include "distance_fields.h"
 #include "ray_probe.h"
 #include "regions.h"
+#include "scalar_classification.h"
+#include "volume.h"
 
 namespace vr {
 
@@ -20,11 +21,16 @@ struct PreparedMetadata {
     std::optional<RayProbe> rayProbe;  // what --caster auto chooses from; none where rays are too long to probe
 };
 
+// The scalars and how to classify them (the renderers classify each sample: docs/ALGORITHMS.md section 2), the
+// regions and the fields over them.
 struct PreparedVolume {
-    ClassifiedVolume classified;
+    Volume scalars;  // held as float; scalars.sourceType is how the device and the prepared file hold them
+    ScalarClassification classification;
     Regions regions;
     DistanceFields fields;
     PreparedMetadata meta;
+
+    const GridGeometry& grid() const { return scalars.grid; }
 };
 
 // Bytes of each distance field, all octants together: what a caster's field costs to store and to upload.

@@ -1,5 +1,6 @@
 // A loaded scalar volume: the one type every loader produces.
 #pragma once
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,6 +14,16 @@ enum class ScalarType { UInt8, Int16, UInt16, Float32 };
 
 std::string_view scalarTypeName(ScalarType t);           // "uint8", "int16", "uint16", "float32"
 ScalarType parseScalarType(std::string_view name);       // accepts those names (and "float"); throws InputError
+// Bytes of one voxel of the type as stored: 1, 2, 2, 4.
+constexpr std::size_t scalarBytes(ScalarType t) {
+    switch (t) {
+        case ScalarType::UInt8: return 1;
+        case ScalarType::Int16:
+        case ScalarType::UInt16: return 2;
+        case ScalarType::Float32: return 4;
+    }
+    return 0;
+}
 
 struct Volume {
     GridGeometry grid;

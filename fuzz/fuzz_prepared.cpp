@@ -2,6 +2,8 @@
 // mutation of the header would stop at the checksum, and the header (JSON, chunk table) is what needs fuzzing.
 #include <zlib.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -22,15 +24,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         }
     }
     const std::filesystem::path path = vr::fuzz::writeInput("input.vprep", bytes);
-    // The input's size picks which parts are read, so that optional chunks are fuzzed both read and skipped.
+    // The input's size picks which distance fields are read, so that they are fuzzed both read and skipped.
     const unsigned fields = unsigned(size % 8);
-    const bool normals = size % 16 < 8;
     try {
-        const vr::PreparedVolume p = vr::readPrepared(path, fields, normals);
-        const std::size_t voxels = p.classified.grid.voxels();
-        if (p.classified.sigma.size() != voxels || p.classified.colour.size() != voxels ||
-            p.regions.label.size() != voxels)
+        const vr::PreparedVolume p = vr::readPrepared(path, fields);
+        const std::size_t voxels = p.grid().voxels();
+        const vr::TransferTable& table = p.classification.table;
+        if (p.scalars.values.size() != voxels || p.regions.label.size() != voxels)
             vr::fuzz::finding("readPrepared returned arrays that do not fit the grid");
+        if (table.sigma.size() != table.colour.size() || table.size() < 1 || table.size() > vr::kMaxTransferTableEntries)
+            vr::fuzz::finding("readPrepared returned a transfer table of a bad size");
+        if (!(table.step > 0) || !(p.classification.referenceStep > 0) || !(p.classification.flatGradient >= 0))
+            vr::fuzz::finding("readPrepared returned a classification that cannot be rendered");
+        if (!std::all_of(p.scalars.values.begin(), p.scalars.values.end(), [](float v) { return std::isfinite(v); }))
+            vr::fuzz::finding("readPrepared returned a scalar that is not finite");
     } catch (const vr::InputError&) {
     }
     return 0;

@@ -207,13 +207,31 @@ def transfer_function():
     put("transfer_function", "malformed", '[{"Points": [0, 0, 0.5, 0}')
 
 
-def prepared_file(dims, chunks, version=2, eacd_code="exact"):
+SCALAR_FORMATS = {"uint8": "B", "int16": "h", "uint16": "H", "float32": "f"}
+
+
+def scalar_values(scalar_type):
+    return {"uint8": lambda i: i % 256, "int16": lambda i: i * 37 - 300, "uint16": lambda i: i * 1000 % 65536,
+            "float32": lambda i: i * 0.25 - 1}[scalar_type]
+
+
+def chunk_blob(name, components, size, voxels, scalar_type, entries):
+    if name == "labels":
+        return struct.pack("<%dI" % voxels, *[i % 2 for i in range(voxels)])
+    if name == "scalars":
+        value = scalar_values(scalar_type)
+        return struct.pack("<%d%s" % (voxels, SCALAR_FORMATS[scalar_type]), *[value(i) for i in range(voxels)])
+    if name == "table":  # r, g, b, sigma per entry
+        return struct.pack("<%df" % (4 * entries), *[x for e in range(entries)
+                                                     for x in (e / entries, 0.5, 1 - e / entries, e * 0.5)])
+    return bytes((i * 7 + len(name)) % 251 for i in range(voxels * components * size))
+
+
+def prepared_file(dims, chunks, version=3, eacd_code="exact", scalar_type="uint8", entries=4):
     voxels = dims[0] * dims[1] * dims[2]
     table, blobs, offset = [], [], 0
     for name, type_, components, size in chunks:
-        blob = bytes((i * 7 + len(name)) % 251 for i in range(voxels * components * size))
-        if name == "labels":
-            blob = struct.pack("<%dI" % voxels, *[i % 2 for i in range(voxels)])
+        blob = chunk_blob(name, components, size, voxels, scalar_type, entries)
         table.append({"name": name, "type": type_, "components": components, "offset": offset, "bytes": len(blob),
                       "crc32": zlib.crc32(blob)})
         blobs.append(blob)
@@ -227,24 +245,42 @@ def prepared_file(dims, chunks, version=2, eacd_code="exact"):
         "chunks": table}
     if version >= 2:  # version 1 stored exact EACD only and had no eacdCode
         header["eacdCode"] = eacd_code
+    if version >= 3:  # version 3: the scalars and the tabulated transfer function instead of the classified volume
+        header["scalarType"] = scalar_type
+        header["flatGradient"] = 1e-6
+        header["transferTable"] = {"lo": 0.0, "step": 1.0, "entries": entries}
     header = json.dumps(header, indent=1).encode()
     return (b"VOLPREP\0" + struct.pack("<IQ", version, len(header)) + header + struct.pack("<I", zlib.crc32(header))
             + b"".join(blobs))
 
 
 def prepared():
-    base = [("sigma", "float32", 1, 4), ("colour", "float32", 3, 4), ("labels", "uint32", 1, 4)]
-    fields = ([("normal", "float32", 3, 4), ("pc", "uint8", 1, 1)] + [("acd%d" % o, "uint8", 1, 1) for o in range(8)]
+    folder = os.path.join(ROOT, "prepared")
+    for name in os.listdir(folder) if os.path.isdir(folder) else []:  # seeds of an earlier version go
+        os.remove(os.path.join(folder, name))
+
+    def base(scalar_type="uint8"):
+        size = struct.calcsize(SCALAR_FORMATS[scalar_type])
+        return [("scalars", scalar_type, 1, size), ("table", "float32", 4, 4), ("labels", "uint32", 1, 4)]
+
+    fields = ([("pc", "uint8", 1, 1)] + [("acd%d" % o, "uint8", 1, 1) for o in range(8)]
               + [("eacd%d" % o, "uint8", 3, 1) for o in range(8)])
-    put("prepared", "all_chunks", prepared_file((2, 2, 1), base + fields))
-    put("prepared", "no_fields", prepared_file((3, 1, 2), base))
+    put("prepared", "all_chunks", prepared_file((2, 2, 1), base() + fields))
+    put("prepared", "no_fields", prepared_file((3, 1, 2), base()))
+    for scalar_type in ("int16", "uint16", "float32"):
+        put("prepared", scalar_type + "_scalars",
+            prepared_file((3, 1, 2), base(scalar_type) + fields[:1], scalar_type=scalar_type, entries=3))
+    put("prepared", "one_entry_table", prepared_file((2, 1, 1), base(), entries=1))
     # Coded EACD (core/extent_code.h): log16 is a uint16 per octant, joint8 a table index byte.
     for code, type_, size in (("log16", "uint16", 2), ("joint8", "uint8", 1)):
         coded = fields[:-8] + [("eacd%d" % o, type_, 1, size) for o in range(8)]
-        put("prepared", code + "_chunks", prepared_file((2, 2, 1), base + coded, eacd_code=code))
-    put("prepared", "version_1", prepared_file((2, 2, 1), base + fields, version=1))
-    put("prepared", "wrong_version", prepared_file((2, 2, 1), base, version=7))
-    put("prepared", "truncated", prepared_file((2, 2, 1), base + fields)[:-30])
+        put("prepared", code + "_chunks", prepared_file((2, 2, 1), base() + coded, eacd_code=code))
+    # Version 2 held the classified volume (sigma, colour, normal) instead of the scalars and the table.
+    classified = [("sigma", "float32", 1, 4), ("colour", "float32", 3, 4), ("normal", "float32", 3, 4),
+                  ("labels", "uint32", 1, 4)]
+    put("prepared", "version_2", prepared_file((2, 2, 1), classified + fields, version=2))
+    put("prepared", "wrong_version", prepared_file((2, 2, 1), base(), version=7))
+    put("prepared", "truncated", prepared_file((2, 2, 1), base() + fields)[:-30])
 
 
 if __name__ == "__main__":

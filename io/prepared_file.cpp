@@ -11,7 +11,10 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <map>
+#include <optional>
+#include <sstream>
 
 #include "io/atomic_file.h"
 #include "io/crc32.h"
@@ -34,17 +37,21 @@ constexpr std::size_t kPreambleBytes = sizeof(kMagic) + sizeof(uint32_t) + sizeo
 constexpr uint64_t kMaxHeaderBytes = uint64_t(1) << 30;
 constexpr int kMaxDim = 1 << 16;
 constexpr std::size_t kMaxVoxels = std::size_t(1) << 36;
+// A table entry in the file: r, g, b, sigma.
+constexpr int kTableComponents = 4;
 
-// What a chunk of a given name must hold: its element type and components per voxel.
+constexpr ScalarType kScalarTypes[] = {ScalarType::UInt8, ScalarType::Int16, ScalarType::UInt16, ScalarType::Float32};
+
+// What a chunk of a given name must hold: its element type and components per voxel (per entry for the table).
 struct ChunkLayout {
-    const char* type;
+    std::string type;  // empty: no such chunk
     int components;
     std::size_t elementBytes;
 };
 
-ChunkLayout layoutOf(const std::string& name, ExtentCode eacdCode) {
-    if (name == "sigma") return {"float32", 1, 4};
-    if (name == "colour" || name == "normal") return {"float32", 3, 4};
+ChunkLayout layoutOf(const std::string& name, ExtentCode eacdCode, ScalarType scalarType) {
+    if (name == "scalars") return {std::string(scalarTypeName(scalarType)), 1, scalarBytes(scalarType)};
+    if (name == "table") return {"float32", kTableComponents, 4};
     if (name == "labels") return {"uint32", 1, 4};
     if (name == "pc") return {"uint8", 1, 1};
     for (int o = 0; o < kOctants; ++o) {
@@ -54,14 +61,148 @@ ChunkLayout layoutOf(const std::string& name, ExtentCode eacdCode) {
                    : eacdCode == ExtentCode::Log16 ? ChunkLayout{"uint16", 1, 2}
                                                    : ChunkLayout{"uint8", 1, 1};
     }
-    return {nullptr, 0, 0};
+    return {"", 0, 0};
+}
+
+// The first index in [0, n) where `bad` holds, or n: the lowest one, so that a message names the same voxel on
+// every run.
+template <typename Bad>
+std::size_t firstWhere(std::size_t n, const Bad& bad) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n), n,
+        [&](const tbb::blocked_range<std::size_t>& b, std::size_t found) {
+            for (std::size_t i = b.begin(); i < b.end() && i < found; ++i)
+                if (bad(i)) return i;
+            return found;
+        },
+        [](std::size_t a, std::size_t b) { return std::min(a, b); });
+}
+
+std::string numberText(double v) {
+    std::ostringstream s;
+    s.precision(std::numeric_limits<float>::max_digits10);
+    s << v;
+    return s.str();
+}
+
+// Whether a scalar, held as float, is a value of type T exactly (every finite float is a float32).
+template <typename T>
+bool representable(float v) {
+    if constexpr (std::is_floating_point_v<T>) {
+        return std::isfinite(v);
+    } else {
+        return std::isfinite(v) && v == std::trunc(v) && v >= float(std::numeric_limits<T>::min()) &&
+               v <= float(std::numeric_limits<T>::max());
+    }
+}
+
+template <typename T>
+bool scalarsRepresentable(const std::vector<float>& v, std::size_t& bad) {
+    bad = firstWhere(v.size(), [&](std::size_t i) { return !representable<T>(v[i]); });
+    return bad == v.size();
+}
+
+// The first voxel whose scalar the type cannot hold exactly, or values.size().
+std::size_t firstUnrepresentable(const std::vector<float>& values, ScalarType t) {
+    std::size_t bad = values.size();
+    switch (t) {
+        case ScalarType::UInt8: scalarsRepresentable<uint8_t>(values, bad); break;
+        case ScalarType::Int16: scalarsRepresentable<int16_t>(values, bad); break;
+        case ScalarType::UInt16: scalarsRepresentable<uint16_t>(values, bad); break;
+        case ScalarType::Float32: scalarsRepresentable<float>(values, bad); break;
+    }
+    return bad;
+}
+
+// The scalars in an integer type, as the file holds them (checked representable first).
+template <typename T>
+void encodeAs(const std::vector<float>& values, std::vector<char>& bytes) {
+    bytes.resize(values.size() * sizeof(T));
+    T* to = reinterpret_cast<T*>(bytes.data());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, values.size()), [&](const tbb::blocked_range<std::size_t>& b) {
+        for (std::size_t i = b.begin(); i < b.end(); ++i) to[i] = T(values[i]);
+    });
+}
+
+std::vector<char> encodeScalars(const std::vector<float>& values, ScalarType t) {
+    std::vector<char> bytes;
+    switch (t) {
+        case ScalarType::UInt8: encodeAs<uint8_t>(values, bytes); break;
+        case ScalarType::Int16: encodeAs<int16_t>(values, bytes); break;
+        case ScalarType::UInt16: encodeAs<uint16_t>(values, bytes); break;
+        case ScalarType::Float32: break;  // written straight from the values
+    }
+    return bytes;
+}
+
+template <typename T>
+void decodeAs(const std::vector<char>& bytes, std::vector<float>& values) {
+    const T* from = reinterpret_cast<const T*>(bytes.data());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, values.size()), [&](const tbb::blocked_range<std::size_t>& b) {
+        for (std::size_t i = b.begin(); i < b.end(); ++i) values[i] = float(from[i]);
+    });
+}
+
+void decodeScalars(const std::vector<char>& bytes, ScalarType t, std::vector<float>& values) {
+    switch (t) {
+        case ScalarType::UInt8: decodeAs<uint8_t>(bytes, values); break;
+        case ScalarType::Int16: decodeAs<int16_t>(bytes, values); break;
+        case ScalarType::UInt16: decodeAs<uint16_t>(bytes, values); break;
+        case ScalarType::Float32: break;  // read straight into the values
+    }
+}
+
+// The table as the file holds it: r, g, b, sigma per entry.
+std::vector<float> interleaveTable(const TransferTable& t) {
+    std::vector<float> out;
+    out.reserve(t.size() * kTableComponents);
+    for (std::size_t i = 0; i < t.size(); ++i)
+        out.insert(out.end(), {t.colour[i][0], t.colour[i][1], t.colour[i][2], t.sigma[i]});
+    return out;
+}
+
+void splitTable(const std::vector<float>& in, TransferTable& t) {
+    const std::size_t entries = in.size() / kTableComponents;
+    t.sigma.resize(entries);
+    t.colour.resize(entries);
+    for (std::size_t i = 0; i < entries; ++i) {
+        const float* e = &in[i * kTableComponents];
+        t.colour[i] = {e[0], e[1], e[2]};
+        t.sigma[i] = e[3];
+    }
+}
+
+// What is wrong with a table's entries (a renderer takes exp(-sigma L) and blends the colours), if anything.
+std::optional<std::string> tableEntryProblem(const TransferTable& t) {
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        const auto& c = t.colour[i];
+        if (!(std::isfinite(t.sigma[i]) && t.sigma[i] >= 0))
+            return "transfer table entry " + std::to_string(i) + " has sigma " + numberText(t.sigma[i]) +
+                   " (must be finite and >= 0)";
+        if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]))
+            return "transfer table entry " + std::to_string(i) + " has a colour that is not finite";
+    }
+    return std::nullopt;
+}
+
+// What is wrong with the classification's numbers (the header's referenceStep, flatGradient and transferTable),
+// if anything: the writer refuses what the reader would.
+std::optional<std::string> classificationProblem(const ScalarClassification& c) {
+    const TransferTable& t = c.table;
+    if (!(std::isfinite(c.referenceStep) && c.referenceStep > 0)) return "'referenceStep' must be a finite number > 0";
+    if (!(std::isfinite(c.flatGradient) && c.flatGradient >= 0)) return "'flatGradient' must be a finite number >= 0";
+    if (!std::isfinite(t.lo)) return "'transferTable.lo' must be a finite number";
+    if (!(std::isfinite(t.step) && t.step > 0)) return "'transferTable.step' must be a finite number > 0";
+    if (!std::isfinite(t.lo + t.step * double(t.size() == 0 ? 0 : t.size() - 1)))
+        return "'transferTable' ends at a scalar that is not finite";
+    return std::nullopt;
 }
 
 // One array of the PreparedVolume, as bytes, on its way into the file.
 struct ChunkSource {
     std::string name;
     const void* data;
-    std::size_t elements;  // voxels present (0: chunk absent)
+    std::size_t elements;  // voxels (table: entries) present (0: chunk absent)
 };
 
 template <typename T>
@@ -69,10 +210,9 @@ ChunkSource source(std::string name, const std::vector<T>& v) {
     return {std::move(name), v.data(), v.size()};
 }
 
-std::vector<ChunkSource> chunkSources(const PreparedVolume& p) {
-    std::vector<ChunkSource> all = {source("sigma", p.classified.sigma), source("colour", p.classified.colour),
-                                    source("normal", p.classified.normal), source("labels", p.regions.label),
-                                    source("pc", p.fields.pc)};
+// The chunks that hold the distance fields, those present.
+std::vector<ChunkSource> fieldSources(const PreparedVolume& p) {
+    std::vector<ChunkSource> all = {source("pc", p.fields.pc)};
     for (int o = 0; o < kOctants; ++o) all.push_back(source("acd" + std::to_string(o), p.fields.acd[o]));
     for (int o = 0; o < kOctants; ++o)
         all.push_back({"eacd" + std::to_string(o), p.fields.eacd[o].data(), p.fields.eacd[o].size()});
@@ -101,24 +241,33 @@ json metadataJson(const PreparedMetadata& m) {
 }
 
 void checkSizes(const fs::path& path, const PreparedVolume& p) {
-    const GridGeometry& g = p.classified.grid;
+    const GridGeometry& g = p.grid();
+    const TransferTable& t = p.classification.table;
     auto fail = [&](const std::string& what) { return fileError(path.string(), "cannot write: " + what); };
     if (g.dims.x < 1 || g.dims.y < 1 || g.dims.z < 1) throw fail("empty grid");
-    if (p.regions.dims != g.dims) throw fail("region labels and classified volume have different dims");
+    if (p.scalars.values.size() != g.voxels()) throw fail("the scalars must hold one value per voxel");
+    if (p.regions.dims != g.dims) throw fail("region labels and scalars have different dims");
+    if (p.regions.label.size() != g.voxels()) throw fail("the labels must hold one value per voxel");
     bool anyField = p.fields.hasPC() || p.fields.hasACD() || p.fields.hasEACD();
-    if (anyField && p.fields.dims != g.dims) throw fail("distance fields and classified volume have different dims");
-    if (p.classified.sigma.size() != g.voxels() || p.classified.colour.size() != g.voxels() ||
-        p.regions.label.size() != g.voxels())
-        throw fail("sigma, colour and labels must hold one value per voxel");
-    for (const ChunkSource& c : chunkSources(p))
+    if (anyField && p.fields.dims != g.dims) throw fail("distance fields and scalars have different dims");
+    if (t.sigma.size() != t.colour.size()) throw fail("the transfer table's sigma and colour differ in size");
+    if (t.size() < 1 || t.size() > kMaxTransferTableEntries)
+        throw fail("the transfer table holds " + std::to_string(t.size()) + " entries (must be 1 to " +
+                   std::to_string(kMaxTransferTableEntries) + ")");
+    if (auto problem = classificationProblem(p.classification)) throw fail(*problem);
+    if (auto problem = tableEntryProblem(t)) throw fail(*problem);
+    for (const ChunkSource& c : fieldSources(p))
         if (c.elements != g.voxels()) throw fail("chunk '" + c.name + "' does not hold one value per voxel");
     for (int o = 1; o < kOctants; ++o)
         if (p.fields.acd[o].empty() != p.fields.acd[0].empty() || p.fields.eacd[o].empty() != p.fields.eacd[0].empty())
             throw fail("ACD and EACD need all 8 octants or none");
     for (const ExtentField& octant : p.fields.eacd)
         if (octant.code() != p.fields.eacdCode()) throw fail("the EACD octants are in different codes");
+    const std::size_t bad = firstUnrepresentable(p.scalars.values, p.scalars.sourceType);
+    if (bad < p.scalars.values.size())
+        throw fail("scalar " + numberText(p.scalars.values[bad]) + " at voxel " + std::to_string(bad) +
+                   " is not a " + std::string(scalarTypeName(p.scalars.sourceType)) + " value");
 }
-
 // Reading: every problem becomes an InputError naming the file. pread() lets chunks be read from many threads.
 class Reader {
 public:
@@ -243,14 +392,24 @@ void readChunks(const Reader& r, uint64_t dataStart, const std::vector<ChunkRead
 
 void writePrepared(const fs::path& path, const PreparedVolume& p) {
     checkSizes(path, p);
-    const GridGeometry& g = p.classified.grid;
+    const GridGeometry& g = p.grid();
     const ExtentCode code = p.fields.eacdCode();
-    std::vector<ChunkSource> chunks = chunkSources(p);
+    const ScalarType scalarType = p.scalars.sourceType;
+    const TransferTable& tf = p.classification.table;
+    const std::vector<char> scalars = encodeScalars(p.scalars.values, scalarType);
+    const std::vector<float> entries = interleaveTable(tf);
+    // Float scalars are written straight from the values, integer ones from their conversion.
+    const void* scalarData = scalarType == ScalarType::Float32 ? static_cast<const void*>(p.scalars.values.data())
+                                                               : static_cast<const void*>(scalars.data());
+    std::vector<ChunkSource> chunks = {{"scalars", scalarData, p.scalars.values.size()},
+                                       {"table", entries.data(), tf.size()},
+                                       source("labels", p.regions.label)};
+    for (ChunkSource& c : fieldSources(p)) chunks.push_back(std::move(c));
 
     json table = json::array();
     uint64_t offset = 0;
     for (const ChunkSource& c : chunks) {
-        ChunkLayout l = layoutOf(c.name, code);
+        ChunkLayout l = layoutOf(c.name, code, scalarType);
         uint64_t bytes = uint64_t(c.elements) * l.components * l.elementBytes;
         table.push_back({{"name", c.name},
                          {"type", l.type},
@@ -262,7 +421,10 @@ void writePrepared(const fs::path& path, const PreparedVolume& p) {
     }
     json header = {{"grid",
                     {{"dims", {g.dims.x, g.dims.y, g.dims.z}}, {"spacing", vec3Json(g.spacing)}, {"origin", vec3Json(g.origin)}}},
-                   {"referenceStep", p.classified.referenceStep},
+                   {"scalarType", scalarTypeName(scalarType)},
+                   {"referenceStep", p.classification.referenceStep},
+                   {"flatGradient", p.classification.flatGradient},
+                   {"transferTable", {{"lo", tf.lo}, {"step", tf.step}, {"entries", tf.size()}}},
                    {"regionCount", p.regions.count},
                    {"metadata", metadataJson(p.meta)},
                    {"eacdCode", extentCodeName(code)},
@@ -288,11 +450,27 @@ namespace {
 
 // Everything the header says, checked against the file: all of the prepared volume but the chunks' contents.
 struct Header {
-    PreparedVolume prepared;  // grid, reference step, region count and metadata
+    PreparedVolume prepared;  // grid, scalar type, classification numbers, region count and metadata
+    std::size_t tableEntries = 0;
     ExtentCode eacdCode = kDefaultExtentCode;
     std::map<std::string, ChunkEntry> chunks;  // by name
     uint64_t dataStart = 0;                    // where the chunks' offsets start
 };
+
+// A number (not a string or a bool) that `valid` accepts; `rule` says which ones do.
+double numberField(const Reader& r, const json& j, const char* key, const std::string& name,
+                   const std::function<bool(double)>& valid, const char* rule) {
+    json v = field<json>(r, j, key);
+    if (!v.is_number() || !valid(v.get<double>())) throw r.fail("bad header: '" + name + "' must be " + rule);
+    return v.get<double>();
+}
+
+ScalarType scalarTypeField(const Reader& r, const json& header) {
+    const auto name = field<std::string>(r, header, "scalarType");
+    for (ScalarType t : kScalarTypes)
+        if (scalarTypeName(t) == name) return t;
+    throw r.fail("bad header: 'scalarType': unknown scalar type '" + name + "' (expected uint8, int16, uint16 or float32)");
+}
 
 Header readHeader(const Reader& r) {
     Header h;
@@ -334,7 +512,7 @@ Header readHeader(const Reader& r) {
             throw r.fail("absurd grid dims " + dimsText);
     Vec3i n{dims[0].get<int>(), dims[1].get<int>(), dims[2].get<int>()};
     if (voxelCount(n) > kMaxVoxels) throw r.fail("absurd grid dims " + dimsText + " (too many voxels)");
-    GridGeometry& g = p.classified.grid;
+    GridGeometry& g = p.scalars.grid;
     g.dims = n;
     g.spacing = vec3Field(r, grid, "spacing");
     g.origin = vec3Field(r, grid, "origin");
@@ -343,7 +521,27 @@ Header readHeader(const Reader& r) {
         if (!(g.spacing[a] > 0) || !std::isfinite(g.origin[a]))
             throw r.fail("bad header: 'spacing' must be positive and 'origin' finite");
     if (!std::isfinite(length(g.extent()))) throw r.fail("bad header: 'spacing' x dims overflows (extent not finite)");
-    p.classified.referenceStep = field<double>(r, header, "referenceStep");
+    p.scalars.sourceType = scalarTypeField(r, header);
+
+    // How samples are classified: each number is checked here, the table's entries once they are read.
+    ScalarClassification& c = p.classification;
+    auto isFinite = [](double v) { return std::isfinite(v); };
+    auto isPositive = [](double v) { return std::isfinite(v) && v > 0; };
+    c.referenceStep = numberField(r, header, "referenceStep", "referenceStep", isPositive, "a finite number > 0");
+    c.flatGradient = numberField(r, header, "flatGradient", "flatGradient",
+                                 [](double v) { return std::isfinite(v) && v >= 0; }, "a finite number >= 0");
+    json tf = field<json>(r, header, "transferTable");
+    if (!tf.is_object()) throw r.fail("bad header: missing or invalid 'transferTable'");
+    c.table.lo = numberField(r, tf, "lo", "transferTable.lo", isFinite, "a finite number");
+    c.table.step = numberField(r, tf, "step", "transferTable.step", isPositive, "a finite number > 0");
+    json entries = field<json>(r, tf, "entries");
+    if (!entries.is_number_unsigned() || entries.get<uint64_t>() < 1 || entries.get<uint64_t>() > kMaxTransferTableEntries)
+        throw r.fail("bad header: 'transferTable.entries' must be an integer from 1 to " +
+                     std::to_string(kMaxTransferTableEntries));
+    h.tableEntries = entries.get<std::size_t>();
+    if (!std::isfinite(c.table.lo + c.table.step * double(h.tableEntries - 1)))
+        throw r.fail("bad header: 'transferTable' ends at a scalar that is not finite");
+
     p.regions.dims = n;
     p.regions.count = uint32_t(countField(r, header, "regionCount", UINT32_MAX));
 
@@ -360,6 +558,7 @@ Header readHeader(const Reader& r) {
         p.meta.rayProbe = rayProbeFromJson(p.meta.statistics["rayProbe"]);
         p.meta.statistics.erase("rayProbe");
     }
+    p.scalars.source = p.meta.source;
     ExtentCode& eacdCode = h.eacdCode;
     try {
         eacdCode = parseExtentCode(field<std::string>(r, header, "eacdCode"), "'eacdCode'");
@@ -367,20 +566,25 @@ Header readHeader(const Reader& r) {
         throw r.fail(std::string("bad header: ") + e.what());
     }
 
-    // The chunk table must agree with the dims and lie inside the file before anything is allocated.
+    // The chunk table must agree with the dims (the table chunk: with its entry count) and lie inside the file
+    // before anything is allocated.
     std::map<std::string, ChunkEntry>& table = h.chunks;
-    for (const json& c : field<json>(r, header, "chunks")) {
-        auto name = field<std::string>(r, c, "name");
-        ChunkLayout l = layoutOf(name, eacdCode);
-        if (!l.type) throw r.fail("bad header: unknown chunk '" + name + "'");
+    for (const json& chunk : field<json>(r, header, "chunks")) {
+        auto name = field<std::string>(r, chunk, "name");
+        ChunkLayout l = layoutOf(name, eacdCode, p.scalars.sourceType);
+        if (l.type.empty()) throw r.fail("bad header: unknown chunk '" + name + "'");
         if (table.count(name)) throw r.fail("bad header: chunk '" + name + "' appears twice");
-        if (field<std::string>(r, c, "type") != l.type || countField(r, c, "components", 3) != uint64_t(l.components))
+        if (field<std::string>(r, chunk, "type") != l.type ||
+            countField(r, chunk, "components", kTableComponents) != uint64_t(l.components))
             throw r.fail("bad header: chunk '" + name + "' should be " + std::to_string(l.components) + " x " + l.type);
-        ChunkEntry e{countField(r, c, "offset", UINT64_MAX), countField(r, c, "bytes", UINT64_MAX),
-                     uint32_t(countField(r, c, "crc32", UINT32_MAX))};
-        uint64_t expected = uint64_t(voxelCount(n)) * l.components * l.elementBytes;
+        ChunkEntry e{countField(r, chunk, "offset", UINT64_MAX), countField(r, chunk, "bytes", UINT64_MAX),
+                     uint32_t(countField(r, chunk, "crc32", UINT32_MAX))};
+        const bool isTable = name == "table";
+        uint64_t expected = uint64_t(isTable ? h.tableEntries : voxelCount(n)) * l.components * l.elementBytes;
         if (e.bytes != expected)
-            throw r.fail("chunk '" + name + "' holds " + std::to_string(e.bytes) + " bytes but grid " + dimsText +
+            throw r.fail("chunk '" + name + "' holds " + std::to_string(e.bytes) + " bytes but " +
+                         (isTable ? "a transfer table of " + std::to_string(h.tableEntries) + " entries"
+                                  : "grid " + dimsText) +
                          " needs " + std::to_string(expected));
         if (e.offset > r.size() || dataStart + e.offset + e.bytes > r.size())
             throw r.fail("truncated: chunk '" + name + "' ends at byte " + std::to_string(dataStart + e.offset + e.bytes) +
@@ -395,7 +599,8 @@ Header readHeader(const Reader& r) {
 PreparedHeader readPreparedHeader(const fs::path& path) {
     Header h = readHeader(Reader(path));
     auto bytes = [&](const std::string& name) { return h.chunks.count(name) ? h.chunks.at(name).bytes : 0; };
-    PreparedHeader out{h.prepared.classified.grid, std::move(h.prepared.meta), {bytes("pc"), 0, 0}};
+    PreparedHeader out{h.prepared.grid(), h.prepared.scalars.sourceType, h.tableEntries, std::move(h.prepared.meta),
+                       {bytes("pc"), 0, 0}};
     for (int o = 0; o < kOctants; ++o) {
         out.fieldBytes.acd += bytes("acd" + std::to_string(o));
         out.fieldBytes.eacd += bytes("eacd" + std::to_string(o));
@@ -403,18 +608,20 @@ PreparedHeader readPreparedHeader(const fs::path& path) {
     return out;
 }
 
-PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals) {
+PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
     Reader r(path);
     Header h = readHeader(r);
     PreparedVolume& p = h.prepared;
     const std::map<std::string, ChunkEntry>& table = h.chunks;
     const ExtentCode eacdCode = h.eacdCode;
-    const Vec3i n = p.classified.grid.dims;
+    const Vec3i n = p.grid().dims;
+    const std::size_t voxels = p.grid().voxels();
+    const ScalarType scalarType = p.scalars.sourceType;
 
     // Gather the chunks to read, then read them all at once (see readChunks).
     auto has = [&](const std::string& name) { return table.count(name) > 0; };
     std::vector<ChunkRead> reads;
-    // readHeader checked the table's sizes against the dims and the chunk's layout.
+    // readHeader checked the table's sizes against the dims (the table chunk: the entry count) and the layouts.
     auto want = [&](const std::string& name, auto& to) {
         const ChunkEntry& e = table.at(name);
         reads.push_back({name, e, destination(to, e.bytes, eacdCode)});
@@ -427,11 +634,23 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
             want(name, arrays[o]);
         }
     };
-    for (const char* required : {"sigma", "colour", "labels"})
+    for (const char* required : {"scalars", "table", "labels"})
         if (!has(required)) throw r.fail(std::string("has no '") + required + "' chunk");
-    want("sigma", p.classified.sigma);
-    want("colour", p.classified.colour);
-    if (normals && has("normal")) want("normal", p.classified.normal);
+    // Float scalars are read straight into the values; integer ones into their own type, converted after.
+    std::vector<char> scalarBytesRead;
+    std::vector<float>& values = p.scalars.values;
+    if (scalarType == ScalarType::Float32) {
+        want("scalars", values);
+    } else {
+        const ChunkEntry& e = table.at("scalars");
+        reads.push_back({"scalars", e, [&values, &scalarBytesRead, bytes = e.bytes, voxels] {
+                             values.resize(voxels);  // allocated beside the other destinations
+                             scalarBytesRead.resize(bytes);
+                             return scalarBytesRead.data();
+                         }});
+    }
+    std::vector<float> entries;
+    want("table", entries);
     want("labels", p.regions.label);
     if (fields & (kFieldPC | kFieldACD | kFieldEACD)) p.fields.dims = n;
     if (fields & kFieldPC) {
@@ -441,6 +660,18 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, bool normals)
     if (fields & kFieldACD) wantOctants("acd", "ACD", p.fields.acd);
     if (fields & kFieldEACD) wantOctants("eacd", "EACD", p.fields.eacd);
     readChunks(r, h.dataStart, reads);
+
+    decodeScalars(scalarBytesRead, scalarType, values);
+    std::vector<char>().swap(scalarBytesRead);
+    if (scalarType == ScalarType::Float32) {
+        // Loaders refuse a volume with a non-finite voxel; a renderer's table lookup relies on it.
+        const std::size_t bad = firstWhere(values.size(), [&](std::size_t i) { return !std::isfinite(values[i]); });
+        if (bad < values.size())
+            throw r.fail("scalars hold " + numberText(values[bad]) + " at voxel " + std::to_string(bad) +
+                         " (must be finite)");
+    }
+    splitTable(entries, p.classification.table);
+    if (auto problem = tableEntryProblem(p.classification.table)) throw r.fail(*problem);
 
     // The labels must name regions that exist: whatever indexes per-region data by label relies on it.
     const std::vector<uint32_t>& label = p.regions.label;

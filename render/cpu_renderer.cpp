@@ -14,10 +14,11 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/gradient.h"
 #include "render/ray_setup.h"
 #include "render/render_checks.h"
 #include "render/span.h"
-#include "shaders/device_contract.h"
+#include "shaders/transfer_lookup.h"
 
 namespace vr {
 namespace {
@@ -28,45 +29,72 @@ struct SampleValue {
     Vec3d normal{0, 0, 0};  // unit, or zero where flat
 };
 
-Vec3d toVec(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
-
+// Every sample classified from the scalars (docs/ALGORITHMS.md section 2), as the casters classify it: the scalar
+// (and, for shading, the gradient) at the sample, looked up in the transfer table; the formulas are
+// shaders/transfer_lookup.h's, here in double.
 class Sampler {
 public:
-    Sampler(const ClassifiedVolume& cv, bool normals) : cv_(cv), normals_(normals) {}
+    Sampler(const Volume& scalars, const ScalarClassification& c, bool shading)
+        : scalars_(scalars), c_(c), shading_(shading), inverseStep_(1 / c.table.step),
+          lastEntry_(double(c.table.size() - 1)) {}
 
-    SampleValue nearest(std::size_t i) const {
-        SampleValue s{cv_.sigma[i], toVec(cv_.colour[i]), {0, 0, 0}};
-        if (normals_) s.normal = toVec(cv_.normal[i]);
+    SampleValue nearest(const Vec3i& v) const {
+        SampleValue s = classified(scalars_.at(v.x, v.y, v.z));
+        if (shading_) s.normal = normalOf(centralGradient(scalars_, v.x, v.y, v.z));
         return s;
     }
 
-    // Cell-centred trilinear: voxel v's value sits at v + 0.5; clamp to the edge outside.
+    // Cell-centred trilinear: voxel v's value sits at v + 0.5; clamped to the edge outside. The scalar is
+    // interpolated, then classified (post-classification); the gradient is the same blend of the corners' gradients.
     SampleValue trilinear(const Vec3d& p) const {
-        const Vec3i& dims = cv_.grid.dims;
+        const Vec3i& dims = scalars_.grid.dims;
         const Vec3d q = p - Vec3d{0.5, 0.5, 0.5};
         const Vec3i base = floorVoxel(q);
         const Vec3d f = q - Vec3d(base);
-        SampleValue s;
-        for (int c = 0; c < 8; ++c) {
-            const Vec3i corner{base.x + (c & 1), base.y + ((c >> 1) & 1), base.z + ((c >> 2) & 1)};
-            const Vec3i u = clampVoxel(corner, dims);
-            const double w = ((c & 1) ? f.x : 1 - f.x) * (((c >> 1) & 1) ? f.y : 1 - f.y) *
-                             (((c >> 2) & 1) ? f.z : 1 - f.z);
-            const std::size_t i = linearIndex(dims, u.x, u.y, u.z);
-            s.sigma += w * cv_.sigma[i];
-            s.colour += toVec(cv_.colour[i]) * w;
-            if (normals_) s.normal += toVec(cv_.normal[i]) * w;
+        std::array<Vec3i, 8> corner;  // x fastest: c000, c100, c010, c110, c001, ...
+        for (int c = 0; c < 8; ++c)
+            corner[c] = clampVoxel({base.x + (c & 1), base.y + ((c >> 1) & 1), base.z + ((c >> 2) & 1)}, dims);
+        auto blend = [&](auto value) {
+            std::array<double, 8> v;
+            for (int c = 0; c < 8; ++c) v[c] = value(corner[c]);
+            return device::trilinearBlend(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], f.x, f.y, f.z);
+        };
+        SampleValue s = classified(blend([&](const Vec3i& u) { return double(scalars_.at(u.x, u.y, u.z)); }));
+        if (shading_) {
+            std::array<Vec3d, 8> g;
+            for (int c = 0; c < 8; ++c) g[c] = centralGradient(scalars_, corner[c].x, corner[c].y, corner[c].z);
+            Vec3d gradient;
+            for (int a = 0; a < 3; ++a)
+                gradient[a] = device::trilinearBlend(g[0][a], g[1][a], g[2][a], g[3][a], g[4][a], g[5][a], g[6][a],
+                                                     g[7][a], f.x, f.y, f.z);
+            s.normal = normalOf(gradient);
         }
-        const double len = length(s.normal);
-        s.normal = len > device::kFlatNormalLength ? s.normal / len : Vec3d{0, 0, 0};
         return s;
     }
 
 private:
-    const ClassifiedVolume& cv_;
-    bool normals_;
-};
+    SampleValue classified(double scalar) const {
+        const TransferTable& table = c_.table;
+        const double t = device::tableCoordinate(scalar, table.lo, inverseStep_, lastEntry_);
+        const std::size_t i = std::size_t(t), j = std::min(i + 1, table.size() - 1);
+        const double w = t - double(i);
+        SampleValue s;
+        s.sigma = device::interpolate(table.sigma[i], table.sigma[j], w);
+        for (int a = 0; a < 3; ++a) s.colour[a] = device::interpolate(table.colour[i][a], table.colour[j][a], w);
+        return s;
+    }
 
+    // The unit gradient, or zero where the gradient is no longer than the flat length.
+    Vec3d normalOf(const Vec3d& g) const {
+        const double len = length(g);
+        return len > c_.flatGradient ? g / len : Vec3d{0, 0, 0};
+    }
+
+    const Volume& scalars_;
+    const ScalarClassification& c_;
+    bool shading_;
+    double inverseStep_, lastEntry_;
+};
 
 }  // namespace
 
@@ -74,11 +102,11 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     checkRenderInputs(prepared, settings);
     const auto start = std::chrono::steady_clock::now();
 
-    const ClassifiedVolume& cv = prepared.classified;
+    const GridGeometry& grid = prepared.grid();
     const DistanceFields& fields = prepared.fields;
-    const Vec3i dims = cv.grid.dims;
-    const double dt = settings.stepVoxels * cv.grid.smallestSpacing(), ertDepth = terminationDepth(settings.ert);
-    const Sampler sampler(cv, settings.shading);
+    const Vec3i dims = grid.dims;
+    const double dt = settings.stepVoxels * grid.smallestSpacing(), ertDepth = terminationDepth(settings.ert);
+    const Sampler sampler(prepared.scalars, prepared.classification, settings.shading);
     const std::optional<Vec3d> light =
         settings.lightDirection ? std::optional<Vec3d>(normalize(*settings.lightDirection)) : std::nullopt;
 
@@ -86,7 +114,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
 
     auto trace = [&](int px, int py) {
         const Ray ray = camera.ray(px + 0.5, py + 0.5);
-        const GridRay g = toGridRay(ray, cv.grid);
+        const GridRay g = toGridRay(ray, grid);
         const RayInterval iv = intersectGrid(g, dims);
         const int64_t kCount = latticeCount(iv, dt);
         const int oct = rayOctant(g);
@@ -104,7 +132,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             const double t = latticeT(iv, dt, k);
             const Vec3i v = sampleVoxel(g, t, dims);
             const std::size_t i = linearIndex(dims, v.x, v.y, v.z);
-            const SampleValue s = settings.trilinear ? sampler.trilinear(g.at(t)) : sampler.nearest(i);
+            const SampleValue s = settings.trilinear ? sampler.trilinear(g.at(t)) : sampler.nearest(v);
 
             double wanted = 1;
             VoxelBox box{v, v};

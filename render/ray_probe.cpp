@@ -116,7 +116,7 @@ ClassMeans meanIterations(const PreparedVolume& p, const std::vector<ProbeView>&
     s.shading = false;
     std::vector<std::array<double, 2>> perView(views.size());
     tbb::parallel_for(std::size_t(0), views.size(), [&](std::size_t i) {
-        const RenderResult r = renderCpu(p, probeCamera(p.classified.grid, views[i]), s);
+        const RenderResult r = renderCpu(p, probeCamera(p.grid(), views[i]), s);
         perView[i] = {std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0),
                       std::accumulate(r.samples.begin(), r.samples.end(), 0.0)};
     });
@@ -139,7 +139,7 @@ ClassMeans meanIterations(const PreparedVolume& p, const std::vector<ProbeView>&
 
 std::optional<RayProbe> probeRays(const PreparedVolume& p) {
     const RenderSettings defaults;
-    const GridGeometry& grid = p.classified.grid;
+    const GridGeometry& grid = p.grid();
     if (length(grid.extent()) / (defaults.stepVoxels / 2 * grid.smallestSpacing()) > kMaxProbeSamples)
         return std::nullopt;
     const std::vector<ProbeView> views = probeViews();

@@ -27,14 +27,14 @@ void requireSamplesWithinCap(const GridGeometry& grid, const RenderSettings& s) 
 }
 
 void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) {
-    const ClassifiedVolume& cv = prepared.classified;
-    const std::size_t voxels = cv.grid.voxels();
-    if (voxels == 0 || cv.sigma.size() != voxels || cv.colour.size() != voxels)
-        throw InputError("prepared volume: classified data does not match its grid");
-    checkRenderSettings(cv.grid, prepared.meta.segmentation.trilinear, s);
-    if (s.shading && cv.normal.size() != voxels)
-        throw InputError("prepared volume has no normals: shading needs them (prepare with normals or render "
-                         "without shading)");
+    const GridGeometry& grid = prepared.grid();
+    const std::size_t voxels = grid.voxels();
+    if (voxels == 0 || prepared.scalars.values.size() != voxels)
+        throw InputError("prepared volume: the scalars do not match its grid");
+    const TransferTable& table = prepared.classification.table;
+    if (table.size() == 0 || table.colour.size() != table.size() || !(table.step > 0) || !std::isfinite(table.lo))
+        throw InputError("prepared volume: the transfer table is empty or inconsistent");
+    checkRenderSettings(grid, prepared.meta.segmentation, s);
     const std::string caster(casterName(s.caster));
     auto need = [&](bool present, std::size_t size, const char* field) {
         if (!present || size != voxels)
@@ -48,7 +48,7 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) 
         for (const auto& f : prepared.fields.eacd) need(prepared.fields.hasEACD(), f.size(), "EACD");
 }
 
-void checkRenderSettings(const GridGeometry& grid, bool segmentedForTrilinear, const RenderSettings& s) {
+void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& segmentation, const RenderSettings& s) {
     if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
         throw InputError("--step " + std::to_string(s.stepVoxels) + ": the step must be a positive number of voxels");
     requireLatticeFits(grid, s.stepVoxels);  // first: an absurd spacing is named as such, not as a tiny step
@@ -57,9 +57,15 @@ void checkRenderSettings(const GridGeometry& grid, bool segmentedForTrilinear, c
         throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
     if (s.lightDirection && !(length(*s.lightDirection) > 0 && std::isfinite(length(*s.lightDirection))))
         throw InputError("--light: the light direction must be a finite non-zero vector");
-    if (s.trilinear && s.caster != Caster::Primitive && !segmentedForTrilinear)
+    if (s.trilinear && s.caster != Caster::Primitive && !segmentation.trilinear)
         throw InputError("trilinear sampling with the " + std::string(casterName(s.caster)) +
-                         " caster needs a volume segmented for trilinear sampling (border voxels)");
+                         " caster needs a volume segmented for trilinear sampling (volprep without --nearest; or "
+                         "render with --nearest)");
+    // Regions that ignored the normals would let a leap carry one shade across a change of normal.
+    if (s.shading && s.caster != Caster::Primitive && !segmentation.useNormals)
+        throw InputError("shading with the " + std::string(casterName(s.caster)) +
+                         " caster needs regions made with normals (prepared with --no-normals: render without "
+                         "shading, or with the primitive caster)");
 }
 
 }  // namespace vr

@@ -6,7 +6,7 @@
 namespace vr {
 
 // Throws InputError when the settings are unusable (step, ERT, light) or the prepared volume lacks what the
-// caster needs (normals for shading, the caster's field, border regions for trilinear leaping).
+// caster needs (scalars and a transfer table that fit, the caster's field, and what checkRenderSettings asks).
 void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& settings);
 
 // Throws InputError naming --step when a ray across `grid` takes more lattice samples than the iteration cap
@@ -14,8 +14,9 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& set
 // of failing the render with the cap's error, which is meant for runaway casters.
 void requireSamplesWithinCap(const GridGeometry& grid, const RenderSettings& settings);
 
-// The part of checkRenderInputs that needs no voxel data (step, ERT, light, trilinear leaping on a volume
-// segmented for it): what a render of a volume already on a device checks.
-void checkRenderSettings(const GridGeometry& grid, bool segmentedForTrilinear, const RenderSettings& settings);
+// The part of checkRenderInputs that needs no voxel data (step, ERT, light; trilinear leaping on regions made for
+// it, shaded leaping on regions made with normals): what a render of a volume already on a device checks.
+void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& segmentation,
+                         const RenderSettings& settings);
 
 }  // namespace vr

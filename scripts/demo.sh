@@ -7,6 +7,7 @@ bash scripts/build.sh
 mkdir -p out
 input=/usr/share/mricron/templates/ch2.nii.gz
 build/preprocess/volprep "$input" --tf datasets/tf/mri_head.tf.json --to 0.01 --ta 3 -o out/ch2.volprep
-build/volrender/volrender out/ch2.volprep --caster eacd --size 512x512 --azimuth 30 --elevation 20 \
+# The defaults: --caster auto, trilinear sampling (post-classified), Phong shading.
+build/volrender/volrender out/ch2.volprep --size 512x512 --azimuth 30 --elevation 20 \
   -o out/ch2.png --stats out/ch2.stats.json --heatmap out/ch2.heat.png
 echo "Wrote out/ch2.volprep, out/ch2.png, out/ch2.heat.png and out/ch2.stats.json"

@@ -2,11 +2,16 @@
 # The peer renderers side by side (docs/BENCH.md "Peers"): VTK's fixed-point CPU and OpenGL GPU ray casters (on Mesa
 # llvmpipe), VolPack and OpenVDB's vdb_render, with our CPU reference, on the same views of one dataset.
 #   scripts/peers.sh DATASET [VIEWS] [SIZE] [OUTDIR]
+#   USER_SETTINGS=1 scripts/peers.sh DATASET [VIEWS] [SIZE] [OUTDIR]
 # DATASET: a file in the shared datasets folder or the start of its name (boston_teapot, cranium_ct, ...): the
 # MANIFEST gives its spacing and transfer function. "smoke": one 64x64 view of vtk_headmr (a few seconds).
 # Defaults: 8 views, 512x512, out/peers/NAME. BUILD_DIR (default build) is the build folder; THREADS (default 2);
 # PEER_LIST (comma-separated, default all: ours-cpu-primitive,vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render).
-# Prints a Markdown table; OUTDIR/peers.json has per peer and view the milliseconds and the image (EXR, linear).
+# Every peer renders nearest and unshaded, unless USER_SETTINGS=1 (vr_peers --user-settings): the settings users
+# render with, trilinear and shaded (our Phong material, one headlight), for our reference and both VTK mappers;
+# VolPack and vdb_render cannot and are skipped (a row says why). Its default OUTDIR is out/peers/NAME_user.
+# Prints the settings and a Markdown table; OUTDIR/peers.json has the settings and, per peer and view, the
+# milliseconds and the image (EXR, linear).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -32,7 +37,14 @@ file=$(cut -f1 <<<"$row")
 tf=$(cut -f9 <<<"$row")
 # The first three numbers of the spacing column ("unknown (approx. 1 1 1)" gives 1 1 1).
 spacing=$(cut -f4 <<<"$row" | grep -oE '[0-9]+(\.[0-9]+)?' | head -3 | paste -sd,)
-out=${4:-out/peers/${file%%.raw.gz}}
+user_settings=${USER_SETTINGS:-0}
+if [[ $user_settings != 0 && $user_settings != 1 ]]; then
+  echo "peers.sh: USER_SETTINGS=$user_settings: expected 0 or 1" >&2
+  exit 1
+fi
+suffix=""
+if [[ $user_settings == 1 ]]; then suffix=_user; fi
+out=${4:-out/peers/${file%%.raw.gz}$suffix}
 
 bash scripts/install-deps.sh libvolpack1-dev libopenvdb-tools xvfb xauth libgl1-mesa-dri libglx-mesa0
 [[ -f $build/CMakeCache.txt ]] || cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
@@ -43,6 +55,7 @@ mkdir -p "$out"
 cmd=("$build/bench/peers/vr_peers" "$datasets/$file" --tf "$datasets/$tf" --spacing "$spacing"
   --views "$views" --size "$size" --threads "${THREADS:-2}" -o "$out")
 if [[ -n ${PEER_LIST:-} ]]; then cmd+=(--peers "$PEER_LIST"); fi
+if [[ $user_settings == 1 ]]; then cmd+=(--user-settings); fi
 echo "+ xvfb-run -a ${cmd[*]}" >&2
 start=$(date +%s.%N)
 xvfb-run -a -s "-screen 0 1280x1024x24" "${cmd[@]}"

@@ -72,7 +72,7 @@ sweep() {  # sweep NAME FILE TF SPACING DIMS ("X Y Z")
   fi
   echo "+ volsweep $name (T_o $to, T_a $ta, downsample $factor)" >&2
   "$volsweep" "$file" --tf "$tf" --spacing "$spacing" --name "$name" --to "$to" --ta "$ta" --views "$views" \
-    --size "$size" --downsample "$factor" -o "$out" "${resume[@]}" </dev/null >/dev/null
+    --size "$size" --downsample "$factor" --nearest -o "$out" "${resume[@]}" </dev/null >/dev/null
   cpu_now
   timings+="| $name | $(tr ' ' x <<<"$dims") | $(tr ' ' x <<<"$swept") | $((SECONDS - t0)) | $((cpu - c0)) |"$'\n'
   echo "  $name: $((SECONDS - t0)) s" >&2
@@ -85,13 +85,13 @@ peers_of() {  # peers_of NAME FILE TF SPACING
   local name=$1 file=$2 tf=$3 spacing=$4 t0=$SECONDS c0
   cpu_now
   c0=$cpu
-  if ! BUILD_DIR=$build PEER_LIST=$peer_list bash scripts/peers.sh "$(basename "$file")" "$peer_views" \
+  if ! USER_SETTINGS=0 BUILD_DIR=$build PEER_LIST=$peer_list bash scripts/peers.sh "$(basename "$file")" "$peer_views" \
     "$peer_size" "$out/peers/$name" </dev/null >&2; then
     echo "report.sh: scripts/peers.sh failed on $name: the report has no peers for it" >&2
     return 0
   fi
   "$volsweep" "$file" --tf "$tf" --spacing "$spacing" --name "${name}_unshaded" --no-shading --to "$unshaded_to" \
-    --ta 0 \
+    --ta 0 --nearest \
     --views "$peer_views" --size "$peer_size" -o "$out" --peers "$out/peers/$name" "${resume[@]}" </dev/null >/dev/null
   cpu_now
   timings+="| ${name}_unshaded + peers (${peer_size}) | | | $((SECONDS - t0)) | $((cpu - c0)) |"$'\n'

@@ -26,7 +26,7 @@ bool inBrick(ivec3 v) { return all(greaterThanEqual(v, tile.brickLo.xyz)) && all
 
 bool rayInPass(int oct) { return (oct & tile.passAxes) == tile.passSigns; }
 
-// Texel of a global voxel in this brick's classified and normal images.
+// Texel of a global voxel in this brick's scalar image.
 ivec3 brickTexel(ivec3 v) { return v - tile.imageLo.xyz; }
 
 // Texel of a global voxel in slab `slot` of this brick's field image (ACD / EACD stack octants along z).

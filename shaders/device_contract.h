@@ -6,31 +6,32 @@
 #ifndef VR_DEVICE_CONTRACT_H
 #define VR_DEVICE_CONTRACT_H
 
+#include "shared_language.h"
+
 #ifdef __cplusplus
 #include <cstddef>
 
 #include "glsl_layout_types.h"
-#define VR_CONSTANT inline constexpr
-#define VR_FUNCTION constexpr
-#define VR_REAL double
 namespace vr::device {
-#else
-#define VR_CONSTANT const
-#define VR_FUNCTION
-#define VR_REAL float  // the casters need no double (docs/ALGORITHMS.md section 8)
 #endif
 
 // Descriptor set 0.
-VR_CONSTANT int kBindingParams = 0;        // uniform: CasterParams
-VR_CONSTANT int kBindingClassified = 1;    // storage image rgba32f: rgb colour, a: extinction sigma
-VR_CONSTANT int kBindingNormals = 2;       // storage image rgba16_snorm: xyz unit normal, or 0 (flat)
-VR_CONSTANT int kBindingField8 = 3;        // storage images of the distance field, one per format (a storage
-VR_CONSTANT int kBindingField16 = 5;       // image is read in the format it declares): R8 (PC, ACD, joint8
-VR_CONSTANT int kBindingFieldRGBA8 = 6;    // EACD), R16 (log16 EACD), RGBA8 (exact EACD)
-VR_CONSTANT int kBindingOutPixels = 4;     // storage buffer: OutPixel per pixel of the tile
-VR_CONSTANT int kBindingRayStates = 7;     // storage buffer: RayState per pixel of the tile
-VR_CONSTANT int kBindingExtentTable = 8;   // uniform: uvec4 per entry of extentDecodeTable() (core/extent_code.h)
+VR_CONSTANT int kBindingParams = 0;         // uniform: CasterParams
+VR_CONSTANT int kBindingOutPixels = 1;      // storage buffer: OutPixel per pixel of the tile
+VR_CONSTANT int kBindingRayStates = 2;      // storage buffer: RayState per pixel of the tile
+VR_CONSTANT int kBindingExtentTable = 3;    // uniform: uvec4 per entry of extentDecodeTable() (core/extent_code.h)
 VR_CONSTANT int kExtentTableEntries = 256;
+VR_CONSTANT int kBindingTransferTable = 4;  // storage buffer: vec4 per entry of the transfer table (rgb colour,
+                                            // a: extinction sigma; core/scalar_classification.h)
+// Storage images of the scalars in the volume's own type, one binding per format (a storage image is read in the
+// format it declares); the scalar type's specialization constant picks the one the casters read.
+VR_CONSTANT int kBindingScalarsUInt8 = 5;   // R8_UINT
+VR_CONSTANT int kBindingScalarsUInt16 = 6;  // R16_UINT
+VR_CONSTANT int kBindingScalarsInt16 = 7;   // R16_SINT
+VR_CONSTANT int kBindingScalarsFloat = 8;   // R32_SFLOAT
+VR_CONSTANT int kBindingField8 = 9;         // storage images of the distance field, one per format: R8 (PC, ACD,
+VR_CONSTANT int kBindingField16 = 10;       // joint8 EACD), R16 (log16 EACD), RGBA8 (exact EACD)
+VR_CONSTANT int kBindingFieldRGBA8 = 11;
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
@@ -39,8 +40,11 @@ VR_CONSTANT int kSpecIdShading = 2;      // bool
 VR_CONSTANT int kSpecIdExtentCode = 3;   // one of the extent codes below
 VR_CONSTANT int kSpecIdBricked = 4;      // bool: false for a volume of one brick (no ray state is carried)
 VR_CONSTANT int kSpecIdPerspective = 5;  // bool: the camera's projection
+VR_CONSTANT int kSpecIdScalarType = 6;   // one of the scalar types below: which scalar image the casters read
 VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
 VR_CONSTANT int kExact = 0, kLog16 = 1, kJoint8 = 2;  // how EACD extents are stored (core/extent_code.h)
+// The scalars' type (core/volume.h ScalarType, in its order).
+VR_CONSTANT int kScalarUInt8 = 0, kScalarInt16 = 1, kScalarUInt16 = 2, kScalarFloat32 = 3;
 
 // One workgroup takes kWorkgroupSize x kWorkgroupSize pixels (caster.comp orders 8 x 8 of them in 4 x 2 blocks).
 VR_CONSTANT int kWorkgroupSize = 8;
@@ -51,11 +55,6 @@ VR_CONSTANT uint kFailed = 0x80000000u, kCutShort = 0x40000000u;
 // The trip count of the loop that detects a driver's loop limit: uploaded (CasterParams::loopProbe), so the
 // compiler cannot know it, and compared with what the loop counted.
 VR_CONSTANT int kLoopProbeTrips = 2;
-
-// Reals are double in C++ and float in GLSL, spelled without literals, which the two languages write differently.
-// Shorter interpolated normals than this count as flat (the classification's floor is on the gradient; this
-// guards the renormalisation of a blend of opposite normals).
-VR_CONSTANT VR_REAL kFlatNormalLength = VR_REAL(1) / VR_REAL(1000000);
 
 // Octant of a direction: bit a set when component a is negative (a zero counts as positive).
 VR_FUNCTION int octantOf(VR_REAL dx, VR_REAL dy, VR_REAL dz) {
@@ -85,6 +84,13 @@ struct CasterParams {
     vec4 light;           // xyz: unit direction toward the light; w = 1 when set, 0 for a headlight
     vec4 material;        // ambient, diffuse, specular, shininess
     vec4 background;      // rgb
+    // How a sample is classified (core/scalar_classification.h, shaders/transfer_lookup.h): the transfer table's
+    // first scalar, 1 / its step (exactly 1 for an integer volume) and its last entry's index; the gradient length
+    // at or below which a sample is flat (no normal).
+    float tableLo;
+    float tableInverseStep;
+    float tableLastEntry;
+    float flatGradient;
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -126,7 +132,12 @@ static_assert(offsetof(CasterParams, imageSize) == 144);
 static_assert(offsetof(CasterParams, maxIterations) == 152);
 static_assert(offsetof(CasterParams, octantSlot) == 160);
 static_assert(offsetof(CasterParams, light) == 192);
-static_assert(sizeof(CasterParams) == 240);
+static_assert(offsetof(CasterParams, background) == 224);
+static_assert(offsetof(CasterParams, tableLo) == 240);
+static_assert(offsetof(CasterParams, tableInverseStep) == 244);
+static_assert(offsetof(CasterParams, tableLastEntry) == 248);
+static_assert(offsetof(CasterParams, flatGradient) == 252);
+static_assert(sizeof(CasterParams) == 256);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);
 static_assert(sizeof(TilePush) == 96);
@@ -136,7 +147,4 @@ static_assert(sizeof(OutPixel) == 32);
 }  // namespace vr::device
 #endif
 
-#undef VR_CONSTANT
-#undef VR_FUNCTION
-#undef VR_REAL
 #endif

@@ -117,7 +117,7 @@ void renderSetting(VulkanRenderer& renderer, const PreparedVolume& p, const std:
                    const std::vector<Image>& references, std::vector<CasterRun>& runs, const SweepRow& setting,
                    const fs::path& images, ProgressBar& bar) {
     // One upload serves every caster and view of the setting (each render reads its part of it).
-    GpuVolumeContents contents{{}, runs.front().settings.shading, 0};
+    GpuVolumeContents contents{{}, 0};
     for (const CasterRun& run : runs) contents.casters.push_back(run.settings.caster);
     for (const View& view : views) contents.octants |= viewOctants(view.camera);
     const GpuVolume volume = renderer.upload(p, contents);
@@ -167,7 +167,7 @@ PrepareOptions prepareOptions(const SweepOptions& o) {
 const PreparedVolume& classifyOnce(StagedPreparation& staged, const PrepareOptions& options,
                                    const std::string& dataset, std::size_t settings) {
     const PreparedVolume& p = staged.prepare(options, PrepStage::Classify);
-    const Vec3i dims = p.classified.grid.dims;
+    const Vec3i dims = p.grid().dims;
     std::fprintf(stderr, "%s: %dx%dx%d voxels", dataset.c_str(), dims.x, dims.y, dims.z);
     for (const StageTime& t : staged.stageTimes()) std::fprintf(stderr, ", %s %.2f s", t.stage.c_str(), t.seconds);
     std::fprintf(stderr, ", %zu settings to run\n", settings);
@@ -198,19 +198,19 @@ int runSweep(const SweepOptions& o) {
     base.stepVoxels = o.stepVoxels;
     base.shading = o.shading;
     base.trilinear = o.trilinear;
-    const std::vector<View> views = orbit(o, p.classified.grid);
+    const std::vector<View> views = orbit(o, p.grid());
 
     // The reference: the primitive caster at T_o = T_a = 0 (it reads no regions or fields), once per view.
     std::vector<Image> references;
     std::map<double, Image> elevationZero;
     // These renders are also the primitive caster's row at every setting: it reads no regions or fields, so its
     // images and times do not depend on the thresholds (rendering it again per setting would only repeat them).
-    const GpuVolume classified = renderer.upload(p, {{Caster::Primitive}, base.shading, 0});  // for every view
+    const GpuVolume volume = renderer.upload(p, {{Caster::Primitive}, 0});  // for every view
     CasterRun primitive;
     primitive.settings = base;
-    renderer.render(classified, views.front().camera, base);  // warm-up
+    renderer.render(volume, views.front().camera, base);  // warm-up
     for (const View& v : views) {
-        const RenderResult r = renderer.render(classified, v.camera, base);
+        const RenderResult r = renderer.render(volume, v.camera, base);
         primitive.record(r, imageError(r.image, r.image), renderer.lastUploads());
         references.push_back(r.image);
         if (v.elevation == 0) elevationZero[v.azimuth] = references.back();

@@ -23,7 +23,7 @@ struct SweepOptions {
     int width = 512, height = 512;
     double stepVoxels = 0.5;
     bool shading = true;
-    bool trilinear = false;
+    bool trilinear = true;
     int device = -1;                     // Vulkan device index; -1: the default choice
     std::filesystem::path outDir;
     bool resume = false;                 // skip settings already in OUTDIR/sweep.csv

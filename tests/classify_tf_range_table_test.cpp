@@ -112,7 +112,7 @@ TEST(ClassifyTfRangeTable, BuiltOnTheEntriesClassificationSamples) {
     p.transferFunction = spiky();
     p.normals = false;
     const ClassifiedVolume c = classify(v, p);
-    const TfRangeTable table(transferTable(v, *p.transferFunction));
+    const TfRangeTable table(sampleForVolume(v, *p.transferFunction));
     EXPECT_EQ(table.size(), 21u);
     for (std::size_t i = 0; i < v.values.size(); ++i) {
         const TfExtremes e = table.over(v.values[i], v.values[i]);

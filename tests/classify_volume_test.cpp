@@ -1,4 +1,4 @@
-// Classification of volumes: Levoy iso-contours, gradients and normals, extinction, TF lookups, bad parameters.
+// Classification of volumes: the transfer table, gradients and normals, extinction, TF lookups, bad parameters.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "core/errors.h"
 #include "preprocess/classify/classify.h"
-#include "preprocess/classify/gradient.h"
+#include "core/gradient.h"
 #include "preprocess/load/load_volume.h"
 #include "support/load_dataset.h"
 
@@ -30,20 +30,6 @@ TransferFunction linearTF(double x0, double x1) {
     tf.opacity = {{x0, 0.0}, {x1, 1.0}};
     tf.colour = {{x0, 1, 0, 0}, {x1, 0, 0, 1}};
     return tf;
-}
-
-TEST(ClassifyVolumeLevoy, HandComputedValues) {
-    const IsoContour c{100, 2, 0.8};
-    EXPECT_DOUBLE_EQ(levoyOpacity(c, 100, 1), 0.8);
-    EXPECT_DOUBLE_EQ(levoyOpacity(c, 99, 1), 0.4);       // |100-99| / (2*1) = 0.5
-    EXPECT_DOUBLE_EQ(levoyOpacity(c, 101, 2), 0.6);      // 1 / 4 -> 0.8 * 0.75
-    EXPECT_DOUBLE_EQ(levoyOpacity(c, 102, 1), 0.0);      // exactly at r |grad|
-    EXPECT_DOUBLE_EQ(levoyOpacity(c, 103, 1), 0.0);      // beyond
-    EXPECT_DOUBLE_EQ(levoyOpacity(c, 100, 0), 0.8);      // grad 0 and f = f_v
-    EXPECT_DOUBLE_EQ(levoyOpacity(c, 100.5, 0), 0.0);    // grad 0 and f != f_v
-    const std::vector<IsoContour> two{{100, 2, 0.8}, {101, 4, 0.5}};
-    // 0.4 and 0.5 * (1 - 2/4) = 0.25 combine as 1 - 0.6 * 0.75.
-    EXPECT_DOUBLE_EQ(levoyOpacity(two, 99, 1), 1 - 0.6 * 0.75);
 }
 
 TEST(ClassifyVolume, GradientOfALinearRampIsInPhysicalUnits) {
@@ -112,7 +98,7 @@ TEST(ClassifyVolume, IntoAUsedVolumeEqualsAFreshOne) {
     for (const Volume* v : {&small, &big, &big})
         for (bool normals : {false, true}) {
             params.normals = normals;
-            classify(*v, params, reused);
+            classify(*v, scalarClassification(*v, params), normals, reused);
             const ClassifiedVolume fresh = classify(*v, params);
             EXPECT_EQ(reused.grid, fresh.grid);
             EXPECT_EQ(reused.referenceStep, fresh.referenceStep);
@@ -122,19 +108,28 @@ TEST(ClassifyVolume, IntoAUsedVolumeEqualsAFreshOne) {
         }
 }
 
-TEST(ClassifyVolume, LevoyUsesThePhysicalGradient) {
-    // f = 10 x with spacing 2: |grad| = 5 per world unit. Iso 40, width 1: alpha = 0.9 (1 - |40 - f| / 5).
-    const Volume v = makeVolume({9, 2, 2}, {2, 1, 1}, ScalarType::Float32, [](int x, int, int) { return 10.0 * x; });
+// The table the renderers look samples up in: an entry per integer from the smallest to the largest voxel of an
+// integer volume, sigma converted from the TF's opacity per dt0, and the flat length from the value range.
+TEST(ClassifyVolume, ScalarClassificationTabulatesTheTransferFunction) {
+    const Volume v = makeVolume({5, 2, 2}, {2, 1, 0.5}, ScalarType::Int16, [](int x, int, int) { return 10 * x - 3; });
     ClassifyParams params;
-    params.isoContours = {{40, 1, 0.9}};
-    params.isoColour = {0.2, 0.4, 0.6};
-    const ClassifiedVolume c = classify(v, params);
-    EXPECT_DOUBLE_EQ(c.referenceStep, 1.0);
-    for (int x = 0; x < 9; ++x) {
-        const std::size_t i = linearIndex(v.grid.dims, x, 1, 1);
-        const double alpha = std::max(0.0, 0.9 * (1 - std::abs(40.0 - 10 * x) / 5));
-        EXPECT_NEAR(c.opacity(i), alpha, 1e-6) << x;
-        EXPECT_EQ(c.colour[i], (std::array<float, 3>{0.2f, 0.4f, 0.6f}));
+    params.transferFunction = linearTF(0, 40);
+    const ScalarClassification c = scalarClassification(v, params);
+    EXPECT_DOUBLE_EQ(c.table.lo, -3);
+    EXPECT_DOUBLE_EQ(c.table.step, 1);
+    ASSERT_EQ(c.table.size(), 41u);  // -3 .. 37
+    EXPECT_DOUBLE_EQ(c.referenceStep, 0.5);
+    EXPECT_DOUBLE_EQ(c.flatGradient, 1e-6 * 40 / 0.5);
+    for (std::size_t k = 0; k < c.table.size(); ++k) {
+        const double f = -3.0 + double(k);
+        EXPECT_EQ(c.table.sigma[k], float(extinctionFromOpacity(params.transferFunction->opacityAt(f), 0.5))) << f;
+    }
+    // The classified volume is the table at each voxel (every voxel of an integer volume lies on an entry).
+    const ClassifiedVolume cv = classify(v, params);
+    for (std::size_t i = 0; i < v.values.size(); ++i) {
+        const std::size_t k = std::size_t(v.values[i] + 3);
+        EXPECT_EQ(cv.sigma[i], c.table.sigma[k]);
+        EXPECT_EQ(cv.colour[i], c.table.colour[k]);
     }
 }
 
@@ -221,15 +216,6 @@ TEST(ClassifyVolume, BadParametersAreInputErrors) {
     const Volume v = makeVolume({3, 3, 3}, {1, 1, 1}, ScalarType::UInt8, [](int x, int, int) { return x; });
     ClassifyParams none;
     EXPECT_THROW(classify(v, none), InputError);
-    ClassifyParams both;
-    both.transferFunction = linearTF(0, 1);
-    both.isoContours = {{1, 1, 1}};
-    EXPECT_THROW(classify(v, both), InputError);
-    for (IsoContour bad : {IsoContour{1, 0, 1}, IsoContour{1, 1, 1.5}, IsoContour{std::nan(""), 1, 1}}) {
-        ClassifyParams p;
-        p.isoContours = {bad};
-        EXPECT_THROW(classify(v, p), InputError);
-    }
     ClassifyParams negativeStep;
     negativeStep.transferFunction = linearTF(0, 1);
     negativeStep.referenceStep = -1;

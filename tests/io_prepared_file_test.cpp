@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <limits>
 
 #include "core/errors.h"
 #include "core/extent_code.h"
@@ -17,20 +19,48 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
+constexpr ScalarType kEveryScalarType[] = {ScalarType::UInt8, ScalarType::Int16, ScalarType::UInt16,
+                                           ScalarType::Float32};
+
+// Noise in [0, 255] as a volume of `type`: int16 reaches below zero, uint16 above 255, float32 has fractions.
+float scalarOf(float noise, ScalarType type) {
+    switch (type) {
+        case ScalarType::UInt8: return noise;
+        case ScalarType::Int16: return (noise - 128) * 100;  // -12800 .. 12700
+        case ScalarType::UInt16: return noise * 250;         // 0 .. 63750
+        case ScalarType::Float32: return noise * 0.37f - 5.125f;
+    }
+    return 0;
+}
+
+// A transfer table of 37 entries whose every value differs, with numbers that do not round trip through a
+// decimal of few digits.
+ScalarClassification sampleClassification() {
+    ScalarClassification c;
+    c.referenceStep = 0.5;
+    c.flatGradient = 1.0 / 3.0e5;
+    c.table.lo = -1024.1234567890123;
+    c.table.step = 0.1;
+    for (int i = 0; i < 37; ++i) {
+        c.table.sigma.push_back(i == 0 ? 0.0f : i == 1 ? std::numeric_limits<float>::denorm_min() : float(i) / 3.0f);
+        c.table.colour.push_back({float(i) / 37, 1 - float(i) / 37, i % 2 ? 0.1f : 1.0f});
+    }
+    return c;
+}
+
 // A prepared volume with every chunk present and distinct, reproducible contents (not a real segmentation:
 // the format must carry any bytes).
-PreparedVolume samplePrepared(Vec3i dims) {
+PreparedVolume samplePrepared(Vec3i dims, ScalarType type = ScalarType::Int16) {
     Volume noise = noisePhantom(dims, 7, 0, 255, {0.5, 0.75, 2.0});
     PreparedVolume p;
-    p.classified.grid = noise.grid;
-    p.classified.grid.origin = {-1.5, 2.25, 3};
-    p.classified.referenceStep = 0.5;
+    p.scalars.grid = noise.grid;
+    p.scalars.grid.origin = {-1.5, 2.25, 3};
+    p.scalars.sourceType = type;
+    p.classification = sampleClassification();
     std::size_t n = noise.grid.voxels();
     for (std::size_t i = 0; i < n; ++i) {
         float f = noise.values[i];
-        p.classified.sigma.push_back(f * 0.01f);
-        p.classified.colour.push_back({f / 255, 1 - f / 255, 0.25f});
-        p.classified.normal.push_back({0.6f, -0.8f, f > 128 ? 0.0f : 1e-7f});
+        p.scalars.values.push_back(scalarOf(f, type));
         p.regions.label.push_back(uint32_t(f) / 16);
     }
     p.regions.dims = dims;
@@ -113,22 +143,51 @@ uint64_t dataStart(const fs::path& p) {
 }
 
 json chunkEntry(const json& header, const std::string& name) {
-    for (const json& c : header["chunks"])
+    for (const json& c : header.at("chunks"))
         if (c["name"] == name) return c;
     ADD_FAILURE() << "no chunk " << name;
     return {};
 }
 
+json& chunkEntryToEdit(json& header, const std::string& name) {
+    for (json& c : header.at("chunks"))
+        if (c["name"] == name) return c;
+    throw std::runtime_error("no chunk " + name);
+}
+
+// Overwrites `bytes` bytes of chunk `name` from `at` (bytes into the chunk) and updates the chunk's CRC-32, so that
+// the chunk is well formed but holds what the writer would refuse.
+void patchChunk(Parts& parts, const std::string& name, uint64_t at, const void* bytes, std::size_t size) {
+    json& c = chunkEntryToEdit(parts.header, name);
+    const uint64_t offset = c["offset"].get<uint64_t>();
+    std::memcpy(parts.data.data() + offset + at, bytes, size);
+    c["crc32"] = uint32_t(crc32_z(0, reinterpret_cast<const Bytef*>(parts.data.data() + offset),
+                                  c["bytes"].get<uint64_t>()));
+}
+
 // readPrepared must throw an InputError naming the file and containing `problem`.
 void expectRejected(const fs::path& p, const std::string& problem, unsigned fields = kFieldPC | kFieldACD | kFieldEACD) {
     try {
-        readPrepared(p, fields, true);
+        readPrepared(p, fields);
         ADD_FAILURE() << "read of " << p << " succeeded; expected: " << problem;
     } catch (const InputError& e) {
         std::string m = e.what();
         EXPECT_NE(m.find(p.string()), std::string::npos) << m;
         EXPECT_NE(m.find(problem), std::string::npos) << "message: " << m << "\nexpected: " << problem;
     }
+}
+
+// writePrepared must throw an InputError naming the file and containing `problem`, and write nothing.
+void expectWriteRefused(const fs::path& p, const PreparedVolume& prepared, const std::string& problem) {
+    try {
+        writePrepared(p, prepared);
+        ADD_FAILURE() << "write of " << p << " succeeded; expected: " << problem;
+    } catch (const InputError& e) {
+        std::string m = e.what();
+        EXPECT_NE(m.find(p.string()), std::string::npos) << m;
+        EXPECT_NE(m.find(problem), std::string::npos) << "message: " << m << "\nexpected: " << problem;
+    }
+    EXPECT_FALSE(fs::exists(p));
 }
 
 class IoPreparedFile : public ::testing::Test {
@@ -154,11 +213,11 @@ protected:
 TEST_F(IoPreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
     PreparedVolume r = readPrepared(good);
     const PreparedVolume& p = prepared;
-    EXPECT_EQ(r.classified.grid, p.classified.grid);
-    EXPECT_EQ(r.classified.referenceStep, p.classified.referenceStep);
-    EXPECT_EQ(r.classified.sigma, p.classified.sigma);
-    EXPECT_EQ(r.classified.colour, p.classified.colour);
-    EXPECT_EQ(r.classified.normal, p.classified.normal);
+    EXPECT_EQ(r.scalars.grid, p.scalars.grid);
+    EXPECT_EQ(r.scalars.sourceType, ScalarType::Int16);
+    EXPECT_EQ(r.scalars.values, p.scalars.values);
+    EXPECT_EQ(r.scalars.source, p.meta.source);
+    EXPECT_EQ(r.classification, p.classification);
     EXPECT_EQ(r.regions.dims, p.regions.dims);
     EXPECT_EQ(r.regions.count, p.regions.count);
     EXPECT_EQ(r.regions.label, p.regions.label);
@@ -175,6 +234,70 @@ TEST_F(IoPreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
     EXPECT_EQ(r.meta.distanceCap, kDistanceCap);
     EXPECT_EQ(r.meta.statistics, p.meta.statistics);
     EXPECT_EQ(r.meta.rayProbe, p.meta.rayProbe);
+    EXPECT_LT(*std::min_element(r.scalars.values.begin(), r.scalars.values.end()), 0.0f);  // int16 below zero kept
+}
+
+// The scalars are stored in the volume's own type, each exactly, the ends of the type's range included; the file is
+// the scalar bytes, 4 label bytes and the field bytes per voxel, and the table.
+TEST_F(IoPreparedFile, RoundTripOfEveryScalarType) {
+    for (ScalarType type : kEveryScalarType) {
+        SCOPED_TRACE(scalarTypeName(type));
+        PreparedVolume p = samplePrepared({13, 7, 5}, type);
+        std::vector<float>& v = p.scalars.values;
+        switch (type) {
+            case ScalarType::UInt8: v[0] = 0, v[1] = 255; break;
+            case ScalarType::Int16: v[0] = -32768, v[1] = 32767; break;
+            case ScalarType::UInt16: v[0] = 0, v[1] = 65535; break;
+            case ScalarType::Float32:
+                v[0] = std::numeric_limits<float>::lowest(), v[1] = std::numeric_limits<float>::denorm_min();
+                break;
+        }
+        writePrepared(bad, p);
+        const PreparedVolume r = readPrepared(bad);
+        EXPECT_EQ(r.scalars.sourceType, type);
+        EXPECT_EQ(r.scalars.values, v);
+        EXPECT_EQ(r.scalars.grid, p.scalars.grid);
+        EXPECT_EQ(r.classification, p.classification);
+
+        const Parts parts = split(bad);
+        EXPECT_EQ(parts.header["scalarType"], scalarTypeName(type));
+        const json c = chunkEntry(parts.header, "scalars");
+        EXPECT_EQ(c["type"], scalarTypeName(type));
+        EXPECT_EQ(c["components"], 1);
+        const std::size_t n = p.grid().voxels();
+        EXPECT_EQ(c["bytes"], n * scalarBytes(type));
+        EXPECT_EQ(parts.data.size(), n * (scalarBytes(type) + 4 + 1 + kOctants * (1 + 3)) + 37 * 16);
+        EXPECT_EQ(readPreparedHeader(bad).scalarType, type);
+    }
+}
+
+// The table is stored as float32 r, g, b, sigma per entry and read back bit for bit; lo, step, the reference step
+// and the flat gradient are doubles in the header and read back exactly.
+TEST_F(IoPreparedFile, TableRoundTripsExactly) {
+    const Parts parts = split(good);
+    EXPECT_EQ(parts.header["transferTable"], (json{{"lo", -1024.1234567890123}, {"step", 0.1}, {"entries", 37}}));
+    EXPECT_EQ(parts.header["flatGradient"].get<double>(), 1.0 / 3.0e5);
+    const json c = chunkEntry(parts.header, "table");
+    EXPECT_EQ(c["type"], "float32");
+    EXPECT_EQ(c["components"], 4);
+    EXPECT_EQ(c["bytes"], 37 * 16);
+    float entry5[4];
+    std::memcpy(entry5, parts.data.data() + c["offset"].get<std::size_t>() + 5 * 16, sizeof(entry5));
+    EXPECT_EQ(entry5[0], prepared.classification.table.colour[5][0]);
+    EXPECT_EQ(entry5[1], prepared.classification.table.colour[5][1]);
+    EXPECT_EQ(entry5[2], prepared.classification.table.colour[5][2]);
+    EXPECT_EQ(entry5[3], prepared.classification.table.sigma[5]);
+
+    const ScalarClassification read = readPrepared(good, 0).classification;
+    EXPECT_EQ(read, prepared.classification);
+    EXPECT_EQ(read.table.sigma[1], std::numeric_limits<float>::denorm_min());
+
+    PreparedVolume one = prepared;  // a table of one entry classifies every scalar alike
+    one.classification.table.sigma = {2.5f};
+    one.classification.table.colour = {{1, 0, 0.5f}};
+    writePrepared(bad, one);
+    EXPECT_EQ(readPrepared(bad, 0).classification, one.classification);
+    EXPECT_EQ(readPreparedHeader(bad).tableEntries, 1u);
 }
 
 // The probe is stored among the statistics as before it had a type: files from either side read alike.
@@ -193,7 +316,7 @@ TEST_F(IoPreparedFile, KeepsTheRayProbeAmongTheStatistics) {
     none.meta.rayProbe.reset();
     writePrepared(bad, none);
     EXPECT_FALSE(split(bad).header["metadata"]["statistics"].contains("rayProbe"));
-    EXPECT_FALSE(readPrepared(bad, 0, false).meta.rayProbe);
+    EXPECT_FALSE(readPrepared(bad, 0).meta.rayProbe);
 }
 
 // An older volprep's probe (per-octant counts, no views) is no probe, and a caster's malformed counts no counts:
@@ -203,7 +326,7 @@ TEST_F(IoPreparedFile, ReadsAnOlderRayProbeAsNone) {
     json& probe = parts.header["metadata"]["statistics"]["rayProbe"];
     probe["casters"]["acd"]["singleSamples"] = std::vector<double>(kOctants, 1.0);
     join(bad, parts);
-    std::optional<RayProbe> read = readPrepared(bad, 0, false).meta.rayProbe;
+    std::optional<RayProbe> read = readPrepared(bad, 0).meta.rayProbe;
     ASSERT_TRUE(read);
     EXPECT_EQ(read->primitive, prepared.meta.rayProbe->primitive);
     EXPECT_FALSE(read->acd);
@@ -213,19 +336,21 @@ TEST_F(IoPreparedFile, ReadsAnOlderRayProbeAsNone) {
     probe.erase("views");
     probe["raysPerSide"] = 32;
     join(bad, parts);
-    const PreparedVolume older = readPrepared(bad, 0, false);
+    const PreparedVolume older = readPrepared(bad, 0);
     EXPECT_FALSE(older.meta.rayProbe);
     EXPECT_FALSE(older.meta.statistics.contains("rayProbe"));
 }
 
 TEST_F(IoPreparedFile, ReadsTheHeaderAlone) {
     const PreparedHeader h = readPreparedHeader(good);
-    EXPECT_EQ(h.grid, prepared.classified.grid);
+    EXPECT_EQ(h.grid, prepared.grid());
+    EXPECT_EQ(h.scalarType, ScalarType::Int16);
+    EXPECT_EQ(h.tableEntries, 37u);
     EXPECT_EQ(h.meta.source, prepared.meta.source);
     EXPECT_EQ(h.meta.segmentation, prepared.meta.segmentation);
     EXPECT_EQ(h.meta.statistics, prepared.meta.statistics);
     EXPECT_EQ(h.meta.rayProbe, prepared.meta.rayProbe);
-    const std::size_t n = prepared.classified.grid.voxels();
+    const std::size_t n = prepared.grid().voxels();
     EXPECT_EQ(h.fieldBytes.pc, n);
     EXPECT_EQ(h.fieldBytes.acd, kOctants * n);
     EXPECT_EQ(h.fieldBytes.eacd, kOctants * 3 * n);  // exact extents
@@ -234,9 +359,13 @@ TEST_F(IoPreparedFile, ReadsTheHeaderAlone) {
     std::vector<char> b = readBytes(good);
     b[dataStart(good)] ^= 0x5a;
     writeBytes(bad, b);
-    EXPECT_EQ(readPreparedHeader(bad).grid, prepared.classified.grid);
+    EXPECT_EQ(readPreparedHeader(bad).grid, prepared.grid());
     Parts parts = split(good);
     parts.header["grid"]["dims"] = {13, 7, 6};
+    join(bad, parts);
+    EXPECT_THROW(readPreparedHeader(bad), InputError);
+    parts = split(good);
+    parts.header["transferTable"]["entries"] = 0;
     join(bad, parts);
     EXPECT_THROW(readPreparedHeader(bad), InputError);
 
@@ -251,22 +380,22 @@ TEST_F(IoPreparedFile, ReadsTheHeaderAlone) {
 }
 
 TEST_F(IoPreparedFile, ReadsOnlyWhatIsAskedFor) {
-    PreparedVolume pc = readPrepared(good, kFieldPC, false);
+    PreparedVolume pc = readPrepared(good, kFieldPC);
     EXPECT_EQ(pc.fields.pc, prepared.fields.pc);
     EXPECT_FALSE(pc.fields.hasACD());
     EXPECT_FALSE(pc.fields.hasEACD());
-    EXPECT_FALSE(pc.classified.hasNormals());
-    EXPECT_EQ(pc.classified.sigma, prepared.classified.sigma);
+    EXPECT_EQ(pc.scalars.values, prepared.scalars.values);
+    EXPECT_EQ(pc.classification, prepared.classification);
 
-    PreparedVolume eacd = readPrepared(good, kFieldEACD, true);
+    PreparedVolume eacd = readPrepared(good, kFieldEACD);
     EXPECT_FALSE(eacd.fields.hasPC());
     EXPECT_FALSE(eacd.fields.hasACD());
     EXPECT_EQ(eacd.fields.eacd, prepared.fields.eacd);
-    EXPECT_EQ(eacd.classified.normal, prepared.classified.normal);
 
-    PreparedVolume none = readPrepared(good, 0, false);
+    PreparedVolume none = readPrepared(good, 0);
     EXPECT_FALSE(none.fields.hasPC() || none.fields.hasACD() || none.fields.hasEACD());
     EXPECT_EQ(none.regions.label, prepared.regions.label);
+    EXPECT_EQ(none.scalars.values, prepared.scalars.values);
 }
 
 TEST_F(IoPreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
@@ -281,13 +410,11 @@ TEST_F(IoPreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
 
 TEST_F(IoPreparedFile, OptionalChunksMayBeAbsentButNotWhenRequested) {
     PreparedVolume p = prepared;
-    p.classified.normal.clear();
     p.fields = {};
-    p.fields.dims = p.classified.grid.dims;
+    p.fields.dims = p.grid().dims;
     p.fields.pc = prepared.fields.pc;
     writePrepared(bad, p);
-    PreparedVolume r = readPrepared(bad, kFieldPC, true);
-    EXPECT_FALSE(r.classified.hasNormals());  // normals are optional (volprep --no-normals)
+    PreparedVolume r = readPrepared(bad, kFieldPC);
     EXPECT_EQ(r.fields.pc, p.fields.pc);
     expectRejected(bad, "has no ACD distance field", kFieldACD);
     expectRejected(bad, "has no EACD distance field", kFieldEACD);
@@ -295,9 +422,25 @@ TEST_F(IoPreparedFile, OptionalChunksMayBeAbsentButNotWhenRequested) {
     p.fields.pc.clear();
     writePrepared(bad, p);
     expectRejected(bad, "has no PC distance field", kFieldPC);
+    EXPECT_EQ(readPrepared(bad, 0).scalars.values, prepared.scalars.values);
+}
+
+TEST_F(IoPreparedFile, RejectsAFileWithoutARequiredChunk) {
+    for (const char* name : {"scalars", "table", "labels"}) {
+        SCOPED_TRACE(name);
+        expectEditedHeaderRejected(
+            [&](json& h) {
+                json& chunks = h["chunks"];
+                for (std::size_t i = 0; i < chunks.size(); ++i)
+                    if (chunks[i]["name"] == name) chunks.erase(i);
+            },
+            std::string("has no '") + name + "' chunk");
+    }
 }
 
 TEST_F(IoPreparedFile, RejectsAMissingFile) { expectRejected(dir / "absent.vprep", "no such file"); }
+
+TEST_F(IoPreparedFile, RejectsAFolder) { expectRejected(dir, "not a regular file"); }
 
 TEST_F(IoPreparedFile, RejectsAForeignFile) {
     std::vector<char> b = readBytes(good);
@@ -310,7 +453,7 @@ TEST_F(IoPreparedFile, RejectsAForeignFile) {
 
 TEST_F(IoPreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
     const std::size_t exactBytes = split(good).data.size();
-    const std::size_t voxels = prepared.classified.grid.voxels();
+    const std::size_t voxels = prepared.grid().voxels();
     for (ExtentCode code : {ExtentCode::Log16, ExtentCode::Joint8}) {
         SCOPED_TRACE(extentCodeName(code));
         PreparedVolume p = prepared;
@@ -347,13 +490,16 @@ TEST_F(IoPreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
                                "chunk 'eacd0' should be 1 x uint8");
 }
 
-TEST_F(IoPreparedFile, RejectsTheVersionBeforeCodedExtents) {
-    // Version 1 stored EACD as 3 bytes per octant with no eacdCode: refused with the way out, not misread.
-    std::vector<char> b = readBytes(good);
-    const uint32_t v = 1;
-    std::memcpy(b.data() + 8, &v, 4);
-    writeBytes(bad, b);
-    expectRejected(bad, "prepared format version 1, this build reads version 2 (run volprep again)");
+TEST_F(IoPreparedFile, RejectsEarlierVersions) {
+    // Version 1 stored EACD as 3 bytes per octant with no eacdCode, version 2 the classified volume (sigma, colour,
+    // normal) instead of the scalars and the table: refused with the way out, not misread.
+    for (uint32_t v : {1u, 2u}) {
+        std::vector<char> b = readBytes(good);
+        std::memcpy(b.data() + 8, &v, 4);
+        writeBytes(bad, b);
+        expectRejected(bad, "prepared format version " + std::to_string(v) +
+                                ", this build reads version 3 (run volprep again)");
+    }
 }
 
 TEST_F(IoPreparedFile, RejectsAnotherVersion) {
@@ -365,10 +511,19 @@ TEST_F(IoPreparedFile, RejectsAnotherVersion) {
                             std::to_string(kPreparedFormatVersion));
 }
 
+TEST_F(IoPreparedFile, RejectsAnAbsurdHeaderLength) {
+    std::vector<char> b = readBytes(good);
+    const uint64_t len = (uint64_t(1) << 30) + 1;
+    std::memcpy(b.data() + 12, &len, 8);
+    writeBytes(bad, b);
+    expectRejected(bad, "bad header length 1073741825");
+}
+
 TEST_F(IoPreparedFile, RejectsATruncatedFileAtEveryPart) {
     std::vector<char> b = readBytes(good);
     uint64_t data = dataStart(good);
     json header = split(good).header;
+    uint64_t table = data + chunkEntry(header, "table")["offset"].get<uint64_t>();
     uint64_t labels = data + chunkEntry(header, "labels")["offset"].get<uint64_t>();
     struct Cut {
         std::size_t size;
@@ -380,7 +535,8 @@ TEST_F(IoPreparedFile, RejectsATruncatedFileAtEveryPart) {
                                            {20, "truncated header"},
                                            {20 + 10, "truncated header"},
                                            {data - 2, "truncated header"},
-                                           {data, "truncated: chunk 'sigma'"},
+                                           {data, "truncated: chunk 'scalars'"},
+                                           {table + 5, "truncated: chunk 'table'"},
                                            {labels + 3, "truncated: chunk 'labels'"},
                                            {b.size() - 1, "truncated: chunk 'eacd7'"}}) {
         SCOPED_TRACE(cut.size);
@@ -391,7 +547,7 @@ TEST_F(IoPreparedFile, RejectsATruncatedFileAtEveryPart) {
 
 TEST_F(IoPreparedFile, RejectsAFlippedByteInAChunk) {
     json header = split(good).header;
-    for (const char* name : {"sigma", "colour", "normal", "labels", "pc", "acd0", "eacd7"}) {
+    for (const char* name : {"scalars", "table", "labels", "pc", "acd0", "eacd7"}) {
         SCOPED_TRACE(name);
         std::vector<char> b = readBytes(good);
         json c = chunkEntry(header, name);
@@ -413,7 +569,7 @@ TEST_F(IoPreparedFile, RejectsAnEditedHeader) {
 
 TEST_F(IoPreparedFile, RejectsDimsInconsistentWithTheChunks) {
     expectEditedHeaderRejected([](json& h) { h["grid"]["dims"] = {13, 7, 6}; },
-                               "chunk 'sigma' holds 1820 bytes but grid 13x7x6 needs 2184");
+                               "chunk 'scalars' holds 910 bytes but grid 13x7x6 needs 1092");
 }
 
 TEST_F(IoPreparedFile, RejectsAbsurdDims) {
@@ -423,14 +579,139 @@ TEST_F(IoPreparedFile, RejectsAbsurdDims) {
     }
 }
 
+TEST_F(IoPreparedFile, RejectsABadSpacingOrOrigin) {
+    expectEditedHeaderRejected([](json& h) { h["grid"]["spacing"] = {0.5, 0, 2}; },
+                               "bad header: 'spacing' must be positive and 'origin' finite");
+    expectEditedHeaderRejected([](json& h) { h["grid"]["spacing"] = {0.5, -1, 2}; },
+                               "bad header: 'spacing' must be positive and 'origin' finite");
+    expectEditedHeaderRejected([](json& h) { h["grid"]["spacing"] = {1e307, 1e307, 1e307}; },
+                               "bad header: 'spacing' x dims overflows");
+    expectEditedHeaderRejected([](json& h) { h["grid"]["origin"] = {0, nullptr, 0}; },
+                               "bad header: missing or invalid 'origin'");
+    expectEditedHeaderRejected([](json& h) { h["grid"]["spacing"] = {1, 1}; }, "bad header: 'spacing' needs 3 numbers");
+}
+
 TEST_F(IoPreparedFile, RejectsABadChunkTable) {
     expectEditedHeaderRejected([](json& h) { h["chunks"][0]["type"] = "float64"; },
-                               "chunk 'sigma' should be 1 x float32");
-    expectEditedHeaderRejected([](json& h) { h["chunks"][1]["name"] = "sigma"; }, "chunk 'sigma' appears twice");
+                               "chunk 'scalars' should be 1 x int16");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][1]["type"] = "uint8"; }, "chunk 'table' should be 4 x float32");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][1]["components"] = 3; },
+                               "chunk 'table' should be 4 x float32");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][1]["name"] = "scalars"; }, "chunk 'scalars' appears twice");
     expectEditedHeaderRejected([](json& h) { h["chunks"][0]["name"] = "opacity"; }, "unknown chunk 'opacity'");
+    // The classified volume of version 2 is no chunk of version 3.
+    for (const char* name : {"sigma", "colour", "normal"}) {
+        SCOPED_TRACE(name);
+        expectEditedHeaderRejected([&](json& h) { h["chunks"][0]["name"] = name; },
+                                   std::string("unknown chunk '") + name + "'");
+    }
     expectEditedHeaderRejected([](json& h) { h.erase("grid"); }, "bad header: missing or invalid 'grid'");
     expectEditedHeaderRejected([](json& h) { h["chunks"][0]["offset"] = uint64_t(1) << 40; },
-                               "truncated: chunk 'sigma'");
+                               "truncated: chunk 'scalars'");
+}
+
+TEST_F(IoPreparedFile, RejectsATableChunkOfTheWrongSize) {
+    // The table chunk is sized by the header's entry count, not by the grid.
+    expectEditedHeaderRejected([](json& h) { h["transferTable"]["entries"] = 36; },
+                               "chunk 'table' holds 592 bytes but a transfer table of 36 entries needs 576");
+    expectEditedHeaderRejected([](json& h) { h["transferTable"]["entries"] = 455; },  // the voxel count
+                               "chunk 'table' holds 592 bytes but a transfer table of 455 entries needs 7280");
+}
+
+TEST_F(IoPreparedFile, RejectsAnUnknownScalarType) {
+    for (const char* name : {"int32", "float", "UINT8", ""}) {
+        SCOPED_TRACE(name);
+        expectEditedHeaderRejected([&](json& h) { h["scalarType"] = name; },
+                                   std::string("bad header: 'scalarType': unknown scalar type '") + name +
+                                       "' (expected uint8, int16, uint16 or float32)");
+    }
+    expectEditedHeaderRejected([](json& h) { h.erase("scalarType"); }, "bad header: missing or invalid 'scalarType'");
+    expectEditedHeaderRejected([](json& h) { h["scalarType"] = 2; }, "bad header: missing or invalid 'scalarType'");
+    // A known type that the chunk does not hold.
+    expectEditedHeaderRejected([](json& h) { h["scalarType"] = "uint8"; }, "chunk 'scalars' should be 1 x uint8");
+    expectEditedHeaderRejected([](json& h) { h["scalarType"] = "float32"; }, "chunk 'scalars' should be 1 x float32");
+}
+
+TEST_F(IoPreparedFile, RejectsBadClassificationNumbers) {
+    struct Case {
+        std::string key;  // "transferTable.KEY" for a key of the table
+        json value;       // null: the key removed
+        std::string problem;
+    };
+    const std::string flat = "bad header: 'flatGradient' must be a finite number >= 0";
+    const std::string step = "bad header: 'referenceStep' must be a finite number > 0";
+    const std::string lo = "bad header: 'transferTable.lo' must be a finite number";
+    const std::string tableStep = "bad header: 'transferTable.step' must be a finite number > 0";
+    const std::string entries = "bad header: 'transferTable.entries' must be an integer from 1 to 1048576";
+    for (const Case& c : std::vector<Case>{{"flatGradient", -0.5, flat},
+                                           {"flatGradient", "0", flat},
+                                           {"flatGradient", true, flat},
+                                           {"flatGradient", nullptr, "bad header: missing or invalid 'flatGradient'"},
+                                           {"referenceStep", 0, step},
+                                           {"referenceStep", -1.5, step},
+                                           {"referenceStep", "1", step},
+                                           {"referenceStep", nullptr, "bad header: missing or invalid 'referenceStep'"},
+                                           {"transferTable", 5, "bad header: missing or invalid 'transferTable'"},
+                                           {"transferTable", nullptr, "bad header: missing or invalid 'transferTable'"},
+                                           {"transferTable.lo", "x", lo},
+                                           {"transferTable.lo", json::array({1}), lo},
+                                           {"transferTable.lo", nullptr, "bad header: missing or invalid 'lo'"},
+                                           {"transferTable.step", 0, tableStep},
+                                           {"transferTable.step", -0.1, tableStep},
+                                           {"transferTable.step", "0.1", tableStep},
+                                           {"transferTable.step", nullptr, "bad header: missing or invalid 'step'"},
+                                           {"transferTable.entries", 0, entries},
+                                           {"transferTable.entries", (1 << 20) + 1, entries},
+                                           {"transferTable.entries", 37.5, entries},
+                                           {"transferTable.entries", -37, entries},
+                                           {"transferTable.entries", "37", entries},
+                                           {"transferTable.entries", nullptr, "bad header: missing or invalid 'entries'"}}) {
+        SCOPED_TRACE(c.key + " = " + c.value.dump());
+        expectEditedHeaderRejected(
+            [&](json& h) {
+                const bool inTable = c.key.rfind("transferTable.", 0) == 0;
+                json& object = inTable ? h["transferTable"] : h;
+                const std::string key = inTable ? c.key.substr(std::strlen("transferTable.")) : c.key;
+                if (c.value.is_null())
+                    object.erase(key);
+                else
+                    object[key] = c.value;
+            },
+            c.problem);
+    }
+    // Finite lo and step whose table ends past the largest double.
+    expectEditedHeaderRejected(
+        [](json& h) {
+            h["transferTable"]["lo"] = 1e308;
+            h["transferTable"]["step"] = 1e307;
+        },
+        "bad header: 'transferTable' ends at a scalar that is not finite");
+}
+
+TEST_F(IoPreparedFile, RejectsTableEntriesThatCannotBeRendered) {
+    Parts parts = split(good);
+    const float negative = -1;
+    patchChunk(parts, "table", 3 * 16 + 12, &negative, 4);  // entry 3's sigma
+    join(bad, parts);
+    expectRejected(bad, "transfer table entry 3 has sigma -1 (must be finite and >= 0)");
+
+    parts = split(good);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    patchChunk(parts, "table", 5 * 16 + 4, &nan, 4);  // entry 5's green
+    join(bad, parts);
+    expectRejected(bad, "transfer table entry 5 has a colour that is not finite");
+}
+
+TEST_F(IoPreparedFile, RejectsNonFiniteFloatScalars) {
+    writePrepared(bad, samplePrepared({13, 7, 5}, ScalarType::Float32));
+    for (float v : {std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::infinity()}) {
+        Parts parts = split(bad);
+        patchChunk(parts, "scalars", 17 * 4, &v, 4);
+        const fs::path patched = dir / "patched.vprep";
+        join(patched, parts);
+        expectRejected(patched, std::string("scalars hold ") + (std::isnan(v) ? "nan" : "-inf") +
+                                    " at voxel 17 (must be finite)");
+    }
 }
 
 TEST_F(IoPreparedFile, RejectsNumbersThatDoNotFit) {
@@ -443,6 +724,10 @@ TEST_F(IoPreparedFile, RejectsNumbersThatDoNotFit) {
                                    "bad header: '" + key + "' must be an integer");
     }
     expectEditedHeaderRejected([](json& h) { h["grid"]["dims"] = {13, 7.5, 5}; }, "absurd grid dims 13x7.5x5");
+    expectEditedHeaderRejected([](json& h) { h["regionCount"] = -1; },
+                               "bad header: 'regionCount' must be an integer from 0 to 4294967295");
+    expectEditedHeaderRejected([](json& h) { h["metadata"]["distanceCap"] = 256; },
+                               "bad header: 'distanceCap' must be an integer from 0 to 255");
 }
 
 TEST_F(IoPreparedFile, RejectsLabelsBeyondTheRegionCount) {
@@ -461,6 +746,72 @@ TEST_F(IoPreparedFile, RejectsHeaderThatIsNotJson) {
     expectRejected(bad, "bad header: ");
 }
 
+TEST_F(IoPreparedFile, RefusesToWriteScalarsTheTypeCannotHold) {
+    struct Case {
+        ScalarType type;
+        float value;
+        std::string text;
+    };
+    const float inf = std::numeric_limits<float>::infinity();
+    for (const Case& c : std::vector<Case>{{ScalarType::UInt8, 256, "256"},
+                                           {ScalarType::UInt8, -1, "-1"},
+                                           {ScalarType::UInt8, 0.5f, "0.5"},
+                                           {ScalarType::Int16, 32768, "32768"},
+                                           {ScalarType::Int16, -32769, "-32769"},
+                                           {ScalarType::Int16, -2.5f, "-2.5"},
+                                           {ScalarType::UInt16, 65536, "65536"},
+                                           {ScalarType::UInt16, -1, "-1"},
+                                           {ScalarType::UInt16, 100.25f, "100.25"},
+                                           {ScalarType::UInt16, inf, "inf"},
+                                           {ScalarType::Float32, std::numeric_limits<float>::quiet_NaN(), "nan"},
+                                           {ScalarType::Float32, -inf, "-inf"}}) {
+        SCOPED_TRACE(std::string(scalarTypeName(c.type)) + " " + c.text);
+        PreparedVolume p = samplePrepared({13, 7, 5}, c.type);
+        p.scalars.values[40] = c.value;
+        p.scalars.values[41] = c.value;  // the first one is named
+        expectWriteRefused(bad, p,
+                           "cannot write: scalar " + c.text + " at voxel 40 is not a " +
+                               std::string(scalarTypeName(c.type)) + " value");
+    }
+}
+
+TEST_F(IoPreparedFile, RefusesToWriteArraysOrNumbersThatDoNotFit) {
+    auto refused = [&](const std::function<void(PreparedVolume&)>& edit, const std::string& problem) {
+        PreparedVolume p = prepared;
+        edit(p);
+        expectWriteRefused(bad, p, "cannot write: " + problem);
+    };
+    refused([](PreparedVolume& p) { p.scalars.values.pop_back(); }, "the scalars must hold one value per voxel");
+    refused([](PreparedVolume& p) { p.regions.label.push_back(0); }, "the labels must hold one value per voxel");
+    refused([](PreparedVolume& p) { p.regions.dims.z = 6; }, "region labels and scalars have different dims");
+    refused([](PreparedVolume& p) { p.fields.pc.pop_back(); }, "chunk 'pc' does not hold one value per voxel");
+    refused([](PreparedVolume& p) { p.classification.table.sigma.pop_back(); },
+            "the transfer table's sigma and colour differ in size");
+    refused(
+        [](PreparedVolume& p) {
+            p.classification.table.sigma.clear();
+            p.classification.table.colour.clear();
+        },
+        "the transfer table holds 0 entries (must be 1 to 1048576)");
+    refused(
+        [](PreparedVolume& p) {
+            p.classification.table.sigma.assign(kMaxTransferTableEntries + 1, 0.0f);
+            p.classification.table.colour.assign(kMaxTransferTableEntries + 1, {0, 0, 0});
+        },
+        "the transfer table holds 1048577 entries (must be 1 to 1048576)");
+    refused([](PreparedVolume& p) { p.classification.table.step = 0; },
+            "'transferTable.step' must be a finite number > 0");
+    refused([](PreparedVolume& p) { p.classification.table.lo = std::numeric_limits<double>::infinity(); },
+            "'transferTable.lo' must be a finite number");
+    refused([](PreparedVolume& p) { p.classification.flatGradient = -1; }, "'flatGradient' must be a finite number >= 0");
+    refused([](PreparedVolume& p) { p.classification.referenceStep = 0; },
+            "'referenceStep' must be a finite number > 0");
+    refused([](PreparedVolume& p) { p.classification.table.sigma[3] = -0.25f; },
+            "transfer table entry 3 has sigma -0.25 (must be finite and >= 0)");
+    refused([](PreparedVolume& p) { p.classification.table.colour[4][2] = std::numeric_limits<float>::infinity(); },
+            "transfer table entry 4 has a colour that is not finite");
+}
+
 TEST_F(IoPreparedFile, WritingIsAtomic) {
     // A folder that does not exist: nothing written, a clear error.
     fs::path missing = dir / "no-such-folder" / "out.vprep";
@@ -476,7 +827,10 @@ TEST_F(IoPreparedFile, WritingIsAtomic) {
     // An inconsistent volume is refused and the existing file is left as it was, with no temporary beside it.
     std::vector<char> before = readBytes(good);
     PreparedVolume broken = prepared;
-    broken.classified.sigma.pop_back();
+    broken.scalars.values.pop_back();
+    EXPECT_THROW(writePrepared(good, broken), InputError);
+    broken = prepared;
+    broken.scalars.values[0] = 0.5f;  // not an int16
     EXPECT_THROW(writePrepared(good, broken), InputError);
     EXPECT_EQ(readBytes(good), before);
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);

@@ -3,6 +3,8 @@
 // classification too).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/errors.h"
 #include "datasets/phantoms.h"
 #include "preprocess/classify/tf_range_table.h"
@@ -50,11 +52,10 @@ nlohmann::json untimed(nlohmann::json statistics) {
 void expectSameAsFresh(StagedPreparation& staged, const PrepareOptions& options) {
     const PreparedVolume& p = staged.withStatistics();
     const PreparedVolume f = freshHead(options);
-    EXPECT_EQ(p.classified.grid, f.classified.grid);
-    EXPECT_EQ(p.classified.referenceStep, f.classified.referenceStep);
-    EXPECT_EQ(p.classified.sigma, f.classified.sigma);
-    EXPECT_EQ(p.classified.colour, f.classified.colour);
-    EXPECT_EQ(p.classified.normal, f.classified.normal);
+    EXPECT_EQ(p.grid(), f.grid());
+    EXPECT_EQ(p.scalars.values, f.scalars.values);
+    EXPECT_EQ(p.scalars.sourceType, f.scalars.sourceType);
+    EXPECT_EQ(p.classification, f.classification);
     EXPECT_EQ(p.regions.dims, f.regions.dims);
     EXPECT_EQ(p.regions.count, f.regions.count);
     EXPECT_EQ(p.regions.label, f.regions.label);
@@ -127,10 +128,12 @@ TEST(PipelineStaged, StopsAtTheStageAskedFor) {
     PrepareOptions o = headOptions();
     const PreparedVolume& p = staged.prepare(o, PrepStage::Classify);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify"}));
-    EXPECT_EQ(p.classified.sigma.size(), voxelCount({64, 64, 93}));
+    EXPECT_EQ(staged.classified().sigma.size(), voxelCount({64, 64, 93}));
+    const auto [lo, hi] = std::minmax_element(staged.volume().values.begin(), staged.volume().values.end());
+    EXPECT_EQ(p.classification.table.size(), std::size_t(*hi - *lo + 1));  // an entry per integer in the range
     EXPECT_TRUE(p.regions.label.empty());
     EXPECT_FALSE(p.fields.hasPC());
-    EXPECT_EQ(staged.volume().values.size(), voxelCount({64, 64, 93}));  // kept for the next classification
+    EXPECT_EQ(staged.volume().values.size(), voxelCount({64, 64, 93}));
 
     staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
@@ -157,17 +160,19 @@ TEST(PipelineStaged, AVolumeInMemoryIsNeverLoaded) {
     const PreparedVolume& p = staged.prepare(o);
     EXPECT_EQ(names(staged.stageTimes()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
     EXPECT_EQ(p.meta.source, engine.source);
+    EXPECT_EQ(p.scalars.values, engine.values);
+    EXPECT_EQ(p.classification, scalarClassification(engine, o.classify));
     const ClassifiedVolume c = classify(engine, o.classify);
-    EXPECT_EQ(p.classified.sigma, c.sigma);
-    EXPECT_EQ(p.classified.normal, c.normal);
+    EXPECT_EQ(staged.classified().sigma, c.sigma);
+    EXPECT_EQ(staged.classified().normal, c.normal);
     // Trilinear from a transfer function: regions for post-classification, built on the scalars.
-    const TfRangeTable spread(transferTable(engine, *o.classify.transferFunction));
+    const TfRangeTable spread(sampleForVolume(engine, *o.classify.transferFunction));
     EXPECT_EQ(p.regions.label, segment(c, o.segmentation, ClassifiedScalars{engine.values, spread}).label);
     EXPECT_EQ(p.fields.pc, buildFields(p.regions, kFieldPC).pc);
     o.classify.normals = false;
     staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
-    EXPECT_FALSE(p.classified.hasNormals());
+    EXPECT_FALSE(staged.classified().hasNormals());
 }
 
 TEST(PipelineStaged, AStageThatThrowsRunsAgainNextTime) {
@@ -185,32 +190,26 @@ TEST(PipelineStaged, AStageThatThrowsRunsAgainNextTime) {
                  InputError);
 }
 
-// A preparation that runs once frees the scalars as soon as they are used (volprep's peak memory): once classified,
-// or once segmented where a trilinear segmentation reads them; never after a classification that threw.
-TEST(PipelineStaged, FreesTheScalarsOnceClassifiedWhenAskedTo) {
-    StagedPreparation staged(enginePhantom({20, 17, 12}), ScalarsOnceClassified::Free);
+// A preparation that runs once frees the classified volume once segmented (volprep's peak memory): the fields
+// have its memory. A later segmentation classifies again first.
+TEST(PipelineStaged, FreesTheClassifiedVolumeOnceSegmentedWhenAskedTo) {
+    StagedPreparation staged(enginePhantom({20, 17, 12}), ClassifiedOnceSegmented::Free);
     PrepareOptions o;
     o.classify.transferFunction = test::datasetTransferFunction("sim.tf.json");
-    PrepareOptions bad = o;
-    bad.classify.referenceStep = -1;
-    EXPECT_THROW(staged.prepare(bad), InputError);
-    EXPECT_FALSE(staged.volume().values.empty());
     staged.prepare(o, PrepStage::Classify);
-    EXPECT_TRUE(staged.volume().values.empty());
-    staged.prepare(o);  // the later stages need no scalars
+    EXPECT_FALSE(staged.classified().sigma.empty());
+    const PreparedVolume& p = staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
-    o.classify.normals = false;
-    EXPECT_THROW(staged.prepare(o), std::logic_error);
-
-    // A trilinear segmentation from a transfer function reads the scalars: they are freed after it instead.
-    StagedPreparation trilinear(enginePhantom({20, 17, 12}), ScalarsOnceClassified::Free);
-    o.segmentation.trilinear = true;
-    trilinear.prepare(o, PrepStage::Classify);
-    EXPECT_FALSE(trilinear.volume().values.empty());
-    trilinear.prepare(o, PrepStage::Segment);
-    EXPECT_TRUE(trilinear.volume().values.empty());
+    EXPECT_TRUE(staged.classified().sigma.empty());
+    EXPECT_FALSE(p.scalars.values.empty());  // the renderers classify from them
+    const std::vector<uint32_t> labels = p.regions.label;
     o.segmentation.opacityThreshold = 0.5;
-    EXPECT_THROW(trilinear.prepare(o), std::logic_error);
+    staged.prepare(o);
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
+    EXPECT_TRUE(staged.classified().sigma.empty());
+    o.segmentation.opacityThreshold = 0;
+    staged.prepare(o);
+    EXPECT_EQ(p.regions.label, labels);
 }
 
 // volprep's stages: the write comes last, timed, after the statistics the file holds (which cannot include it).

@@ -32,7 +32,7 @@ std::array<double, 3> expectEveryCodeEqualsPrimitive(const PreparedVolume& exact
     std::array<double, 3> mean{};
     for (const ViewParams& v : {view(Projection::Orthographic, 0, 0, 40), view(Projection::Orthographic, 37, 23, 40),
                                 view(Projection::Orthographic, -130, -50, 40), view(Projection::Perspective, 25, 35, 40)}) {
-        const Camera camera = Camera::fit(exact.classified.grid, v);
+        const Camera camera = Camera::fit(exact.grid(), v);
         s.caster = Caster::Primitive;
         const RenderResult primitive = renderCpu(exact, camera, s);
         s.caster = Caster::EACD;

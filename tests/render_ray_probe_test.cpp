@@ -81,7 +81,7 @@ TEST(RenderRayProbe, MatchesWholeViewsAlongAxesInPlanesAndInGeneralPosition) {
     };
     for (const View v : {View{0, 0}, View{90, 0}, View{180, 90}, View{30, 0}, View{0, -40}, View{30, 20},
                          View{200, -25}}) {
-        const Camera camera = Camera::fit(head().classified.grid, test::orbitView(v.azimuth, v.elevation, 64, 64));
+        const Camera camera = Camera::fit(head().grid(), test::orbitView(v.azimuth, v.elevation, 64, 64));
         const int c = directionClassOf(camera.forward);
         for (const Caster caster : {Caster::Primitive, Caster::EACD}) {
             RenderSettings s;

@@ -48,7 +48,7 @@ Prepared prepared(Volume volume, const TransferFunction& tf, bool normals) {
     p.transferFunction = tf;
     p.normals = normals;
     ClassifiedVolume c = classify(volume, p);
-    TfRangeTable spread(transferTable(volume, tf));
+    TfRangeTable spread(sampleForVolume(volume, tf));
     return {std::move(volume), std::move(c), std::move(spread)};
 }
 

@@ -59,20 +59,20 @@ TEST(VolprepCli, PreparesTheHeadCtAndItReadsBackConsistently) {
 
     PreparedVolume p = readPrepared(out);
     test::DatasetEntry e = headsq();
-    EXPECT_EQ(p.classified.grid.dims, e.dims);
-    EXPECT_EQ(p.classified.grid.spacing, e.spacing);
+    EXPECT_EQ(p.grid().dims, e.dims);
+    EXPECT_EQ(p.grid().spacing, e.spacing);
     EXPECT_EQ(p.meta.classification, slurp(test::datasetsDir() / e.tf));
     EXPECT_EQ(p.meta.source, (test::datasetsDir() / e.file).string());
     EXPECT_EQ(p.meta.segmentation.opacityThreshold, 0.01);
     EXPECT_EQ(p.meta.segmentation.angleThresholdDeg, 3.0);
     EXPECT_TRUE(p.meta.segmentation.useNormals);
-    EXPECT_FALSE(p.meta.segmentation.trilinear);
-    EXPECT_TRUE(p.classified.hasNormals());
+    EXPECT_TRUE(p.meta.segmentation.trilinear);  // regions for the default sampling
+    EXPECT_EQ(p.scalars.sourceType, ScalarType::UInt16);
     ASSERT_TRUE(p.fields.hasPC() && p.fields.hasACD() && p.fields.hasEACD());
 
     // The statistics stored in the file describe the arrays in it.
     const nlohmann::json& s = p.meta.statistics;
-    std::size_t n = p.classified.grid.voxels();
+    std::size_t n = p.grid().voxels();
     EXPECT_EQ(s["voxels"].get<std::size_t>(), n);
     EXPECT_EQ(s["regions"].get<uint32_t>(), p.regions.count);
     EXPECT_EQ(*std::max_element(p.regions.label.begin(), p.regions.label.end()) + 1, p.regions.count);
@@ -90,7 +90,8 @@ TEST(VolprepCli, PreparesTheHeadCtAndItReadsBackConsistently) {
     EXPECT_EQ(p.fields.eacdCode(), ExtentCode::Log16);  // the default: 2 bytes per octant
     EXPECT_EQ(s["eacdCode"], "log16");
     EXPECT_EQ(s["bytes"]["eacd"].get<std::size_t>(), 16 * n);
-    EXPECT_EQ(s["bytes"]["sigma"].get<std::size_t>(), 4 * n);
+    EXPECT_EQ(s["bytes"]["scalars"].get<std::size_t>(), 2 * n);  // uint16, as the source
+    EXPECT_EQ(s["bytes"]["table"].get<std::size_t>(), 16 * p.classification.table.size());
     for (const char* stage : {"load", "classify", "segment", "pc", "acd", "eacd"})
         EXPECT_GE(s["seconds"][stage].get<double>(), 0.0) << stage;
     // The ray probe behind --caster auto, with counts for every field built.
@@ -107,10 +108,10 @@ TEST(VolprepCli, StoresEacdInTheCodeAsked) {
         Outcome r = volprep(headsqArgs(out) + " --fields eacd --no-normals --eacd-code " + name);
         ASSERT_EQ(r.status, 0) << r.err;
         EXPECT_NE(r.out.find(name + " code"), std::string::npos) << r.out;
-        p[code] = readPrepared(out, kFieldEACD, false);
+        p[code] = readPrepared(out, kFieldEACD);
         EXPECT_EQ(p[code].fields.eacdCode(), code);
         EXPECT_EQ(p[code].meta.statistics["bytes"]["eacd"].get<std::size_t>(),
-                  kOctants * extentCodeBytes(code) * p[code].classified.grid.voxels());
+                  kOctants * extentCodeBytes(code) * p[code].grid().voxels());
     }
     // The coded files hold the exact boxes rounded down by their code.
     for (ExtentCode code : {ExtentCode::Log16, ExtentCode::Joint8}) {
@@ -120,16 +121,15 @@ TEST(VolprepCli, StoresEacdInTheCodeAsked) {
     }
 }
 
-TEST(VolprepCli, BuildsOnlyTheRequestedFieldsAndNormals) {
+TEST(VolprepCli, BuildsOnlyTheRequestedFieldsAndRegions) {
     fs::path dir = test::scratchDir("volprep_fields");
     fs::path out = dir / "pc.vprep";
-    Outcome r = volprep(headsqArgs(out) + " --fields pc --no-normals --to 0.05 --ta 10 --trilinear");
+    Outcome r = volprep(headsqArgs(out) + " --fields pc --no-normals --to 0.05 --ta 10 --nearest");
     ASSERT_EQ(r.status, 0) << r.err;
-    PreparedVolume p = readPrepared(out, kFieldPC, true);
+    PreparedVolume p = readPrepared(out, kFieldPC);
     EXPECT_TRUE(p.fields.hasPC());
-    EXPECT_FALSE(p.classified.hasNormals());
     EXPECT_FALSE(p.meta.segmentation.useNormals);
-    EXPECT_TRUE(p.meta.segmentation.trilinear);
+    EXPECT_FALSE(p.meta.segmentation.trilinear);
     EXPECT_EQ(p.meta.segmentation.opacityThreshold, 0.05);
     EXPECT_FALSE(p.meta.statistics["leaps"].contains("acdMeanEdge"));
     EXPECT_THROW(readPrepared(out, kFieldACD), InputError);
@@ -147,20 +147,24 @@ TEST(VolprepCli, ReadsHeaderlessRawWithFlagsInEitherByteOrder) {
         std::ofstream(dir / (big ? "be.bin.raw" : "le.bin.raw"), std::ios::binary)
             .write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * 2));
     }
-    std::string common = " --dims 24x20x16 --type int16 --spacing 1,1,2 --iso 1000,2,0.8 --iso 40,1,0.1";
+    std::string common = " --dims 24x20x16 --type int16 --spacing 1,1,2 --tf " +
+                         q(test::datasetsDir() / "cranium_ct.tf.json");
     ASSERT_EQ(volprep(q(dir / "le.bin.raw") + common + " -o " + q(dir / "le.vprep")).status, 0);
     Outcome r = volprep(q(dir / "be.bin.raw") + common + " --big-endian -o " + q(dir / "be.vprep"));
     ASSERT_EQ(r.status, 0) << r.err;
     PreparedVolume le = readPrepared(dir / "le.vprep"), be = readPrepared(dir / "be.vprep");
-    EXPECT_EQ(le.classified.grid.dims, Vec3i(24, 20, 16));
-    EXPECT_EQ(le.classified.grid.spacing, Vec3d(1, 1, 2));
-    EXPECT_EQ(le.meta.classification.rfind("iso 1000,2,0.8", 0), 0u) << le.meta.classification;
-    EXPECT_EQ(le.classified.sigma, be.classified.sigma);
+    EXPECT_EQ(le.grid().dims, Vec3i(24, 20, 16));
+    EXPECT_EQ(le.grid().spacing, Vec3d(1, 1, 2));
+    EXPECT_EQ(le.scalars.sourceType, ScalarType::Int16);
+    EXPECT_EQ(le.scalars.values, shells.values);
+    EXPECT_EQ(le.scalars.values, be.scalars.values);
+    EXPECT_EQ(le.classification, be.classification);
     EXPECT_EQ(le.regions.label, be.regions.label);
     EXPECT_EQ(le.fields.eacd, be.fields.eacd);
     // The bone shell is opaque somewhere, air is not.
-    EXPECT_GT(*std::max_element(le.classified.sigma.begin(), le.classified.sigma.end()), 0.0f);
-    EXPECT_EQ(le.classified.sigma[0], 0.0f);
+    const std::vector<float>& sigma = le.classification.table.sigma;
+    EXPECT_GT(*std::max_element(sigma.begin(), sigma.end()), 0.0f);
+    EXPECT_EQ(sigma[0], 0.0f);
 }
 
 // volphantom writes NAME_DxDxD_TYPE.raw, which volprep reads with no raw flags.
@@ -175,10 +179,11 @@ TEST(VolprepCli, PreparesAPhantomWrittenByVolphantom) {
     ASSERT_EQ(bytes.size(), engine.values.size());
     for (std::size_t i = 0; i < bytes.size(); ++i) ASSERT_EQ(uint8_t(bytes[i]), engine.values[i]) << i;
 
-    Outcome r = volprep(q(raw) + " --iso 200,1,0.5 --iso 255,1,1 --to 0 --ta 0 -o " + q(dir / "engine.vprep"));
+    Outcome r = volprep(q(raw) + " --tf " + q(test::datasetsDir() / "sim.tf.json") + " --nearest --to 0 --ta 0 -o " +
+                        q(dir / "engine.vprep"));
     ASSERT_EQ(r.status, 0) << r.err;
     PreparedVolume p = readPrepared(dir / "engine.vprep");
-    EXPECT_EQ(p.classified.grid.dims, Vec3i(32, 24, 16));
+    EXPECT_EQ(p.grid().dims, Vec3i(32, 24, 16));
     // Blocky: a few hundred regions for 12288 voxels, and the air around the part is one region.
     EXPECT_LT(p.regions.count, 1000u);
     EXPECT_EQ(p.regions.label[0], p.regions.label[voxelCount(p.regions.dims) - 1]);
@@ -188,7 +193,7 @@ TEST(VolprepCli, HelpDescribesEveryFlag) {
     fs::path dir = test::scratchDir("volprep_help");
     Outcome r = volprep("--help");
     EXPECT_EQ(r.status, 0);
-    for (const char* flag : {"--output", "--tf", "--iso", "--to", "--ta", "--fields", "--trilinear", "--no-normals",
+    for (const char* flag : {"--output", "--tf", "--to", "--ta", "--fields", "--trilinear", "--nearest", "--no-normals",
                              "--eacd-code", "--dims", "--type", "--spacing", "--big-endian"})
         EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
 }
@@ -205,13 +210,12 @@ TEST(VolprepCli, BadInputFailsClearlyAndWritesNothing) {
         std::string args, message;
     };
     for (const Case& c : std::vector<Case>{
-             {in + " -o " + q(out), "a classification is needed"},
+             {in + " -o " + q(out), "--tf is required"},
              {in + tf + " --to -1 -o " + q(out), "--to must be a finite number >= 0"},
              {in + tf + " --ta nan -o " + q(out), "--ta must be a finite number >= 0"},
              {in + tf + " --fields pc,octree -o " + q(out), "octree not in {pc,acd,eacd}"},
              {in + tf + " --eacd-code log12 -o " + q(out), "log12 not in {log16,joint8,exact}"},
-             {in + tf + " --iso 1,2,3 -o " + q(out), "--tf excludes --iso"},
-             {in + " --iso 500,2 -o " + q(out), "--iso takes value,width,strength"},
+             {in + tf + " --trilinear --nearest -o " + q(out), "--trilinear excludes --nearest"},
              {in + " --tf " + q(dir / "none.json") + " -o " + q(out), "none.json"},
              {q(dir / "absent.raw") + tf + " -o " + q(out), "absent.raw"},
              {q(garbage) + tf + " -o " + q(out), garbage.string()},

@@ -29,11 +29,11 @@ fs::path smallRaw(const fs::path& dir) {
     return raw;
 }
 
-const std::string kIso = " --iso 200,2,0.8";
+const std::string kTf = " --tf " + shellQuote(test::datasetsDir() / "sim.tf.json");
 
 TEST(VolprepFaults, StepIsNotAVolprepFlag) {
     const fs::path dir = test::scratchDir("volprep_faults_step");
-    const std::string in = shellQuote(smallRaw(dir)) + kIso + " -o " + shellQuote(dir / "x.vprep");
+    const std::string in = shellQuote(smallRaw(dir)) + kTf + " -o " + shellQuote(dir / "x.vprep");
     for (const char* step : {"0", "-1", "nan", "1e9"}) {
         const test::CliOutcome r = volprep(in + " --step " + step);
         EXPECT_EQ(r.status, 2) << step;
@@ -45,25 +45,17 @@ TEST(VolprepFaults, StepIsNotAVolprepFlag) {
 
 TEST(VolprepFaults, AbsurdSpacingThresholdsAndDimsAreRefused) {
     const fs::path dir = test::scratchDir("volprep_faults_numbers");
-    const std::string in = shellQuote(smallRaw(dir)) + kIso + " -o " + shellQuote(dir / "x.vprep");
+    const std::string in = shellQuote(smallRaw(dir)) + kTf + " -o " + shellQuote(dir / "x.vprep");
     for (const char* spacing : {"0,1,1", "1,-1,1", "nan,1,1", "1,inf,1", "1,1,1e309", "1e300,1e300,1e300"})
         expectRefused(in + " --spacing " + spacing, "spacing");
-    // Positive and finite but absurd: prepared, and then refused by volrender, naming the spacing (it renders the
-    // step in voxels of the smallest spacing, so a ray would take ~1e320 samples).
-    ASSERT_EQ(volprep(in + " --spacing 1e-320,1,1").status, 0);
-    const test::CliOutcome render =
-        test::runVolrender(shellQuote(dir / "x.vprep") + " -o " + shellQuote(dir / "x.png") + " --cpu");
-    EXPECT_EQ(render.status, 1);
-    EXPECT_NE(render.err.find("smallest spacing"), std::string::npos) << render.err;
-    fs::remove(dir / "x.vprep");
+    // Positive and finite but absurd: the TF's opacity per smallest spacing would be an infinite extinction.
+    expectRefused(in + " --spacing 1e-320,1,1", "spacing");
     for (const char* to : {"nan", "-1", "inf", "-inf"}) expectRefused(in + " --to " + to, "--to");
     for (const char* ta : {"nan", "-0.5", "inf"}) expectRefused(in + " --ta " + ta, "--ta");
-    for (const char* iso : {"nan,1,1", "200,0,1", "200,-1,1", "200,1,-0.5", "200,1,nan", "200,inf,1"})
-        expectRefused(shellQuote(smallRaw(dir)) + " --iso " + iso + " -o " + shellQuote(dir / "x.vprep"), "iso");
     const fs::path anonymous = dir / "anonymous.bin";
     std::ofstream(anonymous, std::ios::binary) << std::string(64, 'a');
     for (const char* dims : {"0x4x4", "4x4x-4", "100000x100000x100000", "65537x1x1"})
-        expectRefused(shellQuote(anonymous) + kIso + " --type uint8 --dims " + dims + " -o " + shellQuote(dir / "x.vprep"),
+        expectRefused(shellQuote(anonymous) + kTf + " --type uint8 --dims " + dims + " -o " + shellQuote(dir / "x.vprep"),
                       "anonymous.bin");
     EXPECT_FALSE(fs::exists(dir / "x.vprep"));
 }
@@ -72,7 +64,7 @@ TEST(VolprepFaults, UnwritableOutputsAreRefused) {
     const fs::path dir = test::scratchDir("volprep_faults_output");
     std::ofstream(dir / "plain.txt") << "a file, not a folder";
     fs::create_directory(dir / "folder.vprep");
-    const std::string in = shellQuote(smallRaw(dir)) + kIso + " -o ";
+    const std::string in = shellQuote(smallRaw(dir)) + kTf + " -o ";
     expectRefused(in + shellQuote(dir / "plain.txt" / "x.vprep"), "x.vprep");
     expectRefused(in + shellQuote(dir / "folder.vprep"), "folder.vprep");
     expectRefused(in + shellQuote(dir / "absent" / "x.vprep"), "does not exist");
@@ -86,7 +78,7 @@ TEST(VolprepFaults, KilledWhileWritingLeavesThePreviousFile) {
     const fs::path dir = test::scratchDir("volprep_faults_kill");
     const fs::path out = dir / "shells.vprep";
     const fs::path small = smallRaw(dir);
-    ASSERT_EQ(volprep(shellQuote(small) + kIso + " -o " + shellQuote(out)).status, 0);
+    ASSERT_EQ(volprep(shellQuote(small) + kTf + " -o " + shellQuote(out)).status, 0);
     const std::string before = test::slurp(out);
 
     const std::string phantom = shellQuote(test::volphantomExecutable()) + " shells --dims 160x160x160 -o " +
@@ -95,11 +87,12 @@ TEST(VolprepFaults, KilledWhileWritingLeavesThePreviousFile) {
     const fs::path big = dir / "shells_160x160x160_int16.raw";
     ASSERT_TRUE(fs::exists(big));
     const bool killed = test::killWhileWriting(
-        test::volprepExecutable(), {big.string(), "--iso", "1000,5,0.8", "--fields", "pc", "-o", out.string()}, dir,
+        test::volprepExecutable(), {big.string(), "--tf", (test::datasetsDir() / "cranium_ct.tf.json").string(), "--fields", "pc", "-o",
+         out.string()}, dir,
         ".shells.tmp", 120);
     EXPECT_TRUE(killed) << "volprep ended before its temporary file appeared";
     EXPECT_EQ(test::slurp(out), before);
-    EXPECT_EQ(readPrepared(out).classified.grid.dims, (Vec3i{8, 6, 5}));
+    EXPECT_EQ(readPrepared(out).grid().dims, (Vec3i{8, 6, 5}));
     for (const auto& entry : fs::directory_iterator(dir)) {
         const std::string name = entry.path().filename().string();
         EXPECT_TRUE(name == "shells.vprep" || name == small.filename() || name == big.filename() ||
@@ -107,7 +100,7 @@ TEST(VolprepFaults, KilledWhileWritingLeavesThePreviousFile) {
             << name;
     }
     // The next write of the same output removes what the killed run left.
-    ASSERT_EQ(volprep(shellQuote(small) + kIso + " -o " + shellQuote(out)).status, 0);
+    ASSERT_EQ(volprep(shellQuote(small) + kTf + " -o " + shellQuote(out)).status, 0);
     for (const auto& entry : fs::directory_iterator(dir))
         EXPECT_NE(entry.path().filename().string().rfind(".shells.tmp", 0), 0u) << entry.path();
 }

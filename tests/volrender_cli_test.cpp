@@ -21,12 +21,13 @@ using test::slurp;
 constexpr auto volrender = [](const std::string& args) { return test::runVolrender(args); };
 constexpr auto q = test::shellQuote;
 
-// vtk_headsq_ct with its transfer function and spacing, thresholds (0.02, 10 deg), every field: prepared once.
+// vtk_headsq_ct with its transfer function and spacing, thresholds (0.02, 10 deg), regions for trilinear sampling
+// (volrender's default), every field: prepared once.
 const fs::path& preparedHead() {
     static const fs::path path = [] {
         const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
         const PreparedVolume p = test::prepareVolume(test::loadDataset(e), test::datasetTransferFunction(e.tf),
-                                                     {0.02, 10, true, false});
+                                                     {0.02, 10, true, true});
         const fs::path out = test::scratchDir("volrender_cli_prepared") / "headsq.vrp";
         writePrepared(out, p);
         return out;
@@ -54,10 +55,13 @@ TEST(VolrenderCli, RendersImageHeatmapAndStatistics) {
     EXPECT_GT(view["samplesRepresented"]["total"].get<double>(), 0);
     EXPECT_GE(view["deviceMs"].get<double>(), 0);
     EXPECT_GT(view["wallMs"].get<double>(), 0);
-    // One octant of EACD (4 bytes a voxel), the classified volume and the normals: nothing else.
+    // One octant of EACD (4 bytes a voxel, exact), the scalars as the source holds them (uint16) and the transfer
+    // table: nothing else, shaded or not.
     const std::size_t voxels = 64 * 64 * 93;
     EXPECT_EQ(view["uploadedBytes"]["eacd"].get<std::size_t>(), voxels * 4);
-    EXPECT_EQ(view["uploadedBytes"]["classified"].get<std::size_t>(), voxels * 16);
+    EXPECT_EQ(view["uploadedBytes"]["scalars"].get<std::size_t>(), voxels * 2);
+    EXPECT_GT(view["uploadedBytes"]["table"].get<std::size_t>(), 0u);
+    EXPECT_EQ(view["uploadedBytes"].size(), 3u);
     EXPECT_EQ(view["uploadedBytes"].size(), 3u);
 }
 
@@ -83,7 +87,7 @@ TEST(VolrenderCli, HelpAndDeviceList) {
     const test::CliOutcome help = volrender("--help");
     EXPECT_EQ(help.status, 0);
     for (const char* flag :
-         {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear"})
+         {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear", "--nearest"})
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     const test::CliOutcome list = volrender("--list-devices");
     EXPECT_EQ(list.status, 0);
@@ -111,7 +115,30 @@ TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
     std::ofstream(dir / "garbage.vrp") << "not a prepared volume";
     expectRejected(q(dir / "garbage.vrp") + out, "garbage.vrp");
     expectRejected(in + out + " --device 99", "device 99");
+    expectRejected(in + out + " --trilinear --nearest", "--trilinear excludes --nearest");
     EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// Regions made for nearest sampling only: trilinear sampling (the default) cannot leap through them. A leaping
+// caster asked for is refused with the reason; auto takes the primitive caster and says why; --nearest leaps.
+TEST(VolrenderCli, TrilinearByDefaultAndRegionsMadeForNearestSampling) {
+    const fs::path dir = test::scratchDir("volrender_cli_nearest");
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    const fs::path nearest = dir / "nearest.vrp";
+    writePrepared(nearest, test::prepareVolume(test::loadDataset(e), test::datasetTransferFunction(e.tf),
+                                               {0.02, 10, true, false}));
+    const std::string run = q(nearest) + " -o " + q(dir / "x.png") + " --size 16x16 --stats " + q(dir / "s.json");
+    expectRejected(run + " --caster eacd", "segmented for trilinear sampling");
+    const test::CliOutcome chosen = volrender(run);
+    ASSERT_EQ(chosen.status, 0) << chosen.err;
+    nlohmann::json stats = nlohmann::json::parse(slurp(dir / "s.json"));
+    EXPECT_EQ(stats["settings"]["caster"], "primitive");
+    EXPECT_EQ(stats["settings"]["trilinear"], true);
+    EXPECT_EQ(stats["settings"]["shading"], true);
+    EXPECT_NE(stats["settings"]["casterChoice"].get<std::string>().find("nearest sampling only"), std::string::npos);
+    ASSERT_EQ(volrender(run + " --caster eacd --nearest").status, 0);
+    stats = nlohmann::json::parse(slurp(dir / "s.json"));
+    EXPECT_EQ(stats["settings"]["trilinear"], false);
 }
 
 TEST(VolrenderCli, AutoTakesTheCalibrationOfItsDeviceAndSaysWhich) {

@@ -56,7 +56,7 @@ TEST(VolrenderFaults, AbsurdStepsAreRefusedOrRenderedNeverHung) {
     EXPECT_FALSE(fs::exists(dir / "x.png"));
     // A step far larger than the volume: one sample per ray, a valid image.
     for (const char* where : {" --cpu", ""}) {
-        const test::CliOutcome r = volrender(in + where + " --step 1e9 --caster eacd");
+        const test::CliOutcome r = volrender(in + where + " --step 1e9 --caster eacd --nearest");
         EXPECT_EQ(r.status, 0) << r.err;
         const Image image = readImage(dir / "x.png");
         EXPECT_EQ(image.width, 8);
@@ -128,8 +128,9 @@ TEST(VolrenderFaults, MissingAndDamagedPreparedFilesAreRefused) {
     std::string b = good.bytes;
     b[0] = 'X';
     add(b, "not a prepared file");
-    // 1: the version before coded EACD (core/extent_code.h).
-    for (uint32_t version : {0u, 1u, uint32_t(kPreparedFormatVersion) + 1, 0xffffffffu}) {
+    // 1: before coded EACD (core/extent_code.h); 2: before the scalars and the transfer table replaced the classified
+    // arrays.
+    for (uint32_t version : {0u, 1u, 2u, uint32_t(kPreparedFormatVersion) + 1, 0xffffffffu}) {
         b = good.bytes;
         std::memcpy(b.data() + 8, &version, 4);
         add(b, "version " + std::to_string(version));
@@ -141,7 +142,7 @@ TEST(VolrenderFaults, MissingAndDamagedPreparedFilesAreRefused) {
     b[20 + h / 2] ^= 0x20;  // header text changed, checksum not
     add(b, "header checksum mismatch");
     b = good.bytes;
-    b[24 + h + 5] ^= 0x01;  // the first chunk's data (sigma, read by every render)
+    b[24 + h + 5] ^= 0x01;  // the first chunk's data (the scalars, read by every render)
     add(b, "checksum mismatch");
     uint64_t hugeHeader = uint64_t(1) << 40;
     b = good.bytes;
@@ -156,10 +157,10 @@ TEST(VolrenderFaults, MissingAndDamagedPreparedFilesAreRefused) {
     add(good.withHeader([](nlohmann::json& j) { j["regionCount"] = 1; }), "regionCount");
     add(good.withHeader([](nlohmann::json& j) { j["regionCount"] = -1; }), "regionCount");
     add(good.withHeader([](nlohmann::json& j) { j.erase("chunks"); }), "chunks");
-    add(good.withHeader([](nlohmann::json& j) { j["chunks"].erase(0); }), "sigma");
+    add(good.withHeader([](nlohmann::json& j) { j["chunks"].erase(0); }), "has no 'scalars' chunk");
     add(good.withHeader([](nlohmann::json& j) { j["chunks"][0]["offset"] = uint64_t(1) << 62; }), "truncated");
     add(good.withHeader([](nlohmann::json& j) { j["chunks"][1]["bytes"] = 12; }), "needs");
-    add(good.withHeader([](nlohmann::json& j) { j["chunks"][0]["type"] = "float64"; }), "float32");
+    add(good.withHeader([](nlohmann::json& j) { j["chunks"][0]["type"] = "float64"; }), "chunk 'scalars' should be");
     add(good.withHeader([](nlohmann::json& j) { j["chunks"].push_back(j["chunks"][0]); }), "twice");
     add(good.withHeader([](nlohmann::json& j) { j["grid"]["spacing"] = {0, 1, 2}; }), "spacing");
     add(good.withHeader([](nlohmann::json& j) { j["grid"]["spacing"] = {1, -1, 2}; }), "spacing");
@@ -170,8 +171,8 @@ TEST(VolrenderFaults, MissingAndDamagedPreparedFilesAreRefused) {
         const auto& [bytes, says] = damaged[i];
         const fs::path file = dir / ("damaged_" + std::to_string(i) + ".vprep");
         std::ofstream(file, std::ios::binary) << bytes;
-        // EACD reads every chunk. The file is read before any device is opened, so the CPU path stands for the
-        // Vulkan one, which is run on the first file only.
+        // EACD reads every chunk. A damaged file is refused as it is read, before any render, so the CPU path stands
+        // for the Vulkan one, which is run on the first file only.
         const std::string args = shellQuote(file) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
         SCOPED_TRACE(file.filename().string() + " expecting '" + says + "'");
         expectRefused(args + " --cpu --caster eacd", {says, file.filename().string()});
@@ -211,13 +212,13 @@ TEST(VolrenderFaults, VolumeLargerThanTheDeviceAllowsRendersInBricks) {
     const test::CliOutcome gpu = volrender(in + " --stats " + shellQuote(dir / "stats.json"));
     EXPECT_EQ(gpu.status, 0) << gpu.err;
     EXPECT_TRUE(fs::exists(dir / "x.png"));
-    // The stats name the bricks and their bytes: the classified volume (16 bytes a voxel) of each brick's image.
+    // The stats name the bricks and their bytes: the scalars (uint16, 2 bytes a voxel) of each brick's image.
     const nlohmann::json upload = nlohmann::json::parse(std::ifstream(dir / "stats.json"))["upload"];
     ASSERT_GE(upload["bricks"].size(), 2u);
     std::size_t bytes = 0;
-    for (const auto& b : upload["bricks"]) bytes += b["bytes"]["classified"].get<std::size_t>();
-    EXPECT_EQ(bytes, upload["bytes"]["classified"].get<std::size_t>());
-    EXPECT_GT(bytes, grid.voxels() * 16);  // one voxel of overlap each side of every cut
+    for (const auto& b : upload["bricks"]) bytes += b["bytes"]["scalars"].get<std::size_t>();
+    EXPECT_EQ(bytes, upload["bytes"]["scalars"].get<std::size_t>());
+    EXPECT_GT(bytes, grid.voxels() * 2);  // two voxels of overlap each side of every cut
     const test::CliOutcome cpu = volrender(in + " --cpu");  // the CPU reference has no such limit
     EXPECT_EQ(cpu.status, 0) << cpu.err;
 }

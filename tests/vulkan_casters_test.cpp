@@ -75,7 +75,7 @@ void expectMatchesCpu(const std::string& name, const PreparedVolume& p, bool tri
     const std::vector<ViewParams> views{view(0, 0), view(37, 23), view(-120, -35),
                                         view(30, -20, Projection::Perspective)};
     for (const ViewParams& vp : views) {
-        const Camera cam = Camera::fit(p.classified.grid, vp);
+        const Camera cam = Camera::fit(p.grid(), vp);
         for (Caster c : kCasters) {
             const RenderSettings s = renderSettings(c, true, trilinear);
             const RenderResult gpu = renderer().render(p, cam, s);
@@ -112,7 +112,7 @@ TEST(VulkanCasters, MatchCpuReferenceWithDirectionalLightBackgroundAndOtherSteps
     const Dataset d = loadDataset("vtk_headsq_ct", 40);
     const PreparedVolume p = prepare(d.volume, d.tf, 0.02, 10);
     for (const ViewParams& vp : {view(20, 30), view(-60, 10, Projection::Perspective)}) {
-        const Camera cam = Camera::fit(p.classified.grid, vp);
+        const Camera cam = Camera::fit(p.grid(), vp);
         for (Caster c : kCasters) {
             for (double step : {0.25, 1.7}) {  // 1.7: dt larger than a voxel
                 RenderSettings s = renderSettings(c);
@@ -158,8 +158,15 @@ TEST(VulkanCasters, MissingFieldsAndIterationCapAreReported) {
     EXPECT_THROW(renderer().render(p, cam, capped), std::runtime_error);
     p.fields = {};
     EXPECT_THROW(renderer().render(p, cam, renderSettings(Caster::EACD)), InputError);
-    p.classified.normal.clear();
-    EXPECT_THROW(renderer().render(p, cam, renderSettings(Caster::Primitive)), InputError);
+    // Scalars that do not fill the grid, and a table without entries, are refused before anything is uploaded.
+    PreparedVolume shortScalars = p;
+    shortScalars.scalars.values.pop_back();
+    EXPECT_THROW(renderer().render(shortScalars, cam, renderSettings(Caster::Primitive, false)), InputError);
+    PreparedVolume noTable = p;
+    noTable.classification.table = {};
+    EXPECT_THROW(renderer().render(noTable, cam, renderSettings(Caster::Primitive, false)), InputError);
+    // Shading needs nothing beyond the scalars.
+    EXPECT_NO_THROW(renderer().render(p, cam, renderSettings(Caster::Primitive)));
     EXPECT_NO_THROW(renderer().render(p, cam, renderSettings(Caster::Primitive, false)));
     expectNoValidationErrors();
 }
@@ -187,7 +194,7 @@ void expectCastersEqualPrimitive(const std::string& name, const PreparedVolume& 
     const std::vector<ViewParams> views{view(0, 0), view(90, 0), view(0, 90), view(180, 0),
                                         view(45, 35.264389682754654), view(-30, 20)};
     for (const ViewParams& vp : views) {
-        const Camera cam = Camera::fit(p.classified.grid, vp);
+        const Camera cam = Camera::fit(p.grid(), vp);
         const RenderResult primitive = renderer().render(p, cam, renderSettings(Caster::Primitive));
         for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
             SCOPED_TRACE(name + " " + std::string(casterName(c)) + " az " + std::to_string(vp.azimuthDeg) +
@@ -218,7 +225,7 @@ TEST(VulkanCasters, LeapingCutsIterationsOnCtDatasets) {
     for (const char* prefix : {"cranium_ct", "vtk_headsq_ct"}) {
         const Dataset d = loadDataset(prefix, 96);
         const PreparedVolume p = prepare(d.volume, d.tf, 0.05, 20);
-        const Camera cam = Camera::fit(p.classified.grid, view(30, 20));
+        const Camera cam = Camera::fit(p.grid(), view(30, 20));
         double it[4];
         for (Caster c : kCasters) it[int(c)] = meanIterations(renderer().render(p, cam, renderSettings(c)));
         SCOPED_TRACE(d.name);
@@ -266,10 +273,11 @@ TEST(VulkanCasters, UploadOnlyWhatTheCasterAndViewUse) {
     const Camera persp = Camera::fit(v.grid, view(0, 0, Projection::Perspective));
 
     renderer().render(p, ortho, renderSettings(Caster::Primitive));
-    EXPECT_EQ(uploadedNames(), (std::set<std::string>{"classified", "normals"}));
+    EXPECT_EQ(uploadedNames(), (std::set<std::string>{"scalars", "table"}));  // shaded: nothing more
     renderer().render(p, ortho, renderSettings(Caster::Primitive, false));
-    EXPECT_EQ(uploadedNames(), (std::set<std::string>{"classified"}));
-    EXPECT_EQ(uploadedBytes("classified"), voxels * 16);
+    EXPECT_EQ(uploadedNames(), (std::set<std::string>{"scalars", "table"}));
+    EXPECT_EQ(uploadedBytes("scalars"), voxels * scalarBytes(v.sourceType));
+    EXPECT_EQ(uploadedBytes("table"), p.classification.table.size() * 16);
     renderer().render(p, ortho, renderSettings(Caster::PC, false));
     EXPECT_EQ(uploadedBytes("pc"), voxels);
     renderer().render(p, ortho, renderSettings(Caster::ACD, false));

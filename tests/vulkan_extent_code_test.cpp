@@ -35,7 +35,7 @@ void expectEveryCodeMatchesCpu(const PreparedVolume& exact, bool trilinear, cons
         PreparedVolume p = exact;
         quantiseEACD(p.fields, code);
         for (const ViewParams& vp : {view(37, 23), view(-120, -35), view(30, -20, Projection::Perspective)}) {
-            const Camera cam = Camera::fit(p.classified.grid, vp);
+            const Camera cam = Camera::fit(p.grid(), vp);
             const RenderResult gpu = renderer().render(p, cam, s);
             const RenderResult cpu = renderCpu(p, cam, s);
             SCOPED_TRACE(what + " " + std::string(extentCodeName(code)) + " az " + std::to_string(vp.azimuthDeg));

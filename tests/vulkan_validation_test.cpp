@@ -52,12 +52,13 @@ TEST(VulkanValidation, CastersNeedNeitherFloat64NorInt64) {
     });
     RenderSettings s;
     s.shading = false;
-    // An orthographic view of one brick, then a perspective view of bricks of at most 4 texels a side.
+    // An orthographic view of one brick, then a perspective view of bricks of at most 5 texels a side (a core of
+    // one voxel and its margin of two).
     const std::pair<Projection, ImageLimits> variants[] = {{Projection::Orthographic, ImageLimits{}},
-                                                           {Projection::Perspective, ImageLimits{4, 0, false}}};
+                                                           {Projection::Perspective, ImageLimits{5, 0, false}}};
     for (const auto& [projection, limits] : variants) {
         VulkanRenderer renderer(ctx, 16, limits);
-        const Camera camera = Camera::fit(p.classified.grid, test::orbitView(30, 20, 20, 18, projection));
+        const Camera camera = Camera::fit(p.grid(), test::orbitView(30, 20, 20, 18, projection));
         for (const Caster c : test::kCasters) {
             s.caster = c;
             const RenderResult r = renderer.render(p, camera, s);

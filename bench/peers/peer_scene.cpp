@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/errors.h"
 
@@ -10,6 +11,18 @@ namespace vr {
 std::size_t PeerScene::tableIndex(float value) const {
     const double i = std::round((value - table.lo) / table.step);
     return std::size_t(std::clamp(i, 0.0, double(table.opacity.size() - 1)));
+}
+
+std::string settingsDescription(const PeerSceneOptions& options) {
+    if (!options.userSettings)
+        return "nearest sampling, unshaded (emission-absorption only), the algorithm comparison (--user-settings: "
+               "trilinear and shaded)";
+    const ShadingModel m;
+    std::ostringstream s;
+    s << "the user settings (--user-settings): trilinear (linear) interpolation, shaded: Phong, ambient " << m.ambient
+      << ", diffuse " << m.diffuse << ", specular " << m.specular << ", specular power " << m.shininess
+      << ", one white headlight";
+    return s.str();
 }
 
 CubicLattice::CubicLattice(const GridGeometry& grid) : size(grid.smallestSpacing()) {

@@ -2,12 +2,14 @@
 #pragma once
 #include <array>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/volume.h"
 #include "preprocess/classify/transfer_function.h"
 #include "preprocess/load/load_volume.h"
 #include "render/camera.h"
+#include "render/span.h"
 
 namespace vr {
 
@@ -18,7 +20,14 @@ struct PeerSceneOptions {
     double stepVoxels = 0.5;  // our --step: voxels of the smallest spacing
     double ert = 0.99;        // our early ray termination
     int threads = 2;
+    // false: every peer samples nearest and unshaded (emission-absorption only), the algorithm comparison.
+    // true (--user-settings): what users render with: trilinear (linear) interpolation, shaded with our Phong
+    // material (render/span.h ShadingModel) and one white headlight; the peers that cannot are skipped.
+    bool userSettings = false;
 };
+
+// The render settings every peer is set up for, in words: the caption of vr_peers' table.
+std::string settingsDescription(const PeerSceneOptions& options);
 
 struct PeerScene {
     PeerSceneOptions options;

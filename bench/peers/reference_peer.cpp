@@ -20,15 +20,22 @@ PeerRun runReferencePeer(const PeerScene& scene, const std::filesystem::path& ou
     settings.caster = Caster::Primitive;
     settings.stepVoxels = scene.options.stepVoxels;
     settings.ert = scene.options.ert;
-    settings.shading = false;
+    // The primitive caster leaps nowhere, so trilinear sampling needs no trilinear regions; shading takes its
+    // normals from the scalars' gradient at each sample (no normals in the classification).
+    settings.trilinear = scene.options.userSettings;
+    settings.shading = scene.options.userSettings;
     PeerRun run = runViews("ours-cpu-primitive", scene, outDir, [&](std::size_t i, Image& out) {
         const auto start = std::chrono::steady_clock::now();
         out = renderCpu(prepared, scene.views[i], settings).image;
         return millisecondsSince(start);
     });
     run.setupMs = setupMs;
-    run.notes = "our CPU reference (volrender --cpu --caster primitive --no-shading): the image to compare with; "
-                "double precision, not a speed contender; setup = load + classify + segment";
+    run.notes = scene.options.userSettings
+                    ? "our CPU reference (volrender --cpu --caster primitive): trilinear, Phong with a headlight "
+                      "(gradient interpolated per sample, then shaded); the image to compare with; double precision, "
+                      "not a speed contender; setup = load + classify + segment"
+                    : "our CPU reference (volrender --cpu --caster primitive --nearest --no-shading): the image to "
+                      "compare with; double precision, not a speed contender; setup = load + classify + segment";
     return run;
 }
 

@@ -1,6 +1,8 @@
 // vr_peers: renders one volume with the peer renderers (VTK's CPU and GPU ray casters, VolPack, OpenVDB's
 // vdb_render) and our CPU reference on the same views, image size, sample distance and thread count; writes
-// every image, OUT/peers.json (per peer, per view: milliseconds and image) and prints a Markdown table.
+// every image, OUT/peers.json (per peer, per view: milliseconds and image) and prints a Markdown table. By default
+// every peer samples nearest and unshaded; --user-settings renders trilinear and shaded (our Phong material, one
+// headlight), skipping the peers that cannot.
 // scripts/peers.sh installs the peers, builds this and runs it under xvfb-run (VTK needs an X display).
 #include <tbb/global_control.h>
 
@@ -22,6 +24,27 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string> kPeers = {"ours-cpu-primitive", "vtk-fixed-point", "vtk-gpu-llvmpipe", "volpack",
                                          "vdb_render"};
+
+// Why a peer cannot render at the user settings (trilinear, Phong-shaded), or empty when it can.
+std::string userSettingsSkipReason(const std::string& name) {
+    if (name == "volpack")
+        return "VolPack cannot render at these settings: shear-warp samples each slice bilinearly (no trilinear "
+               "samples at our sample distance) and shades per voxel before compositing (vpShadeTable over its "
+               "encoded normals), not per sample";
+    if (name == "vdb_render")
+        return "vdb_render cannot render at these settings: it has no transfer function colour and no gradient "
+               "(Phong) shading, only single scattering of a light through a density grid";
+    return "";
+}
+
+nlohmann::json settingsJson(const vr::PeerSceneOptions& o) {
+    if (!o.userSettings) return {{"name", "nearest-unshaded"}, {"interpolation", "nearest"}, {"shading", false}};
+    const vr::ShadingModel m;
+    return {{"name", "user"}, {"interpolation", "trilinear"}, {"shading", true},
+            {"material", {{"model", "phong"}, {"ambient", m.ambient}, {"diffuse", m.diffuse},
+                          {"specular", m.specular}, {"specular_power", m.shininess}}},
+            {"light", "headlight"}};
+}
 
 vr::PeerRun runPeer(const std::string& name, const vr::PeerScene& scene, const fs::path& out) {
     if (name == "ours-cpu-primitive") return vr::runReferencePeer(scene, out);
@@ -58,6 +81,9 @@ int main(int argc, char** argv) {
     app.add_option("--threads", o.threads, "threads for every peer that can use them")->capture_default_str();
     app.add_option("--peers", peers, "peers to run")->delimiter(',')->check(CLI::IsMember(kPeers));
     app.add_option("-o,--out", out, "output folder")->capture_default_str();
+    app.add_flag("--user-settings", o.userSettings,
+                 "render as users do: trilinear, shaded with our Phong material and a headlight (default: nearest, "
+                 "unshaded); VolPack and vdb_render, which cannot, are skipped");
     CLI11_PARSE(app, argc, argv);
 
     try {
@@ -75,8 +101,16 @@ int main(int argc, char** argv) {
         fs::create_directories(out);
         nlohmann::json runs = nlohmann::json::array();
         std::ostringstream table;
-        table << "| peer | median ms | p95 ms | image size | views | notes |\n|---|---:|---:|---|---:|---|\n";
+        nlohmann::json skipped = nlohmann::json::array();
+        table << "Settings: " << vr::settingsDescription(o) << ". Each peer's notes say where it differs.\n\n"
+              << "| peer | median ms | p95 ms | image size | views | notes |\n|---|---:|---:|---|---:|---|\n";
         for (const std::string& name : peers) {
+            if (const std::string why = o.userSettings ? userSettingsSkipReason(name) : ""; !why.empty()) {
+                std::fprintf(stderr, "%s: skipped (%s)\n", name.c_str(), why.c_str());
+                skipped.push_back({{"peer", name}, {"reason", why}});
+                table << "| " << name << " | - | - | - | - | skipped: " << why << " |\n";
+                continue;
+            }
             std::fprintf(stderr, "%s ...\n", name.c_str());
             char row[256];
             try {
@@ -94,7 +128,8 @@ int main(int argc, char** argv) {
             {"volume", volume}, {"transfer_function", tf}, {"spacing", {scene.volume.grid.spacing.x,
              scene.volume.grid.spacing.y, scene.volume.grid.spacing.z}}, {"views", o.views},
             {"width", o.width}, {"height", o.height}, {"step_voxels", o.stepVoxels},
-            {"sample_distance", scene.sampleDistance()}, {"threads", o.threads}, {"peers", runs}};
+            {"sample_distance", scene.sampleDistance()}, {"threads", o.threads}, {"settings", settingsJson(o)},
+            {"peers", runs}, {"skipped", skipped}};
         vr::writeFileAtomically(fs::path(out) / "peers.json", [&](std::ostream& s) { s << doc.dump(2) << '\n'; });
         std::fputs(table.str().c_str(), stdout);
     } catch (const std::exception& e) {

@@ -7,10 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <utility>
 
 #include "core/errors.h"
+#include "core/gradient.h"
+#include "shaders/transfer_lookup.h"
 
 namespace vr {
 namespace {
@@ -37,10 +40,18 @@ std::pair<float, float> valueRange(const std::vector<float>& values, const std::
     return {range.lo, range.hi};
 }
 
+void checkVolume(const Volume& volume, const std::string& source) {
+    if (volume.grid.voxels() == 0 || volume.values.size() != volume.grid.voxels())
+        throw fileError(source, "the volume is empty or its values do not match its dimensions");
+    for (int a = 0; a < 3; ++a)
+        if (!(volume.grid.spacing[a] > 0) || !std::isfinite(volume.grid.spacing[a]))
+            throw fileError(source, "voxel spacing must be finite and > 0");
+}
+
 // Integer volumes get one exact sample per integer value (at most 65536 for 16-bit types);
 // float volumes 65536 samples over their range, interpolated linearly.
-SampledTransferFunction sampleForVolume(const TransferFunction& tf, const Volume& volume,
-                                        std::pair<float, float> range) {
+SampledTransferFunction sampleForRange(const TransferFunction& tf, const Volume& volume,
+                                       std::pair<float, float> range) {
     constexpr std::size_t kFloatSamples = 65536;
     if (volume.sourceType == ScalarType::Float32) {
         const std::size_t count = range.first == range.second ? 1 : kFloatSamples;
@@ -50,79 +61,51 @@ SampledTransferFunction sampleForVolume(const TransferFunction& tf, const Volume
     return sampleTransferFunction(tf, lo, hi, std::size_t(hi - lo) + 1);
 }
 
+std::string sourceName(const Volume& volume) {
+    return volume.source.empty() ? std::string("classification") : volume.source;
+}
+
 void checkParams(const Volume& volume, const ClassifyParams& params, const std::string& source) {
-    if (params.transferFunction.has_value() == !params.isoContours.empty())
-        throw fileError(source, "classification needs either a transfer function or iso-contours (exactly one)");
-    if (volume.grid.voxels() == 0 || volume.values.size() != volume.grid.voxels())
-        throw fileError(source, "the volume is empty or its values do not match its dimensions");
+    if (!params.transferFunction) throw fileError(source, "classification needs a transfer function");
+    checkVolume(volume, source);
     if (!(params.referenceStep >= 0) || !std::isfinite(params.referenceStep))
         throw fileError(source, "the reference step must be a finite number >= 0");
     if (!(params.flatGradientFloor >= 0)) throw fileError(source, "the flat-gradient floor must be >= 0");
-    for (int a = 0; a < 3; ++a)
-        if (!(volume.grid.spacing[a] > 0) || !std::isfinite(volume.grid.spacing[a]))
-            throw fileError(source, "voxel spacing must be finite and > 0");
-    if (params.transferFunction) {
-        const TransferFunction& tf = *params.transferFunction;
-        tf.validate(tf.name.empty() ? std::string("transfer function") : "transfer function " + tf.name);
-    } else {
-        validateIsoContours(params.isoContours, source);
-        for (double c : params.isoColour)
-            if (!(c >= 0 && c <= 1)) throw fileError(source, "iso-contour colour outside [0,1]");
-    }
+    const TransferFunction& tf = *params.transferFunction;
+    tf.validate(tf.name.empty() ? std::string("transfer function") : "transfer function " + tf.name);
 }
 
 // One row of voxels (fixed y, z) at a time: the gradient of the whole row first (differences of whole rows, no
 // per-voxel neighbour arithmetic), then the per-voxel lookups and normals.
 class RowClassifier {
 public:
-    RowClassifier(const Volume& volume, const ClassifyParams& params, std::pair<float, float> range,
+    RowClassifier(const Volume& volume, const ScalarClassification& classification, bool normals,
                   ClassifiedVolume& out)
-        : volume_(volume), params_(params), out_(out), dims_(volume.grid.dims),
-          useTF_(params.transferFunction.has_value()), needGradient_(params.normals || !useTF_),
-          flatFloor_(params.flatGradientFloor * (double(range.second) - range.first) / volume.grid.smallestSpacing()),
-          isoColour_{float(params.isoColour[0]), float(params.isoColour[1]), float(params.isoColour[2])} {
-        if (useTF_) table_ = sampleForVolume(*params.transferFunction, volume, range);
-        // At the table's samples (every voxel of an integer volume) sigma is looked up rather than recomputed.
-        sigmaAtSample_.resize(table_.opacity.size());
-        for (std::size_t k = 0; k < sigmaAtSample_.size(); ++k)
-            sigmaAtSample_[k] = float(extinctionFromOpacity(table_.opacity[k], out.referenceStep));
-    }
+        : volume_(volume), table_(classification.table), normals_(normals), out_(out), dims_(volume.grid.dims),
+          flatGradient_(classification.flatGradient), inverseStep_(1 / table_.step),
+          lastEntry_(double(table_.size() - 1)) {}
 
     // Rows [begin, end) of the dims.y * dims.z rows, row r = (y = r % dims.y, z = r / dims.y).
     void operator()(std::size_t begin, std::size_t end) const {
-        if (useTF_) {
-            params_.normals ? rows<true, true>(begin, end) : rows<true, false>(begin, end);
-        } else {
-            params_.normals ? rows<false, true>(begin, end) : rows<false, false>(begin, end);
-        }
+        normals_ ? rows<true>(begin, end) : rows<false>(begin, end);
     }
 
 private:
-    // The choices made once, not per voxel: transfer function or iso-contours, normals or none.
-    template <bool kTF, bool kNormals>
+    template <bool kNormals>
     void rows(std::size_t begin, std::size_t end) const {
         const std::size_t nx = std::size_t(dims_.x);
-        std::vector<double> gx(needGradient_ ? nx : 0), gy(gx.size()), gz(gx.size());
+        std::vector<double> gx(kNormals ? nx : 0), gy(gx.size()), gz(gx.size());
         for (std::size_t r = begin; r < end; ++r) {
             const int y = int(r % std::size_t(dims_.y)), z = int(r / std::size_t(dims_.y));
             const std::size_t row = linearIndex(dims_, 0, y, z);
-            if (needGradient_) rowGradient(y, z, gx, gy, gz);
+            if constexpr (kNormals) rowGradient(y, z, gx, gy, gz);
             for (std::size_t x = 0; x < nx; ++x) {
                 const std::size_t i = row + x;
-                const double f = volume_.values[i];
-                if constexpr (kTF) {
-                    lookUp(f, i);
-                    if constexpr (!kNormals) continue;
-                }
-                const Vec3d g{gx[x], gy[x], gz[x]};
-                const double magnitude = length(g);
-                if constexpr (!kTF) {
-                    const double alpha = levoyOpacity(params_.isoContours, f, magnitude);
-                    out_.sigma[i] = float(extinctionFromOpacity(alpha, out_.referenceStep));
-                    out_.colour[i] = isoColour_;
-                }
+                lookUp(volume_.values[i], i);
                 if constexpr (kNormals) {
-                    const bool flat = !(magnitude > flatFloor_);
+                    const Vec3d g{gx[x], gy[x], gz[x]};
+                    const double magnitude = length(g);
+                    const bool flat = !(magnitude > flatGradient_);
                     out_.normal[i] = flat ? std::array<float, 3>{0, 0, 0}
                                           : std::array<float, 3>{float(g.x / magnitude), float(g.y / magnitude),
                                                                  float(g.z / magnitude)};
@@ -131,7 +114,7 @@ private:
         }
     }
 
-    // The gradient of gradient.h (centralGradient) along one row: the same operations in the same order.
+    // The gradient of core/gradient.h (centralGradient) along one row: the same operations in the same order.
     void rowGradient(int y, int z, std::vector<double>& gx, std::vector<double>& gy, std::vector<double>& gz) const {
         const Vec3d& h = volume_.grid.spacing;
         const float* row = &volume_.values[linearIndex(dims_, 0, y, z)];
@@ -161,61 +144,89 @@ private:
         for (std::size_t x = 0; x < g.size(); ++x) g[x] = (double(b[x]) - double(a[x])) / span;
     }
 
-    // sigma and colour from the sampled TF: exact samples are looked up, values between them interpolated.
+    // sigma and colour as a nearest sample of scalar f takes them (shaders/transfer_lookup.h): an entry exactly
+    // where f lies on one (every voxel of an integer volume), else interpolated between two.
     void lookUp(double f, std::size_t i) const {
-        std::size_t k;
-        double w;
-        table_.locate(f, k, w);
+        const double t = device::tableCoordinate(f, table_.lo, inverseStep_, lastEntry_);
+        const std::size_t k = std::size_t(t), next = std::min(k + 1, table_.size() - 1);
+        const double w = t - double(k);
         if (w == 0) {
-            out_.sigma[i] = sigmaAtSample_[k];
+            out_.sigma[i] = table_.sigma[k];
             out_.colour[i] = table_.colour[k];
-        } else {
-            out_.sigma[i] = float(extinctionFromOpacity(table_.opacityAt(f), out_.referenceStep));
-            out_.colour[i] = table_.colourAt(f);
+            return;
         }
+        out_.sigma[i] = float(device::interpolate(table_.sigma[k], table_.sigma[next], w));
+        for (int c = 0; c < 3; ++c)
+            out_.colour[i][c] = float(device::interpolate(table_.colour[k][c], table_.colour[next][c], w));
     }
 
     const Volume& volume_;
-    const ClassifyParams& params_;
+    const TransferTable& table_;
+    const bool normals_;
     ClassifiedVolume& out_;
     const Vec3i dims_;
-    const bool useTF_, needGradient_;
-    const double flatFloor_;
-    const std::array<float, 3> isoColour_;
-    SampledTransferFunction table_;
-    std::vector<float> sigmaAtSample_;
+    const double flatGradient_, inverseStep_, lastEntry_;
 };
 
 }  // namespace
 
-void classify(const Volume& volume, const ClassifyParams& params, ClassifiedVolume& out) {
-    const std::string source = volume.source.empty() ? std::string("classification") : volume.source;
+ScalarClassification scalarClassification(const Volume& volume, const ClassifyParams& params) {
+    const std::string source = sourceName(volume);
     checkParams(volume, params, source);
     const auto range = valueRange(volume.values, source);
+    const SampledTransferFunction sampled = sampleForRange(*params.transferFunction, volume, range);
+
+    ScalarClassification c;
+    c.referenceStep = params.referenceStep > 0 ? params.referenceStep : volume.grid.smallestSpacing();
+    c.flatGradient = params.flatGradientFloor * (double(range.second) - range.first) / volume.grid.smallestSpacing();
+    c.table.lo = sampled.lo;
+    c.table.step = sampled.step;
+    c.table.colour = sampled.colour;
+    c.table.sigma.resize(sampled.opacity.size());
+    for (std::size_t k = 0; k < sampled.opacity.size(); ++k) {
+        c.table.sigma[k] = float(extinctionFromOpacity(sampled.opacity[k], c.referenceStep));
+        if (!std::isfinite(c.table.sigma[k])) {
+            char text[200];
+            std::snprintf(text, sizeof text,
+                          "the reference step %g (default: the smallest spacing) is too small: the extinction per "
+                          "unit length overflows; check the voxel spacing",
+                          c.referenceStep);
+            throw fileError(source, text);
+        }
+    }
+    return c;
+}
+
+void classify(const Volume& volume, const ScalarClassification& classification, bool normals, ClassifiedVolume& out) {
+    const std::string source = sourceName(volume);
+    checkVolume(volume, source);
+    const TransferTable& table = classification.table;
+    if (table.size() == 0 || table.colour.size() != table.size() || !(table.step > 0))
+        throw fileError(source, "the transfer table is empty or inconsistent");
 
     out.grid = volume.grid;
-    out.referenceStep = params.referenceStep > 0 ? params.referenceStep : volume.grid.smallestSpacing();
+    out.referenceStep = classification.referenceStep;
     const std::size_t n = volume.grid.voxels();
-    if (!params.normals) out.normal = {};
+    if (!normals) out.normal = {};
     // The arrays are large: size them (and take their pages) side by side. Every element is written below.
     tbb::parallel_invoke([&] { out.sigma.resize(n); }, [&] { out.colour.resize(n); },
-                         [&] { out.normal.resize(params.normals ? n : 0); });
+                         [&] { out.normal.resize(normals ? n : 0); });
 
-    const RowClassifier classifyRows(volume, params, range, out);
+    const RowClassifier classifyRows(volume, classification, normals, out);
     const std::size_t rows = std::size_t(volume.grid.dims.y) * std::size_t(volume.grid.dims.z);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows), [&](const tbb::blocked_range<std::size_t>& r) {
         classifyRows(r.begin(), r.end());
     });
 }
 
-SampledTransferFunction transferTable(const Volume& volume, const TransferFunction& tf) {
+SampledTransferFunction sampleForVolume(const Volume& volume, const TransferFunction& tf) {
     const std::string source = volume.source.empty() ? std::string("transfer table") : volume.source;
-    return sampleForVolume(tf, volume, valueRange(volume.values, source));
+    return sampleForRange(tf, volume, valueRange(volume.values, source));
 }
 
 ClassifiedVolume classify(const Volume& volume, const ClassifyParams& params) {
     ClassifiedVolume out;
-    classify(volume, params, out);
+    classify(volume, scalarClassification(volume, params), params.normals, out);
     return out;
 }
 

@@ -11,9 +11,9 @@ double megabytes(double bytes) { return bytes / (1024.0 * 1024.0); }
 void printSummary(std::FILE* out, const std::filesystem::path& output, const PreparedVolume& p,
                   const std::vector<StageTime>& stages) {
     const nlohmann::json& s = p.meta.statistics;
-    const Vec3i n = p.classified.grid.dims;
+    const Vec3i n = p.grid().dims;
     std::fprintf(out, "wrote %s (%.1f MiB)\n", output.c_str(), megabytes(double(std::filesystem::file_size(output))));
-    std::fprintf(out, "  voxels   %zu (%d x %d x %d)\n", p.classified.grid.voxels(), n.x, n.y, n.z);
+    std::fprintf(out, "  voxels   %zu (%d x %d x %d)\n", p.grid().voxels(), n.x, n.y, n.z);
     std::fprintf(out, "  regions  %u (mean %.1f voxels per region)\n", p.regions.count,
                  s["meanRegionSize"].get<double>());
 

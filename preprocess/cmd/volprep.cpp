@@ -14,7 +14,7 @@ namespace {
 
 constexpr vr::ToolText kText{
     "volprep",
-    "Prepares a volume for volrender: classifies it with a transfer function or iso-contours, segments it into "
+    "Prepares a volume for volrender: classifies it with a transfer function, segments it into "
     "homogeneous regions (thresholds T_o, T_a) and builds the distance fields (PC, ACD, EACD) that let rays "
     "leap through them. Prints statistics and stage times.",
     "Exit status: 0 done, 1 bad input (file, transfer function, thresholds), 2 bad command line."};
@@ -23,11 +23,10 @@ namespace fs = std::filesystem;
 
 struct Flags {
     std::string input, output, tf;
-    std::vector<std::vector<double>> iso;
     double to = 0.01, ta = 3;
     std::vector<std::string> fields{"pc", "acd", "eacd"};
     std::string eacdCode{vr::extentCodeName(vr::kDefaultExtentCode)};
-    bool trilinear = false, noNormals = false;
+    bool trilinear = true, nearest = false, noNormals = false;
     std::vector<int> dims;
     std::string type;
     std::vector<double> spacing;
@@ -40,10 +39,7 @@ void addFlags(CLI::App& app, Flags& f) {
                    ".mhd/.mha, .nii/.nii.gz, .vti, .vtk, .vdb, or a DICOM series folder")
         ->required();
     app.add_option("-o,--output", f.output, "prepared file to write (written atomically)")->required();
-    auto* tf = app.add_option("--tf", f.tf, "transfer function: ParaView preset JSON");
-    app.add_option("--iso", f.iso, "Levoy iso-contour value,width,strength (width in world units); repeatable")
-        ->delimiter(',')
-        ->excludes(tf);
+    app.add_option("--tf", f.tf, "transfer function: ParaView preset JSON")->required();
     app.add_option("--to", f.to, "T_o: opacity (and colour) variation allowed within a region")->capture_default_str();
     app.add_option("--ta", f.ta, "T_a: normal angle allowed within a region, degrees")->capture_default_str();
     app.add_option("--fields", f.fields, "distance fields to build, comma-separated")
@@ -55,8 +51,14 @@ void addFlags(CLI::App& app, Flags& f) {
                    "joint8 (1 byte per octant, 6 levels per axis up to 50) or exact (3 bytes)")
         ->check(CLI::IsMember({"log16", "joint8", "exact"}))
         ->capture_default_str();
-    app.add_flag("--trilinear", f.trilinear, "regions for trilinear sampling: border voxels become their own regions");
-    app.add_flag("--no-normals", f.noNormals, "no gradients: no shading, and T_a is ignored");
+    auto* trilinear = app.add_flag("--trilinear", f.trilinear,
+                                   "regions for trilinear sampling, which volrender does by default (post-"
+                                   "classification: a region's interpolated scalars all classify alike); the default");
+    app.add_flag("--nearest", f.nearest,
+                 "regions for nearest sampling only (volrender --nearest): larger regions, faster to build")
+        ->excludes(trilinear);
+    app.add_flag("--no-normals", f.noNormals,
+                 "regions ignore the normals (T_a unused): leaping casters then render unshaded only");
     auto* raw = app.add_option_group("raw input", "for headerless raw files whose name does not say it");
     raw->add_option("--dims", f.dims, "grid size, e.g. 256x256x128")->delimiter('x')->expected(3);
     raw->add_option("--type", f.type, "voxel type: uint8, int16, uint16 or float32");
@@ -66,15 +68,10 @@ void addFlags(CLI::App& app, Flags& f) {
 
 // Checks that need no data, so that a bad run fails at once rather than after the expensive stages.
 void checkBeforeRunning(const Flags& f) {
-    if (f.tf.empty() && f.iso.empty())
-        throw vr::InputError("a classification is needed: give --tf FILE.json or --iso value,width,strength");
     if (!(f.to >= 0) || !std::isfinite(f.to))
         throw vr::InputError("--to must be a finite number >= 0, got " + std::to_string(f.to));
     if (!(f.ta >= 0) || !std::isfinite(f.ta))
         throw vr::InputError("--ta must be a finite number >= 0 (degrees), got " + std::to_string(f.ta));
-    for (const auto& iso : f.iso)
-        if (iso.size() != 3)
-            throw vr::InputError("--iso takes value,width,strength (3 numbers), got " + std::to_string(iso.size()));
     fs::path out(f.output);
     fs::path folder = out.parent_path().empty() ? fs::path(".") : out.parent_path();
     if (!fs::is_directory(folder))
@@ -95,10 +92,9 @@ vr::RawOptions rawOptionsFrom(const Flags& f) {
 
 vr::PrepareOptions optionsFrom(const Flags& f) {
     vr::PrepareOptions o;
-    if (!f.tf.empty()) o.classify.transferFunction = vr::loadTransferFunction(f.tf);
-    for (const auto& iso : f.iso) o.classify.isoContours.push_back({iso[0], iso[1], iso[2]});
+    o.classify.transferFunction = vr::loadTransferFunction(f.tf);
     o.classify.normals = !f.noNormals;
-    o.segmentation = {f.to, f.ta, !f.noNormals, f.trilinear};
+    o.segmentation = {f.to, f.ta, !f.noNormals, !f.nearest};
     o.fields = 0;
     for (const std::string& name : f.fields)
         o.fields |= name == "pc" ? vr::kFieldPC : name == "acd" ? vr::kFieldACD : vr::kFieldEACD;
@@ -113,8 +109,9 @@ int main(int argc, char** argv) {
         checkBeforeRunning(flags);
         const vr::RawOptions raw = rawOptionsFrom(flags);
         const vr::PrepareOptions options = optionsFrom(flags);  // a bad transfer function fails before the load
-        // Classified once: the scalars' memory goes to segmentation and the fields.
-        vr::StagedPreparation staged = vr::StagedPreparation::load(flags.input, raw, vr::ScalarsOnceClassified::Free);
+        // Segmented once: the classified volume's memory goes to the fields.
+        vr::StagedPreparation staged =
+            vr::StagedPreparation::load(flags.input, raw, vr::ClassifiedOnceSegmented::Free);
         staged.prepare(options);
         staged.write(flags.output);
         vr::printSummary(stdout, flags.output, staged.withStatistics(), staged.stageTimes());

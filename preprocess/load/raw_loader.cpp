@@ -142,8 +142,8 @@ Volume loadRaw(const fs::path& path, const RawOptions& flags) {
     const Vec3i dims = *options.dims;
     const ScalarType type = *options.type;
     // The file's bytes and the float values are held together while converting.
-    checkVoxelBudget(path, dims.x, dims.y, dims.z, scalarSize(type) + sizeof(float));
-    const std::size_t expected = voxelCount(dims) * scalarSize(type);
+    checkVoxelBudget(path, dims.x, dims.y, dims.z, scalarBytes(type) + sizeof(float));
+    const std::size_t expected = voxelCount(dims) * scalarBytes(type);
     const std::vector<unsigned char> bytes =
         lowerCase(path.extension().string()) == ".gz" ? readGzip(path, expected, dims, type) : readPlain(path, expected, dims, type);
 

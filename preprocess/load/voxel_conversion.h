@@ -10,16 +10,6 @@
 
 namespace vr {
 
-constexpr std::size_t scalarSize(ScalarType t) {
-    switch (t) {
-        case ScalarType::UInt8: return 1;
-        case ScalarType::Int16:
-        case ScalarType::UInt16: return 2;
-        case ScalarType::Float32: return 4;
-    }
-    return 0;
-}
-
 // Converts `count` voxels of type T stored at `bytes` into `out`; swaps bytes when the file's order is not the
 // machine's. Bytes are copied per voxel, so `bytes` needs no alignment (gzip/file buffers are plain bytes).
 template <typename T>

@@ -47,7 +47,7 @@ std::size_t bytesOf(const std::vector<T>& v) {
 }  // namespace
 
 json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& stages) {
-    const std::size_t voxels = p.classified.grid.voxels();
+    const std::size_t voxels = p.grid().voxels();
     json s;
     s["voxels"] = voxels;
     s["regions"] = p.regions.count;
@@ -69,8 +69,10 @@ json preparedStatistics(const PreparedVolume& p, const std::vector<StageTime>& s
     s["leaps"] = leaps;
 
     const FieldBytes fieldBytes = fieldBytesOf(f);
-    s["bytes"] = {{"sigma", bytesOf(p.classified.sigma)}, {"colour", bytesOf(p.classified.colour)},
-                  {"normal", bytesOf(p.classified.normal)}, {"labels", bytesOf(p.regions.label)},
+    // As the prepared file holds them: the scalars in their own type, the table as four floats per entry.
+    s["bytes"] = {{"scalars", voxels * scalarBytes(p.scalars.sourceType)},
+                  {"table", p.classification.table.size() * 4 * sizeof(float)},
+                  {"labels", bytesOf(p.regions.label)},
                   {"pc", fieldBytes.pc}, {"acd", fieldBytes.acd}, {"eacd", fieldBytes.eacd}};
     s["eacdCode"] = extentCodeName(f.eacdCode());
     json seconds = json::object(), cpuSeconds = json::object();

@@ -1,8 +1,6 @@
 #include "preprocess/pipeline/staged_prepare.h"
 
 #include <bit>
-#include <sstream>
-#include <stdexcept>
 
 #include "io/prepared_file.h"
 #include "preprocess/fields/build_fields.h"
@@ -24,19 +22,6 @@ ClassifyParams classifyingPart(ClassifyParams params) {
     return params;
 }
 
-// The classification as text for the metadata: the TF's JSON, or "iso value,width,strength; ...".
-std::string classificationText(const ClassifyParams& params) {
-    if (params.transferFunction) return params.transferFunction->json;
-    std::ostringstream s;
-    s.precision(17);
-    s << "iso";
-    for (std::size_t i = 0; i < params.isoContours.size(); ++i) {
-        const IsoContour& c = params.isoContours[i];
-        s << (i ? "; " : " ") << c.value << "," << c.width << "," << c.strength;
-    }
-    return s.str();
-}
-
 // The fields of `kinds` (a FieldKind mask), with a progress bar and each field timed into `times`.
 DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
                                 std::vector<StageTime>& times) {
@@ -55,23 +40,19 @@ DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCo
     return f;
 }
 
-// Trilinear regions from a transfer function are built on the scalars (post-classification, section 9).
-bool segmentsScalars(const PrepareOptions& options) {
-    return options.segmentation.trilinear && options.classify.transferFunction.has_value();
-}
-
 }  // namespace
 
-StagedPreparation::StagedPreparation(Volume volume, ScalarsOnceClassified scalars)
-    : volume_(std::move(volume)), scalarsOnceClassified_(scalars) {
-    prepared_.meta.source = volume_.source;
+StagedPreparation::StagedPreparation(Volume volume, ClassifiedOnceSegmented classified)
+    : classifiedOnceSegmented_(classified) {
+    prepared_.scalars = std::move(volume);
+    prepared_.meta.source = prepared_.scalars.source;
     prepared_.meta.distanceCap = kDistanceCap;
 }
 
 StagedPreparation StagedPreparation::load(const std::filesystem::path& input, const RawOptions& raw,
-                                          ScalarsOnceClassified scalars) {
+                                          ClassifiedOnceSegmented classified) {
     std::vector<StageTime> times;
-    StagedPreparation staged(runStage("load", times, [&] { return loadVolume(input, raw); }), scalars);
+    StagedPreparation staged(runStage("load", times, [&] { return loadVolume(input, raw); }), classified);
     staged.loadTimes_ = std::move(times);
     return staged;
 }
@@ -80,12 +61,12 @@ void StagedPreparation::invalidateFrom(PrepStage stage) {
     switch (stage) {  // each case falls through to the stages after it
         case PrepStage::Classify:
             classifiedWith_.reset();
-            if (!prepared_.classified.sigma.empty())  // its memory serves the next classification (likewise below)
-                spareClassified_ = std::exchange(prepared_.classified, {});
+            prepared_.classification = {};  // classified_ keeps its arrays for the next classification to reuse
             [[fallthrough]];
         case PrepStage::Segment:
             segmentedWith_.reset();
-            if (!prepared_.regions.label.empty()) spareRegions_ = std::exchange(prepared_.regions, {});
+            if (!prepared_.regions.label.empty())  // its memory serves the next segmentation
+                spareRegions_ = std::exchange(prepared_.regions, {});
             [[fallthrough]];
         case PrepStage::Fields:
             fieldsWith_.reset();
@@ -109,32 +90,32 @@ void StagedPreparation::run(PrepStage stage, Work work) {
 const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, PrepStage last) {
     lastStages_.clear();
     ClassifyParams classifying = classifyingPart(options.classify);
-    if (classifiedWith_ != classifying) {
-        if (scalarsFreed_) throw std::logic_error("StagedPreparation: the scalars were freed once classified");
+    // A classified volume freed after its segmentation is made again when segmentation runs again.
+    const bool segmentAgain = last >= PrepStage::Segment && segmentedWith_ != options.segmentation;
+    if (classifiedWith_ != classifying || (segmentAgain && classified_.sigma.empty())) {
         run(PrepStage::Classify, [&](std::vector<StageTime>& times) {
-            runStage("classify", times, [&] { classify(volume_, options.classify, spareClassified_); });
-            prepared_.classified = std::exchange(spareClassified_, {});
+            runStage("classify", times, [&] {
+                prepared_.classification = scalarClassification(prepared_.scalars, options.classify);
+                classify(prepared_.scalars, prepared_.classification, options.classify.normals, classified_);
+            });
         });
         classifiedWith_ = std::move(classifying);
-        if (!segmentsScalars(options)) freeScalarsIfAsked();
     }
-    prepared_.meta.classification = classificationText(options.classify);  // the TF's text may differ
+    if (options.classify.transferFunction) prepared_.meta.classification = options.classify.transferFunction->json;
     if (last >= PrepStage::Segment && segmentedWith_ != options.segmentation) {
-        if (segmentsScalars(options) && scalarsFreed_)
-            throw std::logic_error("StagedPreparation: the scalars were freed before a trilinear segmentation");
         run(PrepStage::Segment, [&](std::vector<StageTime>& times) {
             runStage("segment", times, [&] {
-                if (!segmentsScalars(options))
-                    return segment(prepared_.classified, options.segmentation, spareRegions_);
-                const TfRangeTable spread(transferTable(volume_, *options.classify.transferFunction));
-                segment(prepared_.classified, options.segmentation, ClassifiedScalars{volume_.values, spread},
+                if (!options.segmentation.trilinear) return segment(classified_, options.segmentation, spareRegions_);
+                // Post-classification (docs/ALGORITHMS.md section 9): regions over the scalars' intervals.
+                const TfRangeTable spread(sampleForVolume(prepared_.scalars, *options.classify.transferFunction));
+                segment(classified_, options.segmentation, ClassifiedScalars{prepared_.scalars.values, spread},
                         spareRegions_);
             });
             prepared_.regions = std::exchange(spareRegions_, {});
         });
         segmentedWith_ = options.segmentation;
-        freeScalarsIfAsked();
         prepared_.meta.segmentation = options.segmentation;
+        if (classifiedOnceSegmented_ == ClassifiedOnceSegmented::Free) classified_ = {};
     }
     const std::pair<unsigned, ExtentCode> fields{options.fields, options.eacdCode};
     if (last >= PrepStage::Fields && fieldsWith_ != fields) {
@@ -144,12 +125,6 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
         fieldsWith_ = fields;
     }
     return prepared_;
-}
-
-void StagedPreparation::freeScalarsIfAsked() {
-    if (scalarsOnceClassified_ != ScalarsOnceClassified::Free) return;
-    volume_ = {};
-    scalarsFreed_ = true;
 }
 
 const PreparedVolume& StagedPreparation::withStatistics() {
@@ -174,7 +149,7 @@ std::vector<StageTime> StagedPreparation::stageTimes() const {
 }
 
 PreparedVolume prepare(Volume volume, const PrepareOptions& options) {
-    StagedPreparation staged(std::move(volume), ScalarsOnceClassified::Free);
+    StagedPreparation staged(std::move(volume), ClassifiedOnceSegmented::Free);
     staged.prepare(options);
     staged.withStatistics();
     return std::move(staged).takeResult();

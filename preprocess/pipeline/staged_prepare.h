@@ -2,6 +2,8 @@
 // a progress bar (shown on a terminal only). It keeps every stage's result, and when asked again with other options
 // re-runs only the stages whose inputs changed and those after them: a threshold change re-runs segmentation and
 // the fields, a transfer-function change classification too. volprep, volsweep and the benchmarks all run it.
+// The result holds the scalars and the tabulated TF, which the renderers classify each sample from; the classified
+// volume (per voxel sigma, colour, normal) is the segmentation's input only.
 #pragma once
 #include <array>
 #include <filesystem>
@@ -17,7 +19,7 @@
 namespace vr {
 
 struct PrepareOptions {
-    ClassifyParams classify;           // a transfer function or iso-contours
+    ClassifyParams classify;           // the transfer function
     SegmentationParams segmentation;   // T_o, T_a, useNormals, trilinear
     unsigned fields = kFieldPC | kFieldACD | kFieldEACD;
     ExtentCode eacdCode = kDefaultExtentCode;  // EACD extents rounded down to this code (core/extent_code.h)
@@ -27,20 +29,18 @@ struct PrepareOptions {
 enum class PrepStage { Classify, Segment, Fields };
 constexpr int kPrepStages = 3;
 
-// What becomes of the scalars once used: kept for another classification, or freed so that the later stages have
-// their memory (a preparation that runs once, as volprep's; classifying again is then a logic error). They are
-// used by classification, and by segmentation too where it is trilinear from a transfer function (post-
-// classification, docs/ALGORITHMS.md section 9): freed after it then.
-enum class ScalarsOnceClassified { Keep, Free };
+// What becomes of the classified volume once segmented: kept for another segmentation, or freed so that the fields
+// have its memory (a preparation that runs once, as volprep's; segmenting again then classifies again).
+enum class ClassifiedOnceSegmented { Keep, Free };
 
 class StagedPreparation {
 public:
     // meta.source is volume.source.
-    explicit StagedPreparation(Volume volume, ScalarsOnceClassified scalars = ScalarsOnceClassified::Keep);
+    explicit StagedPreparation(Volume volume, ClassifiedOnceSegmented classified = ClassifiedOnceSegmented::Keep);
     // Loads `input` (loadVolume, `raw` for headerless raw files) as the stage "load": the first of stageTimes().
     // Throws InputError as loadVolume does.
     static StagedPreparation load(const std::filesystem::path& input, const RawOptions& raw,
-                                  ScalarsOnceClassified scalars = ScalarsOnceClassified::Keep);
+                                  ClassifiedOnceSegmented classified = ClassifiedOnceSegmented::Keep);
 
     // Brings the stages up to `last` up to date with `options` and returns the result. Each field is timed on its
     // own: ACD (the 8 octant passes, also built when only EACD is asked for), PC from the ACDs, EACD on top of ACD.
@@ -64,26 +64,23 @@ public:
     std::vector<StageTime> stageTimes() const;
     // How many times `stage` has run since construction (a stage that threw included).
     int runs(PrepStage stage) const { return runs_[int(stage)]; }
-    // The scalars (kept for the next classification unless freed).
-    const Volume& volume() const { return volume_; }
+    // The scalars.
+    const Volume& volume() const { return prepared_.scalars; }
+    // The classified volume the last segmentation ran on (empty once freed).
+    const ClassifiedVolume& classified() const { return classified_; }
 
 private:
-    // Discards the results of `stage` and of every stage after it (the classification's and the regions' arrays
+    // Discards the results of `stage` and of every stage after it (the classified volume's and the regions' arrays
     // are kept aside for the next run of their stage to reuse: no fresh pages to fault in).
     void invalidateFrom(PrepStage stage);
-    // Frees the scalars where the preparation was made with ScalarsOnceClassified::Free.
-    void freeScalarsIfAsked();
     // Runs `work` as `stage`, counting it; `work` appends its times.
     template <typename Work>
     void run(PrepStage stage, Work work);
 
-    Volume volume_;
-    ScalarsOnceClassified scalarsOnceClassified_;
-    bool scalarsFreed_ = false;
-    PreparedVolume prepared_;
-    // Invalidated results, whose arrays the next run of their stage reuses.
-    ClassifiedVolume spareClassified_;
-    Regions spareRegions_;
+    ClassifiedOnceSegmented classifiedOnceSegmented_;
+    PreparedVolume prepared_;    // prepared_.scalars: the volume
+    ClassifiedVolume classified_;  // the segmentation's input; its arrays are reused by the next classification
+    Regions spareRegions_;         // invalidated regions, whose labels the next segmentation reuses
     // The options each stage last ran with; empty when it has no valid result.
     std::optional<ClassifyParams> classifiedWith_;  // as far as they classify (the TF's name and text left out)
     std::optional<SegmentationParams> segmentedWith_;
@@ -95,8 +92,8 @@ private:
     std::vector<StageTime> lastStages_;
 };
 
-// Every stage once over `volume`, its scalars freed once classified, with the statistics and the ray probe: the
-// prepared volume as volprep writes it (StagedPreparation for the stages' times).
+// Every stage once over `volume`, the classified volume freed once segmented, with the statistics and the ray
+// probe: the prepared volume as volprep writes it (StagedPreparation for the stages' times).
 PreparedVolume prepare(Volume volume, const PrepareOptions& options);
 
 }  // namespace vr

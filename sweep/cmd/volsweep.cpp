@@ -27,7 +27,7 @@ struct Flags {
     std::vector<std::string> casters{"primitive", "pc", "acd", "eacd"};
     int views = 8, device = -1, downsample = 1;
     double step = 0.5;
-    bool noShading = false, trilinear = false, resume = false, reportOnly = false;
+    bool noShading = false, nearest = false, resume = false, reportOnly = false;
 };
 
 void addFlags(CLI::App& app, Flags& f) {
@@ -50,7 +50,8 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_option("--size", f.size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--step", f.step, "sampling step in voxels of the smallest spacing")->capture_default_str();
     app.add_flag("--no-shading", f.noShading, "emission-absorption only (normals and T_a are then ignored)");
-    app.add_flag("--trilinear", f.trilinear, "trilinear sampling (segments with border regions)");
+    app.add_flag("--nearest", f.nearest,
+                 "nearest sampling, regions made for it (default: trilinear, the scalar interpolated then classified)");
     app.add_option("--device", f.device, "Vulkan device index (default: first discrete GPU, else the first)");
     app.add_option("-o,--out", f.outDir, "output folder: sweep.csv, report.md, plots/, strips/, images/");
     app.add_flag("--resume", f.resume, "skip the settings whose rows are already in OUTDIR/sweep.csv");
@@ -78,7 +79,7 @@ vr::SweepOptions options(const Flags& f) {
         throw vr::InputError("--size '" + f.size + "': expected WIDTHxHEIGHT, e.g. 256x256");
     o.stepVoxels = f.step;
     o.shading = !f.noShading;
-    o.trilinear = f.trilinear;
+    o.trilinear = !f.nearest;
     o.device = f.device;
     o.outDir = f.outDir;
     o.resume = f.resume;

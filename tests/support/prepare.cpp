@@ -13,11 +13,14 @@ PreparedVolume prepareVolume(const Volume& volume, const TransferFunction& tf, c
     cp.transferFunction = tf;
     cp.normals = segmentation.useNormals;
     PreparedVolume p;
-    p.classified = classify(volume, cp);
+    p.scalars = volume;
+    p.classification = scalarClassification(volume, cp);
+    ClassifiedVolume classified;
+    classify(volume, p.classification, cp.normals, classified);
     p.meta.source = volume.source;
     p.meta.segmentation = segmentation;
-    const TfRangeTable spread(transferTable(volume, tf));  // trilinear regions as volprep makes them
-    p.regions = segment(p.classified, segmentation, ClassifiedScalars{volume.values, spread});
+    const TfRangeTable spread(sampleForVolume(volume, tf));  // trilinear regions as volprep makes them
+    p.regions = segment(classified, segmentation, ClassifiedScalars{volume.values, spread});
     p.fields = buildFields(p.regions, fields);
     return p;
 }

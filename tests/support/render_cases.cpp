@@ -8,9 +8,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 
 #include "core/classified_volume.h"
+#include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/segment/segment.h"
 #include "render/cpu_renderer.h"
@@ -105,9 +107,10 @@ Composite latticeSum(const SlabRay& ray, const PreparedVolume& p, double dt) {
         const double t = 1.0 + double(k) * dt;
         if (!(t < tExit)) break;
         const int z = std::clamp(int(std::floor(oz + dz * t)), 0, ray.m - 1);
-        const long double a = -std::expm1(-(long double)p.classified.sigma[z] * dt);
+        const std::size_t entry = std::size_t(p.scalars.values[std::size_t(z)]);
+        const long double a = -std::expm1(-(long double)p.classification.table.sigma[entry] * dt);
         const long double w = (1 - c.alpha) * a;
-        for (int ch = 0; ch < 3; ++ch) c.colour[ch] += w * p.classified.colour[z][ch];
+        for (int ch = 0; ch < 3; ++ch) c.colour[ch] += w * p.classification.table.colour[entry][ch];
         c.alpha += w;
         ++c.samples;
     }
@@ -119,21 +122,31 @@ Composite latticeSum(const SlabRay& ray, const PreparedVolume& p, double dt) {
 PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
                                  const std::function<VoxelClass(const Vec3i&)>& voxel) {
     PreparedVolume p;
-    ClassifiedVolume& cv = p.classified;
-    cv.grid = grid;
-    cv.referenceStep = referenceStep;
-    cv.sigma.resize(grid.voxels());
-    cv.colour.resize(grid.voxels());
+    p.scalars.grid = grid;
+    p.scalars.sourceType = ScalarType::UInt16;
+    p.scalars.values.resize(grid.voxels());
+    p.classification.referenceStep = referenceStep;
+    TransferTable& table = p.classification.table;
+    // Each distinct class an entry, in the order of first appearance; the voxel's scalar is its entry.
+    std::map<std::array<float, 4>, std::size_t> entryOf;
     for (int z = 0; z < grid.dims.z; ++z)
         for (int y = 0; y < grid.dims.y; ++y)
             for (int x = 0; x < grid.dims.x; ++x) {
                 const VoxelClass c = voxel({x, y, z});
-                const std::size_t i = linearIndex(grid.dims, x, y, z);
-                cv.sigma[i] = float(extinctionFromOpacity(c.alpha, referenceStep));
-                cv.colour[i] = {float(c.colour.x), float(c.colour.y), float(c.colour.z)};
+                const std::array<float, 4> key{float(extinctionFromOpacity(c.alpha, referenceStep)),
+                                               float(c.colour.x), float(c.colour.y), float(c.colour.z)};
+                const auto [it, added] = entryOf.emplace(key, table.size());
+                if (added) {
+                    if (table.size() == 65536) throw std::invalid_argument("syntheticPrepared: over 65536 classes");
+                    table.sigma.push_back(key[0]);
+                    table.colour.push_back({key[1], key[2], key[3]});
+                }
+                p.scalars.values[linearIndex(grid.dims, x, y, z)] = float(it->second);
             }
     p.meta.segmentation = {0, 0, false, false};
-    p.regions = segment(cv, p.meta.segmentation);
+    ClassifiedVolume classified;
+    classify(p.scalars, p.classification, false, classified);
+    p.regions = segment(classified, p.meta.segmentation);
     p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
     return p;
 }
@@ -254,7 +267,7 @@ CaseCount hugeRegionAgainstTheClosedForm(const RenderFn& render, const CaseOptio
     const double dt = 1.0 / 64;
     for (const double alpha : {1e-9, 1e-4}) {
         const PreparedVolume p = syntheticPrepared(grid, 1.0, [&](const Vec3i&) { return VoxelClass{alpha, colour}; });
-        const double want = -std::expm1(-double(p.classified.sigma[0]) * m);
+        const double want = -std::expm1(-double(p.classification.table.sigma[0]) * m);
         for (Caster c : kCasters) {
             // The ray runs along voxel edges, where the PC radius is 0: PC steps every sample too.
             if ((c == Caster::Primitive || c == Caster::PC) && int64_t(m) * 64 > options.maxSteppedSamples) continue;
@@ -495,7 +508,7 @@ CaseCount transparentOpaqueAndCappedRegions(const RenderFn& render) {
             EXPECT_LT(misses, c[0].iterations.size()) << what << ": every ray missed";
             // One sample of the clamped opacity: 1 - 1e-12^(dt / dt0), which is 1.0f from dt = dt0 on.
             const double dt = cam.step * grid.smallestSpacing();
-            const double first = -std::expm1(-double(opaque.classified.sigma[0]) * dt);
+            const double first = -std::expm1(-double(opaque.classification.table.sigma[0]) * dt);
             const auto o = renderAllAndCompare(render, opaque, cam.camera, s, what + " opaque", count);
             for (Caster k : kCasters)
                 for (std::size_t i = 0; i < o[0].iterations.size(); ++i) {

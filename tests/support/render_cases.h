@@ -26,7 +26,9 @@ struct VoxelClass {
     Vec3d colour;
 };
 
-// A classified volume from a per-voxel function (no normals), segmented at thresholds 0, with PC, ACD and EACD.
+// A prepared volume from a per-voxel class (opacity and colour): each distinct class an entry of the transfer
+// table, each voxel's scalar (uint16) its entry. Regions for nearest sampling at thresholds 0 (normals unused),
+// with PC, ACD and EACD. Throws std::invalid_argument for more than 65536 classes.
 PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
                                  const std::function<VoxelClass(const Vec3i&)>& voxel);
 

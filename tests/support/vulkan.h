@@ -25,7 +25,7 @@ void expectNoValidationErrors();
 // report(family, n), then expectNoValidationErrors().
 void reportValidated(const char* family, const CaseCount& n);
 
-// Bytes per resource name ("classified", "normals", "pc", "acd", "eacd"), summed over bricks.
+// Bytes per resource name ("scalars", "table", "pc", "acd", "eacd"), summed over bricks.
 std::map<std::string, std::size_t> bytesByName(const std::vector<UploadedResource>& uploads);
 
 }  // namespace vr::test

@@ -27,16 +27,18 @@ constexpr vr::ToolText kText{
     "volrender",
     "Renders a prepared volume (see volprep) by ray casting with homogeneous-region leaping: the primitive "
     "caster samples every step; pc, acd and eacd leap through regions with their distance fields and give the "
-    "same image at thresholds 0. Runs on a Vulkan device (or --cpu).",
+    "same image at thresholds 0; auto (the default) picks the cheapest for the views. Each sample is interpolated "
+    "from the scalars (trilinear by default), classified through the transfer table and shaded from the scalars' "
+    "gradient. Runs on a Vulkan device (or --cpu).",
     "Exit status: 0 done, 1 bad input or device failure, 2 bad command line."};
 
 namespace fs = std::filesystem;
 
 struct Flags {
-    std::string prepared, output, caster = "primitive", size = "512x512", projection = "ortho";
+    std::string prepared, output, caster = "auto", size = "512x512", projection = "ortho";
     double fov = 30, azimuth = 0, elevation = 0, step = 0.5, ert = 0.99;
     std::vector<double> light, background{0, 0, 0};
-    bool noShading = false, trilinear = false, listDevices = false, cpu = false;
+    bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false;
     std::string stats, heatmap, calibration;
     int views = 1, device = -1;
 };
@@ -60,8 +62,10 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_option("--ert", f.ert, "early ray termination opacity, (0, 1]")->capture_default_str();
     app.add_option("--light", f.light, "direction toward a directional light x,y,z (default: headlight)")
         ->delimiter(',')->expected(3);
-    app.add_flag("--no-shading", f.noShading, "emission-absorption only (no normals are read)");
-    app.add_flag("--trilinear", f.trilinear, "trilinear sampling (leaping casters need volprep --trilinear)");
+    app.add_flag("--no-shading", f.noShading, "emission-absorption only (no gradients are taken)");
+    auto* trilinear = app.add_flag("--trilinear", f.trilinear,
+                                   "trilinear sampling, the scalar interpolated then classified; the default");
+    app.add_flag("--nearest", f.nearest, "nearest-voxel sampling instead of trilinear")->excludes(trilinear);
     app.add_option("--background", f.background, "background colour r,g,b")->delimiter(',')->expected(3);
     app.add_option("--stats", f.stats, "write timings, iterations per ray and uploaded bytes as JSON");
     app.add_option("--heatmap", f.heatmap, "write the iterations per pixel as a colour-mapped PNG");
@@ -121,7 +125,7 @@ void checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     s.stepVoxels = f.step;
     s.ert = f.ert;
     s.shading = !f.noShading;
-    s.trilinear = f.trilinear;
+    s.trilinear = !f.nearest;
     s.background = vec(f.background, "--background");
     if (!f.light.empty()) {
         s.lightDirection = vec(f.light, "--light");
@@ -153,6 +157,9 @@ unsigned fieldsFor(vr::Caster c) {
 vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s,
                             const vr::CasterCalibration& calibration) {
     const vr::PreparedHeader header = vr::readPreparedHeader(f.prepared);
+    if (s.trilinear && !header.meta.segmentation.trilinear)
+        return {vr::Caster::Primitive, "the regions were made for nearest sampling only (volprep --nearest): "
+                                       "trilinear sampling cannot leap through them (render with --nearest to leap)"};
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (int i = 0; i < f.views; ++i) {
         view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
@@ -191,21 +198,21 @@ int run(const Flags& f) {
         std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(c.caster).data(),
                      choice.c_str());
     }
-    const vr::PreparedVolume prepared = vr::readPrepared(f.prepared, fieldsFor(settings.caster), settings.shading);
+    const vr::PreparedVolume prepared = vr::readPrepared(f.prepared, fieldsFor(settings.caster));
 
     std::vector<vr::Camera> cameras;
     unsigned octants = 0;  // of every view's rays: the orbit shares one upload
     for (int i = 0; i < f.views; ++i) {
         view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
         view.elevationDeg = f.elevation;
-        cameras.push_back(vr::Camera::fit(prepared.classified.grid, view));
+        cameras.push_back(vr::Camera::fit(prepared.grid(), view));
         octants |= vr::viewOctants(cameras.back());
     }
     std::optional<vr::GpuVolume> uploaded;
     nlohmann::json uploadStats;
     if (renderer) {
         const auto start = std::chrono::steady_clock::now();
-        uploaded.emplace(renderer->upload(prepared, {{settings.caster}, settings.shading, octants}));
+        uploaded.emplace(renderer->upload(prepared, {{settings.caster}, octants}));
         uploadStats = vr::uploadStatistics(
             *uploaded, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         std::printf("upload: %.2f ms, %.1f MB in %zu brick(s)\n", uploadStats["milliseconds"].get<double>(),

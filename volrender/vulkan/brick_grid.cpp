@@ -17,8 +17,8 @@ BrickGrid::BrickGrid(const Vec3i& dims, const Vec3i& counts) : counts_(counts) {
                 for (int a = 0; a < 3; ++a) {
                     b.lo[a] = cut(a, index[a]);
                     b.hi[a] = cut(a, index[a] + 1) - 1;
-                    b.imageLo[a] = std::max(0, b.lo[a] - 1);
-                    b.imageDims[a] = std::min(dims[a] - 1, b.hi[a] + 1) - b.imageLo[a] + 1;
+                    b.imageLo[a] = std::max(0, b.lo[a] - kBrickMargin);
+                    b.imageDims[a] = std::min(dims[a] - 1, b.hi[a] + kBrickMargin) - b.imageLo[a] + 1;
                 }
                 bricks_.push_back(b);
             }
@@ -49,8 +49,10 @@ std::vector<int> BrickGrid::frontToBack(unsigned signs) const {
     return order;
 }
 
-BrickGrid planBricks(const Vec3i& dims, int zSlabs, const std::function<bool(const Vec3i&)>& fits) {
-    Vec3i counts{1, 1, 1};
+BrickGrid planBricks(const Vec3i& dims, int zSlabs, const std::function<bool(const Vec3i&)>& fits,
+                     const Vec3i& minBricks) {
+    Vec3i counts;
+    for (int a = 0; a < 3; ++a) counts[a] = std::clamp(minBricks[a], 1, std::max(1, dims[a]));
     for (;;) {
         BrickGrid grid(dims, counts);
         const Vec3i largest = grid.largestImage();
@@ -64,7 +66,7 @@ BrickGrid planBricks(const Vec3i& dims, int zSlabs, const std::function<bool(con
         }
         if (axis < 0)
             throw std::runtime_error("the volume cannot be split into bricks that fit the device: even a brick of "
-                                     "one voxel (3x3x3 with its neighbours) exceeds its image limits");
+                                     "one voxel (5x5x5 with the neighbours it reads) exceeds its image limits");
         // Grow by about an eighth so that huge volumes need few plans, at least by one brick.
         counts[axis] = std::min(dims[axis], counts[axis] + std::max(1, counts[axis] / 8));
     }

@@ -1,5 +1,6 @@
 // How a volume is split into bricks whose images each fit the device: a grid of boxes along the axes, each brick's
-// images holding its core plus one voxel on every side (the neighbours trilinear sampling reads).
+// images holding its core plus kBrickMargin voxels on every side: a trilinear sample in the core reads the corners
+// of its cell, up to one voxel beyond the core, and, shaded, their central differences, one voxel further.
 #pragma once
 #include <functional>
 #include <vector>
@@ -8,9 +9,11 @@
 
 namespace vr {
 
+inline constexpr int kBrickMargin = 2;
+
 struct Brick {
     Vec3i lo, hi;            // core, inclusive: the voxels whose samples this brick renders
-    Vec3i imageLo, imageDims;  // the voxels its images hold: the core grown by one voxel, within the volume
+    Vec3i imageLo, imageDims;  // the voxels its images hold: the core grown by kBrickMargin voxels, within the volume
 };
 
 class BrickGrid {
@@ -35,8 +38,10 @@ private:
     std::vector<Brick> bricks_;
 };
 
-// Splits along the axis whose image is longest (z counted `zSlabs` times: ACD/EACD stack their octants along z)
-// until fits(largest image extent) holds. Throws std::runtime_error when even one-voxel cores do not fit.
-BrickGrid planBricks(const Vec3i& dims, int zSlabs, const std::function<bool(const Vec3i&)>& fits);
+// Starting from `minBricks` bricks per axis (at most one per voxel), splits along the axis whose image is longest
+// (z counted `zSlabs` times: ACD/EACD stack their octants along z) until fits(largest image extent) holds. Throws
+// std::runtime_error when even one-voxel cores do not fit.
+BrickGrid planBricks(const Vec3i& dims, int zSlabs, const std::function<bool(const Vec3i&)>& fits,
+                     const Vec3i& minBricks = {1, 1, 1});
 
 }  // namespace vr

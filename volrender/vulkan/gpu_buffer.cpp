@@ -29,6 +29,20 @@ DeviceBuffer::DeviceBuffer(const VulkanContext& ctx, vk::DeviceSize bytes, vk::B
     buffer_.bindMemory(*memory_, 0);
 }
 
+DeviceBuffer::DeviceBuffer(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const void* data,
+                           vk::DeviceSize bytes, vk::BufferUsageFlags usage)
+    : DeviceBuffer(ctx, bytes, usage | vk::BufferUsageFlagBits::eTransferDst) {
+    HostBuffer staging(ctx, bytes, vk::BufferUsageFlagBits::eTransferSrc);
+    std::memcpy(staging.data(), data, bytes);
+    submitAndWait(ctx, pool, [&](const vk::raii::CommandBuffer& cmd) {
+        cmd.copyBuffer(*staging.buffer(), *buffer_, vk::BufferCopy(0, 0, bytes));
+        vk::BufferMemoryBarrier toRead(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eShaderRead,
+                                       VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, *buffer_, 0, VK_WHOLE_SIZE);
+        cmd.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, {},
+                            toRead, {});
+    });
+}
+
 namespace {
 
 constexpr vk::ImageUsageFlags kVolumeUsage = vk::ImageUsageFlagBits::eStorage | vk::ImageUsageFlagBits::eTransferDst;
@@ -74,9 +88,9 @@ std::size_t formatBytes(vk::Format format) {
     switch (format) {
         case vk::Format::eR8Uint: return 1;
         case vk::Format::eR16Uint: return 2;
+        case vk::Format::eR16Sint: return 2;
+        case vk::Format::eR32Sfloat: return 4;
         case vk::Format::eR8G8B8A8Uint: return 4;
-        case vk::Format::eR16G16B16A16Snorm: return 8;
-        case vk::Format::eR32G32B32A32Sfloat: return 16;
         default: throw std::logic_error("formatBytes: a volume image format without its size here");
     }
 }

@@ -24,10 +24,14 @@ private:
     void* mapped_ = nullptr;
 };
 
-// A buffer in device-local memory that only shaders read and write (the ray state carried between bricks).
+// A buffer in device-local memory that only shaders read and write (the ray state carried between bricks), or only
+// read once filled (the transfer table).
 class DeviceBuffer {
 public:
     DeviceBuffer(const VulkanContext& ctx, vk::DeviceSize bytes, vk::BufferUsageFlags usage);
+    // Filled with `bytes` bytes from `data` through a staging buffer, then read by compute shaders.
+    DeviceBuffer(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const void* data, vk::DeviceSize bytes,
+                 vk::BufferUsageFlags usage);
     const vk::raii::Buffer& buffer() const { return buffer_; }
 
 private:
@@ -35,20 +39,25 @@ private:
     vk::raii::DeviceMemory memory_{nullptr};
 };
 
-// Lower limits than the device's for one volume image (0: the device's own), so that tests can force bricks.
-// The device's own: maxImageDimension3D and the format's largest extent; the memory the driver asks for the image
-// (with its padding) within maxMemoryAllocationSize, the format's maxResourceSize and the heap.
+// Lower limits than the device's for one volume image and for the transfer table (0: the device's own), so that
+// tests can force bricks and refusals. The device's own: maxImageDimension3D and the format's largest extent; the
+// memory the driver asks for the image (with its padding) within maxMemoryAllocationSize, the format's
+// maxResourceSize and the heap; maxStorageBufferRange for the table.
 struct ImageLimits {
     uint32_t maxDimension = 0;         // texels along any axis
     vk::DeviceSize maxTexelBytes = 0;  // texels x their bytes (without the driver's padding: the same on every device)
     // Upload as on a GPU, through a staging buffer into an optimally tiled image, even where the texels could be
     // written in place (a CPU device), so that tests cover that path too.
     bool staged = false;
+    vk::DeviceSize maxStorageBufferRange = 0;  // bytes of the transfer table's storage buffer (16 per entry)
+    // At least this many bricks along each axis (at most one per voxel), whatever the images' sizes: tests split
+    // volumes whose texels are too few and too small for the limits above to split them along every axis.
+    Vec3i minBricks{1, 1, 1};
 };
 
-// Every volume image (classified, normals, fields) is a storage image, which the casters read with imageLoad:
-// llvmpipe's texelFetch looks up a mip level's offset and strides lane by lane, which made the classified volume's
-// fetch a third of a leaping caster's time. Once uploaded it stays in this layout.
+// Every volume image (scalars, fields) is a storage image, which the casters read with imageLoad: llvmpipe's
+// texelFetch looks up a mip level's offset and strides lane by lane, which made the volume's fetch (then RGBA32F) a
+// third of a leaping caster's time. Once uploaded it stays in this layout.
 constexpr vk::ImageLayout kVolumeLayout = vk::ImageLayout::eGeneral;
 
 // Bytes of one texel of the formats volume images use.

@@ -1,12 +1,15 @@
 #include "volrender/vulkan/gpu_volume.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
 
+#include "core/errors.h"
 #include "render/render_checks.h"
 
 namespace vr {
@@ -24,11 +27,19 @@ struct WholeImage {
     std::function<void(int slab, std::size_t first, int count, uint8_t* to)> row;
 };
 
-// A normal component as RGBA16_SNORM holds it: std::lround(clamp(x, -1, 1) * 32767) without the library call (a
-// float of magnitude <= 32767 plus 0.5 is exact in double, and the conversion truncates toward zero).
-int16_t snorm16(float x) {
-    const double v = std::clamp(x, -1.f, 1.f) * 32767.f;
-    return int16_t(v + (v < 0 ? -0.5 : 0.5));
+// Writes `count` scalars from `from` as T (an integer type) to `to`; clears `ok` where one is no value of T (out of
+// its range, not an integer, NaN): a corrupt prepared volume, refused after the upload rather than converted.
+template <typename T>
+void writeIntegers(const float* from, int count, uint8_t* to, std::atomic<bool>& ok) {
+    constexpr float lo = float(std::numeric_limits<T>::min()), hi = float(std::numeric_limits<T>::max());
+    bool exact = true;
+    for (int i = 0; i < count; ++i, to += sizeof(T)) {
+        const float x = from[i];
+        const T v = T(x >= lo ? (x <= hi ? x : hi) : lo);  // a NaN goes to lo, and fails the comparison below
+        exact &= float(v) == x;
+        std::memcpy(to, &v, sizeof(T));
+    }
+    if (!exact) ok = false;
 }
 
 // EACD texels: exact extents in RGB (A unused), or the code that the shader decodes through its table.
@@ -43,43 +54,108 @@ vk::Format eacdFormat(ExtentCode code) {
 
 }  // namespace
 
+vk::Format scalarFormat(ScalarType type) {
+    switch (type) {
+        case ScalarType::UInt8: return vk::Format::eR8Uint;
+        case ScalarType::Int16: return vk::Format::eR16Sint;
+        case ScalarType::UInt16: return vk::Format::eR16Uint;
+        case ScalarType::Float32: return vk::Format::eR32Sfloat;
+    }
+    throw std::logic_error("scalarFormat: a scalar type without its image format");
+}
+
+const std::vector<CasterImageFormat>& casterImageFormats() {
+    static const std::vector<CasterImageFormat> formats{
+        {scalarFormat(ScalarType::UInt8), "R8_UINT", "uint8 scalars, PC, ACD and joint8 EACD"},
+        {scalarFormat(ScalarType::Int16), "R16_SINT", "int16 scalars"},
+        {scalarFormat(ScalarType::UInt16), "R16_UINT", "uint16 scalars and log16 EACD"},
+        {scalarFormat(ScalarType::Float32), "R32_SFLOAT", "float32 scalars"},
+        {eacdFormat(ExtentCode::Exact), "R8G8B8A8_UINT", "exact EACD"}};
+    return formats;
+}
+
+void requireCasterImageSupport(const std::string& deviceName, const vk::PhysicalDeviceFeatures& features,
+                               const std::function<vk::FormatProperties(vk::Format)>& formatProperties) {
+    if (!features.shaderStorageImageExtendedFormats)
+        throw std::runtime_error("the Vulkan device " + deviceName +
+                                 " lacks the feature shaderStorageImageExtendedFormats, which the casters need to "
+                                 "read R8_UINT, R16_UINT and R16_SINT storage images");
+    for (const CasterImageFormat& f : casterImageFormats())
+        if (!(formatProperties(f.format).optimalTilingFeatures & vk::FormatFeatureFlagBits::eStorageImage))
+            throw std::runtime_error("the Vulkan device " + deviceName + " cannot use " + f.name +
+                                     " as a storage image (VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT), which the casters "
+                                     "need for " + f.holds);
+}
+
 GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const PreparedVolume& prepared,
                      const GpuVolumeContents& contents, const ImageLimits& limits)
-    : grid_(prepared.classified.grid), contents_(contents), eacdCode_(prepared.fields.eacdCode()) {
+    : grid_(prepared.grid()), contents_(contents), scalarType_(prepared.scalars.sourceType),
+      eacdCode_(prepared.fields.eacdCode()), segmentation_(prepared.meta.segmentation) {
     slot_.fill(-1);
-    const bool shading = contents.shading;
     const unsigned octants = contents.octants;
-    for (Caster caster : contents.casters) {
+    // The scalars and the table (every render's), then each caster's field. Shading is the render's choice: it
+    // needs nothing uploaded.
+    std::vector<Caster> checked{Caster::Primitive};
+    checked.insert(checked.end(), contents.casters.begin(), contents.casters.end());
+    for (Caster caster : checked) {
         RenderSettings needs;
         needs.caster = caster;
-        needs.shading = shading;
+        needs.shading = false;
         checkRenderInputs(prepared, needs);
         if ((caster == Caster::ACD || caster == Caster::EACD) && (octants & 0xffu) == 0)
             throw std::invalid_argument("uploading the " + std::string(casterName(caster)) + " field needs octants");
     }
-    segmentedForTrilinear_ = prepared.meta.segmentation.trilinear;
-    const ClassifiedVolume& cv = prepared.classified;
-    const Vec3i dims = cv.grid.dims;
-    std::vector<WholeImage> wholes;
 
-    wholes.push_back({&classified_, "classified", 1, vk::Format::eR32G32B32A32Sfloat,
-                      [&cv](int, std::size_t first, int count, uint8_t* to) {
-                          for (std::size_t i = first; i < first + count; ++i, to += 16) {
-                              std::memcpy(to, cv.colour[i].data(), 3 * sizeof(float));
-                              std::memcpy(to + 12, &cv.sigma[i], sizeof(float));
-                          }
-                      }});
-    if (shading) {
-        // 16-bit snorm: the quantisation (1.5e-5) moves the shade by far less than the test tolerance.
-        wholes.push_back({&normals_, "normals", 1, vk::Format::eR16G16B16A16Snorm,
-                          [&cv](int, std::size_t first, int count, uint8_t* to) {
-                              for (std::size_t i = first; i < first + count; ++i, to += 8) {
-                                  int16_t packed[4] = {0, 0, 0, 0};
-                                  for (int a = 0; a < 3; ++a) packed[a] = snorm16(cv.normal[i][a]);
-                                  std::memcpy(to, packed, sizeof(packed));
-                              }
-                          }});
+    // The table first: a device whose storage buffers cannot hold it is refused before any image is made.
+    const ScalarClassification& classification = prepared.classification;
+    const TransferTable& table = classification.table;
+    placement_ = {table.lo, table.step, table.size(), classification.flatGradient};
+    vk::DeviceSize bufferRange = ctx.physicalDevice().getProperties().limits.maxStorageBufferRange;
+    if (limits.maxStorageBufferRange > 0) bufferRange = std::min(bufferRange, limits.maxStorageBufferRange);
+    constexpr std::size_t kEntryBytes = 4 * sizeof(float);  // the shader's vec4
+    const vk::DeviceSize tableBytes = vk::DeviceSize(table.size()) * kEntryBytes;
+    if (tableBytes > bufferRange)
+        throw InputError("the transfer table of " + std::to_string(table.size()) + " entries (" +
+                         std::to_string(tableBytes) + " bytes) exceeds the storage buffer limit of the Vulkan device " +
+                         ctx.info().name + " (maxStorageBufferRange " + std::to_string(bufferRange) + " bytes: at most " +
+                         std::to_string(bufferRange / kEntryBytes) + " entries); render with --cpu");
+    std::vector<float> entries(4 * table.size());
+    for (std::size_t i = 0; i < table.size(); ++i) {
+        std::copy(table.colour[i].begin(), table.colour[i].end(), entries.begin() + 4 * i);
+        entries[4 * i + 3] = table.sigma[i];
     }
+    table_ = std::make_unique<DeviceBuffer>(ctx, pool, entries.data(), tableBytes,
+                                            vk::BufferUsageFlagBits::eStorageBuffer);
+    uploads_.push_back({"table", std::size_t(tableBytes), 0});
+
+    const Vec3i dims = grid_.dims;
+    const std::vector<float>& values = prepared.scalars.values;
+    std::atomic<bool> scalarsFit = true;
+    std::vector<WholeImage> wholes;
+    std::function<void(int, std::size_t, int, uint8_t*)> scalarRow;
+    switch (scalarType_) {
+        case ScalarType::UInt8:
+            scalarRow = [&](int, std::size_t first, int count, uint8_t* to) {
+                writeIntegers<uint8_t>(values.data() + first, count, to, scalarsFit);
+            };
+            break;
+        case ScalarType::Int16:
+            scalarRow = [&](int, std::size_t first, int count, uint8_t* to) {
+                writeIntegers<int16_t>(values.data() + first, count, to, scalarsFit);
+            };
+            break;
+        case ScalarType::UInt16:
+            scalarRow = [&](int, std::size_t first, int count, uint8_t* to) {
+                writeIntegers<uint16_t>(values.data() + first, count, to, scalarsFit);
+            };
+            break;
+        case ScalarType::Float32:
+            scalarRow = [&](int, std::size_t first, int count, uint8_t* to) {
+                std::memcpy(to, values.data() + first, count * sizeof(float));
+            };
+            break;
+    }
+    wholes.push_back({&scalars_, "scalars", 1, scalarFormat(scalarType_), scalarRow});
 
     const DistanceFields& f = prepared.fields;
     const bool octantFields = std::any_of(contents.casters.begin(), contents.casters.end(),
@@ -123,7 +199,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
         for (const WholeImage& w : wholes)
             if (!imageFits(ctx, {brick.x, brick.y, brick.z * w.slabs}, w.format, limits)) return false;
         return true;
-    });
+    }, limits.minBricks);
     const std::vector<Brick>& bricks = bricks_.bricks();
     for (const WholeImage& w : wholes) {
         const std::size_t texel = formatBytes(w.format);
@@ -145,6 +221,10 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
             uploads_.push_back({w.name, bytes, int(i)});
         }
     }
+    if (!scalarsFit)
+        throw InputError("prepared volume: its " + std::string(scalarTypeName(scalarType_)) +
+                         " scalars hold a value that is no " + std::string(scalarTypeName(scalarType_)) +
+                         " (a corrupt volume)");
 }
 
 const VolumeImage* GpuVolume::field(Caster caster, int brick) const {
@@ -162,8 +242,6 @@ void GpuVolume::requireHolds(const RenderSettings& s, unsigned viewOctants) cons
     const std::string caster(casterName(s.caster));
     if (s.caster != Caster::Primitive && fields_[int(s.caster)].empty())
         throw std::invalid_argument("the uploaded volume holds no field of the " + caster + " caster");
-    if (s.shading && normals_.empty())
-        throw std::invalid_argument("the uploaded volume holds no normals: shading needs them");
     if (s.caster == Caster::ACD || s.caster == Caster::EACD)
         for (int oct = 0; oct < kOctants; ++oct)
             if ((viewOctants >> oct & 1) && slot_[oct] < 0)

@@ -2,6 +2,7 @@
 // bricks where one image would exceed the device's limits. Upload once, render many views (VulkanRenderer).
 #pragma once
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,34 +15,64 @@
 namespace vr {
 
 struct UploadedResource {
-    std::string name;  // "classified", "normals", "pc", "acd", "eacd"
+    std::string name;  // "scalars", "table", "pc", "acd", "eacd"
     std::size_t bytes = 0;
-    int brick = 0;     // index into GpuVolume::bricks()
+    int brick = 0;     // index into GpuVolume::bricks(); the table, which every brick reads, counts as brick 0's
 };
 
-// What one upload holds: the fields of these casters (none for primitive), normals when shading, and the ACD /
-// EACD octants of the mask (viewOctants of every camera it will render).
+// What one upload holds besides the scalars and the transfer table, which every render reads: the fields of these
+// casters (none for primitive) and the ACD / EACD octants of the mask (viewOctants of every camera it will render).
+// Shading needs nothing more: the casters take the gradient from the scalars.
 struct GpuVolumeContents {
     std::vector<Caster> casters;
-    bool shading = true;
     unsigned octants = 0;
+};
+
+// The storage-image format of the scalars of each type: R8_UINT, R16_SINT, R16_UINT, R32_SFLOAT.
+vk::Format scalarFormat(ScalarType type);
+
+// Every format the casters read as a storage image: the scalars' four and the fields' (R8_UINT, R16_UINT,
+// RGBA8_UINT), with their names and what each holds, for messages.
+struct CasterImageFormat {
+    vk::Format format;
+    const char* name;   // "R16_SINT"
+    const char* holds;  // "int16 scalars"
+};
+const std::vector<CasterImageFormat>& casterImageFormats();
+
+// Throws std::runtime_error naming what the device `deviceName` lacks of what the casters read: the feature
+// shaderStorageImageExtendedFormats (R8_UINT, R16_UINT and R16_SINT storage images) and, for every format of
+// casterImageFormats(), VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT with optimal tiling. The device's answers come as
+// arguments, so that tests can ask it of devices that lack them.
+void requireCasterImageSupport(const std::string& deviceName, const vk::PhysicalDeviceFeatures& features,
+                               const std::function<vk::FormatProperties(vk::Format)>& formatProperties);
+
+// Where the transfer table's entries lie in scalar and when a gradient is flat: what the casters need of
+// ScalarClassification besides the entries themselves, which are on the device.
+struct TablePlacement {
+    double lo = 0, step = 1;
+    std::size_t entries = 0;
+    double flatGradient = 0;
 };
 
 class GpuVolume {
 public:
-    // Uploads the classified volume (rgb + sigma, RGBA32F), the normals (RGBA16_SNORM) only when shading, and
-    // each caster's field: PC (R8_UINT), ACD (R8_UINT), EACD (RGBA8_UINT exact, R16_UINT log16, R8_UINT joint8);
-    // ACD and EACD hold the octants of the mask stacked along z, slab i holding the i-th octant of the mask.
-    // Each image is split into the bricks of one plan that fits every image.
-    // Throws InputError when the prepared volume lacks a field or the normals asked for.
+    // Uploads the scalars in their own type (scalarFormat), the transfer table (a storage buffer of vec4 per entry:
+    // rgb colour, sigma) and each caster's field: PC (R8_UINT), ACD (R8_UINT), EACD (RGBA8_UINT exact, R16_UINT
+    // log16, R8_UINT joint8); ACD and EACD hold the octants of the mask stacked along z, slab i holding the i-th
+    // octant of the mask. Each image is split into the bricks of one plan that fits every image.
+    // Throws InputError when the prepared volume lacks a field asked for, its scalars do not fit their type, or
+    // the table has more entries than the device's storage buffers hold (maxStorageBufferRange / 16).
     GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const PreparedVolume& prepared,
               const GpuVolumeContents& contents, const ImageLimits& limits = {});
 
     const GridGeometry& grid() const { return grid_; }
     const GpuVolumeContents& contents() const { return contents_; }
     const BrickGrid& bricks() const { return bricks_; }
-    const VolumeImage& classified(int brick) const { return *classified_[brick]; }
-    const VolumeImage* normals(int brick) const { return normals_.empty() ? nullptr : normals_[brick].get(); }
+    ScalarType scalarType() const { return scalarType_; }
+    const VolumeImage& scalars(int brick) const { return *scalars_[brick]; }
+    const DeviceBuffer& table() const { return *table_; }
+    const TablePlacement& tablePlacement() const { return placement_; }
     // Null for primitive or a caster not uploaded.
     const VolumeImage* field(Caster caster, int brick) const;
     // Slab of each octant in the ACD / EACD images, -1 when not uploaded.
@@ -51,7 +82,8 @@ public:
     const std::vector<UploadedResource>& uploads() const { return uploads_; }
     std::size_t uploadedBytes() const;
 
-    bool segmentedForTrilinear() const { return segmentedForTrilinear_; }
+    // How the regions were segmented (for trilinear sampling, with normals): what a render's checks ask.
+    const SegmentationParams& segmentation() const { return segmentation_; }
     // Throws std::invalid_argument naming what is missing when a render with these settings and view octants
     // would need more than was uploaded.
     void requireHolds(const RenderSettings& settings, unsigned viewOctants) const;
@@ -60,10 +92,13 @@ private:
     using Bricked = std::vector<std::unique_ptr<VolumeImage>>;  // one image per brick
     GridGeometry grid_;
     GpuVolumeContents contents_;
+    ScalarType scalarType_ = ScalarType::Float32;
     ExtentCode eacdCode_ = ExtentCode::Exact;
-    bool segmentedForTrilinear_ = false;
+    SegmentationParams segmentation_;
+    TablePlacement placement_;
     BrickGrid bricks_;
-    Bricked classified_, normals_;
+    Bricked scalars_;
+    std::unique_ptr<DeviceBuffer> table_;
     std::array<Bricked, 4> fields_;  // by Caster
     std::array<int, kOctants> slot_;
     std::vector<UploadedResource> uploads_;

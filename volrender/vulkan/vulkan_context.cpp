@@ -106,7 +106,8 @@ VulkanContext::VulkanContext(const VulkanOptions& options) {
     vk::DeviceQueueCreateInfo queueInfo({}, queueFamily_, 1, &priority);
     // The casters compute in float and 32-bit integers (docs/ALGORITHMS.md section 8), so the device enables
     // neither shaderFloat64 nor shaderInt64. They read every volume as a storage image
-    // (volrender/vulkan/gpu_buffer.h), whose formats for the normals and the fields are the extended storage formats.
+    // (volrender/vulkan/gpu_buffer.h), whose formats for the integer scalars and the fields are extended storage
+    // formats; VulkanRenderer checks each format's storage-image support (requireCasterImageSupport).
     if (!physical_.getFeatures().shaderStorageImageExtendedFormats)
         throw std::runtime_error(info_.name + " lacks shaderStorageImageExtendedFormats, which the casters need");
     vk::PhysicalDeviceFeatures features;

@@ -24,6 +24,10 @@ namespace {
 // The field's image formats, one binding each (a storage image is read in the format it declares).
 constexpr vk::Format kFieldFormats[3] = {vk::Format::eR8Uint, vk::Format::eR16Uint, vk::Format::eR8G8B8A8Uint};
 constexpr uint32_t kFieldBindings[3] = {device::kBindingField8, device::kBindingField16, device::kBindingFieldRGBA8};
+// The scalars' types, in the order of their binding, and their bindings (formats: scalarFormat).
+constexpr ScalarType kScalarTypes[4] = {ScalarType::UInt8, ScalarType::UInt16, ScalarType::Int16, ScalarType::Float32};
+constexpr uint32_t kScalarBindings[4] = {device::kBindingScalarsUInt8, device::kBindingScalarsUInt16,
+                                         device::kBindingScalarsInt16, device::kBindingScalarsFloat};
 // The uploaded decode table is the shader's array of kExtentTableEntries uvec4.
 static_assert(kExtentTableEntries == device::kExtentTableEntries && sizeof(ExtentTableEntry) == 16);
 
@@ -36,6 +40,16 @@ int deviceCaster(Caster caster) {
         case Caster::EACD: return device::kEACD;
     }
     throw std::logic_error("deviceCaster: a caster the device does not know");
+}
+
+int deviceScalarType(ScalarType type) {
+    switch (type) {
+        case ScalarType::UInt8: return device::kScalarUInt8;
+        case ScalarType::Int16: return device::kScalarInt16;
+        case ScalarType::UInt16: return device::kScalarUInt16;
+        case ScalarType::Float32: return device::kScalarFloat32;
+    }
+    throw std::logic_error("deviceScalarType: a scalar type the device does not know");
 }
 
 int deviceExtentCode(ExtentCode code) {
@@ -69,8 +83,9 @@ void requireDeviceLattice(const GridGeometry& grid, double stepVoxels) {
     throw InputError(text);
 }
 
-device::CasterParams makeParams(const GridGeometry& grid, const Camera& camera, const RenderSettings& s,
-                                const std::array<int, kOctants>& slots) {
+device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, const RenderSettings& s) {
+    const GridGeometry& grid = volume.grid();
+    const std::array<int, kOctants>& slots = volume.octantSlot();
     device::CasterParams p{};
     p.eye = toDevice(camera.eye);
     p.forward = toDevice(camera.forward);
@@ -95,6 +110,11 @@ device::CasterParams makeParams(const GridGeometry& grid, const Camera& camera, 
     p.material = {float(m.ambient), float(m.diffuse), float(m.specular), float(m.shininess)};
     p.background = {float(s.background.x), float(s.background.y), float(s.background.z), 0};
     p.ertDepth = floatPair(terminationDepth(s.ert));
+    const TablePlacement& table = volume.tablePlacement();
+    p.tableLo = float(table.lo);
+    p.tableInverseStep = float(1 / table.step);  // exactly 1 for an integer volume's step of 1
+    p.tableLastEntry = float(table.entries - 1);
+    p.flatGradient = float(table.flatGradient);
     return p;
 }
 
@@ -103,17 +123,19 @@ device::CasterParams makeParams(const GridGeometry& grid, const Camera& camera, 
 VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const ImageLimits& limits)
     : ctx_(ctx), tileSize_(tileSize != kAutoTile ? tileSize : ctx.info().type == "cpu" ? 512 : 128), limits_(limits) {
     const vk::raii::Device& device = ctx.device();
+    requireCasterImageSupport(ctx.info().name, ctx.physicalDevice().getFeatures(),
+                              [&](vk::Format f) { return ctx.physicalDevice().getFormatProperties(f); });
     pool_ = vk::raii::CommandPool(device, vk::CommandPoolCreateInfo({}, ctx.queueFamily()));
 
     using T = vk::DescriptorType;
     const auto compute = vk::ShaderStageFlagBits::eCompute;
     std::vector<vk::DescriptorSetLayoutBinding> bindings{
         {device::kBindingParams, T::eUniformBuffer, 1, compute},
-        {device::kBindingClassified, T::eStorageImage, 1, compute},
-        {device::kBindingNormals, T::eStorageImage, 1, compute},
         {device::kBindingOutPixels, T::eStorageBuffer, 1, compute},
         {device::kBindingRayStates, T::eStorageBuffer, 1, compute},
-        {device::kBindingExtentTable, T::eUniformBuffer, 1, compute}};
+        {device::kBindingExtentTable, T::eUniformBuffer, 1, compute},
+        {device::kBindingTransferTable, T::eStorageBuffer, 1, compute}};
+    for (uint32_t binding : kScalarBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     for (uint32_t binding : kFieldBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     vk::PushConstantRange push(compute, 0, sizeof(device::TilePush));
@@ -127,28 +149,31 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
         timestampMask_ = validBits >= 64 ? ~uint64_t(0) : (uint64_t(1) << validBits) - 1;
     }
     const uint8_t zeros[8] = {};
-    unusedNormals_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, vk::Format::eR16G16B16A16Snorm,
-                                                   zeros, formatBytes(vk::Format::eR16G16B16A16Snorm));
+    for (int i = 0; i < 4; ++i) {
+        const vk::Format format = scalarFormat(kScalarTypes[i]);
+        unusedScalars_[i] = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, format, zeros, formatBytes(format));
+    }
     for (int i = 0; i < 3; ++i)
         unusedFields_[i] = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kFieldFormats[i], zeros,
                                                          formatBytes(kFieldFormats[i]));
 }
 
 const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode,
-                                                   bool bricked, bool perspective) {
+                                                   bool bricked, bool perspective, ScalarType scalarType) {
     // Only the EACD caster reads the code: the others share one pipeline whatever the volume's code.
-    const auto key = std::make_tuple(caster, trilinear, shading,
-                                     caster == Caster::EACD ? eacdCode : ExtentCode::Exact, bricked, perspective);
+    const auto key = std::make_tuple(caster, trilinear, shading, caster == Caster::EACD ? eacdCode : ExtentCode::Exact,
+                                     bricked, perspective, scalarType);
     auto it = pipelines_.find(key);
     if (it != pipelines_.end()) return it->second;
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
-    const std::array<std::pair<int, uint32_t>, 6> constants{{
+    const std::array<std::pair<int, uint32_t>, 7> constants{{
         {device::kSpecIdCaster, uint32_t(deviceCaster(caster))},
         {device::kSpecIdTrilinear, trilinear ? 1u : 0u},
         {device::kSpecIdShading, shading ? 1u : 0u},
         {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(std::get<3>(key)))},
         {device::kSpecIdBricked, bricked ? 1u : 0u},
-        {device::kSpecIdPerspective, perspective ? 1u : 0u}}};
+        {device::kSpecIdPerspective, perspective ? 1u : 0u},
+        {device::kSpecIdScalarType, uint32_t(deviceScalarType(scalarType))}}};
     std::array<uint32_t, constants.size()> values;
     std::array<vk::SpecializationMapEntry, constants.size()> entries;
     for (std::size_t i = 0; i < constants.size(); ++i) {
@@ -168,7 +193,7 @@ auto VulkanRenderer::deviceErrors(Work&& work) -> decltype(work()) {
         return work();
     } catch (const vk::OutOfDeviceMemoryError&) {
         throw std::runtime_error("the Vulkan device " + ctx_.info().name +
-                                 " ran out of memory (try a smaller volume, --caster primitive or --no-shading)");
+                                 " ran out of memory (try a smaller volume, --caster primitive or an orthographic view)");
     } catch (const vk::OutOfHostMemoryError&) {
         throw std::runtime_error("the Vulkan driver ran out of host memory");
     } catch (const vk::DeviceLostError&) {
@@ -182,12 +207,12 @@ GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolume
 }
 
 RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings) {
-    checkRenderSettings(volume.grid(), volume.segmentedForTrilinear(), settings);
+    checkRenderSettings(volume.grid(), volume.segmentation(), settings);
     requireDeviceLattice(volume.grid(), settings.stepVoxels);
     volume.requireHolds(settings, viewOctants(camera));
     uploads_.clear();  // what this render reads of the volume
     for (const UploadedResource& u : volume.uploads())
-        if (u.name == "classified" || (settings.shading && u.name == "normals") ||
+        if (u.name == "scalars" || u.name == "table" ||
             (settings.caster != Caster::Primitive && u.name == casterName(settings.caster)))
             uploads_.push_back(u);
     return deviceErrors([&] { return renderOnDevice(volume, camera, settings); });
@@ -197,7 +222,7 @@ RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera
                                     const RenderSettings& settings) {
     checkRenderInputs(prepared, settings);
     const auto start = std::chrono::steady_clock::now();
-    const GpuVolume volume = upload(prepared, {{settings.caster}, settings.shading, viewOctants(camera)});
+    const GpuVolume volume = upload(prepared, {{settings.caster}, viewOctants(camera)});
     RenderResult result = render(volume, camera, settings);
     result.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -210,11 +235,11 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const vk::raii::Device& device = ctx_.device();
     const vk::raii::Pipeline& pipe = pipeline(settings.caster, settings.trilinear, settings.shading, volume.eacdCode(),
                                               volume.bricks().bricks().size() > 1,
-                                              camera.projection == Projection::Perspective);
+                                              camera.projection == Projection::Perspective, volume.scalarType());
 
     using B = vk::BufferUsageFlagBits;
     HostBuffer params(ctx_, sizeof(device::CasterParams), B::eUniformBuffer);
-    const device::CasterParams p = makeParams(volume.grid(), camera, settings, volume.octantSlot());
+    const device::CasterParams p = makeParams(volume, camera, settings);
     std::memcpy(params.data(), &p, sizeof(p));
     HostBuffer extentTable(ctx_, sizeof(ExtentTable), B::eUniformBuffer);  // decodes coded EACD (extent_code.glsl)
     std::memcpy(extentTable.data(), extentDecodeTable(volume.eacdCode()).data(), sizeof(ExtentTable));
@@ -227,8 +252,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const uint32_t brickCount = uint32_t(bricks.size());
     std::array<vk::DescriptorPoolSize, 3> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 5 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 2 * brickCount)};
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 7 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
         vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, brickCount, sizes));
@@ -240,24 +265,24 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const vk::DescriptorBufferInfo buffers[3] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*out.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*rayState.buffer(), 0, VK_WHOLE_SIZE}};
-    const vk::DescriptorBufferInfo table(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
+    const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
+    const vk::DescriptorBufferInfo transferEntries(*volume.table().buffer(), 0, VK_WHOLE_SIZE);
     for (uint32_t b = 0; b < brickCount; ++b) {
         const vk::DescriptorSet set = *sets[b];
-        const VolumeImage* normals = volume.normals(int(b));
         const VolumeImage* field = volume.field(settings.caster, int(b));
-        const vk::DescriptorImageInfo images[2] = {imageInfo(volume.classified(int(b))),
-                                                   imageInfo(normals ? *normals : *unusedNormals_)};
-        vk::DescriptorImageInfo fields[3];
+        vk::DescriptorImageInfo scalars[4], fields[3];
+        for (int i = 0; i < 4; ++i)
+            scalars[i] = imageInfo(kScalarTypes[i] == volume.scalarType() ? volume.scalars(int(b)) : *unusedScalars_[i]);
         for (int i = 0; i < 3; ++i)
             fields[i] = imageInfo(field && field->format() == kFieldFormats[i] ? *field : *unusedFields_[i]);
         using T = vk::DescriptorType;
         std::vector<vk::WriteDescriptorSet> writes{
             {set, device::kBindingParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
-            {set, device::kBindingClassified, 0, 1, T::eStorageImage, &images[0]},
-            {set, device::kBindingNormals, 0, 1, T::eStorageImage, &images[1]},
             {set, device::kBindingOutPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
             {set, device::kBindingRayStates, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
-            {set, device::kBindingExtentTable, 0, 1, T::eUniformBuffer, nullptr, &table}};
+            {set, device::kBindingExtentTable, 0, 1, T::eUniformBuffer, nullptr, &extentEntries},
+            {set, device::kBindingTransferTable, 0, 1, T::eStorageBuffer, nullptr, &transferEntries}};
+        for (int i = 0; i < 4; ++i) writes.emplace_back(set, kScalarBindings[i], 0, 1, T::eStorageImage, &scalars[i]);
         for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
         device.updateDescriptorSets(writes, {});
     }

@@ -17,7 +17,9 @@ class VulkanRenderer {
 public:
     // Tiles of tileSize x tileSize pixels are separate submits, so no dispatch runs long enough to trip a
     // GPU watchdog; kAutoTile: 128, or 512 on a CPU device (no watchdog; each submit costs llvmpipe a
-    // thread-pool round). `limits` lowers the device's image limits (tests force bricks with it).
+    // thread-pool round). `limits` lowers the device's image and storage-buffer limits (tests force bricks and
+    // refusals with it). Throws std::runtime_error for a device that cannot read the casters' storage-image formats
+    // (requireCasterImageSupport).
     static constexpr int kAutoTile = 0;
     explicit VulkanRenderer(const VulkanContext& ctx, int tileSize = kAutoTile, const ImageLimits& limits = {});
 
@@ -33,15 +35,15 @@ public:
     // Uploads just what this caster and view need, then renders (one-off renders; an orbit uploads once).
     RenderResult render(const PreparedVolume& prepared, const Camera& camera, const RenderSettings& settings);
 
-    // The resources the last render read (of the volume uploaded for it or given to it), per brick: the classified
-    // volume, the normals when shading, the caster's field.
+    // The resources the last render read (of the volume uploaded for it or given to it), per brick: the scalars,
+    // the transfer table, the caster's field.
     const std::vector<UploadedResource>& lastUploads() const { return uploads_; }
 
 private:
     RenderResult renderOnDevice(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
     // bricked: the volume is split into bricks, whose dispatches carry each ray's state to the next.
     const vk::raii::Pipeline& pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode, bool bricked,
-                                       bool perspective);
+                                       bool perspective, ScalarType scalarType);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
     auto deviceErrors(Work&& work) -> decltype(work());
@@ -56,10 +58,10 @@ private:
     vk::raii::QueryPool queries_{nullptr};
     double timestampPeriodNs_ = 0;  // 0: the queue has no timestamps
     uint64_t timestampMask_ = 0;
-    std::map<std::tuple<Caster, bool, bool, ExtentCode, bool, bool>, vk::raii::Pipeline> pipelines_;
-    // Bound where a variant reads nothing (normals without shading, the field for primitive, the field bindings of
-    // the other formats): never read.
-    std::unique_ptr<VolumeImage> unusedNormals_, unusedFields_[3];
+    std::map<std::tuple<Caster, bool, bool, ExtentCode, bool, bool, ScalarType>, vk::raii::Pipeline> pipelines_;
+    // Bound where a variant reads nothing (the scalar bindings of the other types, the field for primitive, the
+    // field bindings of the other formats): never read.
+    std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3];
     std::vector<UploadedResource> uploads_;
 };
 

@@ -1,7 +1,7 @@
-// Scalar gradients for classification and normals (docs/ALGORITHMS.md section 2).
+// The scalar gradient: classification and shading read it the same way (docs/ALGORITHMS.md section 2).
 #pragma once
-#include "core/vec3.h"
-#include "core/volume.h"
+#include "vec3.h"
+#include "volume.h"
 
 namespace vr {
 
