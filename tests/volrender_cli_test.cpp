@@ -62,7 +62,10 @@ TEST(VolrenderCli, RendersImageHeatmapAndStatistics) {
     EXPECT_EQ(view["uploadedBytes"]["scalars"].get<std::size_t>(), voxels * 2);
     EXPECT_GT(view["uploadedBytes"]["table"].get<std::size_t>(), 0u);
     EXPECT_EQ(view["uploadedBytes"].size(), 3u);
-    EXPECT_EQ(view["uploadedBytes"].size(), 3u);
+    const nlohmann::json& perVoxel = stats["upload"]["bytesPerVoxel"];
+    EXPECT_EQ(perVoxel["scalars"].get<double>(), 2.0);
+    EXPECT_EQ(perVoxel["eacd"].get<double>(), 4.0);
+    EXPECT_DOUBLE_EQ(stats["upload"]["bytesPerVoxelTotal"].get<double>(), 6.0 + perVoxel["table"].get<double>());
 }
 
 TEST(VolrenderCli, VulkanAndCpuImagesAgree) {

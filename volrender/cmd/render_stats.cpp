@@ -38,8 +38,14 @@ nlohmann::json uploadStatistics(const GpuVolume& volume, double milliseconds) {
         bytes[u.name] = bytes.value(u.name, std::size_t(0)) + u.bytes;
         bricks[u.brick]["bytes"][u.name] = u.bytes;
     }
+    // Per voxel of the volume: what each resource costs the device (a table's bytes spread over the voxels too).
+    const double voxels = double(std::max<std::size_t>(1, volume.grid().voxels()));
+    nlohmann::json perVoxel = nlohmann::json::object();
+    for (const auto& [name, b] : bytes.items()) perVoxel[name] = b.get<double>() / voxels;
     return {{"milliseconds", milliseconds},
             {"bytes", bytes},
+            {"bytesPerVoxel", perVoxel},
+            {"bytesPerVoxelTotal", double(volume.uploadedBytes()) / voxels},
             {"bytesTotal", volume.uploadedBytes()},
             {"brickCounts", triple(volume.bricks().counts())},
             {"bricks", bricks}};
