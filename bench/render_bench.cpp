@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> datasets{"boston_teapot", "cranium_ct"};
     int size = 512, views = 8, device = -1;
     double to = 0.02, ta = 10, step = 0.5;
-    bool nearest = false;
+    bool nearest = false, noShading = false;
     std::string dir = VR_DATASETS_DIR;
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->capture_default_str();
     app.add_option("--size", size, "image width = height")->capture_default_str();
@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
     app.add_option("--ta", ta, "T_a of the threshold setting, degrees")->capture_default_str();
     app.add_option("--step", step, "step in voxels")->capture_default_str();
     app.add_flag("--nearest", nearest, "nearest sampling and regions for it (default: trilinear, as users render)");
+    app.add_flag("--no-shading", noShading, "emission-absorption only, regions without normals (default: Phong)");
     app.add_option("--device", device, "Vulkan device index");
     app.add_option("--data", dir, "datasets folder")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
@@ -74,9 +75,9 @@ int main(int argc, char** argv) {
     try {
         VulkanContext ctx(VulkanOptions{device, false});
         VulkanRenderer renderer(ctx);
-        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, %s, Phong headlight, "
-                    "ERT 0.99.\n\n",
-                    ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear");
+        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, %s, %s, ERT 0.99.\n\n",
+                    ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear",
+                    noShading ? "unshaded" : "Phong headlight");
         std::printf("| dataset | T_o, T_a | caster | upload ms (MB) | median device ms | x primitive (time) | "
                     "iterations/ray | x primitive (iterations) | PSNR vs primitive T=0, worst view (dB) |\n");
         std::printf("|---|---|---|---|---|---|---|---|---|\n");
@@ -87,7 +88,8 @@ int main(int argc, char** argv) {
             StagedPreparation staged(loadVolume(fs::path(dir) / row.file, row.raw));
             std::vector<Image> reference;  // primitive at thresholds 0, per view
             for (auto [settingTo, settingTa] : {std::pair{0.0, 0.0}, std::pair{to, ta}}) {
-                options.segmentation = {settingTo, settingTa, true, !nearest};
+                options.segmentation = {settingTo, settingTa, !noShading, !nearest};
+                options.classify.normals = !noShading;
                 const PreparedVolume& p = staged.prepare(options);
                 double primitiveMs = 0, primitiveIterations = 0;
                 for (Caster c : {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD}) {
@@ -95,6 +97,7 @@ int main(int argc, char** argv) {
                     s.caster = c;
                     s.stepVoxels = step;
                     s.trilinear = !nearest;
+                    s.shading = !noShading;
                     std::vector<double> ms, psnrs;
                     double iterations = 0;
                     std::vector<Camera> cameras;

@@ -6,6 +6,7 @@
 # DATASET: a file in the shared datasets folder or the start of its name (boston_teapot, cranium_ct, ...): the
 # MANIFEST gives its spacing and transfer function. "smoke": one 64x64 view of vtk_headmr (a few seconds).
 # Defaults: 8 views, 512x512, out/peers/NAME. BUILD_DIR (default build) is the build folder; THREADS (default 2);
+# ELEVATION (default 0) the views' elevation in degrees;
 # PEER_LIST (comma-separated, default all: ours-cpu-primitive,vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render).
 # Every peer renders nearest and unshaded, unless USER_SETTINGS=1 (vr_peers --user-settings): the settings users
 # render with, trilinear and shaded (our Phong material, one headlight), for our reference and both VTK mappers;
@@ -53,7 +54,7 @@ cmake --build "$build" --target vr_peers -j 2
 mkdir -p "$out"
 # VTK's OpenGL render windows need an X display, even off screen: a virtual one.
 cmd=("$build/bench/peers/vr_peers" "$datasets/$file" --tf "$datasets/$tf" --spacing "$spacing"
-  --views "$views" --size "$size" --threads "${THREADS:-2}" -o "$out")
+  --views "$views" --size "$size" --elevation "${ELEVATION:-0}" --threads "${THREADS:-2}" -o "$out")
 if [[ -n ${PEER_LIST:-} ]]; then cmd+=(--peers "$PEER_LIST"); fi
 if [[ $user_settings == 1 ]]; then cmd+=(--user-settings); fi
 echo "+ xvfb-run -a ${cmd[*]}" >&2

@@ -49,6 +49,7 @@ PeerScene loadPeerScene(const PeerSceneOptions& options) {
     ViewParams view;
     view.width = options.width;
     view.height = options.height;
+    view.elevationDeg = options.elevationDeg;
     for (int i = 0; i < options.views; ++i) {
         view.azimuthDeg = 360.0 * i / options.views;
         scene.views.push_back(Camera::fit(scene.volume.grid, view));

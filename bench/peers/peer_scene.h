@@ -17,6 +17,7 @@ struct PeerSceneOptions {
     std::filesystem::path volume, transferFunction;
     RawOptions raw;
     int views = 8, width = 512, height = 512;
+    double elevationDeg = 0;  // of every view of the orbit
     double stepVoxels = 0.5;  // our --step: voxels of the smallest spacing
     double ert = 0.99;        // our early ray termination
     int threads = 2;
@@ -36,7 +37,7 @@ struct PeerScene {
     // The TF at every integer value from the volume's minimum to its maximum for integer volumes (exact there, as
     // our classification samples it), else at 4096 values over the range: every peer gets its tables from here.
     SampledTransferFunction table;
-    std::vector<Camera> views;  // azimuth 360 i / N, elevation 0, orthographic: Camera::fit as our casters use it
+    std::vector<Camera> views;  // azimuth 360 i / N, the elevation asked, orthographic: Camera::fit as ours use it
 
     double referenceStep() const { return volume.grid.smallestSpacing(); }  // the TF's opacity is per this length
     double sampleDistance() const { return options.stepVoxels * referenceStep(); }

@@ -58,6 +58,7 @@ nlohmann::json runJson(const vr::PeerRun& run, const vr::PeerScene& scene) {
     nlohmann::json views = nlohmann::json::array();
     for (std::size_t i = 0; i < run.ms.size(); ++i)
         views.push_back({{"view", i}, {"azimuth_deg", 360.0 * double(i) / double(scene.views.size())},
+                         {"elevation_deg", scene.options.elevationDeg},
                          {"ms", run.ms[i]}, {"image", fs::absolute(run.images[i]).string()}});
     return {{"peer", run.peer}, {"notes", run.notes}, {"setup_ms", run.setupMs}, {"median_ms", run.medianMs()},
             {"p95_ms", run.p95Ms()}, {"views", views}};
@@ -75,7 +76,8 @@ int main(int argc, char** argv) {
     app.add_option("volume", volume, "volume file (e.g. a .raw.gz named NAME_XxYxZ_TYPE.raw.gz)")->required();
     app.add_option("--tf", tf, "ParaView transfer function preset (JSON)")->required();
     app.add_option("--spacing", spacing, "voxel size x,y,z for raw volumes")->delimiter(',')->expected(3);
-    app.add_option("--views", o.views, "orbit of N views 360/N degrees apart at elevation 0")->capture_default_str();
+    app.add_option("--views", o.views, "orbit of N views 360/N degrees apart")->capture_default_str();
+    app.add_option("--elevation", o.elevationDeg, "elevation of every view, degrees")->capture_default_str();
     app.add_option("--size", size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--step", o.stepVoxels, "sample distance in voxels of the smallest spacing")->capture_default_str();
     app.add_option("--threads", o.threads, "threads for every peer that can use them")->capture_default_str();
