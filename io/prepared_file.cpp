@@ -10,6 +10,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <map>
@@ -685,6 +686,12 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
         throw r.fail("labels hold region id " + std::to_string(maxLabel) + " but regionCount is " +
                      std::to_string(p.regions.count));
     return std::move(p);
+}
+
+bool isPreparedFile(const fs::path& path) {
+    char head[sizeof kMagic] = {};
+    std::ifstream in(path, std::ios::binary);
+    return in.read(head, sizeof head) && std::memcmp(head, kMagic, sizeof kMagic) == 0;
 }
 
 }  // namespace vr

@@ -35,4 +35,7 @@ struct PreparedHeader {
 // for a bad header.
 PreparedHeader readPreparedHeader(const std::filesystem::path& path);
 
+// Whether `path` starts as a prepared file does (its magic): what tells a prepared file from a volume to prepare.
+bool isPreparedFile(const std::filesystem::path& path);
+
 }  // namespace vr

@@ -144,6 +144,32 @@ TEST(VolrenderCli, TrilinearByDefaultAndRegionsMadeForNearestSampling) {
     EXPECT_EQ(stats["settings"]["trilinear"], false);
 }
 
+// One command from a volume file to an image: prepared in memory as volprep prepares it, so the image is the one
+// rendered from volprep's file with the same caster.
+TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {
+    const fs::path dir = test::scratchDir("volrender_cli_one_command");
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    const std::string volume = q(test::datasetsDir() / e.file), tf = " --tf " + q(test::datasetsDir() / e.tf);
+    const std::string view = " --size 48x40 --azimuth 30 --elevation 20";
+    const test::CliOutcome one = volrender(volume + tf + view + " -o " + q(dir / "one.exr") + " --stats " +
+                                           q(dir / "one.json"));
+    ASSERT_EQ(one.status, 0) << one.err;
+    const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "one.json"));
+    EXPECT_EQ(stats["settings"]["caster"], "eacd");
+    for (const char* stage : {"load", "classify", "segment", "eacd"})
+        EXPECT_GE(stats["prepareSeconds"][stage].get<double>(), 0.0) << stage;
+    EXPECT_FALSE(stats["prepareSeconds"].contains("pc"));  // only the field of the caster
+
+    ASSERT_EQ(test::runVolprep(volume + tf + " --fields eacd -o " + q(dir / "head.vprep")).status, 0);
+    ASSERT_EQ(volrender(q(dir / "head.vprep") + view + " --caster eacd -o " + q(dir / "file.exr")).status, 0);
+    EXPECT_EQ(maxAbsDifference(readImage(dir / "one.exr"), readImage(dir / "file.exr")), 0.0f);
+
+    expectRejected(volume + view + " -o " + q(dir / "x.png"), "needs --tf");
+    expectRejected(q(dir / "head.vprep") + tf + " -o " + q(dir / "x.png"), "a prepared file holds its transfer function");
+    expectRejected(volume + tf + " --to -1 -o " + q(dir / "x.png"), "--to");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 TEST(VolrenderCli, AutoTakesTheCalibrationOfItsDeviceAndSaysWhich) {
     const fs::path dir = test::scratchDir("volrender_cli_calibration"), user = dir / "config" / "volrender";
     const std::string home = "XDG_CONFIG_HOME=" + q(dir / "config");

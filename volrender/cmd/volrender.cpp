@@ -1,5 +1,6 @@
-// volrender: renders a prepared volume (volprep's output) with one of the four casters, on a Vulkan device or
-// with the CPU reference; writes the image, optionally an iteration heat map and statistics.
+// volrender: renders a prepared volume (volprep's output), or a volume it prepares in the same process, with one of
+// the four casters, on a Vulkan device or with the CPU reference; writes the image, optionally an iteration heat
+// map and statistics.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -13,6 +14,7 @@
 #include "tools/tool_main.h"
 #include "core/errors.h"
 #include "io/prepared_file.h"
+#include "preprocess/cmd/volume_flags.h"
 #include "volrender/cmd/calibration_in_use.h"
 #include "volrender/cmd/heatmap.h"
 #include "render/caster_choice.h"
@@ -25,7 +27,8 @@ namespace {
 
 constexpr vr::ToolText kText{
     "volrender",
-    "Renders a prepared volume (see volprep) by ray casting with homogeneous-region leaping: the primitive "
+    "Renders a volume (any format volprep reads, with --tf; prepared in memory) or a prepared volume (see volprep) "
+    "by ray casting with homogeneous-region leaping: the primitive "
     "caster samples every step; pc, acd and eacd leap through regions with their distance fields and give the "
     "same image at thresholds 0; auto (the default) picks the cheapest for the views. Each sample is interpolated "
     "from the scalars (trilinear by default), classified through the transfer table and shaded from the scalars' "
@@ -35,7 +38,8 @@ constexpr vr::ToolText kText{
 namespace fs = std::filesystem;
 
 struct Flags {
-    std::string prepared, output, caster = "auto", size = "512x512", projection = "ortho";
+    std::string input, output, caster = "auto", size = "512x512", projection = "ortho";
+    vr::VolumeFlags volume;  // for a volume prepared here
     double fov = 30, azimuth = 0, elevation = 0, step = 0.5, ert = 0.99;
     std::vector<double> light, background{0, 0, 0};
     bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false;
@@ -44,7 +48,10 @@ struct Flags {
 };
 
 void addFlags(CLI::App& app, Flags& f) {
-    app.add_option("prepared", f.prepared, "prepared volume written by volprep");
+    app.add_option("input", f.input,
+                   "prepared volume written by volprep, or a volume to prepare here (raw, NRRD, MetaImage, NIfTI, "
+                   "VTI/VTK, VDB or a DICOM folder, as volprep reads them; needs --tf)");
+    vr::addVolumeFlags(app, f.volume);
     app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...");
     app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, or auto (chosen from the file's ray probe and "
                                          "the views by a cost model: see --calibration)")->capture_default_str();
@@ -96,9 +103,19 @@ vr::Vec3d vec(const std::vector<double>& v, const char* flag) {
 
 // Checks that need no data, so that a bad run fails before the prepared file is read.
 void checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
-    if (f.prepared.empty()) throw vr::InputError("no prepared volume given (see --help)");
+    if (f.input.empty()) throw vr::InputError("no volume or prepared volume given (see --help)");
     if (f.output.empty()) throw vr::InputError("no output image given: -o IMAGE");
-    if (!fs::is_regular_file(f.prepared)) throw vr::fileError(f.prepared, "no such file");
+    if (!fs::exists(f.input)) throw vr::fileError(f.input, "no such file");
+    const bool raw = !f.volume.dims.empty() || !f.volume.type.empty() || !f.volume.spacing.empty() || f.volume.bigEndian;
+    if (vr::isPreparedFile(f.input)) {
+        if (!f.volume.tf.empty() || raw)
+            throw vr::fileError(f.input, "a prepared file holds its transfer function and grid: --tf and the raw "
+                                         "flags are for a volume to prepare");
+    } else {
+        if (f.volume.tf.empty())
+            throw vr::fileError(f.input, "not a prepared file: a volume to prepare here needs --tf FILE.json");
+        vr::checkThresholds(f.volume);
+    }
     long long w = 0, h = 0;  // wider than int: 4294967304x8 must not wrap around to 8x8
     char extra = 0;
     if (std::sscanf(f.size.c_str(), "%lldx%lld%c", &w, &h, &extra) != 2)
@@ -133,6 +150,13 @@ void checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     }
 }
 
+// Seconds per stage of a volume prepared here (empty for a prepared file).
+nlohmann::json prepareSeconds(const std::vector<vr::StageTime>& stages) {
+    nlohmann::json seconds = nlohmann::json::object();
+    for (const vr::StageTime& t : stages) seconds[t.stage] = t.seconds;
+    return seconds;
+}
+
 // NAME.EXT -> NAME_007.EXT for view 7 of an orbit; unchanged for a single view.
 std::string numbered(const std::string& path, int index, int views) {
     if (views == 1) return path;
@@ -156,7 +180,7 @@ unsigned fieldsFor(vr::Caster c) {
 // header (the chunks are read once the caster is known).
 vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s,
                             const vr::CasterCalibration& calibration) {
-    const vr::PreparedHeader header = vr::readPreparedHeader(f.prepared);
+    const vr::PreparedHeader header = vr::readPreparedHeader(f.input);
     if (s.trilinear && !header.meta.segmentation.trilinear)
         return {vr::Caster::Primitive, "the regions were made for nearest sampling only (volprep --nearest): "
                                        "trilinear sampling cannot leap through them (render with --nearest to leap)"};
@@ -167,6 +191,21 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
         d.addView(vr::Camera::fit(header.grid, view));
     }
     return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
+}
+
+// The one-command path: the volume loaded, classified, segmented and given the field of the caster only (regions
+// for the sampling and shading asked), in memory, each stage timed.
+vr::PreparedVolume prepareVolume(const Flags& f, const vr::RenderSettings& s, std::vector<vr::StageTime>& stages) {
+    vr::PrepareOptions options = vr::prepareOptionsFrom(f.volume, !s.trilinear, !s.shading);
+    options.fields = fieldsFor(s.caster);
+    vr::StagedPreparation staged =
+        vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume), vr::ClassifiedOnceSegmented::Free);
+    staged.prepare(options);
+    stages = staged.stageTimes();
+    std::printf("prepared:");
+    for (const vr::StageTime& t : stages) std::printf(" %s %.3f s", t.stage.c_str(), t.seconds);
+    std::printf("\n");
+    return std::move(staged).takeResult();
 }
 
 int run(const Flags& f) {
@@ -189,16 +228,22 @@ int run(const Flags& f) {
     }
     const vr::CalibrationInUse calibration =
         vr::calibrationInUse(f.calibration, context ? std::optional(context->info().name) : std::nullopt);
+    const bool prepareHere = !vr::isPreparedFile(f.input);
     std::string choice;  // why --caster auto chose its caster
     if (f.caster == "auto") {
         if (!calibration.note.empty()) std::fprintf(stderr, "volrender: %s\n", calibration.note.c_str());
-        const vr::CasterChoice c = autoCaster(f, view, settings, calibration.constants);
+        const vr::CasterChoice c =
+            prepareHere ? vr::CasterChoice{vr::Caster::EACD, "a volume prepared here has no ray probe before its "
+                                                             "fields exist: EACD, which leaps furthest"}
+                        : autoCaster(f, view, settings, calibration.constants);
         settings.caster = c.caster;
         choice = c.reason;
         std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(c.caster).data(),
                      choice.c_str());
     }
-    const vr::PreparedVolume prepared = vr::readPrepared(f.prepared, fieldsFor(settings.caster));
+    std::vector<vr::StageTime> stages;  // of preparing the volume here
+    const vr::PreparedVolume prepared =
+        prepareHere ? prepareVolume(f, settings, stages) : vr::readPrepared(f.input, fieldsFor(settings.caster));
 
     std::vector<vr::Camera> cameras;
     unsigned octants = 0;  // of every view's rays: the orbit shares one upload
@@ -243,7 +288,7 @@ int run(const Flags& f) {
             std::fprintf(stderr, "volrender: validation error: %s\n", message.c_str());
     if (!f.stats.empty()) {
         nlohmann::json stats{
-            {"prepared", f.prepared},
+            {"prepared", f.input},
             {"renderer", context ? context->info().name : std::string("cpu reference")},
             {"settings",
              {{"caster", vr::casterName(settings.caster)}, {"casterAsked", f.caster}, {"casterChoice", choice},
@@ -252,6 +297,7 @@ int run(const Flags& f) {
               {"shading", settings.shading}, {"trilinear", settings.trilinear}, {"light", f.light},
               {"background", f.background}, {"views", f.views}}},
             {"calibration", vr::calibrationStatistics(calibration)},
+            {"prepareSeconds", prepareSeconds(stages)},
             {"upload", uploadStats},
             {"views", viewStats}};
         std::ofstream(f.stats) << stats.dump(2) << "\n";

@@ -1,0 +1,45 @@
+#include "preprocess/cmd/volume_flags.h"
+
+#include <cmath>
+
+#include "core/errors.h"
+
+namespace vr {
+
+CLI::Option* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
+    CLI::Option* tf = app.add_option("--tf", f.tf, "transfer function: ParaView preset JSON");
+    app.add_option("--to", f.to, "T_o: opacity (and colour) variation allowed within a region")->capture_default_str();
+    app.add_option("--ta", f.ta, "T_a: normal angle allowed within a region, degrees")->capture_default_str();
+    auto* raw = app.add_option_group("raw input", "for headerless raw files whose name does not say it");
+    raw->add_option("--dims", f.dims, "grid size, e.g. 256x256x128")->delimiter('x')->expected(3);
+    raw->add_option("--type", f.type, "voxel type: uint8, int16, uint16 or float32");
+    raw->add_option("--spacing", f.spacing, "voxel size x,y,z")->delimiter(',')->expected(3);
+    raw->add_flag("--big-endian", f.bigEndian, "multi-byte voxels are big-endian");
+    return tf;
+}
+
+void checkThresholds(const VolumeFlags& f) {
+    if (!(f.to >= 0) || !std::isfinite(f.to))
+        throw InputError("--to must be a finite number >= 0, got " + std::to_string(f.to));
+    if (!(f.ta >= 0) || !std::isfinite(f.ta))
+        throw InputError("--ta must be a finite number >= 0 (degrees), got " + std::to_string(f.ta));
+}
+
+RawOptions rawOptionsFrom(const VolumeFlags& f) {
+    RawOptions raw;
+    if (!f.dims.empty()) raw.dims = Vec3i{f.dims[0], f.dims[1], f.dims[2]};
+    if (!f.type.empty()) raw.type = parseScalarType(f.type);
+    if (!f.spacing.empty()) raw.spacing = Vec3d{f.spacing[0], f.spacing[1], f.spacing[2]};
+    raw.bigEndian = f.bigEndian;
+    return raw;
+}
+
+PrepareOptions prepareOptionsFrom(const VolumeFlags& f, bool nearest, bool noNormals) {
+    PrepareOptions o;
+    o.classify.transferFunction = loadTransferFunction(f.tf);
+    o.classify.normals = !noNormals;
+    o.segmentation = {f.to, f.ta, !noNormals, !nearest};
+    return o;
+}
+
+}  // namespace vr
