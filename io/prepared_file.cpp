@@ -685,7 +685,8 @@ Header readHeader(const Reader& r) {
         if (e.offset > r.size())
             throw r.fail("truncated: chunk '" + name + "' starts at byte " + std::to_string(dataStart + e.offset) +
                          " but the file has " + std::to_string(r.size()) + " bytes");
-        uint64_t at = dataStart + e.offset;  // no overflow: each block is at most ZSTD_compressBound(1 GiB) bytes
+        // No overflow: the blocks' bounds add up to at most 64 times the chunk's bytes (< 2^38, from the dims).
+        uint64_t at = dataStart + e.offset;
         for (std::size_t k = 0; k < count; ++k) {
             BlockEntry b{at, countField(r, blocks[k], "compressedBytes", UINT64_MAX),
                          std::min<uint64_t>(block, e.bytes - k * block),
