@@ -107,7 +107,7 @@ DatasetResult benchDataset(const std::string& file, const vr::PrepareOptions& ba
     vr::PrepareOptions options = base;
     options.classify.transferFunction = vr::loadTransferFunction(vr::test::datasetsDir() / e.tf);
     fs::path out = scratch / (file + ".vprep");
-    DatasetResult result{file, {}, {}, {}, 0, 0};
+    DatasetResult result{file, {}, {}, {}, 0, 0, {}};
     for (int run = 0; run < runs; ++run) {
         prepareFile(vr::test::datasetsDir() / file, raw, options, out, result);  // freed before reading it back
 

@@ -174,8 +174,6 @@ std::vector<char> compress(const char* data, std::size_t n, int level = 1, bool 
     return frame;
 }
 
-std::vector<char> compress(const std::vector<char>& bytes) { return compress(bytes.data(), bytes.size()); }
-
 // A chunk's blocks as the file stores them: zstd frames, in order.
 std::vector<std::vector<char>> storedBlocks(const Parts& parts, const std::string& name) {
     const json c = chunkEntry(parts.header, name);
