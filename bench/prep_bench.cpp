@@ -1,6 +1,6 @@
 // Preprocessing benchmark: per dataset, the median over several runs of each stage's wall and CPU time (load,
-// classify, segment, each distance field, write, and reading the prepared file back), the bytes of every field,
-// and what the segmentation produced. Prints Markdown tables.
+// classify, segment, each distance field, write, and reading the prepared file back), the bytes of every chunk in
+// memory and in the file (compressed), and what the segmentation produced. Prints Markdown tables.
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Dense.h>
 #include <tbb/info.h>
@@ -34,7 +34,15 @@ struct DatasetResult {
     std::map<std::string, std::vector<double>> wall, cpu;
     nlohmann::json statistics;  // from the last run (the same every run)
     std::uintmax_t fileBytes = 0, vdbBytes = 0;
+    std::map<std::string, std::uint64_t> storedBytes;  // per entry of kChunks: its chunks' blocks in the file
 };
+
+// The chunk group of kChunks a chunk belongs to (acd0 .. acd7: acd).
+std::string chunkGroup(const std::string& name) {
+    for (const char* octants : {"eacd", "acd"})
+        if (name.rfind(octants, 0) == 0) return octants;
+    return name;
+}
 
 void record(DatasetResult& result, const vr::StageTime& t) {
     result.wall[t.stage].push_back(t.seconds);
@@ -87,6 +95,9 @@ void prepareFile(const fs::path& input, const vr::RawOptions& raw, const vr::Pre
     for (const vr::StageTime& t : staged.stageTimes()) record(result, t);
     result.statistics = staged.withStatistics().meta.statistics;
     result.fileBytes = fs::file_size(out);
+    result.storedBytes.clear();
+    for (const vr::PreparedChunkBytes& c : vr::readPreparedHeader(out).chunks)
+        result.storedBytes[chunkGroup(c.name)] += c.storedBytes;
 }
 
 DatasetResult benchDataset(const std::string& file, const vr::PrepareOptions& base, int runs, const fs::path& scratch) {
@@ -96,7 +107,7 @@ DatasetResult benchDataset(const std::string& file, const vr::PrepareOptions& ba
     vr::PrepareOptions options = base;
     options.classify.transferFunction = vr::loadTransferFunction(vr::test::datasetsDir() / e.tf);
     fs::path out = scratch / (file + ".vprep");
-    DatasetResult result{file, {}, {}, {}, 0, 0};
+    DatasetResult result{file, {}, {}, {}, 0, 0, {}};
     for (int run = 0; run < runs; ++run) {
         prepareFile(vr::test::datasetsDir() / file, raw, options, out, result);  // freed before reading it back
 
@@ -165,15 +176,24 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
                     median(r.cpu.at("vdb read")), dense / vdbRead);
     }
 
-    std::printf("\nMiB per chunk:\n\n| dataset |");
+    std::printf("\nMiB per chunk, in memory (uncompressed) / in the file (zstd level %d, blocks of %zu MiB):\n\n"
+                "| dataset |", vr::kPreparedZstdLevel, vr::kPreparedBlockBytes >> 20);
     for (const auto& c : kChunks) std::printf(" %s |", c.c_str());
-    std::printf(" file |\n|---|");
-    for (std::size_t i = 0; i <= kChunks.size(); ++i) std::printf("---:|");
+    std::printf(" all | file | file bytes per voxel |\n|---|");
+    for (std::size_t i = 0; i <= kChunks.size() + 2; ++i) std::printf("---:|");
     std::printf("\n");
     for (const auto& r : results) {
         std::printf("| %s |", r.name.c_str());
-        for (const auto& c : kChunks) std::printf(" %.1f |", mib(r.statistics["bytes"][c].get<double>()));
-        std::printf(" %.1f |\n", mib(double(r.fileBytes)));
+        double all = 0, stored = 0;
+        for (const auto& c : kChunks) {
+            const double bytes = r.statistics["bytes"][c].get<double>();
+            const double inFile = r.storedBytes.count(c) ? double(r.storedBytes.at(c)) : 0.0;
+            all += bytes;
+            stored += inFile;
+            std::printf(" %.1f / %.2f |", mib(bytes), mib(inFile));
+        }
+        std::printf(" %.1f / %.2f (%.1fx) | %.2f | %.2f |\n", mib(all), mib(stored), all / stored,
+                    mib(double(r.fileBytes)), double(r.fileBytes) / r.statistics["voxels"].get<double>());
     }
 
     std::printf("\nRegions and mean leaps in voxels (ACD edge: the same in every octant; EACD extents x,y,z of octant 0):\n\n"

@@ -227,15 +227,42 @@ def chunk_blob(name, components, size, voxels, scalar_type, entries):
     return bytes((i * 7 + len(name)) % 251 for i in range(voxels * components * size))
 
 
-def prepared_file(dims, chunks, version=3, eacd_code="exact", scalar_type="uint8", entries=4):
+def zstd_frame(data):
+    """One zstd frame (RFC 8878) holding `data` uncompressed: an RLE block when every byte is the same, else raw blocks.
+    The frame states its size (single segment, 4-byte content size), as the prepared file's frames must."""
+    frame = struct.pack("<IBI", 0xFD2FB528, 0xA0, len(data))
+    if len(set(data)) == 1:
+        return frame + struct.pack("<I", 1 | 1 << 1 | len(data) << 3)[:3] + data[:1]
+    pieces = [data[i:i + (128 << 10)] for i in range(0, len(data), 128 << 10)]
+    for i, piece in enumerate(pieces):
+        frame += struct.pack("<I", (i == len(pieces) - 1) | 0 << 1 | len(piece) << 3)[:3] + piece
+    return frame
+
+
+def prepared_file(dims, chunks, version=4, eacd_code="exact", scalar_type="uint8", entries=4, block_bytes=16,
+                  edit_block=None):
+    """A prepared file. Version 4: each chunk in zstd frames of block_bytes bytes each (the last one the rest), each
+    frame with its CRC-32; version 3 and earlier: the chunks raw, each with its CRC-32. edit_block(name, k, frame)
+    may return another frame for block k of chunk `name` (its CRC-32 is the new frame's)."""
     voxels = dims[0] * dims[1] * dims[2]
     table, blobs, offset = [], [], 0
     for name, type_, components, size in chunks:
         blob = chunk_blob(name, components, size, voxels, scalar_type, entries)
-        table.append({"name": name, "type": type_, "components": components, "offset": offset, "bytes": len(blob),
-                      "crc32": zlib.crc32(blob)})
-        blobs.append(blob)
-        offset += len(blob)
+        entry = {"name": name, "type": type_, "components": components, "offset": offset, "bytes": len(blob)}
+        if version >= 4:
+            entry["blocks"] = []
+            for k, at in enumerate(range(0, len(blob), block_bytes)):
+                frame = zstd_frame(blob[at:at + block_bytes])
+                if edit_block:
+                    frame = edit_block(name, k, frame)
+                entry["blocks"].append({"compressedBytes": len(frame), "crc32": zlib.crc32(frame)})
+                blobs.append(frame)
+                offset += len(frame)
+        else:
+            entry["crc32"] = zlib.crc32(blob)
+            blobs.append(blob)
+            offset += len(blob)
+        table.append(entry)
     header = {
         "grid": {"dims": list(dims), "spacing": [1.0, 1.0, 2.0], "origin": [0.0, 0.0, 0.0]},
         "referenceStep": 1.0, "regionCount": 2,
@@ -249,6 +276,8 @@ def prepared_file(dims, chunks, version=3, eacd_code="exact", scalar_type="uint8
         header["scalarType"] = scalar_type
         header["flatGradient"] = 1e-6
         header["transferTable"] = {"lo": 0.0, "step": 1.0, "entries": entries}
+    if version >= 4:  # version 4: every chunk compressed in blocks
+        header["compression"] = {"codec": "zstd", "level": 1, "blockBytes": block_bytes}
     header = json.dumps(header, indent=1).encode()
     return (b"VOLPREP\0" + struct.pack("<IQ", version, len(header)) + header + struct.pack("<I", zlib.crc32(header))
             + b"".join(blobs))
@@ -267,6 +296,8 @@ def prepared():
               + [("eacd%d" % o, "uint8", 3, 1) for o in range(8)])
     put("prepared", "all_chunks", prepared_file((2, 2, 1), base() + fields))
     put("prepared", "no_fields", prepared_file((3, 1, 2), base()))
+    put("prepared", "one_block_per_chunk", prepared_file((3, 2, 2), base() + fields, block_bytes=4 << 20))
+    put("prepared", "one_byte_blocks", prepared_file((2, 1, 1), base() + fields[:1], block_bytes=1))
     for scalar_type in ("int16", "uint16", "float32"):
         put("prepared", scalar_type + "_scalars",
             prepared_file((3, 1, 2), base(scalar_type) + fields[:1], scalar_type=scalar_type, entries=3))
@@ -275,12 +306,25 @@ def prepared():
     for code, type_, size in (("log16", "uint16", 2), ("joint8", "uint8", 1)):
         coded = fields[:-8] + [("eacd%d" % o, type_, 1, size) for o in range(8)]
         put("prepared", code + "_chunks", prepared_file((2, 2, 1), base() + coded, eacd_code=code))
-    # Version 2 held the classified volume (sigma, colour, normal) instead of the scalars and the table.
+    # Version 2 held the classified volume (sigma, colour, normal) instead of the scalars and the table; version 3
+    # the chunks uncompressed.
     classified = [("sigma", "float32", 1, 4), ("colour", "float32", 3, 4), ("normal", "float32", 3, 4),
                   ("labels", "uint32", 1, 4)]
     put("prepared", "version_2", prepared_file((2, 2, 1), classified + fields, version=2))
+    put("prepared", "version_3", prepared_file((2, 2, 1), base() + fields, version=3))
     put("prepared", "wrong_version", prepared_file((2, 2, 1), base(), version=7))
     put("prepared", "truncated", prepared_file((2, 2, 1), base() + fields)[:-30])
+    # Blocks that are not what the chunk table says, each with a matching CRC-32: a frame stating another size, one
+    # that is not zstd, one with a byte after it.
+    lie = lambda name, k, frame: zstd_frame(b"\1" * 5) if (name, k) == ("labels", 0) else frame
+    put("prepared", "frame_of_another_size", prepared_file((2, 2, 1), base(), edit_block=lie))
+    junk = lambda name, k, frame: b"not a zstd frame" if (name, k) == ("scalars", 0) else frame
+    put("prepared", "not_zstd", prepared_file((2, 2, 1), base(), edit_block=junk))
+    extra = lambda name, k, frame: frame + b"\0" if (name, k) == ("table", 1) else frame
+    put("prepared", "byte_after_frame", prepared_file((2, 2, 1), base(), edit_block=extra))
+    corrupt = bytearray(prepared_file((2, 2, 1), base() + fields))
+    corrupt[-5] ^= 0x40  # in eacd7's last frame: its CRC-32 no longer matches
+    put("prepared", "block_checksum_mismatch", bytes(corrupt))
 
 
 if __name__ == "__main__":

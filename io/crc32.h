@@ -1,5 +1,5 @@
-// CRC-32 (zlib's) of large buffers: computed in blocks on all threads and combined. The prepared file's checksums,
-// and the benchmarks' bit-for-bit checks of a faster stage.
+// CRC-32 (zlib's) of large buffers: computed in blocks on all threads and combined. The prepared file's checksums (of
+// its header and of each compressed block), and the benchmarks' bit-for-bit checks of a faster stage.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -7,7 +7,7 @@
 
 namespace vr {
 
-// Blocks checksummed on their own; the prepared file's reader checksums each block as it reads it.
+// Blocks checksummed on their own, on all threads, and combined.
 constexpr std::size_t kCrcBlock = std::size_t(8) << 20;
 
 // The CRC of `bytes` bytes at data, continuing from `crc` (the CRC of what comes before them; 0: nothing).

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 #include <unistd.h>
+#include <zstd.h>
 
 #include <algorithm>
 #include <bit>
@@ -14,6 +15,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -307,9 +309,17 @@ private:
     int fd_ = -1;
 };
 
-struct ChunkEntry {
-    uint64_t offset, bytes;
+// One block of a chunk in the file: a zstd frame of `stored` bytes at `at` (from the start of the file) that
+// decompresses to `bytes`, and the CRC-32 of the frame.
+struct BlockEntry {
+    uint64_t at, stored, bytes;
     uint32_t crc;
+};
+
+struct ChunkEntry {
+    uint64_t offset = 0, bytes = 0;  // of the first block (from the data section), and uncompressed
+    uint64_t storedBytes = 0;        // of all its blocks
+    std::vector<BlockEntry> blocks;
 };
 
 // Pulls a typed value out of the header; a missing key or a wrong type is a bad header, not a crash.
@@ -357,42 +367,73 @@ std::function<char*()> destination(ExtentField& field, std::size_t bytes, Extent
     };
 }
 
-// Allocates every destination (in parallel: the page faults are a large part of the cost), then reads and
-// checksums the blocks of all chunks in parallel (each block while it is still in cache), and compares each
-// chunk's combined CRC-32.
-void readChunks(const Reader& r, uint64_t dataStart, const std::vector<ChunkRead>& reads) {
+// What is wrong with a block whose frame is at `frame`, if anything; decompressed into `to` when nothing is. The
+// frame's CRC-32 is checked before zstd reads it; then it must be one zstd frame that states the block's size and
+// decompresses to exactly that.
+std::string decodeBlock(const char* frame, const BlockEntry& b, char* to, const std::string& chunk, std::size_t k,
+                        std::size_t blocks) {
+    const std::string block = " block " + std::to_string(k) + " of " + std::to_string(blocks);
+    const std::string where = "chunk '" + chunk + "'" + block;
+    if (crc32Of(frame, b.stored) != b.crc) return "chunk '" + chunk + "' checksum mismatch in" + block + " (file is corrupted)";
+    const std::size_t frameBytes = ZSTD_findFrameCompressedSize(frame, b.stored);
+    if (ZSTD_isError(frameBytes)) return where + " cannot be decompressed (zstd: " + ZSTD_getErrorName(frameBytes) + ")";
+    if (frameBytes != b.stored)
+        return where + " holds " + std::to_string(b.stored) + " bytes but its zstd frame takes " + std::to_string(frameBytes);
+    const unsigned long long content = ZSTD_getFrameContentSize(frame, b.stored);
+    if (content == ZSTD_CONTENTSIZE_UNKNOWN || content == ZSTD_CONTENTSIZE_ERROR)
+        return where + " does not state its decompressed size";
+    if (content != b.bytes)
+        return where + " decompresses to " + std::to_string(content) + " bytes but should hold " + std::to_string(b.bytes);
+    const std::size_t got = ZSTD_decompress(to, b.bytes, frame, b.stored);
+    if (ZSTD_isError(got)) return where + " cannot be decompressed (zstd: " + ZSTD_getErrorName(got) + ")";
+    if (got != b.bytes)
+        return where + " decompresses to " + std::to_string(got) + " bytes but should hold " + std::to_string(b.bytes);
+    return {};
+}
+
+// Allocates every destination (in parallel: the page faults are a large part of the cost), then reads, checks and
+// decompresses the blocks of all chunks in parallel, each straight into its place in the destination. A problem is
+// reported for the first bad block in the order of `reads`, so that the message does not depend on the threads.
+void readChunks(const Reader& r, const std::vector<ChunkRead>& reads) {
     std::vector<char*> data(reads.size());
     tbb::parallel_for(std::size_t(0), reads.size(), [&](std::size_t i) { data[i] = reads[i].allocate(); });
 
-    struct Block {
-        std::size_t chunk;
-        uint64_t begin, bytes;
+    struct Job {
+        std::size_t chunk, block;
+        uint64_t to;  // where its bytes go in the chunk
     };
-    std::vector<Block> blocks;
-    for (std::size_t i = 0; i < reads.size(); ++i)
-        for (uint64_t b = 0; b < reads[i].entry.bytes; b += kCrcBlock)
-            blocks.push_back({i, b, std::min<uint64_t>(kCrcBlock, reads[i].entry.bytes - b)});
-    std::vector<uint32_t> crcs(blocks.size());
-    tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t k) {
-        const Block& b = blocks[k];
-        const ChunkRead& c = reads[b.chunk];
-        char* to = data[b.chunk] + b.begin;
-        r.read(dataStart + c.entry.offset + b.begin, to, b.bytes, "chunk '" + c.name + "'");
-        crcs[k] = crc32Of(to, b.bytes);
+    std::vector<Job> jobs;
+    for (std::size_t i = 0; i < reads.size(); ++i) {
+        uint64_t to = 0;
+        for (std::size_t k = 0; k < reads[i].entry.blocks.size(); ++k) {
+            jobs.push_back({i, k, to});
+            to += reads[i].entry.blocks[k].bytes;
+        }
+    }
+    std::vector<std::string> problems(jobs.size());
+    tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t j) {
+        const Job& job = jobs[j];
+        const ChunkRead& c = reads[job.chunk];
+        const BlockEntry& b = c.entry.blocks[job.block];
+        std::unique_ptr<char[]> frame(new char[b.stored]);
+        r.read(b.at, frame.get(), b.stored, "chunk '" + c.name + "'");
+        problems[j] = decodeBlock(frame.get(), b, data[job.chunk] + job.to, c.name, job.block, c.entry.blocks.size());
     });
-
-    std::vector<uint32_t> chunkCrc(reads.size(), 0);
-    for (std::size_t k = 0; k < blocks.size(); ++k)
-        chunkCrc[blocks[k].chunk] = crc32Combine(chunkCrc[blocks[k].chunk], crcs[k], blocks[k].bytes);
-    for (std::size_t i = 0; i < reads.size(); ++i)
-        if (chunkCrc[i] != reads[i].entry.crc)
-            throw r.fail("chunk '" + reads[i].name + "' checksum mismatch (file is corrupted)");
+    for (const std::string& problem : problems)
+        if (!problem.empty()) throw r.fail(problem);
 }
 
 }  // namespace
 
-void writePrepared(const fs::path& path, const PreparedVolume& p) {
+void writePrepared(const fs::path& path, const PreparedVolume& p, const PreparedWriteOptions& options) {
     checkSizes(path, p);
+    if (options.blockBytes < 1 || options.blockBytes > kMaxPreparedBlockBytes)
+        throw fileError(path.string(), "cannot write: blocks of " + std::to_string(options.blockBytes) +
+                                           " bytes (must be 1 to " + std::to_string(kMaxPreparedBlockBytes) + ")");
+    if (options.zstdLevel < ZSTD_minCLevel() || options.zstdLevel > ZSTD_maxCLevel())
+        throw fileError(path.string(), "cannot write: zstd level " + std::to_string(options.zstdLevel) + " (must be " +
+                                           std::to_string(ZSTD_minCLevel()) + " to " +
+                                           std::to_string(ZSTD_maxCLevel()) + ")");
     const GridGeometry& g = p.grid();
     const ExtentCode code = p.fields.eacdCode();
     const ScalarType scalarType = p.scalars.sourceType;
@@ -407,18 +448,53 @@ void writePrepared(const fs::path& path, const PreparedVolume& p) {
                                        source("labels", p.regions.label)};
     for (ChunkSource& c : fieldSources(p)) chunks.push_back(std::move(c));
 
+    // Every block of every chunk is compressed on its own (one zstd frame stating its size), all on all threads,
+    // and checksummed as stored.
+    struct Block {
+        std::size_t chunk;
+        uint64_t begin, bytes;                // in the chunk, uncompressed
+        std::unique_ptr<char[]> frame;        // ZSTD_compressBound(bytes) allocated, `stored` used
+        std::size_t stored = 0;
+        uint32_t crc = 0;
+    };
+    std::vector<uint64_t> chunkBytes;
+    std::vector<Block> blocks;
+    for (std::size_t i = 0; i < chunks.size(); ++i) {
+        ChunkLayout l = layoutOf(chunks[i].name, code, scalarType);
+        chunkBytes.push_back(uint64_t(chunks[i].elements) * l.components * l.elementBytes);
+        for (uint64_t b = 0; b < chunkBytes[i]; b += options.blockBytes)
+            blocks.push_back({i, b, std::min<uint64_t>(options.blockBytes, chunkBytes[i] - b), nullptr});
+    }
+    tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t k) {
+        Block& b = blocks[k];
+        const std::size_t capacity = ZSTD_compressBound(b.bytes);
+        b.frame.reset(new char[capacity]);
+        const std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> context(ZSTD_createCCtx(), &ZSTD_freeCCtx);
+        if (!context) throw std::bad_alloc();
+        b.stored = ZSTD_compressCCtx(context.get(), b.frame.get(), capacity,
+                                     static_cast<const char*>(chunks[b.chunk].data) + b.begin, b.bytes, options.zstdLevel);
+        if (ZSTD_isError(b.stored))
+            throw fileError(path.string(), std::string("cannot write: zstd: ") + ZSTD_getErrorName(b.stored));
+        b.crc = crc32Of(b.frame.get(), b.stored);
+    });
+
     json table = json::array();
     uint64_t offset = 0;
-    for (const ChunkSource& c : chunks) {
-        ChunkLayout l = layoutOf(c.name, code, scalarType);
-        uint64_t bytes = uint64_t(c.elements) * l.components * l.elementBytes;
-        table.push_back({{"name", c.name},
+    for (std::size_t i = 0; i < chunks.size(); ++i) {
+        ChunkLayout l = layoutOf(chunks[i].name, code, scalarType);
+        const uint64_t chunkOffset = offset;
+        json stored = json::array();
+        for (const Block& b : blocks)
+            if (b.chunk == i) {
+                stored.push_back({{"compressedBytes", b.stored}, {"crc32", b.crc}});
+                offset += b.stored;
+            }
+        table.push_back({{"name", chunks[i].name},
                          {"type", l.type},
                          {"components", l.components},
-                         {"offset", offset},
-                         {"bytes", bytes},
-                         {"crc32", crc32Of(c.data, bytes)}});
-        offset += bytes;
+                         {"bytes", chunkBytes[i]},
+                         {"offset", chunkOffset},
+                         {"blocks", stored}});
     }
     json header = {{"grid",
                     {{"dims", {g.dims.x, g.dims.y, g.dims.z}}, {"spacing", vec3Json(g.spacing)}, {"origin", vec3Json(g.origin)}}},
@@ -429,6 +505,7 @@ void writePrepared(const fs::path& path, const PreparedVolume& p) {
                    {"regionCount", p.regions.count},
                    {"metadata", metadataJson(p.meta)},
                    {"eacdCode", extentCodeName(code)},
+                   {"compression", {{"codec", "zstd"}, {"level", options.zstdLevel}, {"blockBytes", options.blockBytes}}},
                    {"chunks", table}};
     // Paths need not be UTF-8: replace what JSON cannot hold rather than fail the write.
     std::string text = header.dump(1, ' ', false, json::error_handler_t::replace);
@@ -442,8 +519,7 @@ void writePrepared(const fs::path& path, const PreparedVolume& p) {
         out.write(reinterpret_cast<const char*>(&headerBytes), sizeof(headerBytes));
         out.write(text.data(), std::streamsize(text.size()));
         out.write(reinterpret_cast<const char*>(&headerCrc), sizeof(headerCrc));
-        for (std::size_t i = 0; i < chunks.size(); ++i)
-            out.write(static_cast<const char*>(chunks[i].data), std::streamsize(table[i]["bytes"].get<uint64_t>()));
+        for (const Block& b : blocks) out.write(b.frame.get(), std::streamsize(b.stored));
     });
 }
 
@@ -455,7 +531,9 @@ struct Header {
     std::size_t tableEntries = 0;
     ExtentCode eacdCode = kDefaultExtentCode;
     std::map<std::string, ChunkEntry> chunks;  // by name
+    std::vector<std::string> order;            // the chunks' names in the order of the chunk table
     uint64_t dataStart = 0;                    // where the chunks' offsets start
+    uint64_t blockBytes = 0;                   // of every chunk's blocks but its last, uncompressed
 };
 
 // A number (not a string or a bool) that `valid` accepts; `rule` says which ones do.
@@ -567,8 +645,19 @@ Header readHeader(const Reader& r) {
         throw r.fail(std::string("bad header: ") + e.what());
     }
 
-    // The chunk table must agree with the dims (the table chunk: with its entry count) and lie inside the file
-    // before anything is allocated.
+    json compression = field<json>(r, header, "compression");
+    if (!compression.is_object()) throw r.fail("bad header: missing or invalid 'compression'");
+    const auto codec = field<std::string>(r, compression, "codec");
+    if (codec != "zstd") throw r.fail("bad header: 'compression.codec': unknown codec '" + codec + "' (expected zstd)");
+    json blockBytes = field<json>(r, compression, "blockBytes");
+    if (!blockBytes.is_number_unsigned() || blockBytes.get<uint64_t>() < 1 ||
+        blockBytes.get<uint64_t>() > kMaxPreparedBlockBytes)
+        throw r.fail("bad header: 'compression.blockBytes' must be an integer from 1 to " +
+                     std::to_string(kMaxPreparedBlockBytes));
+    const uint64_t block = h.blockBytes = blockBytes.get<uint64_t>();
+
+    // The chunk table must agree with the dims (the table chunk: with its entry count), its blocks with the chunk's
+    // size, and every block must lie inside the file before anything is allocated.
     std::map<std::string, ChunkEntry>& table = h.chunks;
     for (const json& chunk : field<json>(r, header, "chunks")) {
         auto name = field<std::string>(r, chunk, "name");
@@ -578,8 +667,9 @@ Header readHeader(const Reader& r) {
         if (field<std::string>(r, chunk, "type") != l.type ||
             countField(r, chunk, "components", kTableComponents) != uint64_t(l.components))
             throw r.fail("bad header: chunk '" + name + "' should be " + std::to_string(l.components) + " x " + l.type);
-        ChunkEntry e{countField(r, chunk, "offset", UINT64_MAX), countField(r, chunk, "bytes", UINT64_MAX),
-                     uint32_t(countField(r, chunk, "crc32", UINT32_MAX))};
+        ChunkEntry e;
+        e.offset = countField(r, chunk, "offset", UINT64_MAX);
+        e.bytes = countField(r, chunk, "bytes", UINT64_MAX);
         const bool isTable = name == "table";
         uint64_t expected = uint64_t(isTable ? h.tableEntries : voxelCount(n)) * l.components * l.elementBytes;
         if (e.bytes != expected)
@@ -587,10 +677,35 @@ Header readHeader(const Reader& r) {
                          (isTable ? "a transfer table of " + std::to_string(h.tableEntries) + " entries"
                                   : "grid " + dimsText) +
                          " needs " + std::to_string(expected));
-        if (e.offset > r.size() || dataStart + e.offset + e.bytes > r.size())
-            throw r.fail("truncated: chunk '" + name + "' ends at byte " + std::to_string(dataStart + e.offset + e.bytes) +
+        const json blocks = field<json>(r, chunk, "blocks");
+        const uint64_t count = e.bytes / block + (e.bytes % block != 0);
+        if (!blocks.is_array() || blocks.size() != count)
+            throw r.fail("chunk '" + name + "' has " + (blocks.is_array() ? std::to_string(blocks.size()) : "no") +
+                         " blocks but " + std::to_string(e.bytes) + " bytes in blocks of " + std::to_string(block) +
+                         " bytes make " + std::to_string(count));
+        if (e.offset > r.size())
+            throw r.fail("truncated: chunk '" + name + "' starts at byte " + std::to_string(dataStart + e.offset) +
                          " but the file has " + std::to_string(r.size()) + " bytes");
+        // No overflow: the blocks' bounds add up to at most 64 times the chunk's bytes (< 2^38, from the dims).
+        uint64_t at = dataStart + e.offset;
+        for (std::size_t k = 0; k < count; ++k) {
+            BlockEntry b{at, countField(r, blocks[k], "compressedBytes", UINT64_MAX),
+                         std::min<uint64_t>(block, e.bytes - k * block),
+                         uint32_t(countField(r, blocks[k], "crc32", UINT32_MAX))};
+            const uint64_t bound = ZSTD_compressBound(b.bytes);
+            if (b.stored < 1 || b.stored > bound)
+                throw r.fail("chunk '" + name + "' block " + std::to_string(k) + " of " + std::to_string(count) +
+                             " holds " + std::to_string(b.stored) + " compressed bytes (a zstd frame of " +
+                             std::to_string(b.bytes) + " bytes takes 1 to " + std::to_string(bound) + ")");
+            e.blocks.push_back(b);
+            at += b.stored;
+        }
+        e.storedBytes = at - dataStart - e.offset;
+        if (at > r.size())
+            throw r.fail("truncated: chunk '" + name + "' ends at byte " + std::to_string(at) + " but the file has " +
+                         std::to_string(r.size()) + " bytes");
         table[name] = e;
+        h.order.push_back(name);
     }
     return h;
 }
@@ -601,7 +716,9 @@ PreparedHeader readPreparedHeader(const fs::path& path) {
     Header h = readHeader(Reader(path));
     auto bytes = [&](const std::string& name) { return h.chunks.count(name) ? h.chunks.at(name).bytes : 0; };
     PreparedHeader out{h.prepared.grid(), h.prepared.scalars.sourceType, h.tableEntries, std::move(h.prepared.meta),
-                       {bytes("pc"), 0, 0}};
+                       {bytes("pc"), 0, 0}, {}};
+    for (const std::string& name : h.order)
+        out.chunks.push_back({name, h.chunks.at(name).bytes, h.chunks.at(name).storedBytes});
     for (int o = 0; o < kOctants; ++o) {
         out.fieldBytes.acd += bytes("acd" + std::to_string(o));
         out.fieldBytes.eacd += bytes("eacd" + std::to_string(o));
@@ -660,7 +777,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
     }
     if (fields & kFieldACD) wantOctants("acd", "ACD", p.fields.acd);
     if (fields & kFieldEACD) wantOctants("eacd", "EACD", p.fields.eacd);
-    readChunks(r, h.dataStart, reads);
+    readChunks(r, reads);
 
     decodeScalars(scalarBytesRead, scalarType, values);
     std::vector<char>().swap(scalarBytesRead);

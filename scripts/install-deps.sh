@@ -5,7 +5,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libvtk9-dev libopenvdb-dev libboost-iostreams-dev libopenimageio-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools
-  libtbb-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+  libtbb-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libzstd-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox libvolpack1-dev
   "$@"

@@ -1,6 +1,8 @@
-// The prepared file: exact round trip, selective reading, and a clear InputError for every kind of damage.
+// The prepared file: exact round trip, selective reading, its zstd blocks, and a clear InputError for every kind of
+// damage.
 #include <gtest/gtest.h>
 #include <zlib.h>
+#include <zstd.h>
 
 #include <cmath>
 #include <cstring>
@@ -155,14 +157,89 @@ json& chunkEntryToEdit(json& header, const std::string& name) {
     throw std::runtime_error("no chunk " + name);
 }
 
-// Overwrites `bytes` bytes of chunk `name` from `at` (bytes into the chunk) and updates the chunk's CRC-32, so that
-// the chunk is well formed but holds what the writer would refuse.
+uint32_t crcOf(const std::vector<char>& bytes) {
+    return uint32_t(crc32_z(0, reinterpret_cast<const Bytef*>(bytes.data()), bytes.size()));
+}
+
+// One zstd frame of `n` bytes at `data`, stating its size unless `statesSize` is false.
+std::vector<char> compress(const char* data, std::size_t n, int level = 1, bool statesSize = true) {
+    std::vector<char> frame(ZSTD_compressBound(n));
+    ZSTD_CCtx* context = ZSTD_createCCtx();
+    ZSTD_CCtx_setParameter(context, ZSTD_c_compressionLevel, level);
+    ZSTD_CCtx_setParameter(context, ZSTD_c_contentSizeFlag, statesSize ? 1 : 0);
+    const std::size_t stored = ZSTD_compress2(context, frame.data(), frame.size(), data, n);
+    ZSTD_freeCCtx(context);
+    if (ZSTD_isError(stored)) throw std::runtime_error(ZSTD_getErrorName(stored));
+    frame.resize(stored);
+    return frame;
+}
+
+// A chunk's blocks as the file stores them: zstd frames, in order.
+std::vector<std::vector<char>> storedBlocks(const Parts& parts, const std::string& name) {
+    const json c = chunkEntry(parts.header, name);
+    std::vector<std::vector<char>> blocks;
+    uint64_t at = c["offset"].get<uint64_t>();
+    for (const json& b : c["blocks"]) {
+        const uint64_t n = b["compressedBytes"].get<uint64_t>();
+        blocks.emplace_back(parts.data.begin() + std::ptrdiff_t(at), parts.data.begin() + std::ptrdiff_t(at + n));
+        at += n;
+    }
+    return blocks;
+}
+
+// A chunk's bytes, its blocks decompressed.
+std::vector<char> chunkBytes(const Parts& parts, const std::string& name) {
+    std::vector<char> bytes;
+    for (const std::vector<char>& frame : storedBlocks(parts, name)) {
+        const unsigned long long n = ZSTD_getFrameContentSize(frame.data(), frame.size());
+        if (n == ZSTD_CONTENTSIZE_UNKNOWN || n == ZSTD_CONTENTSIZE_ERROR) throw std::runtime_error("frame without size");
+        const std::size_t at = bytes.size();
+        bytes.resize(at + n);
+        if (ZSTD_decompress(bytes.data() + at, n, frame.data(), frame.size()) != n) throw std::runtime_error("bad frame");
+    }
+    return bytes;
+}
+
+// Stores `blocks` as chunk `name`'s (their entries take the new sizes and CRC-32s), moving the chunks after it, so
+// that the chunk table is consistent but for what the blocks hold.
+void replaceBlocks(Parts& parts, const std::string& name, const std::vector<std::vector<char>>& blocks) {
+    std::vector<std::vector<std::vector<char>>> all;
+    for (const json& c : parts.header["chunks"])
+        all.push_back(c["name"] == name ? blocks : storedBlocks(parts, c["name"].get<std::string>()));
+    parts.data.clear();
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        json& c = parts.header["chunks"][i];
+        c["offset"] = parts.data.size();
+        c["blocks"] = json::array();
+        for (const std::vector<char>& frame : all[i]) {
+            c["blocks"].push_back({{"compressedBytes", frame.size()}, {"crc32", crcOf(frame)}});
+            parts.data.insert(parts.data.end(), frame.begin(), frame.end());
+        }
+    }
+}
+
+// Stores `bytes` as chunk `name`, compressed in blocks of the header's size.
+void rewriteChunk(Parts& parts, const std::string& name, const std::vector<char>& bytes) {
+    const uint64_t block = parts.header["compression"]["blockBytes"].get<uint64_t>();
+    std::vector<std::vector<char>> blocks;
+    for (uint64_t b = 0; b < bytes.size(); b += block)
+        blocks.push_back(compress(bytes.data() + b, std::min<uint64_t>(block, bytes.size() - b)));
+    replaceBlocks(parts, name, blocks);
+}
+
+// Overwrites `size` bytes of chunk `name` from `at` (bytes into the chunk, uncompressed) and compresses it again,
+// so that the chunk is well formed but holds what the writer would refuse.
 void patchChunk(Parts& parts, const std::string& name, uint64_t at, const void* bytes, std::size_t size) {
-    json& c = chunkEntryToEdit(parts.header, name);
-    const uint64_t offset = c["offset"].get<uint64_t>();
-    std::memcpy(parts.data.data() + offset + at, bytes, size);
-    c["crc32"] = uint32_t(crc32_z(0, reinterpret_cast<const Bytef*>(parts.data.data() + offset),
-                                  c["bytes"].get<uint64_t>()));
+    std::vector<char> plain = chunkBytes(parts, name);
+    std::memcpy(plain.data() + at, bytes, size);
+    rewriteChunk(parts, name, plain);
+}
+
+// The bytes of an array, to compare with a chunk's.
+template <typename T>
+std::vector<char> bytesOf(const std::vector<T>& v) {
+    const char* p = reinterpret_cast<const char*>(v.data());
+    return {p, p + v.size() * sizeof(T)};
 }
 
 // readPrepared must throw an InputError naming the file and containing `problem`.
@@ -178,9 +255,10 @@ void expectRejected(const fs::path& p, const std::string& problem, unsigned fiel
 }
 
 // writePrepared must throw an InputError naming the file and containing `problem`, and write nothing.
-void expectWriteRefused(const fs::path& p, const PreparedVolume& prepared, const std::string& problem) {
+void expectWriteRefused(const fs::path& p, const PreparedVolume& prepared, const std::string& problem,
+                        const PreparedWriteOptions& options = {}) {
     try {
-        writePrepared(p, prepared);
+        writePrepared(p, prepared, options);
         ADD_FAILURE() << "write of " << p << " succeeded; expected: " << problem;
     } catch (const InputError& e) {
         std::string m = e.what();
@@ -190,13 +268,16 @@ void expectWriteRefused(const fs::path& p, const PreparedVolume& prepared, const
     EXPECT_FALSE(fs::exists(p));
 }
 
+// The good file's blocks: small, so that every chunk but the one-byte ones spans several (labels: 4 blocks).
+constexpr std::size_t kSmallBlock = 512;
+
 class IoPreparedFile : public ::testing::Test {
 protected:
     void SetUp() override {
         dir = test::scratchDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
         good = dir / "good.vprep";
         prepared = samplePrepared({13, 7, 5});
-        writePrepared(good, prepared);
+        writePrepared(good, prepared, {kPreparedZstdLevel, kSmallBlock});
         bad = dir / "bad.vprep";
     }
     // The good file, its header edited by `edit` (and its checksum updated), is rejected naming `problem`.
@@ -237,8 +318,8 @@ TEST_F(IoPreparedFile, RoundTripKeepsEveryChunkAndTheMetadata) {
     EXPECT_LT(*std::min_element(r.scalars.values.begin(), r.scalars.values.end()), 0.0f);  // int16 below zero kept
 }
 
-// The scalars are stored in the volume's own type, each exactly, the ends of the type's range included; the file is
-// the scalar bytes, 4 label bytes and the field bytes per voxel, and the table.
+// The scalars are stored in the volume's own type, each exactly, the ends of the type's range included; the chunks
+// hold the scalar bytes, 4 label bytes and the field bytes per voxel, and the table, compressed.
 TEST_F(IoPreparedFile, RoundTripOfEveryScalarType) {
     for (ScalarType type : kEveryScalarType) {
         SCOPED_TRACE(scalarTypeName(type));
@@ -266,7 +347,24 @@ TEST_F(IoPreparedFile, RoundTripOfEveryScalarType) {
         EXPECT_EQ(c["components"], 1);
         const std::size_t n = p.grid().voxels();
         EXPECT_EQ(c["bytes"], n * scalarBytes(type));
-        EXPECT_EQ(parts.data.size(), n * (scalarBytes(type) + 4 + 1 + kOctants * (1 + 3)) + 37 * 16);
+        std::vector<char> own(n * scalarBytes(type));  // the values in their own type, as the chunk holds them
+        for (std::size_t i = 0; i < n; ++i) {
+            char* at = own.data() + i * scalarBytes(type);
+            switch (type) {
+                case ScalarType::UInt8: *reinterpret_cast<uint8_t*>(at) = uint8_t(v[i]); break;
+                case ScalarType::Int16: *reinterpret_cast<int16_t*>(at) = int16_t(v[i]); break;
+                case ScalarType::UInt16: *reinterpret_cast<uint16_t*>(at) = uint16_t(v[i]); break;
+                case ScalarType::Float32: *reinterpret_cast<float*>(at) = v[i]; break;
+            }
+        }
+        EXPECT_EQ(chunkBytes(parts, "scalars"), own);
+        uint64_t bytes = 0, stored = 0;
+        for (const json& chunk : parts.header["chunks"]) {
+            bytes += chunk["bytes"].get<uint64_t>();
+            for (const json& block : chunk["blocks"]) stored += block["compressedBytes"].get<uint64_t>();
+        }
+        EXPECT_EQ(bytes, n * (scalarBytes(type) + 4 + 1 + kOctants * (1 + 3)) + 37 * 16);
+        EXPECT_EQ(parts.data.size(), stored);  // the blocks back to back, nothing else
         EXPECT_EQ(readPreparedHeader(bad).scalarType, type);
     }
 }
@@ -282,7 +380,7 @@ TEST_F(IoPreparedFile, TableRoundTripsExactly) {
     EXPECT_EQ(c["components"], 4);
     EXPECT_EQ(c["bytes"], 37 * 16);
     float entry5[4];
-    std::memcpy(entry5, parts.data.data() + c["offset"].get<std::size_t>() + 5 * 16, sizeof(entry5));
+    std::memcpy(entry5, chunkBytes(parts, "table").data() + 5 * 16, sizeof(entry5));
     EXPECT_EQ(entry5[0], prepared.classification.table.colour[5][0]);
     EXPECT_EQ(entry5[1], prepared.classification.table.colour[5][1]);
     EXPECT_EQ(entry5[2], prepared.classification.table.colour[5][2]);
@@ -354,6 +452,22 @@ TEST_F(IoPreparedFile, ReadsTheHeaderAlone) {
     EXPECT_EQ(h.fieldBytes.pc, n);
     EXPECT_EQ(h.fieldBytes.acd, kOctants * n);
     EXPECT_EQ(h.fieldBytes.eacd, kOctants * 3 * n);  // exact extents
+    // Every chunk, in the order of the table, with its bytes in memory and in the file.
+    const Parts goodParts = split(good);
+    ASSERT_EQ(h.chunks.size(), goodParts.header["chunks"].size());
+    uint64_t storedInAll = 0;
+    for (std::size_t i = 0; i < h.chunks.size(); ++i) {
+        const json& c = goodParts.header["chunks"][i];
+        EXPECT_EQ(h.chunks[i].name, c["name"]);
+        EXPECT_EQ(h.chunks[i].bytes, c["bytes"]);
+        uint64_t stored = 0;
+        for (const std::vector<char>& frame : storedBlocks(goodParts, h.chunks[i].name)) stored += frame.size();
+        EXPECT_EQ(h.chunks[i].storedBytes, stored) << h.chunks[i].name;
+        storedInAll += stored;
+    }
+    EXPECT_EQ(h.chunks[0].name, "scalars");
+    EXPECT_EQ(h.chunks[2].bytes, 4 * n);  // labels
+    EXPECT_EQ(storedInAll, goodParts.data.size());
 
     // A damaged chunk is not read; a damaged header is.
     std::vector<char> b = readBytes(good);
@@ -452,7 +566,12 @@ TEST_F(IoPreparedFile, RejectsAForeignFile) {
 }
 
 TEST_F(IoPreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
-    const std::size_t exactBytes = split(good).data.size();
+    auto arrayBytes = [](const json& header) {  // of every chunk, uncompressed
+        uint64_t bytes = 0;
+        for (const json& c : header["chunks"]) bytes += c["bytes"].get<uint64_t>();
+        return bytes;
+    };
+    const uint64_t exactBytes = arrayBytes(split(good).header);
     const std::size_t voxels = prepared.grid().voxels();
     for (ExtentCode code : {ExtentCode::Log16, ExtentCode::Joint8}) {
         SCOPED_TRACE(extentCodeName(code));
@@ -465,7 +584,7 @@ TEST_F(IoPreparedFile, CodedExtentsAreStoredCodedAndReadBackAsTheSameBoxes) {
         EXPECT_EQ(c["type"], code == ExtentCode::Log16 ? "uint16" : "uint8");
         EXPECT_EQ(c["components"], 1);
         EXPECT_EQ(c["bytes"], voxels * extentCodeBytes(code));
-        EXPECT_EQ(split(bad).data.size(), exactBytes - kOctants * voxels * (3 - extentCodeBytes(code)));
+        EXPECT_EQ(arrayBytes(header), exactBytes - kOctants * voxels * (3 - extentCodeBytes(code)));
 
         const PreparedVolume r = readPrepared(bad);
         EXPECT_EQ(r.fields.eacdCode(), code);
@@ -492,14 +611,32 @@ TEST_F(IoPreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
 
 TEST_F(IoPreparedFile, RejectsEarlierVersions) {
     // Version 1 stored EACD as 3 bytes per octant with no eacdCode, version 2 the classified volume (sigma, colour,
-    // normal) instead of the scalars and the table: refused with the way out, not misread.
-    for (uint32_t v : {1u, 2u}) {
+    // normal) instead of the scalars and the table, version 3 every chunk uncompressed: refused with the way out,
+    // not misread.
+    for (uint32_t v : {1u, 2u, 3u}) {
         std::vector<char> b = readBytes(good);
         std::memcpy(b.data() + 8, &v, 4);
         writeBytes(bad, b);
         expectRejected(bad, "prepared format version " + std::to_string(v) +
-                                ", this build reads version 3 (run volprep again)");
+                                ", this build reads version 4 (run volprep again)");
     }
+    // A version 3 file as it was: the chunks raw, each with the CRC-32 of its bytes, no compression in the header.
+    Parts parts = split(good);
+    std::vector<char> data;
+    for (json& c : parts.header["chunks"]) {
+        const std::vector<char> plain = chunkBytes(split(good), c["name"].get<std::string>());
+        c.erase("blocks");
+        c["offset"] = data.size();
+        c["crc32"] = crcOf(plain);
+        data.insert(data.end(), plain.begin(), plain.end());
+    }
+    parts.header.erase("compression");
+    parts.data = data;
+    const uint32_t three = 3;
+    std::memcpy(parts.preamble.data() + 8, &three, 4);
+    join(bad, parts);
+    expectRejected(bad, "prepared format version 3, this build reads version 4 (run volprep again)");
+    EXPECT_THROW(readPreparedHeader(bad), InputError);
 }
 
 TEST_F(IoPreparedFile, RejectsAnotherVersion) {
@@ -529,6 +666,7 @@ TEST_F(IoPreparedFile, RejectsATruncatedFileAtEveryPart) {
         std::size_t size;
         std::string problem;
     };
+    const uint64_t labelsBlock1 = labels + chunkEntry(header, "labels")["blocks"][0]["compressedBytes"].get<uint64_t>();
     for (const Cut& cut : std::vector<Cut>{{0, "not a prepared file (only 0 bytes"},
                                            {7, "not a prepared file (only 7 bytes"},
                                            {19, "not a prepared file (only 19 bytes"},
@@ -538,6 +676,7 @@ TEST_F(IoPreparedFile, RejectsATruncatedFileAtEveryPart) {
                                            {data, "truncated: chunk 'scalars'"},
                                            {table + 5, "truncated: chunk 'table'"},
                                            {labels + 3, "truncated: chunk 'labels'"},
+                                           {labelsBlock1 + 1, "truncated: chunk 'labels'"},  // in its second block
                                            {b.size() - 1, "truncated: chunk 'eacd7'"}}) {
         SCOPED_TRACE(cut.size);
         writeBytes(bad, std::vector<char>(b.begin(), b.begin() + std::ptrdiff_t(cut.size)));
@@ -546,15 +685,247 @@ TEST_F(IoPreparedFile, RejectsATruncatedFileAtEveryPart) {
 }
 
 TEST_F(IoPreparedFile, RejectsAFlippedByteInAChunk) {
-    json header = split(good).header;
+    const Parts parts = split(good);
     for (const char* name : {"scalars", "table", "labels", "pc", "acd0", "eacd7"}) {
         SCOPED_TRACE(name);
         std::vector<char> b = readBytes(good);
-        json c = chunkEntry(header, name);
-        b[dataStart(good) + c["offset"].get<uint64_t>() + c["bytes"].get<uint64_t>() / 2] ^= 0x01;
+        uint64_t stored = 0;
+        for (const std::vector<char>& frame : storedBlocks(parts, name)) stored += frame.size();
+        b[dataStart(good) + chunkEntry(parts.header, name)["offset"].get<uint64_t>() + stored / 2] ^= 0x01;
         writeBytes(bad, b);
-        expectRejected(bad, std::string("chunk '") + name + "' checksum mismatch");
+        expectRejected(bad, std::string("chunk '") + name + "' checksum mismatch in block ");
     }
+}
+
+// Every chunk is split into blocks of the header's size (the last one holds the rest), each block one zstd frame that
+// states its size, with the CRC-32 of the frame; the chunks' blocks lie back to back in the order of the table.
+TEST_F(IoPreparedFile, WritesEveryChunkAsIndependentZstdBlocks) {
+    const Parts parts = split(good);
+    EXPECT_EQ(parts.header["compression"],
+              (json{{"codec", "zstd"}, {"level", kPreparedZstdLevel}, {"blockBytes", kSmallBlock}}));
+    uint64_t offset = 0;
+    for (const json& c : parts.header["chunks"]) {
+        const std::string name = c["name"].get<std::string>();
+        SCOPED_TRACE(name);
+        const uint64_t bytes = c["bytes"].get<uint64_t>();
+        EXPECT_FALSE(c.contains("crc32"));  // version 3's checksum of the whole chunk: the blocks have their own
+        EXPECT_EQ(c["offset"].get<uint64_t>(), offset);
+        ASSERT_EQ(c["blocks"].size(), (bytes + kSmallBlock - 1) / kSmallBlock);
+        const std::vector<std::vector<char>> frames = storedBlocks(parts, name);
+        for (std::size_t k = 0; k < frames.size(); ++k) {
+            EXPECT_EQ(c["blocks"][k]["crc32"].get<uint32_t>(), crcOf(frames[k]));
+            EXPECT_EQ(ZSTD_findFrameCompressedSize(frames[k].data(), frames[k].size()), frames[k].size());
+            EXPECT_EQ(ZSTD_getFrameContentSize(frames[k].data(), frames[k].size()),
+                      std::min<uint64_t>(kSmallBlock, bytes - k * kSmallBlock));
+            offset += frames[k].size();
+        }
+    }
+    EXPECT_EQ(offset, parts.data.size());
+    EXPECT_EQ(chunkEntry(parts.header, "labels")["blocks"].size(), 4u);  // 1820 bytes
+    EXPECT_EQ(chunkBytes(parts, "labels"), bytesOf(prepared.regions.label));
+    EXPECT_EQ(chunkBytes(parts, "pc"), bytesOf(prepared.fields.pc));
+    EXPECT_EQ(chunkBytes(parts, "acd6"), bytesOf(prepared.fields.acd[6]));
+    const std::vector<char> eacd = chunkBytes(parts, "eacd3");
+    EXPECT_EQ(eacd, std::vector<char>(reinterpret_cast<const char*>(prepared.fields.eacd[3].data()),
+                                      reinterpret_cast<const char*>(prepared.fields.eacd[3].data()) + eacd.size()));
+    EXPECT_EQ(eacd.size(), 3 * prepared.grid().voxels());
+
+    // The chunks are far smaller than the arrays (the sample's fields repeat a few values).
+    writePrepared(bad, prepared);
+    const Parts defaults = split(bad);
+    EXPECT_EQ(defaults.header["compression"],
+              (json{{"codec", "zstd"}, {"level", kPreparedZstdLevel}, {"blockBytes", kPreparedBlockBytes}}));
+    for (const json& c : defaults.header["chunks"]) EXPECT_EQ(c["blocks"].size(), 1u) << c["name"];
+    EXPECT_LT(chunkEntry(defaults.header, "acd0")["blocks"][0]["compressedBytes"].get<uint64_t>(),
+              prepared.grid().voxels());
+}
+
+// Any block size (1 byte to a whole chunk) and any zstd level give the same arrays back, bit for bit, with every
+// EACD code.
+TEST_F(IoPreparedFile, RoundTripsAtEveryBlockSizeAndLevel) {
+    for (ExtentCode code : {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8}) {
+        PreparedVolume p = samplePrepared({13, 7, 5}, code == ExtentCode::Joint8 ? ScalarType::Float32 : ScalarType::UInt16);
+        quantiseEACD(p.fields, code);
+        struct Options {
+            std::size_t block;
+            int level;
+        };
+        for (const Options& o : std::vector<Options>{{7, 1}, {100, 1}, {1000, 1}, {kPreparedBlockBytes, 1},
+                                                     {1000, ZSTD_minCLevel()}, {1000, -5}, {1000, 3}, {1000, 19}}) {
+            const std::size_t block = o.block;
+            const int level = o.level;
+            {
+                SCOPED_TRACE(std::string(extentCodeName(code)) + ", blocks of " + std::to_string(block) +
+                             " bytes, level " + std::to_string(level));
+                writePrepared(bad, p, {level, block});
+                const PreparedVolume r = readPrepared(bad);
+                EXPECT_EQ(r.scalars.values, p.scalars.values);
+                EXPECT_EQ(r.scalars.sourceType, p.scalars.sourceType);
+                EXPECT_EQ(r.classification, p.classification);
+                EXPECT_EQ(r.regions.label, p.regions.label);
+                EXPECT_EQ(r.fields.pc, p.fields.pc);
+                EXPECT_EQ(r.fields.acd, p.fields.acd);
+                EXPECT_EQ(r.fields.eacdCode(), code);
+                EXPECT_EQ(r.fields.eacd, p.fields.eacd);
+                EXPECT_EQ(r.meta.statistics, p.meta.statistics);
+                const json header = split(bad).header;
+                EXPECT_EQ(header["compression"]["level"], level);
+                EXPECT_EQ(chunkEntry(header, "labels")["blocks"].size(), (4 * 455 + block - 1) / block);
+            }
+        }
+    }
+}
+
+// At the default block size: chunks of several blocks, read in parallel into one array, and a damaged block named.
+TEST_F(IoPreparedFile, ReadsChunksOfSeveralBlocksAtTheDefaultSize) {
+    const Vec3i dims{128, 128, 72};  // 1179648 voxels: 4.5 MiB of float scalars, 4.5 MiB of labels
+    PreparedVolume p;
+    p.scalars.grid.dims = dims;
+    p.scalars.sourceType = ScalarType::Float32;
+    p.classification = sampleClassification();
+    p.regions.dims = dims;
+    p.regions.count = 5000;
+    const std::size_t n = p.grid().voxels();
+    for (std::size_t i = 0; i < n; ++i) {
+        p.scalars.values.push_back(float((i * 2654435761u) % 100003) * 0.125f - 17);
+        p.regions.label.push_back(uint32_t(i / 300 % 5000));
+    }
+    writePrepared(bad, p);
+    const PreparedVolume r = readPrepared(bad, 0);
+    EXPECT_EQ(r.scalars.values, p.scalars.values);
+    EXPECT_EQ(r.regions.label, p.regions.label);
+    const Parts parts = split(bad);
+    for (const char* name : {"scalars", "labels"}) {
+        SCOPED_TRACE(name);
+        const json c = chunkEntry(parts.header, name);
+        EXPECT_EQ(c["bytes"], 4 * n);
+        ASSERT_EQ(c["blocks"].size(), 2u);
+        const std::vector<std::vector<char>> frames = storedBlocks(parts, name);
+        EXPECT_EQ(ZSTD_getFrameContentSize(frames[0].data(), frames[0].size()), kPreparedBlockBytes);
+        EXPECT_EQ(ZSTD_getFrameContentSize(frames[1].data(), frames[1].size()), 4 * n - kPreparedBlockBytes);
+    }
+    std::vector<char> b = readBytes(bad);
+    const json labels = chunkEntry(parts.header, "labels");
+    b[dataStart(bad) + labels["offset"].get<uint64_t>() + labels["blocks"][0]["compressedBytes"].get<uint64_t>() + 7] ^= 4;
+    const fs::path damaged = dir / "damaged.vprep";
+    writeBytes(damaged, b);
+    expectRejected(damaged, "chunk 'labels' checksum mismatch in block 1 of 2 (file is corrupted)", 0);
+}
+
+// A block that is not what it claims: caught by its CRC-32, or, where the CRC-32 was made to match, by zstd. Either
+// way the message names the chunk and the block, and the first bad block is the one named.
+TEST_F(IoPreparedFile, RejectsACorruptedBlock) {
+    std::vector<char> b = readBytes(good);
+    const Parts parts = split(good);
+    const json labels = chunkEntry(parts.header, "labels");
+    const std::vector<std::vector<char>> frames = storedBlocks(parts, "labels");
+    ASSERT_EQ(frames.size(), 4u);
+    uint64_t block2 = dataStart(good) + labels["offset"].get<uint64_t>() + frames[0].size() + frames[1].size();
+    b[block2 + frames[2].size() / 2] ^= 0x10;
+    b[block2 + frames[2].size() + 3] ^= 0x10;  // block 3 too: block 2 is named
+    writeBytes(bad, b);
+    expectRejected(bad, "chunk 'labels' checksum mismatch in block 2 of 4 (file is corrupted)");
+
+    // Matching CRC-32s, contents zstd refuses.
+    auto withBlock1 = [&](const std::vector<char>& frame, const std::string& problem) {
+        SCOPED_TRACE(problem);
+        Parts edited = split(good);
+        std::vector<std::vector<char>> blocks = frames;
+        blocks[1] = frame;
+        replaceBlocks(edited, "labels", blocks);
+        join(bad, edited);
+        expectRejected(bad, problem);
+    };
+    withBlock1(std::vector<char>(20, 'x'), "chunk 'labels' block 1 of 4 cannot be decompressed (zstd: ");
+    withBlock1(std::vector<char>(frames[1].begin(), frames[1].end() - 1),  // the frame cut short
+               "chunk 'labels' block 1 of 4 cannot be decompressed (zstd: ");
+    // A frame whose header is right (RFC 8878: magic, a descriptor for one segment with a 4-byte size, 512), but
+    // whose one block is compressed garbage.
+    std::vector<char> garbage = {'\x28', '\xb5', '\x2f', '\xfd', '\xa0', 0, 2, 0, 0};
+    const uint32_t blockHeader = 1 | (2 << 1) | (16 << 3);  // last block, compressed, 16 bytes
+    garbage.insert(garbage.end(), {char(blockHeader & 0xff), char(blockHeader >> 8), char(blockHeader >> 16)});
+    garbage.insert(garbage.end(), 16, char(0xff));
+    ASSERT_EQ(ZSTD_findFrameCompressedSize(garbage.data(), garbage.size()), garbage.size());
+    withBlock1(garbage, "chunk 'labels' block 1 of 4 cannot be decompressed (zstd: ");
+    withBlock1(compress(std::vector<char>(kSmallBlock, 0).data(), kSmallBlock, 1, false),
+               "chunk 'labels' block 1 of 4 does not state its decompressed size");
+}
+
+// Block sizes that lie: a block's stated compressed size against its frame, a frame's stated size against the
+// block's, the number of blocks against the chunk's size.
+TEST_F(IoPreparedFile, RejectsBlocksWhoseSizesLie) {
+    const Parts parts = split(good);
+    const std::vector<std::vector<char>> frames = storedBlocks(parts, "labels");
+    const std::vector<char> plain = chunkBytes(parts, "labels");
+    auto withBlocks = [&](const std::vector<std::vector<char>>& blocks, const std::string& problem) {
+        SCOPED_TRACE(problem);
+        Parts edited = split(good);
+        replaceBlocks(edited, "labels", blocks);
+        join(bad, edited);
+        expectRejected(bad, problem);
+    };
+    // Block 0 said to be a byte longer (taking block 1's first byte), its CRC-32 made to match.
+    std::vector<std::vector<char>> blocks = frames;
+    blocks[0].push_back(blocks[1].front());
+    blocks[1].erase(blocks[1].begin());
+    withBlocks(blocks, "chunk 'labels' block 0 of 4 holds " + std::to_string(frames[0].size() + 1) +
+                           " bytes but its zstd frame takes " + std::to_string(frames[0].size()));
+    // Frames of the wrong size: fewer bytes than the block holds, more than the last block holds.
+    blocks = frames;
+    blocks[1] = compress(plain.data() + kSmallBlock, 500);
+    withBlocks(blocks, "chunk 'labels' block 1 of 4 decompresses to 500 bytes but should hold 512");
+    blocks = frames;
+    blocks[3] = compress(plain.data(), kSmallBlock);
+    withBlocks(blocks, "chunk 'labels' block 3 of 4 decompresses to 512 bytes but should hold 284");
+    // One block too few or too many for 1820 bytes in blocks of 512.
+    withBlocks({frames[0], frames[1], frames[2]}, "chunk 'labels' has 3 blocks but 1820 bytes in blocks of 512 bytes make 4");
+    withBlocks({frames[0], frames[1], frames[2], frames[3], frames[3]},
+               "chunk 'labels' has 5 blocks but 1820 bytes in blocks of 512 bytes make 4");
+
+    // Stated compressed sizes no zstd frame of the block can have, refused before anything is read.
+    const std::string bound = std::to_string(ZSTD_compressBound(kSmallBlock));
+    for (uint64_t stored : {uint64_t(0), ZSTD_compressBound(kSmallBlock) + 1, uint64_t(1) << 40}) {
+        SCOPED_TRACE(stored);
+        expectEditedHeaderRejected([&](json& h) { chunkEntryToEdit(h, "labels")["blocks"][1]["compressedBytes"] = stored; },
+                                   "chunk 'labels' block 1 of 4 holds " + std::to_string(stored) +
+                                       " compressed bytes (a zstd frame of 512 bytes takes 1 to " + bound + ")");
+    }
+    // Blocks said to reach past the end of the file.
+    expectEditedHeaderRejected(
+        [&](json& h) {
+            json& last = chunkEntryToEdit(h, "eacd7")["blocks"].back();
+            last["compressedBytes"] = last["compressedBytes"].get<uint64_t>() + 1;
+        },
+        "truncated: chunk 'eacd7' ends at byte ");
+    expectEditedHeaderRejected([](json& h) { chunkEntryToEdit(h, "labels")["blocks"] = 5; },
+                               "chunk 'labels' has no blocks but 1820 bytes in blocks of 512 bytes make 4");
+    expectEditedHeaderRejected([](json& h) { chunkEntryToEdit(h, "labels").erase("blocks"); },
+                               "bad header: missing or invalid 'blocks'");
+    expectEditedHeaderRejected([](json& h) { chunkEntryToEdit(h, "labels")["blocks"][2] = 7; },
+                               "bad header: missing or invalid 'compressedBytes'");
+    // Another block size: the chunks' block counts no longer agree.
+    expectEditedHeaderRejected([](json& h) { h["compression"]["blockBytes"] = 1024; },
+                               "chunk 'scalars' has 2 blocks but 910 bytes in blocks of 1024 bytes make 1");
+}
+
+TEST_F(IoPreparedFile, RejectsABadCompressionHeader) {
+    const std::string blockBytes = "bad header: 'compression.blockBytes' must be an integer from 1 to 1073741824";
+    for (const json& value : {json(0), json((uint64_t(1) << 30) + 1), json(-512), json(512.5), json("512")}) {
+        SCOPED_TRACE(value.dump());
+        expectEditedHeaderRejected([&](json& h) { h["compression"]["blockBytes"] = value; }, blockBytes);
+    }
+    expectEditedHeaderRejected([](json& h) { h["compression"].erase("blockBytes"); },
+                               "bad header: missing or invalid 'blockBytes'");
+    expectEditedHeaderRejected([](json& h) { h["compression"]["codec"] = "lz4"; },
+                               "bad header: 'compression.codec': unknown codec 'lz4' (expected zstd)");
+    expectEditedHeaderRejected([](json& h) { h["compression"]["codec"] = 1; }, "bad header: missing or invalid 'codec'");
+    expectEditedHeaderRejected([](json& h) { h["compression"] = "zstd"; }, "bad header: missing or invalid 'compression'");
+    expectEditedHeaderRejected([](json& h) { h.erase("compression"); }, "bad header: missing or invalid 'compression'");
+    // The level is informative: the reader needs none.
+    Parts parts = split(good);
+    parts.header["compression"].erase("level");
+    join(bad, parts);
+    EXPECT_EQ(readPrepared(bad).regions.label, prepared.regions.label);
 }
 
 TEST_F(IoPreparedFile, RejectsAnEditedHeader) {
@@ -599,7 +970,7 @@ TEST_F(IoPreparedFile, RejectsABadChunkTable) {
                                "chunk 'table' should be 4 x float32");
     expectEditedHeaderRejected([](json& h) { h["chunks"][1]["name"] = "scalars"; }, "chunk 'scalars' appears twice");
     expectEditedHeaderRejected([](json& h) { h["chunks"][0]["name"] = "opacity"; }, "unknown chunk 'opacity'");
-    // The classified volume of version 2 is no chunk of version 3.
+    // The classified volume of version 2 is no chunk of versions 3 and 4.
     for (const char* name : {"sigma", "colour", "normal"}) {
         SCOPED_TRACE(name);
         expectEditedHeaderRejected([&](json& h) { h["chunks"][0]["name"] = name; },
@@ -716,11 +1087,19 @@ TEST_F(IoPreparedFile, RejectsNonFiniteFloatScalars) {
 
 TEST_F(IoPreparedFile, RejectsNumbersThatDoNotFit) {
     for (const auto& entry : std::vector<std::pair<std::string, json>>{
-             {"offset", -5}, {"offset", 1e30}, {"bytes", 12.5}, {"crc32", uint64_t(1) << 40}, {"components", "3"}}) {
+             {"offset", -5}, {"offset", 1e30}, {"bytes", 12.5}, {"components", "3"}}) {
         const std::string& key = entry.first;  // a named reference: clang 14 cannot capture structured bindings
         const json& value = entry.second;
         SCOPED_TRACE(key + " = " + value.dump());
         expectEditedHeaderRejected([&](json& h) { h["chunks"][2][key] = value; },
+                                   "bad header: '" + key + "' must be an integer");
+    }
+    for (const auto& entry : std::vector<std::pair<std::string, json>>{
+             {"crc32", uint64_t(1) << 40}, {"crc32", -1}, {"compressedBytes", 12.5}, {"compressedBytes", "9"}}) {
+        const std::string& key = entry.first;
+        const json& value = entry.second;
+        SCOPED_TRACE(key + " = " + value.dump());
+        expectEditedHeaderRejected([&](json& h) { h["chunks"][2]["blocks"][1][key] = value; },
                                    "bad header: '" + key + "' must be an integer");
     }
     expectEditedHeaderRejected([](json& h) { h["grid"]["dims"] = {13, 7.5, 5}; }, "absurd grid dims 13x7.5x5");
@@ -810,6 +1189,20 @@ TEST_F(IoPreparedFile, RefusesToWriteArraysOrNumbersThatDoNotFit) {
             "transfer table entry 3 has sigma -0.25 (must be finite and >= 0)");
     refused([](PreparedVolume& p) { p.classification.table.colour[4][2] = std::numeric_limits<float>::infinity(); },
             "transfer table entry 4 has a colour that is not finite");
+
+    // Compression options out of range.
+    for (std::size_t block : {std::size_t(0), kMaxPreparedBlockBytes + 1}) {
+        SCOPED_TRACE(block);
+        expectWriteRefused(bad, prepared, "cannot write: blocks of " + std::to_string(block) +
+                                              " bytes (must be 1 to 1073741824)", {kPreparedZstdLevel, block});
+    }
+    for (int level : {ZSTD_minCLevel() - 1, ZSTD_maxCLevel() + 1}) {
+        SCOPED_TRACE(level);
+        expectWriteRefused(bad, prepared,
+                           "cannot write: zstd level " + std::to_string(level) + " (must be " +
+                               std::to_string(ZSTD_minCLevel()) + " to " + std::to_string(ZSTD_maxCLevel()) + ")",
+                           {level, kPreparedBlockBytes});
+    }
 }
 
 TEST_F(IoPreparedFile, WritingIsAtomic) {
