@@ -12,6 +12,7 @@ namespace vr {
 // Every distance is stored in one byte and capped here (a capped value is still conservative: the box shrinks).
 constexpr int kDistanceCap = 255;
 constexpr int kOctants = 8;
+constexpr unsigned kAllOctants = (1u << kOctants) - 1;  // a mask of octants (bit o: octant o) holding them all
 
 // Octant of a direction: bit a set when component a is negative (a zero component counts as positive).
 inline int octantOf(double dx, double dy, double dz) { return (dx < 0) | ((dy < 0) << 1) | ((dz < 0) << 2); }
@@ -30,10 +31,26 @@ struct DistanceFields {
     // octants (extent_field.h); exact extents are >= acd, coded ones (rounded down) may be smaller on some axis.
     std::array<ExtentField, kOctants> eacd;
 
+    // Bit o set where octant o's ACD (EACD) is held: all eight as volprep builds them, or only those the views of
+    // a render need (volrender's one-command path).
+    unsigned acdOctants() const {
+        unsigned m = 0;
+        for (int o = 0; o < kOctants; ++o) m |= acd[o].empty() ? 0u : 1u << o;
+        return m;
+    }
+    unsigned eacdOctants() const {
+        unsigned m = 0;
+        for (int o = 0; o < kOctants; ++o) m |= eacd[o].empty() ? 0u : 1u << o;
+        return m;
+    }
     bool hasPC() const { return !pc.empty(); }
-    bool hasACD() const { return !acd[0].empty(); }
-    bool hasEACD() const { return !eacd[0].empty(); }
-    ExtentCode eacdCode() const { return eacd[0].code(); }
+    bool hasACD() const { return acdOctants() != 0; }
+    bool hasEACD() const { return eacdOctants() != 0; }
+    ExtentCode eacdCode() const {
+        for (const ExtentField& e : eacd)
+            if (!e.empty()) return e.code();
+        return eacd[0].code();
+    }
 };
 
 }  // namespace vr

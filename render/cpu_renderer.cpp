@@ -107,6 +107,10 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const Vec3i dims = grid.dims;
     const double dt = settings.stepVoxels * grid.smallestSpacing(), ertDepth = terminationDepth(settings.ert);
     const Sampler sampler(prepared.scalars, prepared.classification, settings.shading);
+    // ACD and EACD may hold only the octants some views need (volrender's one-command path).
+    const unsigned heldOctants = settings.caster == Caster::ACD    ? fields.acdOctants()
+                                 : settings.caster == Caster::EACD ? fields.eacdOctants()
+                                                                   : kAllOctants;
     const std::optional<Vec3d> light =
         settings.lightDirection ? std::optional<Vec3d>(normalize(*settings.lightDirection)) : std::nullopt;
 
@@ -143,6 +147,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     box = chebyshevBall(v, fields.pc[i]);
                     break;
                 case Caster::ACD: {
+                    if (!(heldOctants >> oct & 1u)) break;  // no field for this ray: it steps sample by sample
                     // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
                     const int e = std::max<int>(1, fields.acd[oct][i]);
                     box = octantBox(v, oct, {e, e, e});
@@ -150,6 +155,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     break;
                 }
                 case Caster::EACD: {
+                    if (!(heldOctants >> oct & 1u)) break;
                     const auto& x = fields.eacd[oct][i];
                     const Vec3i ext{std::max<int>(1, x[0]), std::max<int>(1, x[1]), std::max<int>(1, x[2])};
                     box = octantBox(v, oct, ext);

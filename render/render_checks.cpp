@@ -42,10 +42,12 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) 
                              " caster needs it");
     };
     if (s.caster == Caster::PC) need(prepared.fields.hasPC(), prepared.fields.pc.size(), "PC");
+    // ACD and EACD may hold only some octants (those a render's views need): each held octant covers every voxel.
     if (s.caster == Caster::ACD)
-        for (const auto& f : prepared.fields.acd) need(prepared.fields.hasACD(), f.size(), "ACD");
+        for (const auto& f : prepared.fields.acd) need(prepared.fields.hasACD(), f.empty() ? voxels : f.size(), "ACD");
     if (s.caster == Caster::EACD)
-        for (const auto& f : prepared.fields.eacd) need(prepared.fields.hasEACD(), f.size(), "EACD");
+        for (const auto& f : prepared.fields.eacd)
+            need(prepared.fields.hasEACD(), f.empty() ? voxels : f.size(), "EACD");
 }
 
 void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& segmentation, const RenderSettings& s) {

@@ -240,6 +240,32 @@ TEST(FieldsBuild, BuildFieldsFillsWhatIsAskedAndAgreesWithTheSingleBuilders) {
     EXPECT_FALSE(none.hasPC() || none.hasACD() || none.hasEACD());
 }
 
+// A render's views need only some octants (volrender's one-command path): those are built as in a full build, the
+// others are left empty; PC, a minimum over all eight, is unchanged.
+TEST(FieldsBuild, AnOctantMaskBuildsThoseOctantsOnly) {
+    std::mt19937 rng(11);
+    const Regions r = blockyRegions({12, 9, 10}, 8, 4, rng);
+    const DistanceFields all = buildFields(r, kFieldPC | kFieldACD | kFieldEACD, ExtentCode::Log16, [](FieldKind) {});
+    for (unsigned mask : {0x01u, 0x81u, 0x5au}) {
+        SCOPED_TRACE(mask);
+        const DistanceFields some = buildFields(r, kFieldACD | kFieldEACD, ExtentCode::Log16, [](FieldKind) {}, mask);
+        EXPECT_EQ(some.acdOctants(), mask);
+        EXPECT_EQ(some.eacdOctants(), mask);
+        EXPECT_EQ(some.eacdCode(), ExtentCode::Log16);
+        for (int o = 0; o < kOctants; ++o) {
+            if (mask >> o & 1u) {
+                EXPECT_EQ(some.acd[o], all.acd[o]) << o;
+                EXPECT_EQ(some.eacd[o], all.eacd[o]) << o;
+            } else {
+                EXPECT_TRUE(some.acd[o].empty() && some.eacd[o].empty()) << o;
+            }
+        }
+        const DistanceFields withPC = buildFields(r, kFieldPC | kFieldEACD, ExtentCode::Log16, [](FieldKind) {}, mask);
+        EXPECT_EQ(withPC.pc, all.pc);
+        EXPECT_EQ(withPC.eacdOctants(), mask);
+    }
+}
+
 TEST(FieldsBuildBruteForce, EACDEqualsTheNaiveGreedyOnLargerRegionsSampled) {
     // Regions tens of voxels wide, so that extensions follow their neighbours' across many slices and slabs.
     std::mt19937 rng(99);

@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 #include "core/errors.h"
 #include "preprocess/fields/build_fields.h"
 #include "render/cpu_renderer.h"
 #include "render/span.h"
+#include "render/view_octants.h"
 #include "support/views.h"
 
 namespace vr {
@@ -199,6 +201,40 @@ TEST(RenderCpuRenderer, ErrorsAreReported) {
     PreparedVolume fewScalars = constantVolume({4, 4, 4}, 0.1);
     fewScalars.scalars.values.pop_back();
     EXPECT_THROW(renderCpu(fewScalars, cam, unshaded(Caster::Primitive)), InputError);
+}
+
+// Fields built for some octants only: a ray in another octant steps sample by sample, so the image is the one of
+// the full fields, at more iterations there.
+TEST(RenderCpuRenderer, ARayInAnOctantWithoutItsFieldStepsSampleBySample) {
+    const PreparedVolume full = constantVolume({12, 12, 12}, 0.01);
+    auto camera = [&](double azimuth) {
+        ViewParams v = axisView(16);
+        v.azimuthDeg = azimuth;
+        v.elevationDeg = 20;
+        return Camera::fit(full.grid(), v);
+    };
+    const unsigned held = viewOctants(camera(30));  // orthographic: one octant
+    PreparedVolume some = full;
+    for (int o = 0; o < kOctants; ++o)
+        if (!(held >> o & 1u)) {
+            some.fields.acd[o] = {};
+            some.fields.eacd[o] = {};
+        }
+    const auto fetches = [](const RenderResult& r) {
+        return std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0);
+    };
+    for (Caster c : {Caster::ACD, Caster::EACD}) {
+        for (const double azimuth : {30.0, 210.0}) {  // the octant held, and the opposite one
+            const Camera cam = camera(azimuth);
+            const RenderResult a = renderCpu(full, cam, unshaded(c)), b = renderCpu(some, cam, unshaded(c));
+            EXPECT_LT(maxAbsDifference(a.image, b.image), 1e-6) << casterName(c) << " " << azimuth;
+            if (azimuth == 30.0) {
+                EXPECT_EQ(fetches(b), fetches(a)) << casterName(c);
+            } else {
+                EXPECT_GT(fetches(b), fetches(a)) << casterName(c);
+            }
+        }
+    }
 }
 
 // Post-classification: voxels at scalars 0 and 2, transparent, with a TF that is opaque at 1 only. Trilinear

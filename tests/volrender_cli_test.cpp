@@ -158,7 +158,8 @@ TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {
     EXPECT_EQ(stats["settings"]["caster"], "eacd");
     for (const char* stage : {"load", "classify", "segment", "eacd"})
         EXPECT_GE(stats["prepareSeconds"][stage].get<double>(), 0.0) << stage;
-    EXPECT_FALSE(stats["prepareSeconds"].contains("pc"));  // only the field of the caster
+    EXPECT_FALSE(stats["prepareSeconds"].contains("pc"));  // only the field of the caster ...
+    EXPECT_EQ(stats["upload"]["bytesPerVoxel"]["eacd"].get<double>(), 2.0);  // ... in the view's octant (log16)
 
     ASSERT_EQ(test::runVolprep(volume + tf + " --fields eacd -o " + q(dir / "head.vprep")).status, 0);
     ASSERT_EQ(volrender(q(dir / "head.vprep") + view + " --caster eacd -o " + q(dir / "file.exr")).status, 0);

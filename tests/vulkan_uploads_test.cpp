@@ -129,6 +129,29 @@ TEST(VulkanUploads, ShadedEacdOfAnInt16VolumeTakesFourBytesAVoxel) {
     expectNoValidationErrors();
 }
 
+// Fields built for the octants of some views only (volrender's one-command path) serve those views, and render what
+// the full fields render; a view in another octant is refused, naming the octants.
+TEST(VulkanUploads, FieldsOfSomeOctantsServeTheirViewsOnly) {
+    const Volume v = shellsPhantom({20, 18, 16});
+    const PreparedVolume full = prepare(v, 0.02, 10, false);
+    const Camera ortho = Camera::fit(v.grid, view(30, 20)), opposite = Camera::fit(v.grid, view(210, -20));
+    const unsigned held = viewOctants(ortho);
+    ASSERT_EQ(held & viewOctants(opposite), 0u);
+    PreparedVolume some = full;
+    for (int o = 0; o < kOctants; ++o)
+        if (!(held >> o & 1u)) {
+            some.fields.acd[o] = {};
+            some.fields.eacd[o] = {};
+        }
+    for (Caster c : {Caster::ACD, Caster::EACD}) {
+        const RenderSettings s = renderSettings(c, true);
+        EXPECT_EQ(maxAbsDifference(whole().render(some, ortho, s).image, whole().render(full, ortho, s).image), 0.0f)
+            << casterName(c);
+        EXPECT_THROW(whole().render(some, opposite, s), InputError) << casterName(c);
+    }
+    expectNoValidationErrors();
+}
+
 // A transfer table is one storage buffer of 16 bytes an entry: one beyond the device's maxStorageBufferRange is
 // refused before anything is uploaded, naming the table's entries and the limit.
 TEST(VulkanUploads, TableBeyondTheStorageBufferRangeIsRefused) {

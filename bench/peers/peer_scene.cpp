@@ -33,6 +33,13 @@ CubicLattice::CubicLattice(const GridGeometry& grid) : size(grid.smallestSpacing
     }
 }
 
+SampledTransferFunction peerTable(const Volume& volume, const TransferFunction& tf) {
+    const auto [lo, hi] = std::minmax_element(volume.values.begin(), volume.values.end());
+    const bool integer = volume.sourceType != ScalarType::Float32;
+    const std::size_t count = integer ? std::size_t(*hi - *lo) + 1 : 4096;
+    return sampleTransferFunction(tf, *lo, std::max(*hi, *lo + 1.0f), std::max<std::size_t>(count, 2));
+}
+
 PeerScene loadPeerScene(const PeerSceneOptions& options) {
     if (options.views < 1) throw InputError("--views must be at least 1");
     if (!(options.stepVoxels > 0)) throw InputError("--step must be positive");
@@ -41,10 +48,7 @@ PeerScene loadPeerScene(const PeerSceneOptions& options) {
     scene.volume = loadVolume(options.volume, options.raw);
     scene.tf = loadTransferFunction(options.transferFunction);
 
-    const auto [lo, hi] = std::minmax_element(scene.volume.values.begin(), scene.volume.values.end());
-    const bool integer = scene.volume.sourceType != ScalarType::Float32;
-    const std::size_t count = integer ? std::size_t(*hi - *lo) + 1 : 4096;
-    scene.table = sampleTransferFunction(scene.tf, *lo, std::max(*hi, *lo + 1.0f), std::max<std::size_t>(count, 2));
+    scene.table = peerTable(scene.volume, scene.tf);
 
     ViewParams view;
     view.width = options.width;

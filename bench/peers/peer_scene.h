@@ -46,6 +46,10 @@ struct PeerScene {
 
 PeerScene loadPeerScene(const PeerSceneOptions& options);
 
+// PeerScene::table of a volume and transfer function: the TF at every integer value from the volume's minimum to
+// its maximum for integer volumes, else at 4096 values over the range.
+SampledTransferFunction peerTable(const Volume& volume, const TransferFunction& tf);
+
 // The grid resampled (nearest) onto cubic voxels of its smallest spacing, for the peers whose opacity or ray
 // stepping assumes cubic voxels (VolPack, vdb_render): the same lattice for isotropic grids. Voxel v of it is
 // centred at grid.origin + (v + 1/2) * size.

@@ -112,11 +112,13 @@ std::vector<uint8_t> buildACD(const Regions& regions, int octant) {
     return buildACD(runs, octant);
 }
 
-ACDFields buildACDs(AxialRuns& runs) {
+ACDFields buildACDs(AxialRuns& runs, unsigned octants) {
     ACDFields acd;
     if (voxelCount(runs.dims()) == 0) return acd;
     runs.computeAll();
-    tbb::parallel_for(0, kOctants, [&](int o) { acd[o] = buildACD(runs, o); });
+    tbb::parallel_for(0, kOctants, [&](int o) {
+        if (octants >> o & 1u) acd[o] = buildACD(runs, o);
+    });
     return acd;
 }
 

@@ -80,7 +80,7 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::fu
 }
 
 DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
-                           const std::function<void(FieldKind)>& done) {
+                           const std::function<void(FieldKind)>& done, unsigned octants) {
     DistanceFields f;
     f.dims = regions.dims;
     const bool pc = kinds & kFieldPC, acd = kinds & (kFieldACD | kFieldEACD);
@@ -92,17 +92,21 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode ea
         return f;
     }
     AxialRuns runs(regions);
-    ACDFields acds = buildACDs(runs);
+    ACDFields acds = buildACDs(runs, pc ? kAllOctants : octants);
     done(kFieldACD);
     if (pc) {
         f.pc = pcFromACD(acds);
         done(kFieldPC);
     }
     if (kinds & kFieldEACD) {
-        f.eacd = buildEACD(runs, acds, eacdCode);
+        f.eacd = buildEACD(runs, acds, eacdCode, octants);
         done(kFieldEACD);
     }
-    if (kinds & kFieldACD) f.acd = std::move(acds);
+    if (kinds & kFieldACD) {
+        f.acd = std::move(acds);
+        for (int o = 0; o < kOctants; ++o)
+            if (!(octants >> o & 1u)) f.acd[o] = {};
+    }
     return f;
 }
 

@@ -30,10 +30,12 @@ std::array<ExtentField, kOctants> buildEACD(const Regions& regions, const ACDFie
 
 // The same builders on axial runs shared between them (each run field is computed once).
 std::vector<uint8_t> buildACD(AxialRuns& runs, int octant);
-ACDFields buildACDs(AxialRuns& runs);
+// The octants of the mask (bit o: octant o), in parallel; the others stay empty.
+ACDFields buildACDs(AxialRuns& runs, unsigned octants = kAllOctants);
 // code: every extent written in that code, rounded down to it (quantiseExtents; Exact leaves them as built).
+// octants: those to build (each needs its ACD); the others stay empty.
 std::array<ExtentField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd,
-                                            ExtentCode code = ExtentCode::Exact);
+                                            ExtentCode code = ExtentCode::Exact, unsigned octants = kAllOctants);
 
 // kinds: a mask of FieldKind. EACD needs ACD internally; ACD is kept only when asked for. The fastest way to get
 // several fields: the runs, ACDs and PC are shared.
@@ -43,7 +45,9 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds);
 DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::function<void(FieldKind)>& done);
 // The same with the EACD written in eacdCode as it is built: what quantiseEACD(buildFields(regions, kinds),
 // eacdCode) gives, without an exact copy and a second pass over the extents.
+// `octants` (a mask) limits ACD and EACD to the octants a render's views need; PC, which takes the minimum over all
+// eight, still builds every ACD it needs.
 DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
-                           const std::function<void(FieldKind)>& done);
+                           const std::function<void(FieldKind)>& done, unsigned octants = kAllOctants);
 
 }  // namespace vr

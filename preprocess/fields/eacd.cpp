@@ -109,20 +109,24 @@ std::array<ExtentField, kOctants> buildEACD(const Regions& regions, const ACDFie
     return buildEACD(runs, acd);
 }
 
-std::array<ExtentField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd, ExtentCode code) {
-    for (int o = 0; o < kOctants; ++o) checkACD(runs, o, acd[o]);
+std::array<ExtentField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd, ExtentCode code,
+                                            unsigned octants) {
+    for (int o = 0; o < kOctants; ++o)
+        if (octants >> o & 1u) checkACD(runs, o, acd[o]);
     std::array<ExtentField, kOctants> out;
     // Each output is zeroed (and its pages mapped) by a task of its own, waited for just before its octant's boxes
     // are chosen: a thread done with its walks while the other still walks takes them (the three walks of a step
     // on two threads leave about a tenth of the time idle otherwise).
     std::array<tbb::task_group, kOctants> sizing;
-    for (int o = 0; o < kOctants; ++o) sizing[o].run([&, o] { out[o] = ExtentField(code, acd[o].size()); });
+    for (int o = 0; o < kOctants; ++o)
+        if (octants >> o & 1u) sizing[o].run([&, o] { out[o] = ExtentField(code, acd[o].size()); });
     // One octant at a time: 7 bytes of working memory per voxel, 2 of them the runs along x copied for the walks
     // (0.9 GB at 512^3, where the footprint makes fresh pages dear). (Batches of two opposite octants took as long,
     // with twice the memory; batches of four, sharing each table by two octants, too: what the tables saved,
     // mapping the memory cost.)
     OctantState state(runs);
     for (int o = 0; o < kOctants; ++o) {
+        if (!(octants >> o & 1u)) continue;
         extendOctant(state, o, acd[o]);
         sizing[o].wait();
         chooseBoxes(state, out[o]);

@@ -23,7 +23,7 @@ ClassifyParams classifyingPart(ClassifyParams params) {
 }
 
 // The fields of `kinds` (a FieldKind mask), with a progress bar and each field timed into `times`.
-DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
+DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode, unsigned octants,
                                 std::vector<StageTime>& times) {
     // One call builds them all, sharing the axial runs and the ACDs: each field is timed from the end of the one
     // before (ACD first, then PC from the ACDs, then EACD).
@@ -31,11 +31,14 @@ DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCo
     ProgressBar bar("fields", std::popcount(built));
     StageClock clock;
     // The EACD is written in eacdCode as it is built: memory, file and device then hold the same bytes.
-    DistanceFields f = buildFields(regions, kinds, eacdCode, [&](FieldKind kind) {
-        times.push_back(clock.stop(kind == kFieldPC ? "pc" : kind == kFieldACD ? "acd" : "eacd"));
-        bar.advance();
-        clock = StageClock();
-    });
+    DistanceFields f = buildFields(
+        regions, kinds, eacdCode,
+        [&](FieldKind kind) {
+            times.push_back(clock.stop(kind == kFieldPC ? "pc" : kind == kFieldACD ? "acd" : "eacd"));
+            bar.advance();
+            clock = StageClock();
+        },
+        octants);
     bar.finish();
     return f;
 }
@@ -117,10 +120,11 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
         prepared_.meta.segmentation = options.segmentation;
         if (classifiedOnceSegmented_ == ClassifiedOnceSegmented::Free) classified_ = {};
     }
-    const std::pair<unsigned, ExtentCode> fields{options.fields, options.eacdCode};
+    const std::tuple<unsigned, ExtentCode, unsigned> fields{options.fields, options.eacdCode, options.octants};
     if (last >= PrepStage::Fields && fieldsWith_ != fields) {
         run(PrepStage::Fields, [&](std::vector<StageTime>& times) {
-            prepared_.fields = buildTimedFields(prepared_.regions, options.fields, options.eacdCode, times);
+            prepared_.fields =
+                buildTimedFields(prepared_.regions, options.fields, options.eacdCode, options.octants, times);
         });
         fieldsWith_ = fields;
     }

@@ -8,6 +8,7 @@
 #include <array>
 #include <filesystem>
 #include <optional>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct PrepareOptions {
     SegmentationParams segmentation;   // T_o, T_a, useNormals, trilinear
     unsigned fields = kFieldPC | kFieldACD | kFieldEACD;
     ExtentCode eacdCode = kDefaultExtentCode;  // EACD extents rounded down to this code (core/extent_code.h)
+    unsigned octants = kAllOctants;  // ACD and EACD octants to build: all for a file, a render's views' otherwise
 };
 
 // The stages in the order they depend on each other.
@@ -84,7 +86,7 @@ private:
     // The options each stage last ran with; empty when it has no valid result.
     std::optional<ClassifyParams> classifiedWith_;  // as far as they classify (the TF's name and text left out)
     std::optional<SegmentationParams> segmentedWith_;
-    std::optional<std::pair<unsigned, ExtentCode>> fieldsWith_;  // kinds, EACD code
+    std::optional<std::tuple<unsigned, ExtentCode, unsigned>> fieldsWith_;  // kinds, EACD code, octants
     std::vector<StageTime> loadTimes_;                           // of loading the volume, where it was loaded
     std::array<std::vector<StageTime>, kPrepStages> times_;      // of the run behind each stage's result
     std::vector<StageTime> writeTimes_;                          // of writing the current result

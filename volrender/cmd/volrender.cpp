@@ -176,6 +176,24 @@ unsigned fieldsFor(vr::Caster c) {
     return 0;
 }
 
+// The cameras of the orbit: view i turned 360 i / N degrees about the up axis from --azimuth, at --elevation.
+std::vector<vr::Camera> orbit(const Flags& f, vr::ViewParams view, const vr::GridGeometry& grid) {
+    std::vector<vr::Camera> cameras;
+    for (int i = 0; i < f.views; ++i) {
+        view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
+        view.elevationDeg = f.elevation;
+        cameras.push_back(vr::Camera::fit(grid, view));
+    }
+    return cameras;
+}
+
+// The octants of every ray of the cameras.
+unsigned orbitOctants(const std::vector<vr::Camera>& cameras) {
+    unsigned octants = 0;
+    for (const vr::Camera& camera : cameras) octants |= vr::viewOctants(camera);
+    return octants;
+}
+
 // --caster auto: the caster for the orbit's views, from the ray probe and the field sizes in the prepared file's
 // header (the chunks are read once the caster is known).
 vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s,
@@ -185,21 +203,19 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
         return {vr::Caster::Primitive, "the regions were made for nearest sampling only (volprep --nearest): "
                                        "trilinear sampling cannot leap through them (render with --nearest to leap)"};
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
-    for (int i = 0; i < f.views; ++i) {
-        view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
-        view.elevationDeg = f.elevation;
-        d.addView(vr::Camera::fit(header.grid, view));
-    }
+    for (const vr::Camera& camera : orbit(f, view, header.grid)) d.addView(camera);
     return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
 }
 
-// The one-command path: the volume loaded, classified, segmented and given the field of the caster only (regions
-// for the sampling and shading asked), in memory, each stage timed.
-vr::PreparedVolume prepareVolume(const Flags& f, const vr::RenderSettings& s, std::vector<vr::StageTime>& stages) {
+// The one-command path: the volume loaded, classified, segmented and given the field of the caster only, in the
+// octants of the orbit's rays only (regions for the sampling and shading asked), in memory, each stage timed.
+vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, const vr::RenderSettings& s,
+                                 std::vector<vr::StageTime>& stages) {
     vr::PrepareOptions options = vr::prepareOptionsFrom(f.volume, !s.trilinear, !s.shading);
     options.fields = fieldsFor(s.caster);
     vr::StagedPreparation staged =
         vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume), vr::ClassifiedOnceSegmented::Free);
+    options.octants = orbitOctants(orbit(f, view, staged.volume().grid));
     staged.prepare(options);
     stages = staged.stageTimes();
     std::printf("prepared:");
@@ -243,16 +259,10 @@ int run(const Flags& f) {
     }
     std::vector<vr::StageTime> stages;  // of preparing the volume here
     const vr::PreparedVolume prepared =
-        prepareHere ? prepareVolume(f, settings, stages) : vr::readPrepared(f.input, fieldsFor(settings.caster));
+        prepareHere ? prepareVolume(f, view, settings, stages) : vr::readPrepared(f.input, fieldsFor(settings.caster));
 
-    std::vector<vr::Camera> cameras;
-    unsigned octants = 0;  // of every view's rays: the orbit shares one upload
-    for (int i = 0; i < f.views; ++i) {
-        view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
-        view.elevationDeg = f.elevation;
-        cameras.push_back(vr::Camera::fit(prepared.grid(), view));
-        octants |= vr::viewOctants(cameras.back());
-    }
+    const std::vector<vr::Camera> cameras = orbit(f, view, prepared.grid());
+    const unsigned octants = orbitOctants(cameras);  // the orbit shares one upload
     std::optional<vr::GpuVolume> uploaded;
     nlohmann::json uploadStats;
     if (renderer) {

@@ -102,8 +102,14 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
         needs.caster = caster;
         needs.shading = false;
         checkRenderInputs(prepared, needs);
-        if ((caster == Caster::ACD || caster == Caster::EACD) && (octants & 0xffu) == 0)
+        if ((caster == Caster::ACD || caster == Caster::EACD) && (octants & kAllOctants) == 0)
             throw std::invalid_argument("uploading the " + std::string(casterName(caster)) + " field needs octants");
+        const unsigned held = caster == Caster::ACD    ? prepared.fields.acdOctants()
+                              : caster == Caster::EACD ? prepared.fields.eacdOctants()
+                                                       : kAllOctants;
+        if ((octants & kAllOctants & ~held) != 0)
+            throw InputError("the views need octants the " + std::string(casterName(caster)) +
+                             " field was not built for (mask " + std::to_string(octants & ~held) + ")");
     }
 
     // The table first: a device whose storage buffers cannot hold it is refused before any image is made.
