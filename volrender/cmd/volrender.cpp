@@ -235,7 +235,17 @@ int run(const Flags& f) {
     vr::ViewParams view;
     vr::RenderSettings settings;
     checkFlags(f, view, settings);
-    // The device is opened before the file is read: auto weighs the casters with the constants measured on it.
+    const bool prepareHere = !vr::isPreparedFile(f.input);
+    std::string choice;  // why --caster auto chose its caster
+    if (prepareHere && f.caster == "auto") {
+        settings.caster = vr::Caster::EACD;
+        choice = "a volume prepared here has no ray probe before its fields exist: EACD, which leaps furthest";
+    }
+    std::vector<vr::StageTime> stages;  // of preparing the volume here
+    std::optional<vr::PreparedVolume> preparedHere;
+    if (prepareHere) preparedHere = prepareVolume(f, view, settings, stages);
+    // The device is opened once a volume prepared here is done (the preparation's memory is given back by then),
+    // and before a prepared file is read: auto weighs the casters with the constants measured on it.
     std::unique_ptr<vr::VulkanContext> context;
     std::unique_ptr<vr::VulkanRenderer> renderer;
     if (!f.cpu) {
@@ -244,22 +254,17 @@ int run(const Flags& f) {
     }
     const vr::CalibrationInUse calibration =
         vr::calibrationInUse(f.calibration, context ? std::optional(context->info().name) : std::nullopt);
-    const bool prepareHere = !vr::isPreparedFile(f.input);
-    std::string choice;  // why --caster auto chose its caster
-    if (f.caster == "auto") {
+    if (f.caster == "auto" && !prepareHere) {
         if (!calibration.note.empty()) std::fprintf(stderr, "volrender: %s\n", calibration.note.c_str());
-        const vr::CasterChoice c =
-            prepareHere ? vr::CasterChoice{vr::Caster::EACD, "a volume prepared here has no ray probe before its "
-                                                             "fields exist: EACD, which leaps furthest"}
-                        : autoCaster(f, view, settings, calibration.constants);
+        const vr::CasterChoice c = autoCaster(f, view, settings, calibration.constants);
         settings.caster = c.caster;
         choice = c.reason;
-        std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(c.caster).data(),
-                     choice.c_str());
     }
-    std::vector<vr::StageTime> stages;  // of preparing the volume here
+    if (f.caster == "auto")
+        std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(settings.caster).data(),
+                     choice.c_str());
     const vr::PreparedVolume prepared =
-        prepareHere ? prepareVolume(f, view, settings, stages) : vr::readPrepared(f.input, fieldsFor(settings.caster));
+        prepareHere ? std::move(*preparedHere) : vr::readPrepared(f.input, fieldsFor(settings.caster));
 
     const std::vector<vr::Camera> cameras = orbit(f, view, prepared.grid());
     const unsigned octants = orbitOctants(cameras);  // the orbit shares one upload
