@@ -189,6 +189,21 @@ TEST(VolprepCli, PreparesAPhantomWrittenByVolphantom) {
     EXPECT_EQ(p.regions.label[0], p.regions.label[voxelCount(p.regions.dims) - 1]);
 }
 
+// On a terminal each stage draws a progress bar; --quiet leaves the terminal to errors.
+TEST(VolprepCli, ProgressBarsOnATerminalAndNoneWithQuiet) {
+    const fs::path dir = test::scratchDir("volprep_quiet");
+    const fs::path volprep = test::volprepExecutable();
+    const test::CliOutcome shown = test::runOnTerminal(volprep, headsqArgs(dir / "a.vprep"));
+    ASSERT_EQ(shown.status, 0) << shown.out;
+    for (const char* stage : {"load ", "classify ", "segment ", "fields ", "write "})
+        EXPECT_NE(shown.out.find(std::string(stage)), std::string::npos) << stage << " in\n" << shown.out;
+    EXPECT_NE(shown.out.find("100%"), std::string::npos) << shown.out;
+    const test::CliOutcome quiet = test::runOnTerminal(volprep, headsqArgs(dir / "b.vprep") + " --quiet");
+    ASSERT_EQ(quiet.status, 0) << quiet.out;
+    EXPECT_EQ(quiet.out, "");
+    EXPECT_TRUE(fs::exists(dir / "b.vprep"));
+}
+
 TEST(VolprepCli, HelpDescribesEveryFlag) {
     fs::path dir = test::scratchDir("volprep_help");
     Outcome r = volprep("--help");

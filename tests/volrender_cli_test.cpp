@@ -171,6 +171,21 @@ TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
+// The one-command path on a terminal: a bar per preparing stage; --quiet leaves the terminal to errors.
+TEST(VolrenderCli, ProgressBarsOnATerminalAndNoneWithQuiet) {
+    const fs::path dir = test::scratchDir("volrender_cli_quiet");
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    const std::string args = q(test::datasetsDir() / e.file) + " --tf " + q(test::datasetsDir() / e.tf) +
+                             " --size 16x16 -o " + q(dir / "x.png");
+    const test::CliOutcome shown = test::runOnTerminal(test::volrenderExecutable(), args);
+    ASSERT_EQ(shown.status, 0) << shown.out;
+    for (const char* stage : {"load ", "classify ", "segment ", "fields "})
+        EXPECT_NE(shown.out.find(std::string(stage)), std::string::npos) << stage << " in\n" << shown.out;
+    const test::CliOutcome quiet = test::runOnTerminal(test::volrenderExecutable(), args + " --quiet");
+    ASSERT_EQ(quiet.status, 0) << quiet.out;
+    EXPECT_EQ(quiet.out, "");
+}
+
 TEST(VolrenderCli, AutoTakesTheCalibrationOfItsDeviceAndSaysWhich) {
     const fs::path dir = test::scratchDir("volrender_cli_calibration"), user = dir / "config" / "volrender";
     const std::string home = "XDG_CONFIG_HOME=" + q(dir / "config");

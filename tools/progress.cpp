@@ -6,9 +6,16 @@
 #include <cstdio>
 
 namespace vr {
+namespace {
+
+std::atomic<bool> silenced{false};
+
+}  // namespace
+
+void ProgressBar::silenceAll() { silenced = true; }
 
 ProgressBar::ProgressBar(std::string label, std::size_t total)
-    : label_(std::move(label)), total_(total ? total : 1), enabled_(::isatty(STDERR_FILENO)) {
+    : label_(std::move(label)), total_(total ? total : 1), enabled_(!silenced && ::isatty(STDERR_FILENO)) {
     draw(0);
 }
 

@@ -1,4 +1,5 @@
-// A progress bar on stderr for long stages; silent when stderr is not a terminal (CI logs, tests).
+// A progress bar on stderr for long stages; silent when stderr is not a terminal (CI logs, tests), or everywhere in
+// the process once silenced (the tools' --quiet).
 #pragma once
 #include <atomic>
 #include <cstddef>
@@ -12,6 +13,8 @@ public:
     ~ProgressBar();
     void advance(std::size_t n = 1);  // thread-safe
     void finish();
+    // From now on no bar of this process draws.
+    static void silenceAll();
 
 private:
     void draw(std::size_t done);

@@ -9,6 +9,7 @@
 #include "preprocess/cmd/summary.h"
 #include "preprocess/cmd/volume_flags.h"
 #include "preprocess/pipeline/staged_prepare.h"
+#include "tools/progress.h"
 #include "tools/tool_main.h"
 
 namespace {
@@ -27,7 +28,7 @@ struct Flags {
     vr::VolumeFlags volume;
     std::vector<std::string> fields{"pc", "acd", "eacd"};
     std::string eacdCode{vr::extentCodeName(vr::kDefaultExtentCode)};
-    bool trilinear = true, nearest = false, noNormals = false;
+    bool trilinear = true, nearest = false, noNormals = false, quiet = false;
 };
 
 void addFlags(CLI::App& app, Flags& f) {
@@ -54,6 +55,7 @@ void addFlags(CLI::App& app, Flags& f) {
         ->excludes(trilinear);
     app.add_flag("--no-normals", f.noNormals,
                  "regions ignore the normals (T_a unused): leaping casters then render unshaded only");
+    app.add_flag("-q,--quiet", f.quiet, "no progress bars and no summary: errors only");
 }
 
 // Checks that need no data, so that a bad run fails at once rather than after the expensive stages.
@@ -82,6 +84,7 @@ vr::PrepareOptions optionsFrom(const Flags& f) {
 int main(int argc, char** argv) {
     return vr::runTool<Flags>(kText, argc, argv, addFlags, [](const Flags& flags) {
         checkBeforeRunning(flags);
+        if (flags.quiet) vr::ProgressBar::silenceAll();
         const vr::RawOptions raw = vr::rawOptionsFrom(flags.volume);
         const vr::PrepareOptions options = optionsFrom(flags);  // a bad transfer function fails before the load
         // Segmented once: the classified volume's memory goes to the fields.
@@ -89,7 +92,7 @@ int main(int argc, char** argv) {
             vr::StagedPreparation::load(flags.input, raw, vr::ClassifiedOnceSegmented::Free);
         staged.prepare(options);
         staged.write(flags.output);
-        vr::printSummary(stdout, flags.output, staged.withStatistics(), staged.stageTimes());
+        if (!flags.quiet) vr::printSummary(stdout, flags.output, staged.withStatistics(), staged.stageTimes());
         return 0;
     });
 }

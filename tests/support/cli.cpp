@@ -59,6 +59,12 @@ CliOutcome runVolrender(const std::string& args, const std::string& environment)
     return runBuilt(volrenderExecutable(), args, environment);
 }
 
+CliOutcome runOnTerminal(const fs::path& executable, const std::string& args) {
+    EXPECT_TRUE(fs::exists(executable)) << "build the " << executable.filename() << " target first: " << executable;
+    // script -e: its exit status is the command's; -q: nothing of its own on the terminal.
+    return runCli("/usr/bin/script", "-qec " + shellQuote(shellQuote(executable) + " " + args) + " /dev/null");
+}
+
 void expectRefusal(const CliOutcome& r, const std::string& tool, const std::string& args,
                    const std::vector<std::string>& mentions) {
     EXPECT_NE(r.status, 0) << args;

@@ -26,6 +26,9 @@ CliOutcome runCli(const std::filesystem::path& executable, const std::string& ar
 // runCli on the built volprep / volrender, failing the test (non-fatally) when that executable is not built.
 CliOutcome runVolprep(const std::string& args, const std::string& environment = "");
 CliOutcome runVolrender(const std::string& args, const std::string& environment = "");
+// What `executable args` writes to a terminal (a pseudo-terminal from util-linux's script(1), stdout and stderr
+// together), as a user at a console sees it; its exit status.
+CliOutcome runOnTerminal(const std::filesystem::path& executable, const std::string& args);
 
 // A refusal by `tool` of `args`: a non-zero exit status, stderr starting with "TOOL: " and naming each of `mentions`.
 void expectRefusal(const CliOutcome& r, const std::string& tool, const std::string& args,

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "tools/progress.h"
 #include "tools/tool_main.h"
 #include "core/errors.h"
 #include "io/prepared_file.h"
@@ -42,7 +43,7 @@ struct Flags {
     vr::VolumeFlags volume;  // for a volume prepared here
     double fov = 30, azimuth = 0, elevation = 0, step = 0.5, ert = 0.99;
     std::vector<double> light, background{0, 0, 0};
-    bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false;
+    bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false, quiet = false;
     std::string stats, heatmap, calibration;
     int views = 1, device = -1;
 };
@@ -81,6 +82,8 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_flag("--list-devices", f.listDevices, "list the Vulkan devices and exit");
     app.add_option("--device", f.device, "Vulkan device index (see --list-devices; default: first discrete GPU)");
     app.add_flag("--cpu", f.cpu, "render with the CPU reference instead of Vulkan");
+    app.add_flag("-q,--quiet", f.quiet, "no progress bars and no report of the stages, the choice and the views: "
+                                        "errors only");
 }
 
 void checkWritable(const std::string& path, const char* flag) {
@@ -218,6 +221,7 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, con
     options.octants = orbitOctants(orbit(f, view, staged.volume().grid));
     staged.prepare(options);
     stages = staged.stageTimes();
+    if (f.quiet) return std::move(staged).takeResult();
     std::printf("prepared:");
     for (const vr::StageTime& t : stages) std::printf(" %s %.3f s", t.stage.c_str(), t.seconds);
     std::printf("\n");
@@ -235,6 +239,7 @@ int run(const Flags& f) {
     vr::ViewParams view;
     vr::RenderSettings settings;
     checkFlags(f, view, settings);
+    if (f.quiet) vr::ProgressBar::silenceAll();
     const bool prepareHere = !vr::isPreparedFile(f.input);
     std::string choice;  // why --caster auto chose its caster
     if (prepareHere && f.caster == "auto") {
@@ -255,12 +260,12 @@ int run(const Flags& f) {
     const vr::CalibrationInUse calibration =
         vr::calibrationInUse(f.calibration, context ? std::optional(context->info().name) : std::nullopt);
     if (f.caster == "auto" && !prepareHere) {
-        if (!calibration.note.empty()) std::fprintf(stderr, "volrender: %s\n", calibration.note.c_str());
+        if (!calibration.note.empty() && !f.quiet) std::fprintf(stderr, "volrender: %s\n", calibration.note.c_str());
         const vr::CasterChoice c = autoCaster(f, view, settings, calibration.constants);
         settings.caster = c.caster;
         choice = c.reason;
     }
-    if (f.caster == "auto")
+    if (f.caster == "auto" && !f.quiet)
         std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(settings.caster).data(),
                      choice.c_str());
     const vr::PreparedVolume prepared =
@@ -275,8 +280,9 @@ int run(const Flags& f) {
         uploaded.emplace(renderer->upload(prepared, {{settings.caster}, octants}));
         uploadStats = vr::uploadStatistics(
             *uploaded, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-        std::printf("upload: %.2f ms, %.1f MB in %zu brick(s)\n", uploadStats["milliseconds"].get<double>(),
-                    double(uploaded->uploadedBytes()) / 1e6, uploaded->bricks().bricks().size());
+        if (!f.quiet)
+            std::printf("upload: %.2f ms, %.1f MB in %zu brick(s)\n", uploadStats["milliseconds"].get<double>(),
+                        double(uploaded->uploadedBytes()) / 1e6, uploaded->bricks().bricks().size());
     }
     nlohmann::json viewStats = nlohmann::json::array();
     for (int i = 0; i < f.views; ++i) {
@@ -294,9 +300,10 @@ int run(const Flags& f) {
         s["image"] = image;
         s["azimuth"] = view.azimuthDeg;
         viewStats.push_back(s);
-        std::printf("%s: %s caster, %.2f ms device, %.2f ms wall, %.1f iterations per ray\n", image.c_str(),
-                    vr::casterName(settings.caster).data(), result.deviceMilliseconds, result.wallMilliseconds,
-                    s["iterationsPerRay"]["mean"].get<double>());
+        if (!f.quiet)
+            std::printf("%s: %s caster, %.2f ms device, %.2f ms wall, %.1f iterations per ray\n", image.c_str(),
+                        vr::casterName(settings.caster).data(), result.deviceMilliseconds, result.wallMilliseconds,
+                        s["iterationsPerRay"]["mean"].get<double>());
     }
     if (context)  // only with VR_VALIDATION=1: what the validation layer reported
         for (const std::string& message : context->validationErrors())
