@@ -26,18 +26,8 @@ if [[ $dataset == smoke ]]; then
   dataset=vtk_headmr_48x62x42_uint8.raw.gz views=${2:-1} size=${3:-64x64}
 fi
 
-# The manifest row: the exact file name, else the one .raw.gz whose name starts with DATASET.
-row=$(awk -F'\t' -v d="$dataset" 'NR > 1 && $1 == d' "$datasets/MANIFEST.tsv")
-[[ -n $row ]] || row=$(awk -F'\t' -v d="$dataset" 'NR > 1 && index($1, d) == 1 && $1 ~ /\.raw\.gz$/' \
-  "$datasets/MANIFEST.tsv")
-if [[ -z $row || $(wc -l <<<"$row") -ne 1 ]]; then
-  echo "peers.sh: no single raw dataset named $dataset in $datasets/MANIFEST.tsv" >&2
-  exit 1
-fi
-file=$(cut -f1 <<<"$row")
-tf=$(cut -f9 <<<"$row")
-# The first three numbers of the spacing column ("unknown (approx. 1 1 1)" gives 1 1 1).
-spacing=$(cut -f4 <<<"$row" | grep -oE '[0-9]+(\.[0-9]+)?' | head -3 | paste -sd,)
+source scripts/manifest_row.sh
+manifest_row peers.sh "$dataset"
 user_settings=${USER_SETTINGS:-0}
 if [[ $user_settings != 0 && $user_settings != 1 ]]; then
   echo "peers.sh: USER_SETTINGS=$user_settings: expected 0 or 1" >&2

@@ -30,18 +30,8 @@ if ! [[ $threads =~ ^[1-9][0-9]*$ && $runs =~ ^[1-9][0-9]*$ ]]; then
   exit 1
 fi
 
-# The manifest row: the exact file name, else the one .raw.gz whose name starts with DATASET (as scripts/peers.sh).
-row=$(awk -F'\t' -v d="$dataset" 'NR > 1 && $1 == d' "$datasets/MANIFEST.tsv")
-[[ -n $row ]] || row=$(awk -F'\t' -v d="$dataset" 'NR > 1 && index($1, d) == 1 && $1 ~ /\.raw\.gz$/' \
-  "$datasets/MANIFEST.tsv")
-if [[ -z $row || $(wc -l <<<"$row") -ne 1 ]]; then
-  echo "whole_process.sh: no single raw dataset named $dataset in $datasets/MANIFEST.tsv" >&2
-  exit 1
-fi
-file=$(cut -f1 <<<"$row")
-tf=$(cut -f9 <<<"$row")
-# The first three numbers of the spacing column ("unknown (approx. 1 1 1)" gives 1 1 1).
-spacing=$(cut -f4 <<<"$row" | grep -oE '[0-9]+(\.[0-9]+)?' | head -3 | paste -sd,)
+source scripts/manifest_row.sh
+manifest_row whole_process.sh "$dataset"
 name=${file%%.raw.gz}
 out=${OUTDIR:-out/whole_process/$name}
 
