@@ -10,6 +10,7 @@
 #include "preprocess/classify/tf_range_table.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/staged_prepare.h"
+#include "preprocess/pipeline/working_set.h"
 #include "preprocess/segment/segment.h"
 #include "render/caster_choice.h"
 #include "support/load_dataset.h"
@@ -210,6 +211,36 @@ TEST(PipelineStaged, FreesTheClassifiedVolumeOnceSegmentedWhenAskedTo) {
     o.segmentation.opacityThreshold = 0;
     staged.prepare(o);
     EXPECT_EQ(p.regions.label, labels);
+}
+
+// A volume whose preparation would not fit the memory allowed is refused before any stage runs, with the estimate
+// and the limit; the estimate grows with what is asked.
+TEST(PipelineStaged, AVolumeTooLargeForTheMemoryIsRefusedBeforeAnyStage) {
+    StagedPreparation staged(enginePhantom({20, 17, 12}));
+    PrepareOptions o;
+    o.classify.transferFunction = test::datasetTransferFunction("sim.tf.json");
+    const std::size_t needed = preparationBytes(staged.volume().grid, o);
+    o.memoryLimit = needed - 1;
+    try {
+        staged.prepare(o);
+        ADD_FAILURE() << "not refused";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("preparing 20x17x12 voxels needs about"), std::string::npos) << what;
+        EXPECT_NE(what.find("allowed"), std::string::npos) << what;
+    }
+    EXPECT_EQ(staged.runs(PrepStage::Classify), 0);
+    EXPECT_TRUE(staged.lastStages().empty());
+    o.memoryLimit = needed;
+    EXPECT_NO_THROW(staged.prepare(o));
+
+    PrepareOptions less = o;
+    less.fields = kFieldEACD;
+    less.octants = 1;
+    less.classify.normals = false;
+    less.segmentation.trilinear = false;
+    EXPECT_LT(preparationBytes(staged.volume().grid, less), needed);
+    EXPECT_GT(availableMemoryBytes(), 0u);
 }
 
 // volprep's stages: the write comes last, timed, after the statistics the file holds (which cannot include it).

@@ -5,6 +5,7 @@
 #include "io/prepared_file.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/prepared_statistics.h"
+#include "preprocess/pipeline/working_set.h"
 #include "preprocess/classify/tf_range_table.h"
 #include "preprocess/segment/segment.h"
 #include "render/caster_choice.h"
@@ -92,6 +93,9 @@ void StagedPreparation::run(PrepStage stage, Work work) {
 
 const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, PrepStage last) {
     lastStages_.clear();
+    if (runs_[int(PrepStage::Classify)] == 0)  // before any work: a volume too large is refused, not killed halfway
+        requireWorkingSetFits(prepared_.meta.source.empty() ? "preparation" : prepared_.meta.source,
+                              prepared_.grid(), options, options.memoryLimit);
     ClassifyParams classifying = classifyingPart(options.classify);
     // A classified volume freed after its segmentation is made again when segmentation runs again.
     const bool segmentAgain = last >= PrepStage::Segment && segmentedWith_ != options.segmentation;

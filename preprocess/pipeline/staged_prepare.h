@@ -25,6 +25,7 @@ struct PrepareOptions {
     unsigned fields = kFieldPC | kFieldACD | kFieldEACD;
     ExtentCode eacdCode = kDefaultExtentCode;  // EACD extents rounded down to this code (core/extent_code.h)
     unsigned octants = kAllOctants;  // ACD and EACD octants to build: all for a file, a render's views' otherwise
+    std::size_t memoryLimit = 0;     // bytes the first preparation may need (working_set.h); 0: what is available
 };
 
 // The stages in the order they depend on each other.
@@ -47,8 +48,9 @@ public:
     // Brings the stages up to `last` up to date with `options` and returns the result. Each field is timed on its
     // own: ACD (the 8 octant passes, also built when only EACD is asked for), PC from the ACDs, EACD on top of ACD.
     // Stages after `last` do not run, and keep their results only while these are still valid (else they are
-    // empty). Throws InputError for bad parameters; a stage that threw runs again on the next call. The reference
-    // stays valid for the lifetime of this object.
+    // empty). The first call refuses a volume whose preparation would need more memory than options.memoryLimit
+    // allows (requireWorkingSetFits), before any stage runs. Throws InputError for bad parameters; a stage that
+    // threw runs again on the next call. The reference stays valid for the lifetime of this object.
     const PreparedVolume& prepare(const PrepareOptions& options, PrepStage last = PrepStage::Fields);
 
     // The result with meta.statistics (preparedStatistics, with stageTimes()) and meta.rayProbe (probeRays: a few

@@ -1,0 +1,56 @@
+#include "preprocess/pipeline/working_set.h"
+
+#include <unistd.h>
+
+#include <bit>
+#include <cstdio>
+#include <fstream>
+
+#include "core/errors.h"
+#include "core/extent_code.h"
+#include "preprocess/pipeline/staged_prepare.h"
+
+namespace vr {
+
+std::size_t preparationBytes(const GridGeometry& grid, const PrepareOptions& options) {
+    const std::size_t octants = std::size_t(std::popcount(options.octants & kAllOctants));
+    std::size_t perVoxel = sizeof(float)                              // the scalars
+                           + 4 * sizeof(float)                        // sigma and colour
+                           + (options.classify.normals ? 12 : 0)      // normals
+                           + sizeof(uint32_t);                        // region labels
+    if (options.segmentation.trilinear) perVoxel += 2 * sizeof(float);  // footprint ranges
+    if (options.fields != 0) perVoxel += 6;                             // axial runs, one byte per axis and sign
+    if (options.fields & (kFieldACD | kFieldEACD | kFieldPC))
+        perVoxel += (options.fields & kFieldPC) ? kOctants : octants;   // ACD, kept or built for PC and EACD
+    if (options.fields & kFieldPC) perVoxel += 1;
+    if (options.fields & kFieldEACD) perVoxel += octants * extentCodeBytes(options.eacdCode);
+    return grid.voxels() * perVoxel;
+}
+
+std::size_t availableMemoryBytes() {
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    std::size_t kilobytes = 0;
+    while (meminfo >> key >> kilobytes) {
+        if (key == "MemAvailable:") return kilobytes * 1024;
+        meminfo.ignore(64, '\n');
+    }
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && pageSize > 0 ? std::size_t(pages) * std::size_t(pageSize) : SIZE_MAX;
+}
+
+void requireWorkingSetFits(const std::string& source, const GridGeometry& grid, const PrepareOptions& options,
+                           std::size_t limit) {
+    const std::size_t needed = preparationBytes(grid, options), available = limit ? limit : availableMemoryBytes();
+    if (needed <= available) return;
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "preparing %dx%dx%d voxels needs about %.2f GiB of memory (scalars, classification, regions, "
+                  "fields), more than the %.2f GiB %s; nothing was prepared (fewer fields, --nearest or "
+                  "--no-normals need less)",
+                  grid.dims.x, grid.dims.y, grid.dims.z, double(needed) / (1 << 30), double(available) / (1 << 30),
+                  limit ? "allowed" : "available");
+    throw fileError(source, text);
+}
+
+}  // namespace vr
