@@ -26,6 +26,14 @@ struct TransferTable {
     std::vector<std::array<float, 3>> colour;  // linear RGB in [0,1]
 
     std::size_t size() const { return sigma.size(); }
+    // The entries as four floats each, r, g, b, sigma: the prepared file's chunk and the device's buffer.
+    std::vector<float> interleaved() const {
+        std::vector<float> out;
+        out.reserve(4 * size());
+        for (std::size_t i = 0; i < size(); ++i)
+            out.insert(out.end(), {colour[i][0], colour[i][1], colour[i][2], sigma[i]});
+        return out;
+    }
     bool operator==(const TransferTable&) const = default;
 };
 

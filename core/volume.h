@@ -25,6 +25,12 @@ constexpr std::size_t scalarBytes(ScalarType t) {
     return 0;
 }
 
+// Writes `count` scalars held as float in type `type` at `to` (scalarBytes(type) each, unaligned), each clamped
+// to the type's range and truncated toward zero; returns the index of the first one the type does not hold
+// exactly (not integral, out of range or not finite), or `count` when every one is exact. How the prepared file and
+// the device store a volume's scalars.
+std::size_t narrowScalars(const float* from, std::size_t count, ScalarType type, unsigned char* to);
+
 struct Volume {
     GridGeometry grid;
     ScalarType sourceType = ScalarType::Float32;

@@ -88,54 +88,18 @@ std::string numberText(double v) {
     return s.str();
 }
 
-// Whether a scalar, held as float, is a value of type T exactly (every finite float is a float32).
-template <typename T>
-bool representable(float v) {
-    if constexpr (std::is_floating_point_v<T>) {
-        return std::isfinite(v);
-    } else {
-        return std::isfinite(v) && v == std::trunc(v) && v >= float(std::numeric_limits<T>::min()) &&
-               v <= float(std::numeric_limits<T>::max());
-    }
-}
-
-template <typename T>
-bool scalarsRepresentable(const std::vector<float>& v, std::size_t& bad) {
-    bad = firstWhere(v.size(), [&](std::size_t i) { return !representable<T>(v[i]); });
-    return bad == v.size();
-}
-
-// The first voxel whose scalar the type cannot hold exactly, or values.size().
-std::size_t firstUnrepresentable(const std::vector<float>& values, ScalarType t) {
-    std::size_t bad = values.size();
-    switch (t) {
-        case ScalarType::UInt8: scalarsRepresentable<uint8_t>(values, bad); break;
-        case ScalarType::Int16: scalarsRepresentable<int16_t>(values, bad); break;
-        case ScalarType::UInt16: scalarsRepresentable<uint16_t>(values, bad); break;
-        case ScalarType::Float32: scalarsRepresentable<float>(values, bad); break;
-    }
-    return bad;
-}
-
-// The scalars in an integer type, as the file holds them (checked representable first).
-template <typename T>
-void encodeAs(const std::vector<float>& values, std::vector<char>& bytes) {
-    bytes.resize(values.size() * sizeof(T));
-    T* to = reinterpret_cast<T*>(bytes.data());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, values.size()), [&](const tbb::blocked_range<std::size_t>& b) {
-        for (std::size_t i = b.begin(); i < b.end(); ++i) to[i] = T(values[i]);
-    });
-}
-
-std::vector<char> encodeScalars(const std::vector<float>& values, ScalarType t) {
-    std::vector<char> bytes;
-    switch (t) {
-        case ScalarType::UInt8: encodeAs<uint8_t>(values, bytes); break;
-        case ScalarType::Int16: encodeAs<int16_t>(values, bytes); break;
-        case ScalarType::UInt16: encodeAs<uint16_t>(values, bytes); break;
-        case ScalarType::Float32: break;  // written straight from the values
-    }
-    return bytes;
+// The scalars in the file's type, encoded on all threads; returns the first voxel whose scalar the type does not
+// hold exactly (narrowScalars), or values.size().
+std::size_t encodeScalars(const std::vector<float>& values, ScalarType t, std::vector<char>& bytes) {
+    bytes.resize(values.size() * scalarBytes(t));
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, values.size()), values.size(),
+        [&](const tbb::blocked_range<std::size_t>& r, std::size_t first) {
+            unsigned char* to = reinterpret_cast<unsigned char*>(bytes.data()) + r.begin() * scalarBytes(t);
+            const std::size_t bad = narrowScalars(values.data() + r.begin(), r.size(), t, to);
+            return std::min(first, bad < r.size() ? r.begin() + bad : values.size());
+        },
+        [](std::size_t a, std::size_t b) { return std::min(a, b); });
 }
 
 template <typename T>
@@ -153,15 +117,6 @@ void decodeScalars(const std::vector<char>& bytes, ScalarType t, std::vector<flo
         case ScalarType::UInt16: decodeAs<uint16_t>(bytes, values); break;
         case ScalarType::Float32: break;  // read straight into the values
     }
-}
-
-// The table as the file holds it: r, g, b, sigma per entry.
-std::vector<float> interleaveTable(const TransferTable& t) {
-    std::vector<float> out;
-    out.reserve(t.size() * kTableComponents);
-    for (std::size_t i = 0; i < t.size(); ++i)
-        out.insert(out.end(), {t.colour[i][0], t.colour[i][1], t.colour[i][2], t.sigma[i]});
-    return out;
 }
 
 void splitTable(const std::vector<float>& in, TransferTable& t) {
@@ -266,10 +221,6 @@ void checkSizes(const fs::path& path, const PreparedVolume& p) {
             throw fail("ACD and EACD need all 8 octants or none");
     for (const ExtentField& octant : p.fields.eacd)
         if (octant.code() != p.fields.eacdCode()) throw fail("the EACD octants are in different codes");
-    const std::size_t bad = firstUnrepresentable(p.scalars.values, p.scalars.sourceType);
-    if (bad < p.scalars.values.size())
-        throw fail("scalar " + numberText(p.scalars.values[bad]) + " at voxel " + std::to_string(bad) +
-                   " is not a " + std::string(scalarTypeName(p.scalars.sourceType)) + " value");
 }
 // Reading: every problem becomes an InputError naming the file. pread() lets chunks be read from many threads.
 class Reader {
@@ -438,12 +389,13 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
     const ExtentCode code = p.fields.eacdCode();
     const ScalarType scalarType = p.scalars.sourceType;
     const TransferTable& tf = p.classification.table;
-    const std::vector<char> scalars = encodeScalars(p.scalars.values, scalarType);
-    const std::vector<float> entries = interleaveTable(tf);
-    // Float scalars are written straight from the values, integer ones from their conversion.
-    const void* scalarData = scalarType == ScalarType::Float32 ? static_cast<const void*>(p.scalars.values.data())
-                                                               : static_cast<const void*>(scalars.data());
-    std::vector<ChunkSource> chunks = {{"scalars", scalarData, p.scalars.values.size()},
+    std::vector<char> scalars;
+    if (const std::size_t bad = encodeScalars(p.scalars.values, scalarType, scalars); bad < p.scalars.values.size())
+        throw fileError(path.string(), "cannot write: scalar " + numberText(p.scalars.values[bad]) + " at voxel " +
+                                           std::to_string(bad) + " is not a " +
+                                           std::string(scalarTypeName(scalarType)) + " value");
+    const std::vector<float> entries = tf.interleaved();
+    std::vector<ChunkSource> chunks = {{"scalars", scalars.data(), p.scalars.values.size()},
                                        {"table", entries.data(), tf.size()},
                                        source("labels", p.regions.label)};
     for (ChunkSource& c : fieldSources(p)) chunks.push_back(std::move(c));

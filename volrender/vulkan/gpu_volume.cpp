@@ -4,7 +4,6 @@
 #include <atomic>
 #include <cstring>
 #include <functional>
-#include <limits>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
@@ -26,21 +25,6 @@ struct WholeImage {
     // Writes `count` texels of slab `slab`, from voxel `first` (a linear index) along x, to `to`.
     std::function<void(int slab, std::size_t first, int count, uint8_t* to)> row;
 };
-
-// Writes `count` scalars from `from` as T (an integer type) to `to`; clears `ok` where one is no value of T (out of
-// its range, not an integer, NaN): a corrupt prepared volume, refused after the upload rather than converted.
-template <typename T>
-void writeIntegers(const float* from, int count, uint8_t* to, std::atomic<bool>& ok) {
-    constexpr float lo = float(std::numeric_limits<T>::min()), hi = float(std::numeric_limits<T>::max());
-    bool exact = true;
-    for (int i = 0; i < count; ++i, to += sizeof(T)) {
-        const float x = from[i];
-        const T v = T(x >= lo ? (x <= hi ? x : hi) : lo);  // a NaN goes to lo, and fails the comparison below
-        exact &= float(v) == x;
-        std::memcpy(to, &v, sizeof(T));
-    }
-    if (!exact) ok = false;
-}
 
 // EACD texels: exact extents in RGB (A unused), or the code that the shader decodes through its table.
 vk::Format eacdFormat(ExtentCode code) {
@@ -125,11 +109,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
                          std::to_string(tableBytes) + " bytes) exceeds the storage buffer limit of the Vulkan device " +
                          ctx.info().name + " (maxStorageBufferRange " + std::to_string(bufferRange) + " bytes: at most " +
                          std::to_string(bufferRange / kEntryBytes) + " entries); render with --cpu");
-    std::vector<float> entries(4 * table.size());
-    for (std::size_t i = 0; i < table.size(); ++i) {
-        std::copy(table.colour[i].begin(), table.colour[i].end(), entries.begin() + 4 * i);
-        entries[4 * i + 3] = table.sigma[i];
-    }
+    const std::vector<float> entries = table.interleaved();
     table_ = std::make_unique<DeviceBuffer>(ctx, pool, entries.data(), tableBytes,
                                             vk::BufferUsageFlagBits::eStorageBuffer);
     uploads_.push_back({"table", std::size_t(tableBytes), 0});
@@ -138,29 +118,11 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     const std::vector<float>& values = prepared.scalars.values;
     std::atomic<bool> scalarsFit = true;
     std::vector<WholeImage> wholes;
-    std::function<void(int, std::size_t, int, uint8_t*)> scalarRow;
-    switch (scalarType_) {
-        case ScalarType::UInt8:
-            scalarRow = [&](int, std::size_t first, int count, uint8_t* to) {
-                writeIntegers<uint8_t>(values.data() + first, count, to, scalarsFit);
-            };
-            break;
-        case ScalarType::Int16:
-            scalarRow = [&](int, std::size_t first, int count, uint8_t* to) {
-                writeIntegers<int16_t>(values.data() + first, count, to, scalarsFit);
-            };
-            break;
-        case ScalarType::UInt16:
-            scalarRow = [&](int, std::size_t first, int count, uint8_t* to) {
-                writeIntegers<uint16_t>(values.data() + first, count, to, scalarsFit);
-            };
-            break;
-        case ScalarType::Float32:
-            scalarRow = [&](int, std::size_t first, int count, uint8_t* to) {
-                std::memcpy(to, values.data() + first, count * sizeof(float));
-            };
-            break;
-    }
+    const ScalarType scalarType = scalarType_;
+    const auto scalarRow = [&values, &scalarsFit, scalarType](int, std::size_t first, int count, uint8_t* to) {
+        if (narrowScalars(values.data() + first, std::size_t(count), scalarType, to) < std::size_t(count))
+            scalarsFit = false;
+    };
     wholes.push_back({&scalars_, "scalars", 1, scalarFormat(scalarType_), scalarRow});
 
     const DistanceFields& f = prepared.fields;
