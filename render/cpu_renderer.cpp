@@ -35,8 +35,7 @@ struct SampleValue {
 class Sampler {
 public:
     Sampler(const Volume& scalars, const ScalarClassification& c, bool shading)
-        : scalars_(scalars), c_(c), shading_(shading), inverseStep_(1 / c.table.step),
-          lastEntry_(double(c.table.size() - 1)) {}
+        : scalars_(scalars), c_(c), shading_(shading) {}
 
     SampleValue nearest(const Vec3i& v) const {
         SampleValue s = classified(scalars_.at(v.x, v.y, v.z));
@@ -74,14 +73,8 @@ public:
 
 private:
     SampleValue classified(double scalar) const {
-        const TransferTable& table = c_.table;
-        const double t = device::tableCoordinate(scalar, table.lo, inverseStep_, lastEntry_);
-        const std::size_t i = std::size_t(t), j = std::min(i + 1, table.size() - 1);
-        const double w = t - double(i);
-        SampleValue s;
-        s.sigma = device::interpolate(table.sigma[i], table.sigma[j], w);
-        for (int a = 0; a < 3; ++a) s.colour[a] = device::interpolate(table.colour[i][a], table.colour[j][a], w);
-        return s;
+        const device::TableSample t = device::lookUpTable(c_.table, scalar);
+        return {t.sigma, {t.colour[0], t.colour[1], t.colour[2]}, {0, 0, 0}};
     }
 
     // The unit gradient, or zero where the gradient is no longer than the flat length.
@@ -93,7 +86,6 @@ private:
     const Volume& scalars_;
     const ScalarClassification& c_;
     bool shading_;
-    double inverseStep_, lastEntry_;
 };
 
 }  // namespace

@@ -6,6 +6,8 @@
 #include "shared_language.h"
 
 #ifdef __cplusplus
+#include <cstddef>
+
 namespace vr::device {
 #endif
 
@@ -32,6 +34,22 @@ VR_FUNCTION VR_REAL trilinearBlend(VR_REAL c000, VR_REAL c100, VR_REAL c010, VR_
 }
 
 #ifdef __cplusplus
+// A scalar's extinction and colour from a table with `lo`, `step`, and `sigma` and `colour` per entry
+// (core/scalar_classification.h's TransferTable), in double: what the CPU reference and the classified volume take
+// where the casters read their table buffer.
+struct TableSample {
+    double sigma;
+    double colour[3];
+};
+template <typename Table>
+TableSample lookUpTable(const Table& table, double f) {
+    const double t = tableCoordinate(f, table.lo, 1 / table.step, double(table.size() - 1));
+    const std::size_t i = std::size_t(t), j = i + 1 < table.size() ? i + 1 : i;
+    const double w = t - double(i);
+    TableSample s{interpolate(table.sigma[i], table.sigma[j], w), {}};
+    for (int a = 0; a < 3; ++a) s.colour[a] = interpolate(table.colour[i][a], table.colour[j][a], w);
+    return s;
+}
 }  // namespace vr::device
 #endif
 

@@ -82,8 +82,7 @@ public:
     RowClassifier(const Volume& volume, const ScalarClassification& classification, bool normals,
                   ClassifiedVolume& out)
         : volume_(volume), table_(classification.table), normals_(normals), out_(out), dims_(volume.grid.dims),
-          flatGradient_(classification.flatGradient), inverseStep_(1 / table_.step),
-          lastEntry_(double(table_.size() - 1)) {}
+          flatGradient_(classification.flatGradient) {}
 
     // Rows [begin, end) of the dims.y * dims.z rows, row r = (y = r % dims.y, z = r / dims.y).
     void operator()(std::size_t begin, std::size_t end) const {
@@ -147,17 +146,9 @@ private:
     // sigma and colour as a nearest sample of scalar f takes them (shaders/transfer_lookup.h): an entry exactly
     // where f lies on one (every voxel of an integer volume), else interpolated between two.
     void lookUp(double f, std::size_t i) const {
-        const double t = device::tableCoordinate(f, table_.lo, inverseStep_, lastEntry_);
-        const std::size_t k = std::size_t(t), next = std::min(k + 1, table_.size() - 1);
-        const double w = t - double(k);
-        if (w == 0) {
-            out_.sigma[i] = table_.sigma[k];
-            out_.colour[i] = table_.colour[k];
-            return;
-        }
-        out_.sigma[i] = float(device::interpolate(table_.sigma[k], table_.sigma[next], w));
-        for (int c = 0; c < 3; ++c)
-            out_.colour[i][c] = float(device::interpolate(table_.colour[k][c], table_.colour[next][c], w));
+        const device::TableSample s = device::lookUpTable(table_, f);
+        out_.sigma[i] = float(s.sigma);
+        out_.colour[i] = {float(s.colour[0]), float(s.colour[1]), float(s.colour[2])};
     }
 
     const Volume& volume_;
@@ -165,7 +156,7 @@ private:
     const bool normals_;
     ClassifiedVolume& out_;
     const Vec3i dims_;
-    const double flatGradient_, inverseStep_, lastEntry_;
+    const double flatGradient_;
 };
 
 }  // namespace
