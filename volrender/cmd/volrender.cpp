@@ -104,13 +104,15 @@ vr::Vec3d vec(const std::vector<double>& v, const char* flag) {
     return {v[0], v[1], v[2]};
 }
 
-// Checks that need no data, so that a bad run fails before the prepared file is read.
-void checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
+// Checks that need no data, so that a bad run fails before the prepared file is read. Returns whether the input is
+// a prepared file (else a volume to prepare here).
+bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     if (f.input.empty()) throw vr::InputError("no volume or prepared volume given (see --help)");
     if (f.output.empty()) throw vr::InputError("no output image given: -o IMAGE");
     if (!fs::exists(f.input)) throw vr::fileError(f.input, "no such file");
     const bool raw = !f.volume.dims.empty() || !f.volume.type.empty() || !f.volume.spacing.empty() || f.volume.bigEndian;
-    if (vr::isPreparedFile(f.input)) {
+    const bool prepared = vr::isPreparedFile(f.input);
+    if (prepared) {
         if (!f.volume.tf.empty() || raw)
             throw vr::fileError(f.input, "a prepared file holds its transfer function and grid: --tf and the raw "
                                          "flags are for a volume to prepare");
@@ -151,6 +153,7 @@ void checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
         s.lightDirection = vec(f.light, "--light");
         if (vr::length(*s.lightDirection) == 0) throw vr::InputError("--light: the direction must not be zero");
     }
+    return prepared;
 }
 
 // Seconds per stage of a volume prepared here (empty for a prepared file).
@@ -238,9 +241,8 @@ int run(const Flags& f) {
     }
     vr::ViewParams view;
     vr::RenderSettings settings;
-    checkFlags(f, view, settings);
+    const bool prepareHere = !checkFlags(f, view, settings);
     if (f.quiet) vr::ProgressBar::silenceAll();
-    const bool prepareHere = !vr::isPreparedFile(f.input);
     std::string choice;  // why --caster auto chose its caster
     if (prepareHere && f.caster == "auto") {
         settings.caster = vr::Caster::EACD;
