@@ -86,10 +86,10 @@ vr::test::DatasetEntry findDataset(const std::string& file) {
     throw vr::InputError(file + ": not in " + (vr::test::datasetsDir() / "MANIFEST.tsv").string());
 }
 
-// Every stage as volprep runs them (the classified volume freed once segmented), the write included.
+// Every stage as volprep runs them, the write included.
 void prepareFile(const fs::path& input, const vr::RawOptions& raw, const vr::PrepareOptions& options,
                  const fs::path& out, DatasetResult& result) {
-    vr::StagedPreparation staged = vr::StagedPreparation::load(input, raw, vr::ClassifiedOnceSegmented::Free);
+    vr::StagedPreparation staged = vr::StagedPreparation::load(input, raw);
     staged.prepare(options);
     staged.write(out);
     for (const vr::StageTime& t : staged.stageTimes()) record(result, t);

@@ -1,5 +1,7 @@
 // The scalar gradient: classification and shading read it the same way (docs/ALGORITHMS.md section 2).
 #pragma once
+#include <array>
+
 #include "vec3.h"
 #include "volume.h"
 
@@ -21,6 +23,13 @@ inline Vec3d centralGradient(const Volume& volume, int x, int y, int z) {
         g[a] = (double(volume.at(hi.x, hi.y, hi.z)) - double(volume.at(lo.x, lo.y, lo.z))) / span;
     }
     return g;
+}
+
+// The unit normal of gradient g, in float, or (0,0,0) where |g| is at most `flat` (no direction to shade by).
+inline std::array<float, 3> unitNormal(const Vec3d& g, double flat) {
+    const double magnitude = length(g);
+    if (!(magnitude > flat)) return {0, 0, 0};
+    return {float(g.x / magnitude), float(g.y / magnitude), float(g.z / magnitude)};
 }
 
 }  // namespace vr

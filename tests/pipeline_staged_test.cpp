@@ -129,7 +129,6 @@ TEST(PipelineStaged, StopsAtTheStageAskedFor) {
     PrepareOptions o = headOptions();
     const PreparedVolume& p = staged.prepare(o, PrepStage::Classify);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify"}));
-    EXPECT_EQ(staged.classified().sigma.size(), voxelCount({64, 64, 93}));
     const auto [lo, hi] = std::minmax_element(staged.volume().values.begin(), staged.volume().values.end());
     EXPECT_EQ(p.classification.table.size(), std::size_t(*hi - *lo + 1));  // an entry per integer in the range
     EXPECT_TRUE(p.regions.label.empty());
@@ -163,17 +162,17 @@ TEST(PipelineStaged, AVolumeInMemoryIsNeverLoaded) {
     EXPECT_EQ(p.meta.source, engine.source);
     EXPECT_EQ(p.scalars.values, engine.values);
     EXPECT_EQ(p.classification, scalarClassification(engine, o.classify));
-    const ClassifiedVolume c = classify(engine, o.classify);
-    EXPECT_EQ(staged.classified().sigma, c.sigma);
-    EXPECT_EQ(staged.classified().normal, c.normal);
-    // Trilinear from a transfer function: regions for post-classification, built on the scalars.
+    // Trilinear from a transfer function: regions for post-classification, built on the scalars; the voxels
+    // classified on demand segment as the classified volume does.
     const TfRangeTable spread(sampleForVolume(engine, *o.classify.transferFunction));
-    EXPECT_EQ(p.regions.label, segment(c, o.segmentation, ClassifiedScalars{engine.values, spread}).label);
+    EXPECT_EQ(p.regions.label,
+              segment(classify(engine, o.classify), o.segmentation, ClassifiedScalars{engine.values, spread}).label);
     EXPECT_EQ(p.fields.pc, buildFields(p.regions, kFieldPC).pc);
     o.classify.normals = false;
     staged.prepare(o);
     EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
-    EXPECT_FALSE(staged.classified().hasNormals());
+    EXPECT_EQ(p.regions.label,
+              segment(classify(engine, o.classify), o.segmentation, ClassifiedScalars{engine.values, spread}).label);
 }
 
 TEST(PipelineStaged, AStageThatThrowsRunsAgainNextTime) {
@@ -191,26 +190,22 @@ TEST(PipelineStaged, AStageThatThrowsRunsAgainNextTime) {
                  InputError);
 }
 
-// A preparation that runs once frees the classified volume once segmented (volprep's peak memory): the fields
-// have its memory. A later segmentation classifies again first.
-TEST(PipelineStaged, FreesTheClassifiedVolumeOnceSegmentedWhenAskedTo) {
-    StagedPreparation staged(enginePhantom({20, 17, 12}), ClassifiedOnceSegmented::Free);
-    PrepareOptions o;
-    o.classify.transferFunction = test::datasetTransferFunction("sim.tf.json");
-    staged.prepare(o, PrepStage::Classify);
-    EXPECT_FALSE(staged.classified().sigma.empty());
+// Segmentation classifies the voxels from the scalars as it reads them: a threshold change segments again without
+// classifying again, and gives back the first regions when the thresholds return.
+TEST(PipelineStaged, SegmentsAgainWithoutClassifyingAgain) {
+    StagedPreparation staged = stagedHead();
+    PrepareOptions o = headOptions();
     const PreparedVolume& p = staged.prepare(o);
-    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
-    EXPECT_TRUE(staged.classified().sigma.empty());
     EXPECT_FALSE(p.scalars.values.empty());  // the renderers classify from them
     const std::vector<uint32_t> labels = p.regions.label;
-    o.segmentation.opacityThreshold = 0.5;
+    o.segmentation = {0.5, 180, true, true};
     staged.prepare(o);
-    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"classify", "segment", "acd", "pc", "eacd"}));
-    EXPECT_TRUE(staged.classified().sigma.empty());
-    o.segmentation.opacityThreshold = 0;
+    EXPECT_EQ(names(staged.lastStages()), (std::vector<std::string>{"segment", "acd", "pc", "eacd"}));
+    EXPECT_NE(p.regions.label, labels);
+    o = headOptions();
     staged.prepare(o);
     EXPECT_EQ(p.regions.label, labels);
+    EXPECT_EQ(staged.runs(PrepStage::Classify), 1);
 }
 
 // A volume whose preparation would not fit the memory allowed is refused before any stage runs, with the estimate

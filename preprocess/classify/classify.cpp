@@ -101,14 +101,7 @@ private:
             for (std::size_t x = 0; x < nx; ++x) {
                 const std::size_t i = row + x;
                 lookUp(volume_.values[i], i);
-                if constexpr (kNormals) {
-                    const Vec3d g{gx[x], gy[x], gz[x]};
-                    const double magnitude = length(g);
-                    const bool flat = !(magnitude > flatGradient_);
-                    out_.normal[i] = flat ? std::array<float, 3>{0, 0, 0}
-                                          : std::array<float, 3>{float(g.x / magnitude), float(g.y / magnitude),
-                                                                 float(g.z / magnitude)};
-                }
+                if constexpr (kNormals) out_.normal[i] = unitNormal({gx[x], gy[x], gz[x]}, flatGradient_);
             }
         }
     }

@@ -87,9 +87,7 @@ int main(int argc, char** argv) {
         if (flags.quiet) vr::ProgressBar::silenceAll();
         const vr::RawOptions raw = vr::rawOptionsFrom(flags.volume);
         const vr::PrepareOptions options = optionsFrom(flags);  // a bad transfer function fails before the load
-        // Segmented once: the classified volume's memory goes to the fields.
-        vr::StagedPreparation staged =
-            vr::StagedPreparation::load(flags.input, raw, vr::ClassifiedOnceSegmented::Free);
+        vr::StagedPreparation staged = vr::StagedPreparation::load(flags.input, raw);
         staged.prepare(options);
         staged.write(flags.output);
         if (!flags.quiet) vr::printSummary(stdout, flags.output, staged.withStatistics(), staged.stageTimes());

@@ -46,17 +46,15 @@ DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCo
 
 }  // namespace
 
-StagedPreparation::StagedPreparation(Volume volume, ClassifiedOnceSegmented classified)
-    : classifiedOnceSegmented_(classified) {
+StagedPreparation::StagedPreparation(Volume volume) {
     prepared_.scalars = std::move(volume);
     prepared_.meta.source = prepared_.scalars.source;
     prepared_.meta.distanceCap = kDistanceCap;
 }
 
-StagedPreparation StagedPreparation::load(const std::filesystem::path& input, const RawOptions& raw,
-                                          ClassifiedOnceSegmented classified) {
+StagedPreparation StagedPreparation::load(const std::filesystem::path& input, const RawOptions& raw) {
     std::vector<StageTime> times;
-    StagedPreparation staged(runStage("load", times, [&] { return loadVolume(input, raw); }), classified);
+    StagedPreparation staged(runStage("load", times, [&] { return loadVolume(input, raw); }));
     staged.loadTimes_ = std::move(times);
     return staged;
 }
@@ -65,7 +63,7 @@ void StagedPreparation::invalidateFrom(PrepStage stage) {
     switch (stage) {  // each case falls through to the stages after it
         case PrepStage::Classify:
             classifiedWith_.reset();
-            prepared_.classification = {};  // classified_ keeps its arrays for the next classification to reuse
+            prepared_.classification = {};
             [[fallthrough]];
         case PrepStage::Segment:
             segmentedWith_.reset();
@@ -97,13 +95,10 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
         requireWorkingSetFits(prepared_.meta.source.empty() ? "preparation" : prepared_.meta.source,
                               prepared_.grid(), options, options.memoryLimit);
     ClassifyParams classifying = classifyingPart(options.classify);
-    // A classified volume freed after its segmentation is made again when segmentation runs again.
-    const bool segmentAgain = last >= PrepStage::Segment && segmentedWith_ != options.segmentation;
-    if (classifiedWith_ != classifying || (segmentAgain && classified_.sigma.empty())) {
+    if (classifiedWith_ != classifying) {
         run(PrepStage::Classify, [&](std::vector<StageTime>& times) {
             runStage("classify", times, [&] {
                 prepared_.classification = scalarClassification(prepared_.scalars, options.classify);
-                classify(prepared_.scalars, prepared_.classification, options.classify.normals, classified_);
             });
         });
         classifiedWith_ = std::move(classifying);
@@ -112,17 +107,17 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
     if (last >= PrepStage::Segment && segmentedWith_ != options.segmentation) {
         run(PrepStage::Segment, [&](std::vector<StageTime>& times) {
             runStage("segment", times, [&] {
-                if (!options.segmentation.trilinear) return segment(classified_, options.segmentation, spareRegions_);
+                const ClassifiedVoxels voxels(prepared_.scalars, prepared_.classification, options.classify.normals);
+                if (!options.segmentation.trilinear) return segment(voxels, options.segmentation, spareRegions_);
                 // Post-classification (docs/ALGORITHMS.md section 9): regions over the scalars' intervals.
                 const TfRangeTable spread(sampleForVolume(prepared_.scalars, *options.classify.transferFunction));
-                segment(classified_, options.segmentation, ClassifiedScalars{prepared_.scalars.values, spread},
+                segment(voxels, options.segmentation, ClassifiedScalars{prepared_.scalars.values, spread},
                         spareRegions_);
             });
             prepared_.regions = std::exchange(spareRegions_, {});
         });
         segmentedWith_ = options.segmentation;
         prepared_.meta.segmentation = options.segmentation;
-        if (classifiedOnceSegmented_ == ClassifiedOnceSegmented::Free) classified_ = {};
     }
     const std::tuple<unsigned, ExtentCode, unsigned> fields{options.fields, options.eacdCode, options.octants};
     if (last >= PrepStage::Fields && fieldsWith_ != fields) {
@@ -157,7 +152,7 @@ std::vector<StageTime> StagedPreparation::stageTimes() const {
 }
 
 PreparedVolume prepare(Volume volume, const PrepareOptions& options) {
-    StagedPreparation staged(std::move(volume), ClassifiedOnceSegmented::Free);
+    StagedPreparation staged(std::move(volume));
     staged.prepare(options);
     staged.withStatistics();
     return std::move(staged).takeResult();

@@ -2,8 +2,8 @@
 // a progress bar (shown on a terminal only). It keeps every stage's result, and when asked again with other options
 // re-runs only the stages whose inputs changed and those after them: a threshold change re-runs segmentation and
 // the fields, a transfer-function change classification too. volprep, volsweep and the benchmarks all run it.
-// The result holds the scalars and the tabulated TF, which the renderers classify each sample from; the classified
-// volume (per voxel sigma, colour, normal) is the segmentation's input only.
+// The result holds the scalars and the tabulated TF, which the renderers classify each sample from; segmentation
+// classifies each voxel as it reads it (ClassifiedVoxels), so no classified copy of the volume is ever held.
 #pragma once
 #include <array>
 #include <filesystem>
@@ -32,18 +32,13 @@ struct PrepareOptions {
 enum class PrepStage { Classify, Segment, Fields };
 constexpr int kPrepStages = 3;
 
-// What becomes of the classified volume once segmented: kept for another segmentation, or freed so that the fields
-// have its memory (a preparation that runs once, as volprep's; segmenting again then classifies again).
-enum class ClassifiedOnceSegmented { Keep, Free };
-
 class StagedPreparation {
 public:
     // meta.source is volume.source.
-    explicit StagedPreparation(Volume volume, ClassifiedOnceSegmented classified = ClassifiedOnceSegmented::Keep);
+    explicit StagedPreparation(Volume volume);
     // Loads `input` (loadVolume, `raw` for headerless raw files) as the stage "load": the first of stageTimes().
     // Throws InputError as loadVolume does.
-    static StagedPreparation load(const std::filesystem::path& input, const RawOptions& raw,
-                                  ClassifiedOnceSegmented classified = ClassifiedOnceSegmented::Keep);
+    static StagedPreparation load(const std::filesystem::path& input, const RawOptions& raw);
 
     // Brings the stages up to `last` up to date with `options` and returns the result. Each field is timed on its
     // own: ACD (the 8 octant passes, also built when only EACD is asked for), PC from the ACDs, EACD on top of ACD.
@@ -70,20 +65,16 @@ public:
     int runs(PrepStage stage) const { return runs_[int(stage)]; }
     // The scalars.
     const Volume& volume() const { return prepared_.scalars; }
-    // The classified volume the last segmentation ran on (empty once freed).
-    const ClassifiedVolume& classified() const { return classified_; }
 
 private:
-    // Discards the results of `stage` and of every stage after it (the classified volume's and the regions' arrays
-    // are kept aside for the next run of their stage to reuse: no fresh pages to fault in).
+    // Discards the results of `stage` and of every stage after it (the regions' labels are kept aside for the next
+    // segmentation to reuse: no fresh pages to fault in).
     void invalidateFrom(PrepStage stage);
     // Runs `work` as `stage`, counting it; `work` appends its times.
     template <typename Work>
     void run(PrepStage stage, Work work);
 
-    ClassifiedOnceSegmented classifiedOnceSegmented_;
     PreparedVolume prepared_;    // prepared_.scalars: the volume
-    ClassifiedVolume classified_;  // the segmentation's input; its arrays are reused by the next classification
     Regions spareRegions_;         // invalidated regions, whose labels the next segmentation reuses
     // The options each stage last ran with; empty when it has no valid result.
     std::optional<ClassifyParams> classifiedWith_;  // as far as they classify (the TF's name and text left out)
@@ -96,8 +87,7 @@ private:
     std::vector<StageTime> lastStages_;
 };
 
-// Every stage once over `volume`, the classified volume freed once segmented, with the statistics and the ray
-// probe: the prepared volume as volprep writes it (StagedPreparation for the stages' times).
+// Every stage once over `volume`, with the statistics and the ray probe: the prepared volume as volprep writes it (StagedPreparation for the stages' times).
 PreparedVolume prepare(Volume volume, const PrepareOptions& options);
 
 }  // namespace vr

@@ -43,14 +43,14 @@ void markBorderVoxels(const Vec3i& dims, const std::vector<ScalarRange>& footpri
 
 }  // namespace
 
-void growPostClassifiedRegions(const ClassifiedVolume& classified, const SegmentationParams& params,
+void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const SegmentationParams& params,
                                const std::vector<float>& scalars, const ClassificationSpread& spread, Regions& regions) {
-    const Vec3i d = classified.grid.dims;
+    const Vec3i d = voxels.grid().dims;
     const std::size_t n = voxelCount(d);
     if (n >= kBorder)
         throw InputError("segmentation: " + std::to_string(n) + " voxels; at most 2^32 - 2 are supported");
     if (scalars.size() != n) throw InputError("segmentation: the scalars do not match the classified volume");
-    const RegionKeyer keyer(classified, params);  // checks the thresholds
+    const RegionKeyer keyer(voxels, params);  // checks the thresholds
     const std::vector<ScalarRange> footprints = footprintRanges(d, scalars);
     const double threshold = params.opacityThreshold;
     regions.dims = d;

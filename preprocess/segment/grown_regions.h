@@ -2,8 +2,8 @@
 #pragma once
 #include <vector>
 
-#include "core/classified_volume.h"
 #include "core/regions.h"
+#include "preprocess/segment/classified_voxels.h"
 
 namespace vr {
 
@@ -11,8 +11,8 @@ namespace vr {
 // interpolation footprints span (footprint_ranges.h) `spread`-alike within T_o, and its normals alike as the region
 // key has them. A voxel whose footprint alone is not alike, or (normals in use) whose 26 neighbours are not all
 // alike in normals to it, is a border voxel: a region of its own. Labels 0..count-1 in first-voxel order.
-// `scalars` are the values behind `classified`.
-void growPostClassifiedRegions(const ClassifiedVolume& classified, const SegmentationParams& params,
+// `scalars` are the values behind `voxels`.
+void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const SegmentationParams& params,
                                const std::vector<float>& scalars, const ClassificationSpread& spread, Regions& regions);
 
 }  // namespace vr

@@ -5,13 +5,18 @@
 
 namespace vr {
 
-NormalClasses::NormalClasses(const RegionKeyer& keyer, std::size_t voxels) : keyer_(keyer) {
-    if (!used() || !keyer.binsNormals()) return;  // bit-equal normals are compared where they are stored
-    binned_.resize(voxels);
+NormalClasses::NormalClasses(const RegionKeyer& keyer, std::size_t voxels) : used_(keyer.usesNormals()) {
+    if (!used_) return;
+    const bool binned = keyer.binsNormals();
+    if (binned) binned_.resize(voxels);
+    else exact_.resize(voxels);
+    constexpr uint32_t kNaN = 0x7fc00000;  // never a unit or flat normal's component
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const RegionKey key = keyer.normalKey(i);
-            binned_[i] = key.opacity == 0 ? 0 : 1 + key.normal[0];
+            const bool transparent = key.opacity == 0;
+            if (binned) binned_[i] = transparent ? 0 : 1 + key.normal[0];
+            else exact_[i] = transparent ? std::array<uint32_t, 3>{kNaN, kNaN, kNaN} : key.normal;
         }
     });
 }

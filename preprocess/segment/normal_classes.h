@@ -1,5 +1,6 @@
 // Voxels alike in their normals as the region key has them (region_key.h), for post-classified regions.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -9,19 +10,22 @@ namespace vr {
 
 class NormalClasses {
 public:
+    // Each voxel's normal class, keyed once: the normals are taken from the scalars' gradient on demand, too dear
+    // to take again for every neighbour compared.
     NormalClasses(const RegionKeyer& keyer, std::size_t voxels);
     // Whether normals constrain the regions: shading uses them and the volume has them.
-    bool used() const { return keyer_.usesNormals(); }
+    bool used() const { return used_; }
     // An equivalence: normals unused, or both voxels transparent, or both flat, or both in one cube-map cell
     // (bit for bit at T_a = 0).
     bool alike(std::size_t a, std::size_t b) const {
-        if (!used()) return true;
-        return binned_.empty() ? keyer_.normalKey(a) == keyer_.normalKey(b) : binned_[a] == binned_[b];
+        if (!used_) return true;
+        return binned_.empty() ? exact_[a] == exact_[b] : binned_[a] == binned_[b];
     }
 
 private:
-    const RegionKeyer& keyer_;
+    bool used_;
     std::vector<uint32_t> binned_;  // where normals are binned: 0 transparent, else 1 + the key's normal cell
+    std::vector<std::array<uint32_t, 3>> exact_;  // elsewhere the normal's bits; a NaN's for transparent voxels
 };
 
 }  // namespace vr

@@ -53,12 +53,11 @@ uint32_t cubeMapCell(const std::array<float, 3>& d, int cellsPerEdge) {
     return (face * k + cell(d[(major + 2) % 3])) * k + cell(d[(major + 1) % 3]);
 }
 
-RegionKeyer::RegionKeyer(const ClassifiedVolume& classified, const SegmentationParams& params)
-    : classified_(classified) {
+RegionKeyer::RegionKeyer(const ClassifiedVoxels& voxels, const SegmentationParams& params) : voxels_(voxels) {
     checkThreshold(params.opacityThreshold, "opacity threshold T_o");
     checkThreshold(params.angleThresholdDeg, "angle threshold T_a");
     opacityWidth_ = params.opacityThreshold >= kMinBinWidth ? params.opacityThreshold : 0.0;
-    useNormals_ = params.useNormals && classified.hasNormals();
+    useNormals_ = params.useNormals && voxels.hasNormals();
     exactNormals_ = params.angleThresholdDeg == 0 || cellsPerEdgeFor(params.angleThresholdDeg) > kMaxCellsPerEdge;
     if (!exactNormals_) cellsPerEdge_ = cubeMapCellsPerEdge(params.angleThresholdDeg);
     if (opacityWidth_ > 0) {
@@ -77,14 +76,13 @@ uint32_t RegionKeyer::bin(double value, double width, float exact) const {
     return uint32_t(std::clamp(value, 0.0, 1.0) / width);  // >= 0: the conversion is the floor
 }
 
-void RegionKeyer::opacityAndColour(std::size_t i, RegionKey& key) const {
-    const float sigma = classified_.sigma[i];
-    key.opacity = opacityWidth_ > 0 ? 1 + bin(classified_.opacity(i), opacityWidth_, sigma) : bits(sigma);
-    for (int c = 0; c < 3; ++c) key.colour[c] = bin(classified_.colour[i][c], opacityWidth_, classified_.colour[i][c]);
+void RegionKeyer::opacityAndColour(const VoxelOptics& o, RegionKey& key) const {
+    key.opacity = opacityWidth_ > 0 ? 1 + bin(voxels_.opacity(o.sigma), opacityWidth_, o.sigma) : bits(o.sigma);
+    for (int c = 0; c < 3; ++c) key.colour[c] = bin(o.colour[c], opacityWidth_, o.colour[c]);
 }
 
 void RegionKeyer::normal(std::size_t i, RegionKey& key) const {
-    const std::array<float, 3>& n = classified_.normal[i];
+    const std::array<float, 3> n = voxels_.normal(i);
     if (exactNormals_) {
         key.normal = {bits(n[0]), bits(n[1]), bits(n[2])};
     } else {
@@ -95,15 +93,16 @@ void RegionKeyer::normal(std::size_t i, RegionKey& key) const {
 
 RegionKey RegionKeyer::operator()(std::size_t i) const {
     RegionKey key;
-    if (!(classified_.sigma[i] > 0)) return key;  // transparent: nothing else matters
-    opacityAndColour(i, key);
+    const VoxelOptics o = voxels_.optics(i);
+    if (!(o.sigma > 0)) return key;  // transparent: nothing else matters
+    opacityAndColour(o, key);
     if (useNormals_) normal(i, key);
     return key;
 }
 
 RegionKey RegionKeyer::normalKey(std::size_t i) const {
     RegionKey key;
-    if (!(classified_.sigma[i] > 0)) return key;
+    if (!(voxels_.sigma(i) > 0)) return key;
     key.opacity = 1;
     if (useNormals_) normal(i, key);
     return key;
@@ -128,14 +127,14 @@ void RegionKeyer::keysInto(std::size_t first, std::size_t count, Key* out) const
     for (std::size_t j = 0; j < count; ++j) {
         const std::size_t i = first + j;
         RegionKey key;
-        if (classified_.sigma[i] > 0) {
-            const std::array<float, 3>& rgb = classified_.colour[i];
-            const std::array<uint32_t, 4> in{bits(classified_.sigma[i]), bits(rgb[0]), bits(rgb[1]), bits(rgb[2])};
+        const VoxelOptics o = voxels_.optics(i);
+        if (o.sigma > 0) {
+            const std::array<uint32_t, 4> in{bits(o.sigma), bits(o.colour[0]), bits(o.colour[1]), bits(o.colour[2])};
             const uint32_t hash = (in[0] ^ (in[1] * 3) ^ (in[2] * 5) ^ (in[3] * 7)) * 2654435761u;
             Entry& e = cache[hash >> (32 - kCacheBits)];
             if (e.in[0] != in[0] || e.in[1] != in[1] || e.in[2] != in[2] || e.in[3] != in[3]) {
                 e.in = in;
-                opacityAndColour(i, key);
+                opacityAndColour(o, key);
                 e.opacity = key.opacity;
                 e.colour = key.colour;
             }

@@ -4,8 +4,8 @@
 #include <array>
 #include <cstdint>
 
-#include "core/classified_volume.h"
 #include "core/regions.h"
+#include "preprocess/segment/classified_voxels.h"
 
 namespace vr {
 
@@ -39,8 +39,9 @@ using PackedKey = uint64_t;
 
 class RegionKeyer {
 public:
-    // Throws InputError for a negative or NaN threshold.
-    RegionKeyer(const ClassifiedVolume& classified, const SegmentationParams& params);
+    // Keys of `voxels` (copied: a view whose volume or table must outlive the keyer). Throws InputError for a
+    // negative or NaN threshold.
+    RegionKeyer(const ClassifiedVoxels& voxels, const SegmentationParams& params);
     RegionKey operator()(std::size_t voxel) const;
     // The key's normal part alone: a default key where the voxel is transparent, else opacity 1 and the normal
     // binned (or its bits) as operator() has it; default normals where normals are ignored.
@@ -63,10 +64,10 @@ private:
     void keysInto(std::size_t first, std::size_t count, Key* out) const;
     PackedKey pack(const RegionKey& key) const;
     uint32_t bin(double value, double width, float exact) const;
-    void opacityAndColour(std::size_t voxel, RegionKey& key) const;
+    void opacityAndColour(const VoxelOptics& optics, RegionKey& key) const;
     void normal(std::size_t voxel, RegionKey& key) const;
 
-    const ClassifiedVolume& classified_;
+    const ClassifiedVoxels voxels_;
     double opacityWidth_ = 0;  // bin width of opacity and colour; 0 = exact
     bool useNormals_ = false;
     bool exactNormals_ = true;

@@ -2,8 +2,8 @@
 #pragma once
 #include <vector>
 
-#include "core/classified_volume.h"
 #include "core/regions.h"
+#include "preprocess/segment/classified_voxels.h"
 
 namespace vr {
 
@@ -12,21 +12,22 @@ namespace vr {
 // within T_a (both flat, or both unit). With T_o = T_a = 0 a region is a connected run of bit-identical voxels
 // (transparent voxels are identical whatever their colour and normal). With params.trilinear, voxels whose
 // 26-neighbourhood touches another region are regions of one voxel. Labels 0..count-1 in first-voxel order.
-// Throws InputError for negative or NaN thresholds or an inconsistent classified volume.
-Regions segment(const ClassifiedVolume& classified, const SegmentationParams& params);
+// The voxels are classified as they are read (classified_voxels.h): no classified copy of the volume is made.
+// Throws InputError for negative or NaN thresholds.
+Regions segment(const ClassifiedVoxels& voxels, const SegmentationParams& params);
 // The same into `regions`, reusing the memory of its labels: a segmentation of the same size then takes no fresh
 // pages. On a throw `regions` is left in an unspecified state.
-void segment(const ClassifiedVolume& classified, const SegmentationParams& params, Regions& regions);
+void segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, Regions& regions);
 
 // The scalars that a transfer function classified, and how that function spreads over scalar intervals.
 struct ClassifiedScalars {
-    const std::vector<float>& values;  // x fastest, as the classified volume
+    const std::vector<float>& values;  // x fastest, as the voxels
     const ClassificationSpread& spread;
 };
 // With params.trilinear, regions for post-classification (grown_regions.h): the interval of scalars that each
 // region's interpolation footprints span classifies alike within T_o. Without it, segment() above.
-void segment(const ClassifiedVolume& classified, const SegmentationParams& params, const ClassifiedScalars& scalars,
+void segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, const ClassifiedScalars& scalars,
              Regions& regions);
-Regions segment(const ClassifiedVolume& classified, const SegmentationParams& params, const ClassifiedScalars& scalars);
+Regions segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, const ClassifiedScalars& scalars);
 
 }  // namespace vr

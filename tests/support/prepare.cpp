@@ -15,12 +15,11 @@ PreparedVolume prepareVolume(const Volume& volume, const TransferFunction& tf, c
     PreparedVolume p;
     p.scalars = volume;
     p.classification = scalarClassification(volume, cp);
-    ClassifiedVolume classified;
-    classify(volume, p.classification, cp.normals, classified);
     p.meta.source = volume.source;
     p.meta.segmentation = segmentation;
     const TfRangeTable spread(sampleForVolume(volume, tf));  // trilinear regions as volprep makes them
-    p.regions = segment(classified, segmentation, ClassifiedScalars{volume.values, spread});
+    p.regions = segment(ClassifiedVoxels(p.scalars, p.classification, cp.normals), segmentation,
+                        ClassifiedScalars{p.scalars.values, spread});
     p.fields = buildFields(p.regions, fields);
     return p;
 }

@@ -144,9 +144,7 @@ PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
                 p.scalars.values[linearIndex(grid.dims, x, y, z)] = float(it->second);
             }
     p.meta.segmentation = {0, 0, false, false};
-    ClassifiedVolume classified;
-    classify(p.scalars, p.classification, false, classified);
-    p.regions = segment(classified, p.meta.segmentation);
+    p.regions = segment(ClassifiedVoxels(p.scalars, p.classification, false), p.meta.segmentation);
     p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
     return p;
 }

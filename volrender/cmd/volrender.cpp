@@ -219,8 +219,7 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, con
                                  std::vector<vr::StageTime>& stages) {
     vr::PrepareOptions options = vr::prepareOptionsFrom(f.volume, !s.trilinear, !s.shading);
     options.fields = fieldsFor(s.caster);
-    vr::StagedPreparation staged =
-        vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume), vr::ClassifiedOnceSegmented::Free);
+    vr::StagedPreparation staged = vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume));
     options.octants = orbitOctants(orbit(f, view, staged.volume().grid));
     staged.prepare(options);
     stages = staged.stageTimes();

@@ -1,0 +1,37 @@
+#include "preprocess/segment/classified_voxels.h"
+
+#include "core/errors.h"
+
+namespace vr {
+
+ClassifiedVoxels::ClassifiedVoxels(const Volume& scalars, const ScalarClassification& classification, bool normals)
+    : grid_(&scalars.grid),
+      scalars_(&scalars),
+      table_(&classification.table),
+      referenceStep_(classification.referenceStep),
+      flatGradient_(classification.flatGradient),
+      normals_(normals) {
+    const TransferTable& table = classification.table;
+    if (scalars.grid.voxels() == 0 || scalars.values.size() != scalars.grid.voxels())
+        throw InputError("segmentation: the scalars are empty or do not match their dimensions");
+    if (table.size() == 0 || table.colour.size() != table.size() || !(table.step > 0))
+        throw InputError("segmentation: the transfer table is empty or inconsistent");
+}
+
+ClassifiedVoxels::ClassifiedVoxels(const ClassifiedVolume& stored)
+    : grid_(&stored.grid), stored_(&stored), referenceStep_(stored.referenceStep), normals_(stored.hasNormals()) {
+    const std::size_t n = stored.grid.voxels();
+    if (n == 0 || stored.sigma.size() != n || stored.colour.size() != n ||
+        (stored.hasNormals() && stored.normal.size() != n))
+        throw InputError("segmentation: the classified volume is empty or its arrays do not match its dimensions");
+}
+
+std::array<float, 3> ClassifiedVoxels::normal(std::size_t i) const {
+    if (stored_) return stored_->normal[i];
+    const Vec3i& d = grid_->dims;
+    const std::size_t nx = std::size_t(d.x), ny = std::size_t(d.y);
+    const Vec3d g = centralGradient(*scalars_, int(i % nx), int(i / nx % ny), int(i / (nx * ny)));
+    return unitNormal(g, flatGradient_);
+}
+
+}  // namespace vr

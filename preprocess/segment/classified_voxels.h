@@ -1,0 +1,54 @@
+// What segmentation reads of each voxel (docs/ALGORITHMS.md sections 2 and 3): its extinction, colour and normal as a
+// nearest sample classifies them. Looked up on demand from the scalars and the transfer table, so that preparing a
+// volume never holds a classified copy of it (28 bytes per voxel with normals); or read from a classified volume
+// (preprocess/classify: classify()) where one exists.
+#pragma once
+#include <array>
+#include <cstddef>
+
+#include "core/classified_volume.h"
+#include "core/gradient.h"
+#include "core/scalar_classification.h"
+#include "core/volume.h"
+#include "shaders/transfer_lookup.h"
+
+namespace vr {
+
+struct VoxelOptics {
+    float sigma;                  // extinction per world unit
+    std::array<float, 3> colour;  // linear RGB
+};
+
+class ClassifiedVoxels {
+public:
+    // Voxels of `scalars` classified by `classification` as they are asked for; normals only when `normals`. Both
+    // must outlive this object. Throws InputError where the table or the scalars are inconsistent.
+    ClassifiedVoxels(const Volume& scalars, const ScalarClassification& classification, bool normals);
+    // The voxels of a classified volume, which must outlive this object. Throws InputError where its arrays do not
+    // match its dimensions.
+    ClassifiedVoxels(const ClassifiedVolume& stored);  // NOLINT: a classified volume is classified voxels
+
+    const GridGeometry& grid() const { return *grid_; }
+    bool hasNormals() const { return normals_; }
+    double opacity(float sigma) const { return opacityFromExtinction(sigma, referenceStep_); }
+
+    // What classify() stores for voxel i, bit for bit.
+    VoxelOptics optics(std::size_t i) const {
+        if (stored_) return {stored_->sigma[i], stored_->colour[i]};
+        const device::TableSample s = device::lookUpTable(*table_, scalars_->values[i]);
+        return {float(s.sigma), {float(s.colour[0]), float(s.colour[1]), float(s.colour[2])}};
+    }
+    float sigma(std::size_t i) const { return stored_ ? stored_->sigma[i] : optics(i).sigma; }
+    // The unit normal, or (0,0,0) where the gradient is flat; only where hasNormals().
+    std::array<float, 3> normal(std::size_t i) const;
+
+private:
+    const GridGeometry* grid_;
+    const ClassifiedVolume* stored_ = nullptr;
+    const Volume* scalars_ = nullptr;
+    const TransferTable* table_ = nullptr;
+    double referenceStep_ = 1, flatGradient_ = 0;
+    bool normals_ = false;
+};
+
+}  // namespace vr

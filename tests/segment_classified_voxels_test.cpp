@@ -1,0 +1,82 @@
+#include "preprocess/segment/classified_voxels.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <utility>
+
+#include "core/errors.h"
+#include "preprocess/classify/classify.h"
+#include "support/load_dataset.h"
+
+namespace vr {
+namespace {
+
+TransferFunction linearTF(double x0, double x1) {
+    TransferFunction tf;
+    tf.opacity = {{x0, 0.0}, {x1, 1.0}};
+    tf.colour = {{x0, 1, 0, 0}, {x1, 0, 0, 1}};
+    return tf;
+}
+
+Volume smoothFloatVolume(Vec3i dims) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> noise(-3, 3);
+    Volume v;
+    v.grid.dims = dims;
+    v.grid.spacing = {0.8, 1.1, 2};
+    v.sourceType = ScalarType::Float32;
+    v.values.resize(v.grid.voxels());
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                v.values[linearIndex(dims, x, y, z)] =
+                    float(40 * std::sin(0.3 * x) + 25 * std::cos(0.2 * y + 0.4 * z) + noise(rng));
+    return v;
+}
+
+// Segmentation reads the voxels classified on demand from the scalars and the table: each one exactly as classify()
+// stores it, on an integer CT and on a float volume whose voxels fall between the table's entries.
+TEST(SegmentClassifiedVoxels, OnDemandEqualTheClassifiedVolume) {
+    const Volume ct = test::loadDataset("vtk_headsq_ct_64x64x93_uint16");
+    const Volume smooth = smoothFloatVolume({23, 17, 11});
+    for (const auto& [volume, tf] : {std::pair{&ct, test::datasetTransferFunction("vtk_headsq_ct.tf.json")},
+                                     std::pair{&smooth, linearTF(-60, 60)}}) {
+        ClassifyParams params;
+        params.transferFunction = tf;
+        const ScalarClassification table = scalarClassification(*volume, params);
+        ClassifiedVolume stored;
+        classify(*volume, table, true, stored);
+        const ClassifiedVoxels onDemand(*volume, table, true);
+        ASSERT_TRUE(onDemand.hasNormals());
+        for (std::size_t i = 0; i < stored.sigma.size(); ++i) {
+            const VoxelOptics o = onDemand.optics(i);
+            ASSERT_EQ(o.sigma, stored.sigma[i]) << i;
+            ASSERT_EQ(o.colour, stored.colour[i]) << i;
+            ASSERT_EQ(onDemand.normal(i), stored.normal[i]) << i;
+            ASSERT_EQ(onDemand.opacity(o.sigma), stored.opacity(i)) << i;
+        }
+        EXPECT_FALSE(ClassifiedVoxels(*volume, table, false).hasNormals());
+    }
+}
+
+TEST(SegmentClassifiedVoxels, InconsistentInputIsAnInputError) {
+    const Volume v = smoothFloatVolume({4, 4, 4});
+    ClassifyParams params;
+    params.transferFunction = linearTF(-60, 60);
+    const ScalarClassification table = scalarClassification(v, params);
+    Volume shortVolume = v;
+    shortVolume.values.pop_back();
+    EXPECT_THROW(ClassifiedVoxels(shortVolume, table, true), InputError);
+    ScalarClassification noTable = table;
+    noTable.table.colour.pop_back();
+    EXPECT_THROW(ClassifiedVoxels(v, noTable, true), InputError);
+    ClassifiedVolume stored;
+    classify(v, table, true, stored);
+    stored.normal.pop_back();
+    EXPECT_THROW(ClassifiedVoxels{stored}, InputError);
+}
+
+}  // namespace
+}  // namespace vr
