@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <fstream>
@@ -14,17 +15,22 @@ namespace vr {
 
 std::size_t preparationBytes(const GridGeometry& grid, const PrepareOptions& options) {
     const std::size_t octants = std::size_t(std::popcount(options.octants & kAllOctants));
-    std::size_t perVoxel = sizeof(float)                              // the scalars
-                           + 4 * sizeof(float)                        // sigma and colour
-                           + (options.classify.normals ? 12 : 0)      // normals
-                           + sizeof(uint32_t);                        // region labels
-    if (options.segmentation.trilinear) perVoxel += 2 * sizeof(float);  // footprint ranges
-    if (options.fields != 0) perVoxel += 6;                             // axial runs, one byte per axis and sign
+    const std::size_t held = sizeof(float) + sizeof(uint32_t);  // the scalars, the region labels
+    // Segmentation classifies each voxel as it reads it; post-classified growth keeps each voxel's footprint range,
+    // its normal class (the normal's bits at T_a = 0) and whether normals mix around it.
+    std::size_t segment = 0;
+    if (options.segmentation.trilinear) {
+        segment = 2 * sizeof(float) + 1;
+        if (options.classify.normals && options.segmentation.useNormals)
+            segment += options.segmentation.angleThresholdDeg == 0 ? 12 : 4;
+    }
+    std::size_t fields = 0;
+    if (options.fields != 0) fields += 6;  // axial runs, one byte per axis and sign
     if (options.fields & (kFieldACD | kFieldEACD | kFieldPC))
-        perVoxel += (options.fields & kFieldPC) ? kOctants : octants;   // ACD, kept or built for PC and EACD
-    if (options.fields & kFieldPC) perVoxel += 1;
-    if (options.fields & kFieldEACD) perVoxel += octants * extentCodeBytes(options.eacdCode);
-    return grid.voxels() * perVoxel;
+        fields += (options.fields & kFieldPC) ? kOctants : octants;  // ACD, kept or built for PC and EACD
+    if (options.fields & kFieldPC) fields += 1;
+    if (options.fields & kFieldEACD) fields += octants * extentCodeBytes(options.eacdCode);
+    return grid.voxels() * (held + std::max(segment, fields));
 }
 
 std::size_t availableMemoryBytes() {
@@ -45,8 +51,8 @@ void requireWorkingSetFits(const std::string& source, const GridGeometry& grid, 
     if (needed <= available) return;
     char text[320];
     std::snprintf(text, sizeof text,
-                  "preparing %dx%dx%d voxels needs about %.2f GiB of memory (scalars, classification, regions, "
-                  "fields), more than the %.2f GiB %s; nothing was prepared (fewer fields, --nearest or "
+                  "preparing %dx%dx%d voxels needs about %.2f GiB of memory (scalars, regions, fields), more than "
+                  "the %.2f GiB %s; nothing was prepared (fewer fields, --nearest or "
                   "--no-normals need less)",
                   grid.dims.x, grid.dims.y, grid.dims.z, double(needed) / (1 << 30), double(available) / (1 << 30),
                   limit ? "allowed" : "available");

@@ -10,9 +10,9 @@ namespace vr {
 
 struct PrepareOptions;
 
-// Bytes a preparation of `grid` with `options` may hold at once: the scalars (float), the classified volume
-// (sigma, colour, normals where asked), the labels, the footprint ranges of post-classified segmentation, the axial
-// runs and every field asked for, in the octants asked for. An upper estimate: the stages free some of it as they go.
+// Bytes a preparation of `grid` with `options` may hold at once: the scalars (float) and the labels throughout, and
+// the larger of what segmentation adds (post-classified: footprint ranges, normal classes) and what the fields add
+// (the axial runs and every field asked for, in the octants asked for). An upper estimate.
 std::size_t preparationBytes(const GridGeometry& grid, const PrepareOptions& options);
 
 // The memory available now (/proc/meminfo's MemAvailable; the physical memory where that cannot be read).
