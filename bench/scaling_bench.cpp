@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "bench_checks.h"
+#include "resampled_volume.h"
 #include "io/crc32.h"
 #include "core/errors.h"
 #include "datasets/phantoms.h"
@@ -34,47 +35,6 @@ using vr::Vec3i;
 const std::vector<std::string> kStages = {"classify", "segment", "pc", "acd", "eacd"};
 const std::vector<std::string> kScenarios = {"full", "threshold change", "TF change"};
 
-
-// Source position of destination voxel i when n voxels are resampled to m over the same extent (centres aligned).
-struct Tap {
-    int lo, hi;
-    double w;  // weight of hi
-};
-std::vector<Tap> taps(int n, int m) {
-    std::vector<Tap> t(m);
-    for (int i = 0; i < m; ++i) {
-        const double s = std::clamp((i + 0.5) * n / m - 0.5, 0.0, double(n - 1));
-        const int lo = int(s);
-        t[i] = {lo, std::min(lo + 1, n - 1), s - lo};
-    }
-    return t;
-}
-
-// Trilinear resampling to `dims` over the same physical extent; integer volumes stay integer (rounded).
-vr::Volume resample(const vr::Volume& v, Vec3i dims) {
-    vr::Volume out;
-    out.grid = v.grid;
-    out.grid.dims = dims;
-    for (int a = 0; a < 3; ++a) out.grid.spacing[a] = v.grid.spacing[a] * v.grid.dims[a] / dims[a];
-    out.sourceType = v.sourceType;
-    out.source = v.source + " resampled";
-    out.values.resize(out.grid.voxels());
-    const std::vector<Tap> tx = taps(v.grid.dims.x, dims.x), ty = taps(v.grid.dims.y, dims.y),
-                           tz = taps(v.grid.dims.z, dims.z);
-    const bool integer = v.sourceType != vr::ScalarType::Float32;
-    tbb::parallel_for(tbb::blocked_range<int>(0, dims.z), [&](const tbb::blocked_range<int>& zs) {
-        for (int z = zs.begin(); z != zs.end(); ++z)
-            for (int y = 0; y < dims.y; ++y)
-                for (int x = 0; x < dims.x; ++x) {
-                    const Tap &a = tx[x], &b = ty[y], &c = tz[z];
-                    const auto line = [&](int j, int k) { return v.at(a.lo, j, k) * (1 - a.w) + v.at(a.hi, j, k) * a.w; };
-                    const auto plane = [&](int k) { return line(b.lo, k) * (1 - b.w) + line(b.hi, k) * b.w; };
-                    const double f = plane(c.lo) * (1 - c.w) + plane(c.hi) * c.w;
-                    out.values[vr::linearIndex(dims, x, y, z)] = float(integer ? std::round(f) : f);
-                }
-    });
-    return out;
-}
 
 // Per scenario and stage (and "total" for the whole prepare call), one wall and one CPU time per run.
 struct SizeResult {
@@ -296,7 +256,7 @@ int main(int argc, char** argv) {
             }
             if (volumes != "phantom") {
                 results.push_back(
-                    benchSize(realName, resample(source, dims), realOptions, runs, checksums, checks));
+                    benchSize(realName, vr::bench::resample(source, dims), realOptions, runs, checksums, checks));
             }
         }
         std::stable_sort(results.begin(), results.end(),

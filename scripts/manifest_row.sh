@@ -1,8 +1,8 @@
-# Sourced by the benchmark scripts: manifest_row TOOL DATASET sets `file`, `tf` and `spacing` from the shared
-# datasets' MANIFEST.tsv ($datasets): the row of the exact file name, else of the one .raw.gz whose name starts with
-# DATASET; exits naming TOOL when there is no single such row.
+# Sourced by the benchmark scripts: manifest_row TOOL DATASET sets `row` (the manifest's line), `file`, `tf` and
+# `spacing` from the shared datasets' MANIFEST.tsv ($datasets): the row of the exact file name, else of the one
+# .raw.gz whose name starts with DATASET; exits naming TOOL when there is no single such row.
 manifest_row() {
-  local tool=$1 dataset=$2 row
+  local tool=$1 dataset=$2
   row=$(awk -F'\t' -v d="$dataset" 'NR > 1 && $1 == d' "$datasets/MANIFEST.tsv")
   [[ -n $row ]] || row=$(awk -F'\t' -v d="$dataset" 'NR > 1 && index($1, d) == 1 && $1 ~ /\.raw\.gz$/' \
     "$datasets/MANIFEST.tsv")

@@ -10,6 +10,8 @@
 #   scripts/whole_process.sh DATASET [SIZE]
 # DATASET: a file in the shared datasets folder or the start of its name (boston_teapot, cranium_ct, ...), resolved
 # from MANIFEST.tsv as scripts/peers.sh does (file, transfer function, spacing). SIZE default 512x512.
+# CLINICAL=XxYxZ: instead of DATASET itself, a CT of that size made from it (bench/make_clinical_volume: resampled
+# trilinearly over the same extent, Gaussian noise of 20 in its units added), e.g. CLINICAL=512x512x1024 cranium_ct.
 # BUILD_DIR (default build); THREADS (default 2): VTK's threads; RUNS (default 3): runs of each, taking turns;
 # ELEVATION (default 20); OUTDIR (default out/whole_process/NAME): the images, the prepared file, each run's log.
 # Prints the settings and a Markdown table: per tool the median wall seconds and median peak resident MB over the
@@ -37,12 +39,23 @@ out=${OUTDIR:-out/whole_process/$name}
 
 bash scripts/install-deps.sh libvolpack1-dev xvfb xauth libgl1-mesa-dri libglx-mesa0 time
 [[ -f $build/CMakeCache.txt ]] || cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
-cmake --build "$build" --target volrender volprep vtk_whole_process -j 2 >&2
+cmake --build "$build" --target volrender volprep vtk_whole_process make_clinical_volume -j 2 >&2
 
+if [[ -n ${CLINICAL:-} ]]; then
+  name=clinical_ct_$CLINICAL
+  out=${OUTDIR:-out/whole_process/$name}
+fi
 mkdir -p "$out"
 rm -f "$out"/*.time
 volume=$datasets/$file
-# The voxels' bytes in the file's type (dims x type size); the file's own bytes (gzip) beside them.
+if [[ -n ${CLINICAL:-} ]]; then
+  echo "+ make_clinical_volume --from $file --dims $CLINICAL" >&2
+  read -r volume spacing < <("$build/bench/make_clinical_volume" --from "$file" --dims "$CLINICAL" -o "$out")
+  file=$(basename "$volume")
+  row=$(awk -F'\t' -v d="${CLINICAL//x/ }" -v t="$(cut -f3 <<<"$row")" 'BEGIN { OFS = FS } { $2 = d; $3 = t; print }' \
+    <<<"$row")
+fi
+# The voxels' bytes in the file's type (dims x type size); the file's own bytes (gzip, or raw) beside them.
 voxel_bytes=$(awk -F'\t' '{ split($2, d, " "); b = ($3 ~ /^uint8/) ? 1 : ($3 ~ /^float/) ? 4 : 2;
   printf "%d", d[1] * d[2] * d[3] * b }' <<<"$row")
 file_bytes=$(stat -c %s "$volume")
@@ -104,7 +117,7 @@ echo "Whole process, $name ($(tr , x <<<"${spacing}") spacing): source file to a
 echo "Threads: volrender at its defaults: TBB and the Vulkan device (${device:-unknown}) on all $cores cores" \
   "(${caster:-the caster auto chose}); vtk_whole_process ($vtk_version) $threads thread(s)" \
   "(vtkFixedPointVolumeRayCastMapper::SetNumberOfThreads, vtkMultiThreader's global maximum)."
-echo "Source volume: $file, $voxel_bytes bytes of voxels ($file_bytes in the file, gzip); our loader holds them as" \
+echo "Source volume: $file, $voxel_bytes bytes of voxels ($file_bytes in the file); our loader holds them as" \
   "float for both tools (VTK's wrapped without a copy)."
 echo
 echo "| tool | median wall s | median peak resident MB | source volume bytes | wall / volrender | peak / volrender |"

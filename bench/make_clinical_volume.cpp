@@ -1,0 +1,76 @@
+// A CT of clinical size made from a shared one, for the whole-process benchmark (scripts/whole_process.sh with
+// CLINICAL=DIMS): the source resampled trilinearly to DIMS over the same physical extent, with Gaussian noise of a
+// CT's order added (20 HU by default), written as a headerless raw file whose name carries its dims and type
+// (NAME_DxDxD_TYPE.raw, as the raw loader reads). Prints the file's path and its spacing (x,y,z) on one line.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <vector>
+
+#include "core/errors.h"
+#include "io/atomic_file.h"
+#include "preprocess/load/load_volume.h"
+#include "resampled_volume.h"
+#include "support/datasets.h"
+
+namespace {
+namespace fs = std::filesystem;
+
+vr::test::DatasetEntry findDataset(const std::string& file) {
+    for (const auto& e : vr::test::rawManifest())
+        if (e.file == file) return e;
+    throw vr::InputError(file + ": not a raw dataset of " + (vr::test::datasetsDir() / "MANIFEST.tsv").string());
+}
+
+std::string typeName(vr::ScalarType t) {
+    switch (t) {
+        case vr::ScalarType::UInt8: return "uint8";
+        case vr::ScalarType::Int16: return "int16";
+        case vr::ScalarType::UInt16: return "uint16";
+        default: return "float32";
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Write a CT of clinical size: a shared CT resampled to --dims with CT-like noise"};
+    std::string from = "cranium_ct_256x256x108_int16.raw.gz", dimsText = "512x512x1024", name = "clinical_ct";
+    fs::path outDir = ".";
+    double noise = 20;
+    unsigned seed = 1;
+    app.add_option("--from", from, "raw dataset of MANIFEST.tsv to resample")->capture_default_str();
+    app.add_option("--dims", dimsText, "size of the volume written, XxYxZ")->capture_default_str();
+    app.add_option("--noise", noise, "standard deviation of the Gaussian noise, in the volume's units")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    app.add_option("--seed", seed, "seed of the noise")->capture_default_str();
+    app.add_option("--name", name, "file name before _DIMS_TYPE.raw")->capture_default_str();
+    app.add_option("-o,--output-dir", outDir, "folder to write into")->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
+    try {
+        vr::Vec3i dims;
+        char tail = 0;
+        if (std::sscanf(dimsText.c_str(), "%dx%dx%d%c", &dims.x, &dims.y, &dims.z, &tail) != 3 || dims.x < 1 ||
+            dims.y < 1 || dims.z < 1 || dims.x > 4096 || dims.y > 4096 || dims.z > 4096)
+            throw vr::InputError("--dims: expected XxYxZ with each edge in 1..4096, got " + dimsText);
+        const vr::test::DatasetEntry entry = findDataset(from);
+        vr::RawOptions raw;
+        raw.dims = entry.dims;
+        raw.type = entry.type;
+        raw.spacing = entry.spacing;
+        const vr::Volume v =
+            vr::bench::withNoise(vr::bench::resample(vr::loadVolume(vr::test::datasetsDir() / entry.file, raw), dims),
+                                 noise, seed);
+        const fs::path path = outDir / (name + "_" + dimsText + "_" + typeName(v.sourceType) + ".raw");
+        std::vector<unsigned char> bytes(v.values.size() * vr::scalarBytes(v.sourceType));
+        vr::narrowScalars(v.values.data(), v.values.size(), v.sourceType, bytes.data());
+        vr::writeFileAtomically(path, [&](std::ostream& out) {
+            out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        });
+        std::printf("%s %g,%g,%g\n", path.c_str(), v.grid.spacing.x, v.grid.spacing.y, v.grid.spacing.z);
+    } catch (const vr::InputError& e) {
+        std::fprintf(stderr, "make_clinical_volume: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
