@@ -115,7 +115,7 @@ std::vector<uint8_t> buildACD(const Regions& regions, int octant) {
 ACDFields buildACDs(AxialRuns& runs, unsigned octants) {
     ACDFields acd;
     if (voxelCount(runs.dims()) == 0) return acd;
-    runs.computeAll();
+    runs.computeAll(octants);
     tbb::parallel_for(0, kOctants, [&](int o) {
         if (octants >> o & 1u) acd[o] = buildACD(runs, o);
     });

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/distance_fields.h"
 #include "core/regions.h"
 
 namespace vr {
@@ -20,8 +21,9 @@ public:
     const Vec3i& dims() const { return regions_.dims; }
     // Computes the field on first use: not for concurrent first uses (call computeAll() before going parallel).
     const std::vector<uint8_t>& get(int axis, int sign);
-    // All six, in parallel.
-    void computeAll();
+    // In parallel, the fields that the octants of the mask read (each octant one sign per axis): all six for all
+    // octants, three for one (an orthographic view's).
+    void computeAll(unsigned octants = kAllOctants);
 
 private:
     const Regions& regions_;

@@ -97,7 +97,7 @@ ExtentField buildEACD(const Regions& regions, const std::vector<uint8_t>& acd, i
     if (octant < 0 || octant >= kOctants) throw std::invalid_argument("buildEACD: no octant " + std::to_string(octant));
     AxialRuns runs(regions);
     checkACD(runs, octant, acd);
-    OctantState state(runs);
+    OctantState state(runs, 1u << octant);
     extendOctant(state, octant, acd);
     ExtentField out(ExtentCode::Exact, acd.size());
     chooseBoxes(state, out);
@@ -121,10 +121,10 @@ std::array<ExtentField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& ac
     for (int o = 0; o < kOctants; ++o)
         if (octants >> o & 1u) sizing[o].run([&, o] { out[o] = ExtentField(code, acd[o].size()); });
     // One octant at a time: 7 bytes of working memory per voxel, 2 of them the runs along x copied for the walks
-    // (0.9 GB at 512^3, where the footprint makes fresh pages dear). (Batches of two opposite octants took as long,
+    // (0.9 GB at 512^3, where the footprint makes fresh pages dear; 6 and 1 for a single octant). (Batches of two opposite octants took as long,
     // with twice the memory; batches of four, sharing each table by two octants, too: what the tables saved,
     // mapping the memory cost.)
-    OctantState state(runs);
+    OctantState state(runs, octants);
     for (int o = 0; o < kOctants; ++o) {
         if (!(octants >> o & 1u)) continue;
         extendOctant(state, o, acd[o]);

@@ -110,15 +110,20 @@ void everyWalk(OctantState& state, Step step) {
 
 }  // namespace
 
-OctantState::OctantState(AxialRuns& allRuns) : runs(allRuns) {
-    runs.computeAll();  // before the walks share them
+OctantState::OctantState(AxialRuns& allRuns, unsigned octants) : runs(allRuns) {
+    runs.computeAll(octants);  // before the walks share them
     const Vec3i& n = runs.dims();
     const std::size_t voxels = voxelCount(n);
     for (ByteVolume* v : {&ext[0], &ext[1], &ext[2], &widest, &longest}) v->allocate(voxels);
     const int width = slabWidth(0), slabs = (n.x + width - 1) / width;
-    for (auto& copy : runsAcrossX) copy.resize(Slab(n, 0, 0, n.x).size());
+    std::array<bool, 2> read{};  // [sign < 0]
+    for (int o = 0; o < kOctants; ++o)
+        if (octants >> o & 1u) read[octantSign(o, 0) < 0] = true;
+    for (int s = 0; s < 2; ++s)
+        if (read[s]) runsAcrossX[s].resize(Slab(n, 0, 0, n.x).size());
     tbb::parallel_for(0, 2 * slabs, [&](int i) {
         const int sign = i < slabs ? 1 : -1, s = i % slabs;
+        if (!read[sign < 0]) return;
         const Slab slab(n, 0, s * width, std::min(n.x, (s + 1) * width));
         slab.gather(runs.get(0, sign).data(), runsAcrossX[sign < 0].data() + std::size_t(slab.t0) * slab.pitch);
     });

@@ -39,8 +39,9 @@ struct WalkScratch {
 // moves instead of three) and are interleaved at the end. widest[v] is the axis step 1 extends (the first with the
 // largest extent), longest[v] its extent.
 struct OctantState {
-    // Computes the runs and copies those along x into the walks' slabs; sizes the volumes.
-    explicit OctantState(AxialRuns& runs);
+    // Computes the runs that the octants of the mask read and copies those along x into the walks' slabs; sizes
+    // the volumes.
+    OctantState(AxialRuns& runs, unsigned octants);
 
     AxialRuns& runs;
     int octant = 0;
@@ -48,7 +49,7 @@ struct OctantState {
     std::array<ByteVolume, 3> ext;
     ByteVolume widest, longest;
     // The runs along x toward + and - ([sign < 0]) as the walks across x read them, slice x at x * pitch: copied
-    // once for all octants and both steps rather than per walk.
+    // once for all octants and both steps rather than per walk; only the signs that the octants read.
     std::array<std::vector<uint8_t>, 2> runsAcrossX;
     // Per axis walked, kept for every octant.
     std::array<WalkScratch, 3> scratch;

@@ -223,11 +223,14 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, con
     options.octants = orbitOctants(orbit(f, view, staged.volume().grid));
     staged.prepare(options);
     stages = staged.stageTimes();
-    if (f.quiet) return std::move(staged).takeResult();
-    std::printf("prepared:");
-    for (const vr::StageTime& t : stages) std::printf(" %s %.3f s", t.stage.c_str(), t.seconds);
-    std::printf("\n");
-    return std::move(staged).takeResult();
+    if (!f.quiet) {
+        std::printf("prepared:");
+        for (const vr::StageTime& t : stages) std::printf(" %s %.3f s", t.stage.c_str(), t.seconds);
+        std::printf("\n");
+    }
+    vr::PreparedVolume prepared = std::move(staged).takeResult();
+    prepared.regions = {};  // the field is built from them; the renderers read the field (4 bytes per voxel less)
+    return prepared;
 }
 
 int run(const Flags& f) {
