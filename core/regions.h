@@ -17,11 +17,21 @@ struct SegmentationParams {
 
 // What post-classified segmentation asks of a transfer function (docs/ALGORITHMS.md section 9): an interpolated
 // scalar anywhere in [lo, hi] may be classified, so the region is homogeneous only if the classification varies
-// by at most the threshold over the whole interval. Implemented by the classification's TfRangeTable.
+// by at most the threshold over the whole interval. The interval is asked as the run of table entries that
+// classify its scalars (first entryBelow(lo), last entryAbove(hi)): two bytes per end where a scalar takes four.
+// Implemented by the classification's TfRangeTable.
 class ClassificationSpread {
 public:
     virtual ~ClassificationSpread() = default;
-    virtual bool alike(float lo, float hi, double threshold) const = 0;
+    // The entry at or below scalar f, and the entry at or above it (the same where f lies on an entry); both
+    // monotone in f, below 65536.
+    virtual uint16_t entryBelow(float f) const = 0;
+    virtual uint16_t entryAbove(float f) const = 0;
+    // Every entry first .. last transparent, or opacity and each colour channel spreading by at most `threshold`.
+    virtual bool alikeEntries(uint16_t first, uint16_t last, double threshold) const = 0;
+    bool alike(float lo, float hi, double threshold) const {
+        return alikeEntries(entryBelow(lo), entryAbove(hi), threshold);
+    }
 };
 
 struct Regions {

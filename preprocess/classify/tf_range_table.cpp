@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace vr {
@@ -21,6 +23,7 @@ TfExtremes combined(const TfExtremes& a, const TfExtremes& b) {
 
 TfRangeTable::TfRangeTable(SampledTransferFunction table) : table_(std::move(table)) {
     const std::size_t n = table_.opacity.size();
+    if (n == 0 || n > 65536) throw std::invalid_argument("TfRangeTable: " + std::to_string(n) + " entries, not 1..65536");
     constexpr float kInf = std::numeric_limits<float>::infinity();
     std::vector<TfExtremes> single(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -52,8 +55,22 @@ TfExtremes TfRangeTable::over(double lo, double hi) const {
     return entries(first, w > 0 ? last + 1 : last);
 }
 
-bool TfRangeTable::alike(float lo, float hi, double threshold) const {
-    const TfExtremes e = over(lo, hi);
+uint16_t TfRangeTable::entryBelow(float f) const {
+    std::size_t i;
+    double w;
+    table_.locate(f, i, w);
+    return uint16_t(i);
+}
+
+uint16_t TfRangeTable::entryAbove(float f) const {
+    std::size_t i;
+    double w;
+    table_.locate(f, i, w);
+    return uint16_t(w > 0 ? i + 1 : i);
+}
+
+bool TfRangeTable::alikeEntries(uint16_t first, uint16_t last, double threshold) const {
+    const TfExtremes e = entries(first, last);
     if (!(e.opacityMax > 0)) return true;
     if (!(e.opacityMax - e.opacityMin <= threshold)) return false;
     for (int c = 0; c < 3; ++c)

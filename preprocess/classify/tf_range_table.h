@@ -17,6 +17,7 @@ struct TfExtremes {
 };
 
 // Sparse tables over the entries of the table that classification samples: O(n log n) to build, O(1) per query.
+// At most 65536 entries (classification makes no more); the constructor throws std::invalid_argument beyond.
 class TfRangeTable final : public ClassificationSpread {
 public:
     explicit TfRangeTable(SampledTransferFunction table);
@@ -26,8 +27,9 @@ public:
     // Extremes over every entry that classifies some scalar in [lo, hi] (lo <= hi): a scalar between two entries
     // is interpolated from both (SampledTransferFunction::locate).
     TfExtremes over(double lo, double hi) const;
-    // Every entry in over(lo, hi) transparent, or opacity and each colour channel spreading by at most `threshold`.
-    bool alike(float lo, float hi, double threshold) const override;
+    uint16_t entryBelow(float f) const override;
+    uint16_t entryAbove(float f) const override;
+    bool alikeEntries(uint16_t first, uint16_t last, double threshold) const override;
 
     std::size_t size() const { return table_.opacity.size(); }
 

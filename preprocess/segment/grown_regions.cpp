@@ -19,7 +19,7 @@ constexpr uint32_t kBorder = kUnset - 1;  // a border voxel before its label: jo
 
 // Labels kBorder where a voxel can join no region: its own footprint spreads beyond T_o, or normals mix around it
 // (normals in use); kUnset elsewhere.
-void markBorderVoxels(const Vec3i& dims, const std::vector<ScalarRange>& footprints,
+void markBorderVoxels(const Vec3i& dims, const std::vector<EntryRange>& footprints,
                       const ClassificationSpread& spread, double threshold, const RegionKeyer& keyer,
                       std::vector<uint32_t>& label) {
     const NormalClasses normals(keyer, label.size());
@@ -27,14 +27,14 @@ void markBorderVoxels(const Vec3i& dims, const std::vector<ScalarRange>& footpri
         normals.used() ? mixedNeighbourhoods(dims, [&](std::size_t a, std::size_t b) { return normals.alike(a, b); })
                        : std::vector<uint8_t>(footprints.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, label.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-        ScalarRange last{1, 0};  // an empty range: never a footprint's
+        EntryRange last{1, 0};  // an empty range: never a footprint's
         bool lastAlike = false;
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             // Neighbours often share their footprint's range (air, flat tissue): ask once per run of them.
-            const ScalarRange f = footprints[i];
+            const EntryRange f = footprints[i];
             if (!mixed[i] && (f.lo != last.lo || f.hi != last.hi)) {
                 last = f;
-                lastAlike = spread.alike(f.lo, f.hi, threshold);
+                lastAlike = spread.alikeEntries(f.lo, f.hi, threshold);
             }
             label[i] = mixed[i] || !lastAlike ? kBorder : kUnset;
         }
@@ -51,7 +51,7 @@ void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const Segmentatio
         throw InputError("segmentation: " + std::to_string(n) + " voxels; at most 2^32 - 2 are supported");
     if (scalars.size() != n) throw InputError("segmentation: the scalars do not match the classified volume");
     const RegionKeyer keyer(voxels, params);  // checks the thresholds
-    const std::vector<ScalarRange> footprints = footprintRanges(d, scalars);
+    const std::vector<EntryRange> footprints = footprintRanges(d, scalars, spread);
     const double threshold = params.opacityThreshold;
     regions.dims = d;
     regions.label.resize(n);
@@ -68,16 +68,16 @@ void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const Segmentatio
         const uint32_t id = count++;
         label[seed] = id;
         if (border) continue;
-        ScalarRange range = footprints[seed];
+        EntryRange range = footprints[seed];
         // The range only widens as voxels join, so a voxel refused once would be refused again: each voxel is
         // asked at most once per neighbour that joins a region. Normals need no test: a voxel that is not a border
         // voxel has the normal key of all its neighbours, so the whole region has the seed's.
         const auto consider = [&](std::size_t u) {
             if (label[u] != kUnset) return;
-            const ScalarRange f = footprints[u];
+            const EntryRange f = footprints[u];
             if (f.lo < range.lo || f.hi > range.hi) {
-                const ScalarRange wide{std::min(range.lo, f.lo), std::max(range.hi, f.hi)};
-                if (!spread.alike(wide.lo, wide.hi, threshold)) return;
+                const EntryRange wide{std::min(range.lo, f.lo), std::max(range.hi, f.hi)};
+                if (!spread.alikeEntries(wide.lo, wide.hi, threshold)) return;
                 range = wide;
             }
             label[u] = id;
