@@ -7,6 +7,7 @@
 #include "io/atomic_file.h"
 #include "core/errors.h"
 #include "tools/progress.h"
+#include "preprocess/classify/transfer_choice.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "sweep/downsample.h"
 #include "sweep/order_statistics.h"
@@ -157,7 +158,7 @@ std::vector<std::pair<double, double>> pendingSettings(const SweepOptions& o, co
 // The sweep's classification (its TF, normals for shading) and the fields its casters read.
 PrepareOptions prepareOptions(const SweepOptions& o) {
     PrepareOptions options;
-    options.classify.transferFunction = loadTransferFunction(o.transferFunction);
+    options.classify.transferFunction = chooseTransferFunction(o.transfer);
     options.classify.normals = o.shading;
     options.fields = fieldsFor(o.casters);
     return options;

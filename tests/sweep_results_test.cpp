@@ -100,7 +100,7 @@ TEST(SweepResultsSelection, BestSettingMeetsTheTargetInTheWorstView) {
 TEST(SweepResultsOptions, ValidatesTheGridAndNamesTheDataset) {
     SweepOptions o;
     o.input = "/data/cranium_ct_256x256x108_int16.raw.gz";
-    o.transferFunction = "tf.json";
+    o.transfer.tf = "tf.json";
     o.outDir = "out";
     EXPECT_NO_THROW(o.validate());
     EXPECT_EQ(o.datasetName(), "cranium_ct_256x256x108_int16");
