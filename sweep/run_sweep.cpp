@@ -185,11 +185,12 @@ int runSweep(const SweepOptions& o) {
 
     const std::vector<std::pair<double, double>> settings = pendingSettings(o, dataset, csv);
 
-    // Load and classify once; per setting the staged preparation re-runs only segmentation and the fields.
+    // Load and classify once; per setting the staged preparation re-runs only segmentation and the fields. The
+    // transfer function is chosen first: a bad one fails before the load.
+    PrepareOptions options = prepareOptions(o);
     StagedPreparation staged = o.downsample > 1
                                    ? StagedPreparation(downsample(loadVolume(o.input, o.raw), o.downsample))
                                    : StagedPreparation::load(o.input, o.raw);
-    PrepareOptions options = prepareOptions(o);
     const PreparedVolume& p = classifyOnce(staged, options, dataset, settings.size());
     fs::create_directories(images);
 

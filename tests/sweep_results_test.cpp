@@ -115,6 +115,11 @@ TEST(SweepResultsOptions, ValidatesTheGridAndNamesTheDataset) {
     o.width = 64;
     o.dataset = "a,b";
     EXPECT_THROW(o.validate(), InputError);
+    o.dataset = "";
+    o.transfer = {"", 400.0, 40.0};  // --window and --level alone: a grey ramp
+    EXPECT_NO_THROW(o.validate());
+    o.transfer = {};
+    EXPECT_THROW(o.validate(), InputError);
 }
 
 }  // namespace
