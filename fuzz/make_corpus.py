@@ -201,6 +201,7 @@ def transfer_function():
     put("transfer_function", "list", json.dumps([preset, {"Points": [0, 1, 0.5, 0]}]))
     for space in ("HSV", "Lab", "Lab/CIEDE2000", "Diverging", "Step"):
         put("transfer_function", space.replace("/", "_"), json.dumps(dict(preset, ColorSpace=space)))
+    put("transfer_function", "units", json.dumps([dict(preset, Units="HU", Description="a preset's own words")]))
     put("transfer_function", "opacity_only", '{"Points": [-1000, 0, 0.5, 0, 3000, 1, 0.5, 1]}')
     put("transfer_function", "unsorted", '{"Points": [5, 0, 0.5, 0, 1, 1, 0.5, 0]}')
     put("transfer_function", "not_multiple_of_4", '{"Points": [0, 0, 0.5]}')

@@ -7,6 +7,7 @@
 #include "io/atomic_file.h"
 #include "core/errors.h"
 #include "tools/progress.h"
+#include "preprocess/classify/transfer_choice.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "sweep/downsample.h"
 #include "sweep/order_statistics.h"
@@ -157,7 +158,7 @@ std::vector<std::pair<double, double>> pendingSettings(const SweepOptions& o, co
 // The sweep's classification (its TF, normals for shading) and the fields its casters read.
 PrepareOptions prepareOptions(const SweepOptions& o) {
     PrepareOptions options;
-    options.classify.transferFunction = loadTransferFunction(o.transferFunction);
+    options.classify.transferFunction = chooseTransferFunction(o.transfer);
     options.classify.normals = o.shading;
     options.fields = fieldsFor(o.casters);
     return options;
@@ -184,11 +185,12 @@ int runSweep(const SweepOptions& o) {
 
     const std::vector<std::pair<double, double>> settings = pendingSettings(o, dataset, csv);
 
-    // Load and classify once; per setting the staged preparation re-runs only segmentation and the fields.
+    // Load and classify once; per setting the staged preparation re-runs only segmentation and the fields. The
+    // transfer function is chosen first: a bad one fails before the load.
+    PrepareOptions options = prepareOptions(o);
     StagedPreparation staged = o.downsample > 1
                                    ? StagedPreparation(downsample(loadVolume(o.input, o.raw), o.downsample))
                                    : StagedPreparation::load(o.input, o.raw);
-    PrepareOptions options = prepareOptions(o);
     const PreparedVolume& p = classifyOnce(staged, options, dataset, settings.size());
     fs::create_directories(images);
 

@@ -10,7 +10,8 @@ namespace vr {
 
 void SweepOptions::validate() const {
     if (input.empty()) throw InputError("no input volume given");
-    if (transferFunction.empty()) throw InputError("no transfer function given: --tf TF.json");
+    if (transfer.empty())
+        throw InputError("no transfer function given: --tf PRESET or --tf FILE.json, or --window W --level L");
     if (outDir.empty()) throw InputError("no output folder given: -o OUTDIR");
     auto checkGrid = [](const std::vector<double>& grid, const char* flag) {
         if (grid.empty()) throw InputError(std::string(flag) + ": give at least one threshold");

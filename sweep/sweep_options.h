@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "preprocess/classify/transfer_choice.h"
 #include "preprocess/load/load_volume.h"
 #include "render/render_settings.h"
 
@@ -13,7 +14,7 @@ struct SweepOptions {
     std::filesystem::path input;
     std::string dataset;                 // name in the CSV and report; empty: the input's name without extensions
     RawOptions raw;
-    std::filesystem::path transferFunction;
+    TransferChoice transfer;             // --tf (a preset or a file), --window, --level
     std::vector<double> opacityThresholds{0, 0.005, 0.01, 0.02, 0.05, 0.1};  // T_o
     std::vector<double> angleThresholds{0, 1, 3, 10, 20};                    // T_a, degrees
     std::vector<Caster> casters{Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};

@@ -100,7 +100,7 @@ TEST(SweepResultsSelection, BestSettingMeetsTheTargetInTheWorstView) {
 TEST(SweepResultsOptions, ValidatesTheGridAndNamesTheDataset) {
     SweepOptions o;
     o.input = "/data/cranium_ct_256x256x108_int16.raw.gz";
-    o.transferFunction = "tf.json";
+    o.transfer.tf = "tf.json";
     o.outDir = "out";
     EXPECT_NO_THROW(o.validate());
     EXPECT_EQ(o.datasetName(), "cranium_ct_256x256x108_int16");
@@ -114,6 +114,11 @@ TEST(SweepResultsOptions, ValidatesTheGridAndNamesTheDataset) {
     EXPECT_THROW(o.validate(), InputError);
     o.width = 64;
     o.dataset = "a,b";
+    EXPECT_THROW(o.validate(), InputError);
+    o.dataset = "";
+    o.transfer = {"", 400.0, 40.0};  // --window and --level alone: a grey ramp
+    EXPECT_NO_THROW(o.validate());
+    o.transfer = {};
     EXPECT_THROW(o.validate(), InputError);
 }
 

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 SweepOptions smokeOptions(const fs::path& out) {
     SweepOptions o;
     o.input = test::datasetsDir() / "vtk_headmr_48x62x42_uint8.raw.gz";
-    o.transferFunction = test::datasetsDir() / "mri.tf.json";
+    o.transfer.tf = (test::datasetsDir() / "mri.tf.json").string();
     o.raw.spacing = Vec3d{4, 4, 4};
     o.opacityThresholds = {0, 0.1};
     o.angleThresholds = {0, 20};

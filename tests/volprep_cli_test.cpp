@@ -208,9 +208,37 @@ TEST(VolprepCli, HelpDescribesEveryFlag) {
     fs::path dir = test::scratchDir("volprep_help");
     Outcome r = volprep("--help");
     EXPECT_EQ(r.status, 0);
-    for (const char* flag : {"--output", "--tf", "--to", "--ta", "--fields", "--trilinear", "--nearest", "--no-normals",
+    for (const char* flag : {"--output", "--tf", "--window", "--level", "--list-presets", "--to", "--ta", "--fields", "--trilinear", "--nearest", "--no-normals",
                              "--eacd-code", "--dims", "--type", "--spacing", "--big-endian"})
         EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+}
+
+// --list-presets needs no volume; --tf takes a preset's name, --window and --level a ramp (coloured by --tf when
+// given), and the prepared file keeps the transfer function it was classified with.
+TEST(VolprepCli, PresetsByNameAndWindowLevel) {
+    const Outcome list = volprep("--list-presets");
+    ASSERT_EQ(list.status, 0) << list.err;
+    EXPECT_EQ(list.err, "");
+    for (const char* line : {"CT-Bone         -3024 .. 3071 HU, visible above 150: bone", "CT-AAA ", "CT-Cardiac ",
+                             "CT-Lung ", "CT-Muscle ", "CT-Soft-Tissue ", "MR-Default ", "MR-Angio ", "MR-T2-Brain "})
+        EXPECT_NE(list.out.find(line), std::string::npos) << line << " missing from\n" << list.out;
+
+    const fs::path dir = test::scratchDir("volprep_presets");
+    const test::DatasetEntry e = headsq();
+    const std::string in = q(test::datasetsDir() / e.file) + " " + spacingFlag(e.spacing) + " --fields pc -o ";
+    struct Case {
+        std::string flags, name;
+    };
+    for (const Case& c : std::vector<Case>{{" --tf mr-default", "MR-Default"},
+                                           {" --window 2000 --level 1000", "window 2000 level 1000"},
+                                           {" --tf CT-Bone --window 1000 --level 1500", "CT-Bone, window 1000 level 1500"},
+                                           {" --window 100 --level 0 --tf " + q(test::datasetsDir() / e.tf),
+                                            "ct-headsq, window 100 level 0"}}) {
+        const Outcome r = volprep(in + q(dir / "p.vprep") + c.flags);
+        ASSERT_EQ(r.status, 0) << c.flags << ": " << r.err;
+        const std::string kept = readPreparedHeader(dir / "p.vprep").meta.classification;
+        EXPECT_NE(kept.find("\"Name\": \"" + c.name + "\""), std::string::npos) << kept;
+    }
 }
 
 // Each bad run: non-zero exit, "volprep: " and the problem on stderr, and no file at the output path.
@@ -225,7 +253,7 @@ TEST(VolprepCli, BadInputFailsClearlyAndWritesNothing) {
         std::string args, message;
     };
     for (const Case& c : std::vector<Case>{
-             {in + " -o " + q(out), "--tf is required"},
+             {in + " -o " + q(out), "At least 1 option from [--tf,--window,--level] is required"},
              {in + tf + " --to -1 -o " + q(out), "--to must be a finite number >= 0"},
              {in + tf + " --ta nan -o " + q(out), "--ta must be a finite number >= 0"},
              {in + tf + " --fields pc,octree -o " + q(out), "octree not in {pc,acd,eacd}"},

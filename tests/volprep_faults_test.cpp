@@ -1,5 +1,6 @@
 // volprep against bad input and hostile conditions: flags it does not have (--step belongs to volrender),
-// absurd spacing, thresholds and dims, unwritable outputs, and a run killed while it writes the prepared file.
+// absurd spacing, thresholds, dims and transfer-function flags, unwritable outputs, and a run killed while it
+// writes the prepared file.
 // Every refusal exits non-zero with "volprep: <message>" and writes nothing.
 #include <gtest/gtest.h>
 
@@ -57,6 +58,30 @@ TEST(VolprepFaults, AbsurdSpacingThresholdsAndDimsAreRefused) {
     for (const char* dims : {"0x4x4", "4x4x-4", "100000x100000x100000", "65537x1x1"})
         expectRefused(shellQuote(anonymous) + kTf + " --type uint8 --dims " + dims + " -o " + shellQuote(dir / "x.vprep"),
                       "anonymous.bin");
+    EXPECT_FALSE(fs::exists(dir / "x.vprep"));
+}
+
+// The transfer-function flags: an unknown preset gets the list of presets; a window that is not a finite number
+// above 0 or a level that is not finite is refused before the volume is read; one without the other, or none of
+// them, is a bad command line.
+TEST(VolprepFaults, BadTransferFlagsAreRefused) {
+    const fs::path dir = test::scratchDir("volprep_faults_transfer");
+    const std::string in = shellQuote(smallRaw(dir)) + " -o " + shellQuote(dir / "x.vprep");
+    expectRefused(in + " --tf CT-Bon", "--tf CT-Bon: no such file, nor a built-in preset of that name (the presets: "
+                                       "CT-AAA, CT-Bone, CT-Cardiac, CT-Lung, CT-Muscle, CT-Soft-Tissue, MR-Angio, "
+                                       "MR-Default, MR-T2-Brain; --list-presets describes them)");
+    for (const char* window : {"0", "-0", "-400", "nan", "inf", "-inf"})
+        expectRefused(in + " --level 40 --window " + window, std::string("--window ") + window);
+    for (const char* level : {"nan", "inf", "-inf"})
+        expectRefused(in + " --window 400 --tf CT-Bone --level " + level, std::string("--level ") + level);
+    expectRefused(in + " --window 1 --level 1e20", "not two distinct finite numbers");
+    for (const auto& [flags, message] : {std::pair{" --window 400", "--window requires --level"},
+                                         {" --tf CT-Bone --level 40", "--level requires --window"},
+                                         {"", "At least 1 option from [--tf,--window,--level] is required"}}) {
+        const test::CliOutcome r = volprep(in + flags);
+        EXPECT_EQ(r.status, 2) << flags;
+        test::expectRefusal(r, "volprep", in + flags, {message});
+    }
     EXPECT_FALSE(fs::exists(dir / "x.vprep"));
 }
 

@@ -90,7 +90,8 @@ TEST(VolrenderCli, HelpAndDeviceList) {
     const test::CliOutcome help = volrender("--help");
     EXPECT_EQ(help.status, 0);
     for (const char* flag :
-         {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear", "--nearest"})
+         {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear", "--nearest",
+          "--tf", "--window", "--level", "--list-presets"})
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     const test::CliOutcome list = volrender("--list-devices");
     EXPECT_EQ(list.status, 0);
@@ -169,6 +170,37 @@ TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {
     expectRejected(q(dir / "head.vprep") + tf + " -o " + q(dir / "x.png"), "a prepared file holds its transfer function");
     expectRejected(volume + tf + " --to -1 -o " + q(dir / "x.png"), "--to");
     EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// The shared head CT is in Hounsfield units: with CT-Bone its skull shows; a window/level ramp far above any of its
+// values shows nothing; --list-presets needs no volume; the transfer-function flags are checked as volprep's.
+TEST(VolrenderCli, RendersTheCraniumWithAPresetInOneCommand) {
+    const fs::path dir = test::scratchDir("volrender_cli_presets");
+    const test::DatasetEntry e = test::rawDataset("cranium_ct");
+    const std::string volume = q(test::datasetsDir() / e.file) + " --spacing " + std::to_string(e.spacing.x) + "," +
+                               std::to_string(e.spacing.y) + "," + std::to_string(e.spacing.z) +
+                               " --cpu --caster primitive --size 48x48 --elevation 90 -q -o ";
+    const auto visiblePixels = [&](const std::string& flags) {
+        const test::CliOutcome r = volrender(volume + q(dir / "x.exr") + flags);
+        EXPECT_EQ(r.status, 0) << flags << ": " << r.err;
+        const Image image = readImage(dir / "x.exr");
+        int visible = 0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) visible += image.pixel(x, y)[3] > 0.5f;
+        return visible;
+    };
+    EXPECT_GT(visiblePixels(" --tf CT-Bone"), 48 * 48 / 5);
+    EXPECT_EQ(visiblePixels(" --window 100 --level 5000"), 0);  // every value below the window
+
+    const test::CliOutcome list = volrender("--list-presets");
+    EXPECT_EQ(list.status, 0);
+    EXPECT_NE(list.out.find("CT-Bone         -3024 .. 3071 HU"), std::string::npos) << list.out;
+    expectRejected(volume + q(dir / "y.png") + " --tf ct-bon", "--tf ct-bon: no such file, nor a built-in preset");
+    expectRejected(volume + q(dir / "y.png") + " --window -1 --level 40", "--window -1");
+    expectRejected(volume + q(dir / "y.png") + " --window 400", "--window requires --level");
+    expectRejected(q(preparedHead()) + " --window 400 --level 40 -o " + q(dir / "y.png"),
+                   "a prepared file holds its transfer function and grid: --tf, --window, --level");
+    EXPECT_FALSE(fs::exists(dir / "y.png"));
 }
 
 // The one-command path on a terminal: a bar per preparing stage; --quiet leaves the terminal to errors.

@@ -11,7 +11,7 @@ namespace vr {
 inline int runTool(const char* tool, CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
     try {
         app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
+    } catch (const CLI::Success& e) {  // --help, or a flag that printed a listing: nothing to run
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "%s: %s\nRun %s --help for the options.\n", tool, e.what(), tool);

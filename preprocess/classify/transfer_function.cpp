@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -149,6 +150,11 @@ TransferFunction parseTransferFunction(const std::string& jsonText, const std::s
     TransferFunction tf;
     tf.json = jsonText;
     if (doc.contains("Name") && doc["Name"].is_string()) tf.name = doc["Name"].get<std::string>();
+    for (auto [key, text] : {std::pair{"Units", &tf.units}, std::pair{"Description", &tf.description}}) {
+        if (!doc.contains(key)) continue;
+        if (!doc[key].is_string()) throw fileError(sourceName, std::string("\"") + key + "\" is not a string");
+        *text = doc[key].get<std::string>();
+    }
     if (doc.contains("ColorSpace")) {
         if (!doc["ColorSpace"].is_string()) throw fileError(sourceName, "\"ColorSpace\" is not a string");
         tf.colourSpace = doc["ColorSpace"].get<std::string>();
@@ -163,6 +169,25 @@ TransferFunction parseTransferFunction(const std::string& jsonText, const std::s
     }
     tf.validate(sourceName);
     return tf;
+}
+
+std::string shortNumber(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
+}
+
+std::string paraViewJson(const TransferFunction& tf) {
+    nlohmann::json preset = {{"Name", tf.name}, {"ColorSpace", tf.colourSpace}};
+    if (!tf.units.empty()) preset["Units"] = tf.units;
+    if (!tf.description.empty()) preset["Description"] = tf.description;
+    nlohmann::json& points = preset["Points"] = nlohmann::json::array();
+    for (const auto& p : tf.opacity) points.insert(points.end(), {p.x, p.opacity, p.midpoint, p.sharpness});
+    if (!tf.colour.empty()) {
+        nlohmann::json& rgb = preset["RGBPoints"] = nlohmann::json::array();
+        for (const auto& p : tf.colour) rgb.insert(rgb.end(), {p.x, p.r, p.g, p.b});
+    }
+    return nlohmann::json::array({preset}).dump(1);
 }
 
 TransferFunction loadTransferFunction(const std::filesystem::path& path) {

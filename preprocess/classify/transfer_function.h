@@ -25,6 +25,8 @@ struct TransferFunction {
     std::vector<ColourPoint> colour;    // strictly increasing x; empty -> white
     std::string colourSpace = "RGB";    // ParaView's name: RGB, HSV, Lab, Lab/CIEDE2000, Diverging, Step
     std::string name;
+    std::string units;                  // of the x values, e.g. HU (the preset's "Units"); empty: not stated
+    std::string description;            // what it shows (the preset's "Description")
     std::string json;                   // the source text, kept for the prepared file's metadata
     bool operator==(const TransferFunction&) const = default;
 
@@ -63,8 +65,14 @@ struct SampledTransferFunction {
 SampledTransferFunction sampleTransferFunction(const TransferFunction& tf, double lo, double hi, std::size_t count);
 
 // Reads ParaView's preset JSON ("Points": x, opacity, mid, sharp; "RGBPoints": x, r, g, b; a list of presets, of
-// which the first is used, or one object). Throws InputError naming the file and the problem.
+// which the first is used, or one object; optional "Units" and "Description", which ParaView ignores). Throws
+// InputError naming the file and the problem.
 TransferFunction loadTransferFunction(const std::filesystem::path& path);
 TransferFunction parseTransferFunction(const std::string& jsonText, const std::string& sourceName);
+// x as printf's %g writes it (641.385, -3024, 1e+20): the transfer functions' values in names and messages.
+std::string shortNumber(double x);
+
+// `tf` as ParaView's preset JSON (a list of one preset), which parseTransferFunction reads back to the same points.
+std::string paraViewJson(const TransferFunction& tf);
 
 }  // namespace vr

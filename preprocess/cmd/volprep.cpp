@@ -37,7 +37,7 @@ void addFlags(CLI::App& app, Flags& f) {
                    ".mhd/.mha, .nii/.nii.gz, .vti, .vtk, .vdb, or a DICOM series folder")
         ->required();
     app.add_option("-o,--output", f.output, "prepared file to write (written atomically)")->required();
-    vr::addVolumeFlags(app, f.volume)->required();
+    vr::addVolumeFlags(app, f.volume)->require_option(1, 0);
     app.add_option("--fields", f.fields, "distance fields to build, comma-separated")
         ->delimiter(',')
         ->check(CLI::IsMember({"pc", "acd", "eacd"}))

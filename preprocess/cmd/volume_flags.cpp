@@ -1,13 +1,38 @@
 #include "preprocess/cmd/volume_flags.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/errors.h"
+#include "preprocess/classify/transfer_presets.h"
 
 namespace vr {
 
-CLI::Option* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
-    CLI::Option* tf = app.add_option("--tf", f.tf, "transfer function: ParaView preset JSON");
+CLI::Option_group* addTransferFlags(CLI::App& app, TransferChoice& choice) {
+    auto* group = app.add_option_group("transfer function", "--tf, or --window and --level, or all three");
+    group->add_option("--tf", choice.tf,
+                      "a built-in preset's name (CT-Bone, MR-Default, ...: see --list-presets) or a ParaView preset "
+                      "JSON file");
+    auto* window = group->add_option_function<double>(
+        "--window", [&choice](double w) { choice.window = w; },
+        "width of a linear opacity ramp, in the volume's units (HU for a CT): opacity 0 at level - window/2 to 1 at "
+        "level + window/2; grey, or coloured by --tf");
+    auto* level = group->add_option_function<double>(
+        "--level", [&choice](double l) { choice.level = l; }, "the value at the middle of --window's ramp");
+    window->needs(level);
+    level->needs(window);
+    app.add_flag_callback(
+        "--list-presets",
+        [] {
+            std::fputs(transferPresetListing().c_str(), stdout);
+            throw CLI::Success();  // a listing, like --help: no run
+        },
+        "list the built-in transfer-function presets (name, values, units, what they show) and exit");
+    return group;
+}
+
+CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
+    CLI::Option_group* transfer = addTransferFlags(app, f.transfer);
     app.add_option("--to", f.to, "T_o: opacity (and colour) variation allowed within a region")->capture_default_str();
     app.add_option("--ta", f.ta, "T_a: normal angle allowed within a region, degrees")->capture_default_str();
     auto* raw = app.add_option_group("raw input", "for headerless raw files whose name does not say it");
@@ -15,7 +40,7 @@ CLI::Option* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
     raw->add_option("--type", f.type, "voxel type: uint8, int16, uint16 or float32");
     raw->add_option("--spacing", f.spacing, "voxel size x,y,z")->delimiter(',')->expected(3);
     raw->add_flag("--big-endian", f.bigEndian, "multi-byte voxels are big-endian");
-    return tf;
+    return transfer;
 }
 
 void checkThresholds(const VolumeFlags& f) {
@@ -36,7 +61,7 @@ RawOptions rawOptionsFrom(const VolumeFlags& f) {
 
 PrepareOptions prepareOptionsFrom(const VolumeFlags& f, bool nearest, bool noNormals) {
     PrepareOptions o;
-    o.classify.transferFunction = loadTransferFunction(f.tf);
+    o.classify.transferFunction = chooseTransferFunction(f.transfer);
     o.classify.normals = !noNormals;
     o.segmentation = {f.to, f.ta, !noNormals, !nearest};
     return o;

@@ -1,16 +1,17 @@
 // The flags that say how to read and prepare a volume, shared by volprep and by volrender's one-command path:
-// the transfer function, the thresholds and the raw-file description.
+// the transfer function (volsweep's too), the thresholds and the raw-file description.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
+#include "preprocess/classify/transfer_choice.h"
 #include "preprocess/pipeline/staged_prepare.h"
 
 namespace vr {
 
 struct VolumeFlags {
-    std::string tf;
+    TransferChoice transfer;
     double to = 0.01, ta = 3;
     std::vector<int> dims;
     std::string type;
@@ -18,15 +19,20 @@ struct VolumeFlags {
     bool bigEndian = false;
 };
 
-// Adds --tf, --to, --ta and the raw group (--dims, --type, --spacing, --big-endian); returns the --tf option.
-CLI::Option* addVolumeFlags(CLI::App& app, VolumeFlags& flags);
+// Adds the transfer-function group (--tf, --window, --level) and --list-presets, which prints the built-in presets
+// and exits; returns the group. volsweep shares them.
+CLI::Option_group* addTransferFlags(CLI::App& app, TransferChoice& choice);
+
+// Adds the transfer-function flags, --to, --ta and the raw group (--dims, --type, --spacing, --big-endian); returns
+// the transfer-function group.
+CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& flags);
 
 // Throws InputError naming --to or --ta when a threshold is negative or not finite.
 void checkThresholds(const VolumeFlags& flags);
 
 RawOptions rawOptionsFrom(const VolumeFlags& flags);
 
-// The transfer function (loaded: a bad one fails here, before any volume is read) and the thresholds; regions for
+// The transfer function (chosen: a bad one fails here, before any volume is read) and the thresholds; regions for
 // trilinear sampling unless `nearest`, with normals unless `noNormals`. Fields and EACD code as PrepareOptions'.
 PrepareOptions prepareOptionsFrom(const VolumeFlags& flags, bool nearest, bool noNormals);
 

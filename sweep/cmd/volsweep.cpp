@@ -7,6 +7,7 @@
 
 #include "tools/tool_main.h"
 #include "core/errors.h"
+#include "preprocess/cmd/volume_flags.h"
 #include "sweep/report.h"
 #include "sweep/run_sweep.h"
 
@@ -21,10 +22,11 @@ constexpr vr::ToolText kText{
     "Exit status: 0 done, 1 bad input or device failure, 2 bad command line."};
 
 struct Flags {
-    std::string input, tf, name, size = "512x512", type, outDir, peers;
+    std::string input, name, size = "512x512", type, outDir, peers;
     std::vector<double> spacing, to{0, 0.005, 0.01, 0.02, 0.05, 0.1}, ta{0, 1, 3, 10, 20}, elevations{0};
     std::vector<int> dims;
     std::vector<std::string> casters{"primitive", "pc", "acd", "eacd"};
+    vr::TransferChoice transfer;
     int views = 8, device = -1, downsample = 1;
     double step = 0.5;
     bool noShading = false, nearest = false, resume = false, reportOnly = false;
@@ -32,7 +34,7 @@ struct Flags {
 
 void addFlags(CLI::App& app, Flags& f) {
     app.add_option("input", f.input, "volume file (raw .raw[.gz] named NAME_XxYxZ_TYPE, NRRD, MetaImage, NIfTI, ...)");
-    app.add_option("--tf", f.tf, "ParaView transfer function preset (JSON)");
+    vr::addTransferFlags(app, f.transfer);
     app.add_option("--spacing", f.spacing, "voxel size x,y,z for raw volumes")->delimiter(',')->expected(3);
     app.add_option("--dims", f.dims, "grid size XxYxZ for raw volumes (default: from the name)")
         ->delimiter('x')->expected(3);
@@ -62,7 +64,7 @@ void addFlags(CLI::App& app, Flags& f) {
 vr::SweepOptions options(const Flags& f) {
     vr::SweepOptions o;
     o.input = f.input;
-    o.transferFunction = f.tf;
+    o.transfer = f.transfer;
     o.dataset = f.name;
     if (!f.spacing.empty()) o.raw.spacing = vr::Vec3d{f.spacing[0], f.spacing[1], f.spacing[2]};
     if (!f.dims.empty()) o.raw.dims = vr::Vec3i{f.dims[0], f.dims[1], f.dims[2]};

@@ -51,7 +51,7 @@ struct Flags {
 void addFlags(CLI::App& app, Flags& f) {
     app.add_option("input", f.input,
                    "prepared volume written by volprep, or a volume to prepare here (raw, NRRD, MetaImage, NIfTI, "
-                   "VTI/VTK, VDB or a DICOM folder, as volprep reads them; needs --tf)");
+                   "VTI/VTK, VDB or a DICOM folder, as volprep reads them; needs --tf or --window/--level)");
     vr::addVolumeFlags(app, f.volume);
     app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...");
     app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, or auto (chosen from the file's ray probe and "
@@ -113,12 +113,13 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     const bool raw = !f.volume.dims.empty() || !f.volume.type.empty() || !f.volume.spacing.empty() || f.volume.bigEndian;
     const bool prepared = vr::isPreparedFile(f.input);
     if (prepared) {
-        if (!f.volume.tf.empty() || raw)
-            throw vr::fileError(f.input, "a prepared file holds its transfer function and grid: --tf and the raw "
-                                         "flags are for a volume to prepare");
+        if (!f.volume.transfer.empty() || raw)
+            throw vr::fileError(f.input, "a prepared file holds its transfer function and grid: --tf, --window, "
+                                         "--level and the raw flags are for a volume to prepare");
     } else {
-        if (f.volume.tf.empty())
-            throw vr::fileError(f.input, "not a prepared file: a volume to prepare here needs --tf FILE.json");
+        if (f.volume.transfer.empty())
+            throw vr::fileError(f.input, "not a prepared file: a volume to prepare here needs --tf PRESET or "
+                                         "--tf FILE.json, or --window and --level");
         vr::checkThresholds(f.volume);
     }
     long long w = 0, h = 0;  // wider than int: 4294967304x8 must not wrap around to 8x8
