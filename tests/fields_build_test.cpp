@@ -263,6 +263,18 @@ TEST(FieldsBuild, AnOctantMaskBuildsThoseOctantsOnly) {
         const DistanceFields withPC = buildFields(r, kFieldPC | kFieldEACD, ExtentCode::Log16, [](FieldKind) {}, mask);
         EXPECT_EQ(withPC.pc, all.pc);
         EXPECT_EQ(withPC.eacdOctants(), mask);
+        // Consuming the regions (their labels freed once the runs are made) builds the same fields: every run the
+        // octants read was made before the labels went.
+        for (unsigned kinds : {unsigned(kFieldEACD), kFieldACD | kFieldEACD, kFieldPC | kFieldEACD, unsigned(kFieldPC)}) {
+            Regions copy = r;
+            const DistanceFields consumed = buildFields(std::move(copy), kinds, ExtentCode::Log16, [](FieldKind) {}, mask);
+            const DistanceFields kept = buildFields(r, kinds, ExtentCode::Log16, [](FieldKind) {}, mask);
+            EXPECT_EQ(consumed.pc, kept.pc) << kinds;
+            for (int o = 0; o < kOctants; ++o) {
+                EXPECT_EQ(consumed.acd[o], kept.acd[o]) << kinds << " " << o;
+                EXPECT_EQ(consumed.eacd[o], kept.eacd[o]) << kinds << " " << o;
+            }
+        }
     }
 }
 

@@ -208,6 +208,26 @@ TEST(PipelineStaged, SegmentsAgainWithoutClassifyingAgain) {
     EXPECT_EQ(staged.runs(PrepStage::Classify), 1);
 }
 
+// A render that needs only the fields lets the builder free the labels: the same fields, no regions left, and a
+// later preparation segments again.
+TEST(PipelineStaged, FieldsWithoutKeepingTheRegions) {
+    StagedPreparation kept = stagedHead(), freed = stagedHead();
+    PrepareOptions o = headOptions();
+    o.fields = kFieldEACD;
+    o.octants = 0x21;
+    const PreparedVolume& k = kept.prepare(o);
+    o.keepRegions = false;
+    const PreparedVolume& f = freed.prepare(o);
+    EXPECT_TRUE(f.regions.label.empty());
+    EXPECT_EQ(f.regions.count, 0u);
+    for (int oct = 0; oct < kOctants; ++oct) EXPECT_EQ(f.fields.eacd[oct], k.fields.eacd[oct]) << oct;
+    freed.prepare(o);
+    EXPECT_EQ(names(freed.lastStages()), (std::vector<std::string>{"segment", "acd", "eacd"}));
+    o.keepRegions = true;
+    freed.prepare(o);
+    EXPECT_EQ(f.regions.label, k.regions.label);
+}
+
 // A volume whose preparation would not fit the memory allowed is refused before any stage runs, with the estimate
 // and the limit; the estimate grows with what is asked.
 TEST(PipelineStaged, AVolumeTooLargeForTheMemoryIsRefusedBeforeAnyStage) {

@@ -79,8 +79,12 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::fu
     return buildFields(regions, kinds, ExtentCode::Exact, done);
 }
 
-DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
-                           const std::function<void(FieldKind)>& done, unsigned octants) {
+namespace {
+
+// `release` is called once every axial run the fields read is made: the labels are no longer read after it.
+DistanceFields buildFieldsReleasing(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
+                                    const std::function<void(FieldKind)>& done, unsigned octants,
+                                    const std::function<void()>& release) {
     DistanceFields f;
     f.dims = regions.dims;
     const bool pc = kinds & kFieldPC, acd = kinds & (kFieldACD | kFieldEACD);
@@ -89,10 +93,14 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode ea
             f.pc = buildPC(regions);
             done(kFieldPC);
         }
+        release();
         return f;
     }
     AxialRuns runs(regions);
-    ACDFields acds = buildACDs(runs, pc ? kAllOctants : octants);
+    const unsigned acdOctants = pc ? kAllOctants : octants;
+    runs.computeAll(acdOctants);  // every run the ACDs and the EACD read
+    release();
+    ACDFields acds = buildACDs(runs, acdOctants);
     done(kFieldACD);
     if (pc) {
         f.pc = pcFromACD(acds);
@@ -108,6 +116,20 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode ea
             if (!(octants >> o & 1u)) f.acd[o] = {};
     }
     return f;
+}
+
+}  // namespace
+
+DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
+                           const std::function<void(FieldKind)>& done, unsigned octants) {
+    return buildFieldsReleasing(regions, kinds, eacdCode, done, octants, [] {});
+}
+
+DistanceFields buildFields(Regions&& regions, unsigned kinds, ExtentCode eacdCode,
+                           const std::function<void(FieldKind)>& done, unsigned octants) {
+    Regions consumed = std::move(regions);
+    return buildFieldsReleasing(consumed, kinds, eacdCode, done, octants,
+                                [&] { std::vector<uint32_t>().swap(consumed.label); });
 }
 
 }  // namespace vr

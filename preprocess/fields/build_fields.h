@@ -49,5 +49,9 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::fu
 // eight, still builds every ACD it needs.
 DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
                            const std::function<void(FieldKind)>& done, unsigned octants = kAllOctants);
+// The same, consuming the regions: their labels are freed as soon as the axial runs are made from them, so that
+// ACD and EACD are built in 4 bytes per voxel less (a render that needs only the field).
+DistanceFields buildFields(Regions&& regions, unsigned kinds, ExtentCode eacdCode,
+                           const std::function<void(FieldKind)>& done, unsigned octants = kAllOctants);
 
 }  // namespace vr

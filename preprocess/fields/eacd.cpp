@@ -77,7 +77,7 @@ void chooseBoxes(const OctantState& st, ExtentField& out) {
 
 // The ACD of octant o, checked against the regions.
 void checkACD(const AxialRuns& runs, int o, const std::vector<uint8_t>& acd) {
-    if (acd.size() != runs.regions().label.size())
+    if (acd.size() != voxelCount(runs.dims()))
         throw std::invalid_argument("buildEACD: the ACD of octant " + std::to_string(o) +
                                     " does not match the regions");
 }

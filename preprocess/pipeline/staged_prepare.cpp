@@ -23,8 +23,10 @@ ClassifyParams classifyingPart(ClassifyParams params) {
     return params;
 }
 
-// The fields of `kinds` (a FieldKind mask), with a progress bar and each field timed into `times`.
-DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode, unsigned octants,
+// The fields of `kinds` (a FieldKind mask), with a progress bar and each field timed into `times`. `regions` is
+// consumed when it is an rvalue.
+template <typename RegionsRef>
+DistanceFields buildTimedFields(RegionsRef&& regions, unsigned kinds, ExtentCode eacdCode, unsigned octants,
                                 std::vector<StageTime>& times) {
     // One call builds them all, sharing the axial runs and the ACDs: each field is timed from the end of the one
     // before (ACD first, then PC from the ACDs, then EACD).
@@ -33,7 +35,7 @@ DistanceFields buildTimedFields(const Regions& regions, unsigned kinds, ExtentCo
     StageClock clock;
     // The EACD is written in eacdCode as it is built: memory, file and device then hold the same bytes.
     DistanceFields f = buildFields(
-        regions, kinds, eacdCode,
+        std::forward<RegionsRef>(regions), kinds, eacdCode,
         [&](FieldKind kind) {
             times.push_back(clock.stop(kind == kFieldPC ? "pc" : kind == kFieldACD ? "acd" : "eacd"));
             bar.advance();
@@ -123,9 +125,13 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
     if (last >= PrepStage::Fields && fieldsWith_ != fields) {
         run(PrepStage::Fields, [&](std::vector<StageTime>& times) {
             prepared_.fields =
-                buildTimedFields(prepared_.regions, options.fields, options.eacdCode, options.octants, times);
+                options.keepRegions
+                    ? buildTimedFields(prepared_.regions, options.fields, options.eacdCode, options.octants, times)
+                    : buildTimedFields(std::exchange(prepared_.regions, {}), options.fields, options.eacdCode,
+                                       options.octants, times);
         });
         fieldsWith_ = fields;
+        if (!options.keepRegions) segmentedWith_.reset();  // the regions are gone: segment again when asked
     }
     return prepared_;
 }

@@ -26,6 +26,9 @@ struct PrepareOptions {
     ExtentCode eacdCode = kDefaultExtentCode;  // EACD extents rounded down to this code (core/extent_code.h)
     unsigned octants = kAllOctants;  // ACD and EACD octants to build: all for a file, a render's views' otherwise
     std::size_t memoryLimit = 0;     // bytes the first preparation may need (working_set.h); 0: what is available
+    // Whether the regions are kept once the fields are built: a render that needs only the fields gives their
+    // labels to the fields builder, which frees them as soon as it can (a later prepare() segments again).
+    bool keepRegions = true;
 };
 
 // The stages in the order they depend on each other.

@@ -20,12 +20,12 @@ std::size_t preparationBytes(const GridGeometry& grid, const PrepareOptions& opt
     // its normal class (the normal's bits at T_a = 0) and whether normals mix around it.
     std::size_t segment = 0;
     if (options.segmentation.trilinear) {
-        segment = 2 * sizeof(float) + 1;
+        segment = 2 * sizeof(uint16_t) + 1;  // footprint entries, mixed normals
         if (options.classify.normals && options.segmentation.useNormals)
             segment += options.segmentation.angleThresholdDeg == 0 ? 12 : 4;
     }
     std::size_t fields = 0;
-    if (options.fields != 0) fields += 6;  // axial runs, one byte per axis and sign
+    if (options.fields != 0) fields += 6;  // axial runs, one byte per axis and sign (an upper bound: those read)
     if (options.fields & (kFieldACD | kFieldEACD | kFieldPC))
         fields += (options.fields & kFieldPC) ? kOctants : octants;  // ACD, kept or built for PC and EACD
     if (options.fields & kFieldPC) fields += 1;

@@ -7,15 +7,18 @@ namespace vr {
 
 NormalClasses::NormalClasses(const RegionKeyer& keyer, std::size_t voxels) : used_(keyer.usesNormals()) {
     if (!used_) return;
-    const bool binned = keyer.binsNormals();
-    if (binned) binned_.resize(voxels);
+    const bool binned = keyer.binsNormals(), narrow = binned && keyer.normalCells() < 65535;
+    if (narrow) narrow_.resize(voxels);
+    else if (binned) binned_.resize(voxels);
     else exact_.resize(voxels);
     constexpr uint32_t kNaN = 0x7fc00000;  // never a unit or flat normal's component
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const RegionKey key = keyer.normalKey(i);
             const bool transparent = key.opacity == 0;
-            if (binned) binned_[i] = transparent ? 0 : 1 + key.normal[0];
+            const uint32_t cell = transparent ? 0 : 1 + key.normal[0];
+            if (narrow) narrow_[i] = uint16_t(cell);
+            else if (binned) binned_[i] = cell;
             else exact_[i] = transparent ? std::array<uint32_t, 3>{kNaN, kNaN, kNaN} : key.normal;
         }
     });

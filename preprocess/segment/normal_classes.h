@@ -19,12 +19,16 @@ public:
     // (bit for bit at T_a = 0).
     bool alike(std::size_t a, std::size_t b) const {
         if (!used_) return true;
+        if (!narrow_.empty()) return narrow_[a] == narrow_[b];
         return binned_.empty() ? exact_[a] == exact_[b] : binned_[a] == binned_[b];
     }
 
 private:
     bool used_;
-    std::vector<uint32_t> binned_;  // where normals are binned: 0 transparent, else 1 + the key's normal cell
+    // Where normals are binned: 0 transparent, else 1 + the key's normal cell; in 16 bits where the cells allow
+    // (T_a of 1.6 degrees or more: 6 K^2 < 65535).
+    std::vector<uint16_t> narrow_;
+    std::vector<uint32_t> binned_;
     std::vector<std::array<uint32_t, 3>> exact_;  // elsewhere the normal's bits; a NaN's for transparent voxels
 };
 

@@ -1,6 +1,7 @@
 // The quantisation behind the regions (docs/ALGORITHMS.md section 3): voxels with equal keys are similar, with a bound
 // that holds for every pair of them, not only for neighbours.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -47,8 +48,13 @@ public:
     // binned (or its bits) as operator() has it; default normals where normals are ignored.
     RegionKey normalKey(std::size_t voxel) const;
     bool usesNormals() const { return useNormals_; }
-    // Whether normals are binned into cube-map cells (T_a > 0): the normal key is then normal[0] alone.
+    // Whether normals are binned into cube-map cells (T_a > 0): the normal key is then normal[0] alone, below
+    // normalCells().
     bool binsNormals() const { return !exactNormals_; }
+    uint32_t normalCells() const {
+        const uint32_t k = uint32_t(std::max(cellsPerEdge_, 1));
+        return 6 * k * k;
+    }
     // The keys of voxels first .. first + count - 1 into out: operator() for each, but the bins of a (sigma, colour)
     // seen recently in the run are looked up, not recomputed (a volume classified by a TF has few distinct ones).
     void keys(std::size_t first, std::size_t count, RegionKey* out) const;

@@ -220,6 +220,7 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, con
                                  std::vector<vr::StageTime>& stages) {
     vr::PrepareOptions options = vr::prepareOptionsFrom(f.volume, !s.trilinear, !s.shading);
     options.fields = fieldsFor(s.caster);
+    options.keepRegions = false;  // the renderers read the field, never the labels: freed once the field has them
     vr::StagedPreparation staged = vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume));
     options.octants = orbitOctants(orbit(f, view, staged.volume().grid));
     staged.prepare(options);
@@ -229,9 +230,7 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, con
         for (const vr::StageTime& t : stages) std::printf(" %s %.3f s", t.stage.c_str(), t.seconds);
         std::printf("\n");
     }
-    vr::PreparedVolume prepared = std::move(staged).takeResult();
-    prepared.regions = {};  // the field is built from them; the renderers read the field (4 bytes per voxel less)
-    return prepared;
+    return std::move(staged).takeResult();
 }
 
 int run(const Flags& f) {
