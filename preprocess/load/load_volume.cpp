@@ -89,7 +89,9 @@ Volume loadVolume(const fs::path& path, const RawOptions& raw) {
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
     if (!fs::exists(status)) throw fileError(path.string(), "no such file or folder");
-    Volume v = fs::is_directory(status) ? loadDicomSeries(path) : loaderFor(path)(path, raw);
+    if (!raw.series.empty() && !fs::is_directory(status))
+        throw fileError(path.string(), "--series chooses a series of a DICOM folder; this is a file");
+    Volume v = fs::is_directory(status) ? loadDicomSeries(path, raw.series) : loaderFor(path)(path, raw);
     requireValidGeometry(v.grid, path);
     requireFinite(v, path);
     v.source = path.string();

@@ -2,6 +2,7 @@
 #pragma once
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "core/volume.h"
 
@@ -14,12 +15,14 @@ struct RawOptions {
     std::optional<ScalarType> type;
     std::optional<Vec3d> spacing;
     bool bigEndian = false;
+    std::string series;  // DICOM folders: the SeriesInstanceUID to read; empty for a folder of one series
     bool operator==(const RawOptions&) const = default;
 };
 
 // Raw (.raw, .raw.gz), NRRD (.nrrd/.nhdr), MetaImage (.mhd/.mha), NIfTI (.nii/.nii.gz), DICOM series (a folder),
 // VTK image data (.vti, legacy .vtk structured points), OpenVDB (.vdb, first float grid, densified over its
-// active bounding box), chosen by the (case-insensitive) file name. `raw` applies to raw files only.
+// active bounding box), chosen by the (case-insensitive) file name. `raw`'s dims, type, spacing and byte order apply
+// to raw files only, its series to DICOM folders only (a series given for a file is an InputError).
 // Voxels are x fastest as stored (DICOM rows top first, slices by increasing position along the slice normal);
 // spacing comes from the file, and grid.origin is the corner of voxel (0,0,0), half a voxel before the first
 // sample's position in the file. Sets sourceType (Float32 for types other than the four, and for rescaled
