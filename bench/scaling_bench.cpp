@@ -26,6 +26,7 @@
 #include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"
+#include "tools/peak_resident.h"
 
 namespace {
 namespace fs = std::filesystem;
@@ -45,18 +46,6 @@ struct SizeResult {
     double peakBytes = 0;  // the process's peak resident memory while this size ran
     std::map<std::string, std::string> checksums;  // per scenario, of its first run (--checksums)
 };
-
-// The process's peak resident memory (VmHWM), reset to the current one by resetPeakResident (Linux 4.0 and later);
-// 0 where /proc does not say.
-double peakResidentBytes() {
-    std::ifstream status("/proc/self/status");
-    std::string key;
-    double kB = 0;
-    while (status >> key)
-        if (key == "VmHWM:" && status >> kB) return kB * 1024;
-    return 0;
-}
-void resetPeakResident() { std::ofstream("/proc/self/clear_refs") << "5"; }
 
 // Checksums of every array of a preparation, so that a faster stage can be checked bit for bit.
 std::string checksums(const vr::PreparedVolume& p) {
@@ -89,7 +78,7 @@ void record(SizeResult& r, const std::string& scenario, const vr::StagedPreparat
 SizeResult benchSize(const std::string& name, vr::Volume volume, const vr::PrepareOptions& base, int runs,
                      bool withChecksums, vr::bench::Checks& checks) {
     SizeResult r{name, volume.grid.dims.x, {}, {}, 0, 0, {}};
-    resetPeakResident();
+    vr::resetPeakResident();
     vr::PrepareOptions thresholdChanged = base;
     thresholdChanged.segmentation.opacityThreshold *= 2;
     vr::PrepareOptions tfChanged = thresholdChanged;
@@ -116,7 +105,7 @@ SizeResult benchSize(const std::string& name, vr::Volume volume, const vr::Prepa
         }
         volume = staged.volume();  // for the next run
     }
-    r.peakBytes = peakResidentBytes();
+    r.peakBytes = double(vr::peakResidentBytes());
     std::fprintf(stderr, "%s %d^3:", name.c_str(), r.edge);  // the figures so far, should a long run be cut short
     for (const auto& s : kScenarios)
         std::fprintf(stderr, " %s %.3f s (%.3f CPU s)", s.c_str(), median(r.wall[s]["total"]), median(r.cpu[s]["total"]));

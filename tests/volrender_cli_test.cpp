@@ -161,6 +161,9 @@ TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {
         EXPECT_GE(stats["prepareSeconds"][stage].get<double>(), 0.0) << stage;
     EXPECT_FALSE(stats["prepareSeconds"].contains("pc"));  // only the field of the caster ...
     EXPECT_EQ(stats["upload"]["bytesPerVoxel"]["eacd"].get<double>(), 2.0);  // ... in the view's octant (log16)
+    // The process's peak: at least the float scalars it loaded, less than the test machine's memory.
+    EXPECT_GT(stats["peakResidentBytes"].get<double>(), 4.0 * 64 * 64 * 93);
+    EXPECT_LT(stats["peakResidentBytes"].get<double>(), 64e9);
 
     ASSERT_EQ(test::runVolprep(volume + tf + " --fields eacd -o " + q(dir / "head.vprep")).status, 0);
     ASSERT_EQ(volrender(q(dir / "head.vprep") + view + " --caster eacd -o " + q(dir / "file.exr")).status, 0);

@@ -1,5 +1,7 @@
 #include "preprocess/cmd/summary.h"
 
+#include "tools/peak_resident.h"
+
 namespace vr {
 
 namespace {
@@ -44,7 +46,7 @@ void printSummary(std::FILE* out, const std::filesystem::path& output, const Pre
     std::fprintf(out, "  MiB      ");
     for (const auto& [chunk, bytes] : s["bytes"].items())
         if (bytes.get<std::size_t>() > 0) std::fprintf(out, " %s %.1f", chunk.c_str(), megabytes(bytes.get<double>()));
-    std::fprintf(out, "\n");
+    std::fprintf(out, "  (peak resident %.1f)\n", megabytes(double(peakResidentBytes())));
 }
 
 }  // namespace vr

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "tools/peak_resident.h"
 #include "tools/progress.h"
 #include "tools/tool_main.h"
 #include "core/errors.h"
@@ -325,7 +326,8 @@ int run(const Flags& f) {
             {"calibration", vr::calibrationStatistics(calibration)},
             {"prepareSeconds", prepareSeconds(stages)},
             {"upload", uploadStats},
-            {"views", viewStats}};
+            {"views", viewStats},
+            {"peakResidentBytes", vr::peakResidentBytes()}};  // the whole process so far: load to the last image
         std::ofstream(f.stats) << stats.dump(2) << "\n";
     }
     return 0;
