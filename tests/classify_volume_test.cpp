@@ -9,21 +9,10 @@
 #include "core/gradient.h"
 #include "preprocess/load/load_volume.h"
 #include "support/load_dataset.h"
+#include "support/volumes.h"
 
 namespace vr {
 namespace {
-
-Volume makeVolume(Vec3i dims, Vec3d spacing, ScalarType type, const std::function<double(int, int, int)>& f) {
-    Volume v;
-    v.grid.dims = dims;
-    v.grid.spacing = spacing;
-    v.sourceType = type;
-    v.values.resize(v.grid.voxels());
-    for (int z = 0; z < dims.z; ++z)
-        for (int y = 0; y < dims.y; ++y)
-            for (int x = 0; x < dims.x; ++x) v.values[linearIndex(dims, x, y, z)] = float(f(x, y, z));
-    return v;
-}
 
 TransferFunction linearTF(double x0, double x1) {
     TransferFunction tf;
@@ -34,7 +23,7 @@ TransferFunction linearTF(double x0, double x1) {
 
 TEST(ClassifyVolume, GradientOfALinearRampIsInPhysicalUnits) {
     const Vec3d spacing{0.5, 2.0, 4.0};
-    const Volume v = makeVolume({7, 5, 4}, spacing, ScalarType::Float32,
+    const Volume v = test::volumeOf({7, 5, 4}, spacing, ScalarType::Float32,
                                 [](int x, int y, int z) { return 2.0 * x + 3.0 * y + 5.0 * z; });
     const Vec3d expected{2 / 0.5, 3 / 2.0, 5 / 4.0};
     for (int z = 0; z < 4; ++z)  // borders included: one-sided differences are exact on a ramp
@@ -46,7 +35,7 @@ TEST(ClassifyVolume, GradientOfALinearRampIsInPhysicalUnits) {
                 EXPECT_NEAR(g.z, expected.z, 1e-12);
             }
     // Central, not one-sided, in the interior: f = x^2 gives 2x / h exactly.
-    const Volume q = makeVolume({6, 1, 1}, {0.25, 1, 1}, ScalarType::Float32, [](int x, int, int) { return x * x; });
+    const Volume q = test::volumeOf({6, 1, 1}, {0.25, 1, 1}, ScalarType::Float32, [](int x, int, int) { return x * x; });
     EXPECT_DOUBLE_EQ(centralGradient(q, 2, 0, 0).x, (9.0 - 1.0) / 0.5);
     EXPECT_DOUBLE_EQ(centralGradient(q, 0, 0, 0).x, 1.0 / 0.25);
     EXPECT_DOUBLE_EQ(centralGradient(q, 5, 0, 0).x, (25.0 - 16.0) / 0.25);
@@ -69,7 +58,7 @@ TEST(ClassifyVolume, NormalsAreTheNormalisedCentralGradientBitForBit) {
     std::mt19937 rng(9);
     std::uniform_int_distribution<int> values(0, 255);
     for (Vec3i dims : {Vec3i{7, 6, 5}, Vec3i{1, 4, 3}, Vec3i{2, 1, 6}, Vec3i{5, 2, 1}, Vec3i{1, 1, 4}}) {
-        const Volume v = makeVolume(dims, {0.7, 1.3, 2.1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
+        const Volume v = test::volumeOf(dims, {0.7, 1.3, 2.1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
         ClassifyParams params;
         params.transferFunction = linearTF(0, 255);
         const ClassifiedVolume c = classify(v, params);
@@ -90,8 +79,8 @@ TEST(ClassifyVolume, NormalsAreTheNormalisedCentralGradientBitForBit) {
 TEST(ClassifyVolume, IntoAUsedVolumeEqualsAFreshOne) {
     std::mt19937 rng(4);
     std::uniform_int_distribution<int> values(0, 255);
-    const Volume big = makeVolume({9, 8, 7}, {1, 1, 1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
-    const Volume small = makeVolume({4, 5, 3}, {0.5, 1, 2}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
+    const Volume big = test::volumeOf({9, 8, 7}, {1, 1, 1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
+    const Volume small = test::volumeOf({4, 5, 3}, {0.5, 1, 2}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
     ClassifyParams params;
     params.transferFunction = linearTF(10, 200);
     ClassifiedVolume reused = classify(big, params);
@@ -111,7 +100,7 @@ TEST(ClassifyVolume, IntoAUsedVolumeEqualsAFreshOne) {
 // The table the renderers look samples up in: an entry per integer from the smallest to the largest voxel of an
 // integer volume, sigma converted from the TF's opacity per dt0, and the flat length from the value range.
 TEST(ClassifyVolume, ScalarClassificationTabulatesTheTransferFunction) {
-    const Volume v = makeVolume({5, 2, 2}, {2, 1, 0.5}, ScalarType::Int16, [](int x, int, int) { return 10 * x - 3; });
+    const Volume v = test::volumeOf({5, 2, 2}, {2, 1, 0.5}, ScalarType::Int16, [](int x, int, int) { return 10 * x - 3; });
     ClassifyParams params;
     params.transferFunction = linearTF(0, 40);
     const ScalarClassification c = scalarClassification(v, params);
@@ -135,7 +124,7 @@ TEST(ClassifyVolume, ScalarClassificationTabulatesTheTransferFunction) {
 
 TEST(ClassifyVolume, FlatRegionsHaveZeroNormals) {
     // A plateau (x < 4) beside a ramp: zero gradient is flat, never normalize(0).
-    const Volume v = makeVolume({10, 3, 3}, {1, 1, 1}, ScalarType::UInt8,
+    const Volume v = test::volumeOf({10, 3, 3}, {1, 1, 1}, ScalarType::UInt8,
                                 [](int x, int, int) { return x < 4 ? 7.0 : 7.0 + 10 * (x - 4); });
     ClassifyParams params;
     params.transferFunction = linearTF(0, 255);
@@ -152,7 +141,7 @@ TEST(ClassifyVolume, FlatRegionsHaveZeroNormals) {
                 }
             }
     // A constant volume: every voxel flat; without normals none are stored.
-    const Volume constant = makeVolume({4, 4, 4}, {1, 1, 1}, ScalarType::UInt8, [](int, int, int) { return 9; });
+    const Volume constant = test::volumeOf({4, 4, 4}, {1, 1, 1}, ScalarType::UInt8, [](int, int, int) { return 9; });
     for (const auto& n : classify(constant, params).normal) EXPECT_EQ(n, (std::array<float, 3>{0, 0, 0}));
     params.normals = false;
     EXPECT_FALSE(classify(constant, params).hasNormals());
@@ -180,7 +169,7 @@ TEST(ClassifyVolume, ExtinctionRoundTrip) {
 TEST(ClassifyVolume, OpacityAndColourFollowTheTransferFunctionPerReferenceStep) {
     std::mt19937 rng(5);
     std::uniform_int_distribution<int> values(-1024, 2986);
-    const Volume ct = makeVolume({11, 9, 7}, {0.7, 0.7, 1.5}, ScalarType::Int16,
+    const Volume ct = test::volumeOf({11, 9, 7}, {0.7, 0.7, 1.5}, ScalarType::Int16,
                                  [&](int, int, int) { return values(rng); });
     ClassifyParams params;
     params.transferFunction = test::datasetTransferFunction("cranium_ct.tf.json");
@@ -203,7 +192,7 @@ TEST(ClassifyVolume, OpacityAndColourFollowTheTransferFunctionPerReferenceStep) 
     }
     // Float volumes use an interpolated table over their range.
     std::uniform_real_distribution<double> real(0, 1000);
-    const Volume f = makeVolume({8, 8, 8}, {1, 1, 1}, ScalarType::Float32, [&](int, int, int) { return real(rng); });
+    const Volume f = test::volumeOf({8, 8, 8}, {1, 1, 1}, ScalarType::Float32, [&](int, int, int) { return real(rng); });
     TransferFunction tf;
     tf.opacity = {{0, 0}, {300, 0.2, 0.3, 0.4}, {800, 0.9}, {1000, 0.1}};
     params.transferFunction = tf;
@@ -213,7 +202,7 @@ TEST(ClassifyVolume, OpacityAndColourFollowTheTransferFunctionPerReferenceStep) 
 }
 
 TEST(ClassifyVolume, BadParametersAreInputErrors) {
-    const Volume v = makeVolume({3, 3, 3}, {1, 1, 1}, ScalarType::UInt8, [](int x, int, int) { return x; });
+    const Volume v = test::volumeOf({3, 3, 3}, {1, 1, 1}, ScalarType::UInt8, [](int x, int, int) { return x; });
     ClassifyParams none;
     EXPECT_THROW(classify(v, none), InputError);
     ClassifyParams negativeStep;

@@ -9,6 +9,7 @@
 #include "core/errors.h"
 #include "preprocess/classify/classify.h"
 #include "support/load_dataset.h"
+#include "support/volumes.h"
 
 namespace vr {
 namespace {
@@ -23,17 +24,9 @@ TransferFunction linearTF(double x0, double x1) {
 Volume smoothFloatVolume(Vec3i dims) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> noise(-3, 3);
-    Volume v;
-    v.grid.dims = dims;
-    v.grid.spacing = {0.8, 1.1, 2};
-    v.sourceType = ScalarType::Float32;
-    v.values.resize(v.grid.voxels());
-    for (int z = 0; z < dims.z; ++z)
-        for (int y = 0; y < dims.y; ++y)
-            for (int x = 0; x < dims.x; ++x)
-                v.values[linearIndex(dims, x, y, z)] =
-                    float(40 * std::sin(0.3 * x) + 25 * std::cos(0.2 * y + 0.4 * z) + noise(rng));
-    return v;
+    return test::volumeOf(dims, {0.8, 1.1, 2}, ScalarType::Float32, [&](int x, int y, int z) {
+        return 40 * std::sin(0.3 * x) + 25 * std::cos(0.2 * y + 0.4 * z) + noise(rng);
+    });
 }
 
 // Segmentation reads the voxels classified on demand from the scalars and the table: each one exactly as classify()

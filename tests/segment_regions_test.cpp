@@ -17,6 +17,7 @@
 #include "preprocess/segment/region_key.h"
 #include "preprocess/segment/segment.h"
 #include "support/load_dataset.h"
+#include "support/volumes.h"
 
 namespace vr {
 namespace {
@@ -48,21 +49,14 @@ ClassifiedVolume smoothClassified(Vec3i dims, unsigned seed) {
     std::vector<Blob> blobs;
     for (int b = 0; b < 5; ++b)
         blobs.push_back({Vec3d{u(rng) * dims.x, u(rng) * dims.y, u(rng) * dims.z}, 2 + 5 * u(rng), 60 + 140 * u(rng)});
-    Volume v;
-    v.grid.dims = dims;
-    v.grid.spacing = {1, 1.2, 1.5};
-    v.sourceType = ScalarType::UInt8;
-    v.values.resize(v.grid.voxels());
-    for (int z = 0; z < dims.z; ++z)
-        for (int y = 0; y < dims.y; ++y)
-            for (int x = 0; x < dims.x; ++x) {
-                double f = 4 * u(rng);
-                for (const Blob& b : blobs) {
-                    const Vec3d d = Vec3d{double(x), double(y), double(z)} - b.c;
-                    f += b.h * std::exp(-dot(d, d) / (b.r * b.r));
-                }
-                v.values[linearIndex(dims, x, y, z)] = float(std::round(std::min(f, 255.0)));
-            }
+    const Volume v = test::volumeOf(dims, {1, 1.2, 1.5}, ScalarType::UInt8, [&](int x, int y, int z) {
+        double f = 4 * u(rng);
+        for (const Blob& b : blobs) {
+            const Vec3d d = Vec3d{double(x), double(y), double(z)} - b.c;
+            f += b.h * std::exp(-dot(d, d) / (b.r * b.r));
+        }
+        return std::round(std::min(f, 255.0));
+    });
     ClassifyParams params;
     TransferFunction tf;
     tf.opacity = {{0, 0}, {20, 0}, {120, 0.4}, {255, 0.9}};

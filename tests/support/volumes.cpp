@@ -4,6 +4,18 @@
 
 namespace vr::test {
 
+Volume volumeOf(Vec3i dims, Vec3d spacing, ScalarType type, const std::function<double(int, int, int)>& f) {
+    Volume v;
+    v.grid.dims = dims;
+    v.grid.spacing = spacing;
+    v.sourceType = type;
+    v.values.resize(v.grid.voxels());
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) v.values[linearIndex(dims, x, y, z)] = float(f(x, y, z));
+    return v;
+}
+
 Volume centralBlock(const Volume& v, int edge) {
     const Vec3i& d = v.grid.dims;
     const Vec3i size{std::min(d.x, edge), std::min(d.y, edge), std::min(d.z, edge)};
