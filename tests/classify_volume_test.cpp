@@ -14,13 +14,6 @@
 namespace vr {
 namespace {
 
-TransferFunction linearTF(double x0, double x1) {
-    TransferFunction tf;
-    tf.opacity = {{x0, 0.0}, {x1, 1.0}};
-    tf.colour = {{x0, 1, 0, 0}, {x1, 0, 0, 1}};
-    return tf;
-}
-
 TEST(ClassifyVolume, GradientOfALinearRampIsInPhysicalUnits) {
     const Vec3d spacing{0.5, 2.0, 4.0};
     const Volume v = test::volumeOf({7, 5, 4}, spacing, ScalarType::Float32,
@@ -42,7 +35,7 @@ TEST(ClassifyVolume, GradientOfALinearRampIsInPhysicalUnits) {
     EXPECT_DOUBLE_EQ(centralGradient(q, 3, 0, 0).y, 0.0);  // a single-voxel axis has no derivative
 
     ClassifyParams params;
-    params.transferFunction = linearTF(0, 100);
+    params.transferFunction = test::linearTransferFunction(0, 100);
     const ClassifiedVolume c = classify(v, params);
     ASSERT_TRUE(c.hasNormals());
     const Vec3d n = normalize(expected);
@@ -60,7 +53,7 @@ TEST(ClassifyVolume, NormalsAreTheNormalisedCentralGradientBitForBit) {
     for (Vec3i dims : {Vec3i{7, 6, 5}, Vec3i{1, 4, 3}, Vec3i{2, 1, 6}, Vec3i{5, 2, 1}, Vec3i{1, 1, 4}}) {
         const Volume v = test::volumeOf(dims, {0.7, 1.3, 2.1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
         ClassifyParams params;
-        params.transferFunction = linearTF(0, 255);
+        params.transferFunction = test::linearTransferFunction(0, 255);
         const ClassifiedVolume c = classify(v, params);
         for (int z = 0; z < dims.z; ++z)
             for (int y = 0; y < dims.y; ++y)
@@ -82,7 +75,7 @@ TEST(ClassifyVolume, IntoAUsedVolumeEqualsAFreshOne) {
     const Volume big = test::volumeOf({9, 8, 7}, {1, 1, 1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
     const Volume small = test::volumeOf({4, 5, 3}, {0.5, 1, 2}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
     ClassifyParams params;
-    params.transferFunction = linearTF(10, 200);
+    params.transferFunction = test::linearTransferFunction(10, 200);
     ClassifiedVolume reused = classify(big, params);
     for (const Volume* v : {&small, &big, &big})
         for (bool normals : {false, true}) {
@@ -102,7 +95,7 @@ TEST(ClassifyVolume, IntoAUsedVolumeEqualsAFreshOne) {
 TEST(ClassifyVolume, ScalarClassificationTabulatesTheTransferFunction) {
     const Volume v = test::volumeOf({5, 2, 2}, {2, 1, 0.5}, ScalarType::Int16, [](int x, int, int) { return 10 * x - 3; });
     ClassifyParams params;
-    params.transferFunction = linearTF(0, 40);
+    params.transferFunction = test::linearTransferFunction(0, 40);
     const ScalarClassification c = scalarClassification(v, params);
     EXPECT_DOUBLE_EQ(c.table.lo, -3);
     EXPECT_DOUBLE_EQ(c.table.step, 1);
@@ -127,7 +120,7 @@ TEST(ClassifyVolume, FlatRegionsHaveZeroNormals) {
     const Volume v = test::volumeOf({10, 3, 3}, {1, 1, 1}, ScalarType::UInt8,
                                 [](int x, int, int) { return x < 4 ? 7.0 : 7.0 + 10 * (x - 4); });
     ClassifyParams params;
-    params.transferFunction = linearTF(0, 255);
+    params.transferFunction = test::linearTransferFunction(0, 255);
     const ClassifiedVolume c = classify(v, params);
     for (int z = 0; z < 3; ++z)
         for (int y = 0; y < 3; ++y)
@@ -206,17 +199,17 @@ TEST(ClassifyVolume, BadParametersAreInputErrors) {
     ClassifyParams none;
     EXPECT_THROW(classify(v, none), InputError);
     ClassifyParams negativeStep;
-    negativeStep.transferFunction = linearTF(0, 1);
+    negativeStep.transferFunction = test::linearTransferFunction(0, 1);
     negativeStep.referenceStep = -1;
     EXPECT_THROW(classify(v, negativeStep), InputError);
     ClassifyParams good;
-    good.transferFunction = linearTF(0, 1);
+    good.transferFunction = test::linearTransferFunction(0, 1);
     EXPECT_NO_THROW(classify(v, good));
     Volume nan = v;
     nan.values[13] = std::nanf("");
     EXPECT_THROW(classify(nan, good), InputError);
     ClassifyParams unsorted;
-    unsorted.transferFunction = linearTF(0, 1);
+    unsorted.transferFunction = test::linearTransferFunction(0, 1);
     unsorted.transferFunction->opacity[1].x = -1;
     EXPECT_THROW(classify(v, unsorted), InputError);
 }

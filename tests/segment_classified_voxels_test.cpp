@@ -14,13 +14,6 @@
 namespace vr {
 namespace {
 
-TransferFunction linearTF(double x0, double x1) {
-    TransferFunction tf;
-    tf.opacity = {{x0, 0.0}, {x1, 1.0}};
-    tf.colour = {{x0, 1, 0, 0}, {x1, 0, 0, 1}};
-    return tf;
-}
-
 Volume smoothFloatVolume(Vec3i dims) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> noise(-3, 3);
@@ -35,7 +28,7 @@ TEST(SegmentClassifiedVoxels, OnDemandEqualTheClassifiedVolume) {
     const Volume ct = test::loadDataset("vtk_headsq_ct_64x64x93_uint16");
     const Volume smooth = smoothFloatVolume({23, 17, 11});
     for (const auto& [volume, tf] : {std::pair{&ct, test::datasetTransferFunction("vtk_headsq_ct.tf.json")},
-                                     std::pair{&smooth, linearTF(-60, 60)}}) {
+                                     std::pair{&smooth, test::linearTransferFunction(-60, 60)}}) {
         ClassifyParams params;
         params.transferFunction = tf;
         const ScalarClassification table = scalarClassification(*volume, params);
@@ -57,7 +50,7 @@ TEST(SegmentClassifiedVoxels, OnDemandEqualTheClassifiedVolume) {
 TEST(SegmentClassifiedVoxels, InconsistentInputIsAnInputError) {
     const Volume v = smoothFloatVolume({4, 4, 4});
     ClassifyParams params;
-    params.transferFunction = linearTF(-60, 60);
+    params.transferFunction = test::linearTransferFunction(-60, 60);
     const ScalarClassification table = scalarClassification(v, params);
     Volume shortVolume = v;
     shortVolume.values.pop_back();

@@ -24,4 +24,11 @@ Volume loadDataset(const std::string& prefix) { return loadDataset(rawDataset(pr
 
 TransferFunction datasetTransferFunction(const std::string& name) { return loadTransferFunction(datasetsDir() / name); }
 
+TransferFunction linearTransferFunction(double x0, double x1) {
+    TransferFunction tf;
+    tf.opacity = {{x0, 0.0}, {x1, 1.0}};
+    tf.colour = {{x0, 1, 0, 0}, {x1, 0, 0, 1}};
+    return tf;
+}
+
 }  // namespace vr::test

@@ -21,4 +21,7 @@ Volume loadDataset(const std::string& prefix);
 // A transfer function shipped beside the datasets (e.g. "cranium_ct.tf.json").
 TransferFunction datasetTransferFunction(const std::string& name);
 
+// Opacity rising linearly from 0 at x0 to 1 at x1, colour from red to blue: a function every value maps apart.
+TransferFunction linearTransferFunction(double x0, double x1);
+
 }  // namespace vr::test
