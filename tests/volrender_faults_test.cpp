@@ -73,6 +73,26 @@ TEST(VolrenderFaults, ImpossibleSizesAreRefused) {
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
+// The camera flags: malformed vectors (CLI11's refusals name the flag), a zero up or one along the view direction, a
+// zoom that is no magnification, a focal point far off the volume; every refusal names its flag.
+TEST(VolrenderFaults, BadCameraFlagsAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_camera");
+    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --cpu --no-shading --size 8x8";
+    for (const char* up : {"1,2", "1,2,3,4", "a,b,c", "1,,2", "nan,0,1", "0,inf,0", "0,0,0", "0,0,1", "0,0,-3",
+                           "1e-12,0,1"})
+        expectRefused(in + " --up " + up, "--up");
+    expectRefused(in + " --elevation 90 --up 0,1,0", std::vector<std::string>{"--up", "parallel to the view direction"});
+    for (const char* zoom : {"0", "-2", "nan", "inf", "1e-9", "1e9", "two"}) expectRefused(in + " --zoom " + zoom, "--zoom");
+    expectRefused(in + " --projection persp --fov 60 --zoom 0.3", std::vector<std::string>{"--zoom", "--fov"});
+    for (const char* centre : {"1,2", "x,y,z", "nan,0,0", "0,0,-inf", "1e12,0,0"})
+        expectRefused(in + " --center " + centre, "--center");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+    // The Vulkan path refuses them too.
+    expectRefused(shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --up 0,0,1", "--up");
+    expectRefused(shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --center 1e12,0,0", "--center");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 TEST(VolrenderFaults, UnwritableOutputsAreRefused) {
     const fs::path dir = test::scratchDir("volrender_faults_output");
     std::ofstream(dir / "plain.txt") << "a file, not a folder";
