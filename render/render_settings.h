@@ -2,6 +2,7 @@
 #pragma once
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "core/vec3.h"
 
@@ -28,6 +29,17 @@ struct ViewParams {
     double orbitDeg = 0;
 };
 
+// A clipping plane in world units: it keeps the side where dot(normal, x) >= offset.
+struct ClipPlane {
+    Vec3d normal;
+    double offset = 0;
+};
+
+// An axis-aligned crop in voxel indices: the voxels lo..hi (inclusive) of each axis are kept.
+struct CropBox {
+    Vec3i lo, hi;
+};
+
 struct RenderSettings {
     Caster caster = Caster::Primitive;
     double stepVoxels = 0.5;   // dt in voxels of the smallest spacing
@@ -37,6 +49,10 @@ struct RenderSettings {
     std::optional<Vec3d> lightDirection;  // world direction towards the light; empty: headlight
     Vec3d background{0, 0, 0};
     long long maxIterationsPerRay = 1 << 24;  // a bug must not hang a render
+    // The ray's interval is clipped by these before casting (docs/ALGORITHMS.md section 1): at most
+    // device::kMaxClipPlanes planes.
+    std::vector<ClipPlane> clipPlanes;
+    std::optional<CropBox> crop;
 };
 
 }  // namespace vr
