@@ -93,6 +93,25 @@ TEST(VolrenderFaults, BadCameraFlagsAreRefused) {
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
+// Clipping flags: malformed planes and crops, a zero normal, more than six planes, a crop that is empty or reaches
+// outside the grid (12 x 10 x 8 voxels); every refusal names its flag, and a good clipping renders.
+TEST(VolrenderFaults, BadClippingFlagsAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_clip");
+    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --cpu --no-shading --size 8x8";
+    for (const char* plane : {"1,2,3", "1,2,3,4,5", "a,b,c,d", "1,,2,3", "0,0,0,1", "nan,0,1,0", "0,1,0,inf", "1,0,0,"})
+        expectRefused(in + " --clip " + plane, "--clip");
+    std::string seven;
+    for (int i = 0; i < 7; ++i) seven += " --clip 0,0,1," + std::to_string(i);
+    expectRefused(in + seven, std::vector<std::string>{"--clip", "at most 6"});
+    for (const char* crop : {"0,5,0,5,0", "0,5,0,5,0,5,0", "0,5.5,0,5,0,5", "a,5,0,5,0,5", "0,12,0,5,0,5", "-1,5,0,5,0,5",
+                             "0,5,0,9,3,2", "20,30,0,5,0,5", "0,1e30,0,5,0,5"})
+        expectRefused(in + " --crop " + crop, "--crop");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+    const test::CliOutcome clipped = volrender(in + " --clip 1,0,0,4 --clip 0,1,1,5 --crop 0,11,2,7,0,3");
+    EXPECT_EQ(clipped.status, 0) << clipped.err;
+    EXPECT_TRUE(fs::exists(dir / "x.png"));
+}
+
 TEST(VolrenderFaults, UnwritableOutputsAreRefused) {
     const fs::path dir = test::scratchDir("volrender_faults_output");
     std::ofstream(dir / "plain.txt") << "a file, not a folder";

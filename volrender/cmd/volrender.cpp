@@ -20,6 +20,7 @@
 #include "preprocess/cmd/volume_flags.h"
 #include "volrender/cmd/calibration_in_use.h"
 #include "volrender/cmd/camera_flags.h"
+#include "volrender/cmd/clip_flags.h"
 #include "volrender/cmd/heatmap.h"
 #include "render/caster_choice.h"
 #include "volrender/cmd/render_stats.h"
@@ -46,6 +47,7 @@ struct Flags {
     std::string input, output, caster = "auto", size = "512x512";
     vr::VolumeFlags volume;  // for a volume prepared here
     vr::CameraFlags camera;
+    vr::ClipFlags clip;
     double step = 0.5, ert = 0.99;
     std::vector<double> light, background{0, 0, 0};
     bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false, quiet = false;
@@ -70,6 +72,7 @@ void addFlags(CLI::App& app, Flags& f) {
                    "constants measured on lavapipe with 2 cores)");
     app.add_option("--size", f.size, "image size WIDTHxHEIGHT (1..16384 each)")->capture_default_str();
     vr::addCameraFlags(app, f.camera);
+    vr::addClipFlags(app, f.clip);
     app.add_option("--step", f.step, "sampling step in voxels of the smallest spacing")->capture_default_str();
     app.add_option("--ert", f.ert, "early ray termination opacity, (0, 1]")->capture_default_str();
     app.add_option("--light", f.light, "direction toward a directional light x,y,z (default: headlight)")
@@ -154,6 +157,7 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     s.ert = f.ert;
     s.shading = !f.noShading;
     s.trilinear = !f.nearest;
+    vr::applyClipFlags(f.clip, s);
     s.background = vr::finiteVector(f.background, "--background");
     if (!f.light.empty()) {
         s.lightDirection = vr::finiteVector(f.light, "--light");
@@ -338,6 +342,7 @@ int run(const Flags& f) {
             {"trilinear", settings.trilinear}, {"light", f.light}, {"background", f.background}, {"views", f.views},
             {"fps", movieFps(f)}};
         settingsStats.update(vr::cameraStatistics(f.camera));
+        settingsStats.update(vr::clipStatistics(f.clip));
         nlohmann::json stats{
             {"prepared", f.input},
             {"renderer", context ? context->info().name : std::string("cpu reference")},
