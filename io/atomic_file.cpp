@@ -73,23 +73,33 @@ void syncFile(const fs::path& p) {
 
 }  // namespace
 
+PendingFile::PendingFile(fs::path path) : path_(std::move(path)) {
+    const fs::path parent = path_.parent_path().empty() ? fs::path(".") : path_.parent_path();
+    if (!fs::is_directory(parent))
+        throw fileError(path_.string(), "cannot write: folder " + parent.string() + " does not exist");
+    removeStaleTemporaries(path_, parent);
+    temporary_ = temporaryBeside(path_);
+}
+
+PendingFile::~PendingFile() {
+    if (committed_) return;
+    std::error_code ignored;
+    fs::remove(temporary_, ignored);
+}
+
+void PendingFile::commit() {
+    if (!fs::exists(temporary_)) throw fileError(path_.string(), "cannot write: nothing was written");
+    syncFile(temporary_);
+    std::error_code ec;
+    fs::rename(temporary_, path_, ec);
+    if (ec) throw fileError(path_.string(), "cannot write: " + ec.message());
+    committed_ = true;
+}
+
 void writePathAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
-    fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    if (!fs::is_directory(parent)) throw fileError(path.string(), "cannot write: folder " + parent.string() + " does not exist");
-    removeStaleTemporaries(path, parent);
-    fs::path tmp = temporaryBeside(path);
-    try {
-        write(tmp);
-        if (!fs::exists(tmp)) throw fileError(path.string(), "cannot write: nothing was written");
-        syncFile(tmp);
-        std::error_code ec;
-        fs::rename(tmp, path, ec);
-        if (ec) throw fileError(path.string(), "cannot write: " + ec.message());
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        throw;
-    }
+    PendingFile file(path);
+    write(file.temporary());
+    file.commit();
 }
 
 void writeFileAtomically(const fs::path& path, const std::function<void(std::ostream&)>& write) {

@@ -17,4 +17,23 @@ void writeFileAtomically(const std::filesystem::path& path, const std::function<
 void writePathAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& temporary)>& write);
 
+// writePathAtomically for a writer that fills the temporary over a longer time (the frames of a movie, as they are
+// rendered): the temporary is named on construction, renamed over `path` by commit(), and removed when the object
+// is destroyed uncommitted (a failure on the way), `path` then untouched.
+class PendingFile {
+public:
+    explicit PendingFile(std::filesystem::path path);  // throws InputError when path's folder does not exist
+    ~PendingFile();
+    PendingFile(const PendingFile&) = delete;
+    PendingFile& operator=(const PendingFile&) = delete;
+
+    const std::filesystem::path& path() const { return path_; }
+    const std::filesystem::path& temporary() const { return temporary_; }
+    void commit();  // fsyncs and renames the temporary over path; throws InputError naming path
+
+private:
+    std::filesystem::path path_, temporary_;
+    bool committed_ = false;
+};
+
 }  // namespace vr

@@ -3,7 +3,9 @@
 #include "render/camera.h"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <string>
 
 #include "core/errors.h"
 
@@ -27,46 +29,118 @@ static void sinCosDeg(double deg, double& s, double& c) {
     c = std::cos(radians(r));
 }
 
-Camera Camera::fit(const GridGeometry& grid, const ViewParams& view) {
+// v turned by deg about the unit axis k, right-handed (Rodrigues); exact at multiples of 90 about an axis.
+static Vec3d turned(const Vec3d& v, const Vec3d& k, double deg) {
+    double s, c;
+    sinCosDeg(deg, s, c);
+    return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
+}
+
+// As a flag gives them: 0.5, not 0.500000; 0, not -0.
+static std::string numberText(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x + 0.0);
+    return text;
+}
+static std::string vectorText(const Vec3d& v) {
+    return numberText(v.x) + "," + numberText(v.y) + "," + numberText(v.z);
+}
+
+// --up: made orthogonal to the view direction (VTK's OrthogonalizeViewUp); refused when it has no such part.
+static Vec3d orthogonalUp(const Vec3d& up, const Vec3d& forward) {
+    const double norm = length(up);
+    if (!(norm > 0) || !std::isfinite(norm))
+        throw InputError("--up " + vectorText(up) + ": the up vector must be a non-zero finite direction");
+    const Vec3d across = up / norm - forward * dot(up / norm, forward);
+    if (length(across) < kMinUpSine)
+        throw InputError("--up " + vectorText(up) + " is parallel to the view direction " + vectorText(forward) +
+                         ": it cannot say which way is up (turn the view with --azimuth / --elevation, or choose "
+                         "another up)");
+    return normalize(across);
+}
+
+// The camera's frame before it is placed: the direction from the focal point to the eye, and up.
+struct Frame {
+    Vec3d back, up;
+};
+
+// Start on +z looking toward -z with +y up, then turn about up (azimuth, positive toward +x) and about right
+// (elevation, positive toward +y). Written in closed form so the frame stays exactly orthonormal. The orbit's turn
+// about +y is a change of azimuth; about another view-up it turns the eye about that vector.
+static Frame viewFrame(const ViewParams& view) {
+    double sa, ca, se, ce;
+    sinCosDeg(view.up ? view.azimuthDeg : view.azimuthDeg + view.orbitDeg, sa, ca);
+    sinCosDeg(view.elevationDeg, se, ce);
+    Frame frame{{sa * ce, se, ca * ce}, {-sa * se, ce, -ca * se}};
+    if (view.up) {
+        frame.back = turned(frame.back, normalize(*view.up), view.orbitDeg);
+        frame.up = orthogonalUp(*view.up, -frame.back);
+    }
+    return frame;
+}
+
+void checkView(const ViewParams& view) {
     if (view.width <= 0 || view.height <= 0)
         throw InputError("image size " + std::to_string(view.width) + "x" + std::to_string(view.height) +
                          ": width and height must be positive");
     if (view.projection == Projection::Perspective && !(view.fovDeg > 0 && view.fovDeg < 180))
-        throw InputError("--fov " + std::to_string(view.fovDeg) + ": the field of view must be in (0, 180) degrees");
-
-    if (!std::isfinite(view.azimuthDeg) || !std::isfinite(view.elevationDeg))
+        throw InputError("--fov " + numberText(view.fovDeg) + ": the field of view must be in (0, 180) degrees");
+    if (!std::isfinite(view.azimuthDeg) || !std::isfinite(view.elevationDeg) || !std::isfinite(view.orbitDeg))
         throw InputError("--azimuth / --elevation: the view angles must be finite numbers of degrees");
+    if (!(view.zoom >= kMinZoom && view.zoom <= kMaxZoom))
+        throw InputError("--zoom " + numberText(view.zoom) + ": the zoom factor must be in [" + numberText(kMinZoom) +
+                         ", " + numberText(kMaxZoom) + "]");
+    if (view.projection == Projection::Perspective && !(view.fovDeg / view.zoom < 180))
+        throw InputError("--zoom " + numberText(view.zoom) + " with --fov " + numberText(view.fovDeg) +
+                         ": the zoomed field of view fov / zoom must stay below 180 degrees");
+    viewFrame(view);  // refuses an up along the view direction, whatever the orbit's turn about it
+}
 
+Camera Camera::fit(const GridGeometry& grid, const ViewParams& view) {
+    checkView(view);
     Camera cam;
     cam.projection = view.projection;
     cam.width = view.width;
     cam.height = view.height;
-
-    // Start on +z looking toward -z with +y up, then turn about up (azimuth, positive toward +x) and about
-    // right (elevation, positive toward +y). Written in closed form so the frame stays exactly orthonormal.
-    double sa, ca, se, ce;
-    sinCosDeg(view.azimuthDeg, sa, ca);
-    sinCosDeg(view.elevationDeg, se, ce);
-    const Vec3d back{sa * ce, se, ca * ce};  // centre -> eye
+    const Frame frame = viewFrame(view);
+    const Vec3d back = frame.back;  // centre -> eye
     cam.forward = -back;
-    cam.up = Vec3d{-sa * se, ce, -ca * se};
+    cam.up = frame.up;
     cam.right = cross(cam.forward, cam.up);
 
-    const Vec3d centre = grid.centre();
+    const Vec3d volumeCentre = grid.centre();
     const double radius = 0.5 * length(grid.extent());
+    const Vec3d centre = view.centre.value_or(volumeCentre);
+    const double offCentre = length(centre - volumeCentre);
+    if (!(offCentre <= kMaxCentreRadii * radius))
+        throw InputError("--center " + vectorText(centre) + ": farther than " + numberText(kMaxCentreRadii) +
+                         " bounding radii (" + numberText(radius) + " each) from the volume centre " +
+                         vectorText(volumeCentre));
     const double aspect = double(view.width) / double(view.height);
     if (view.projection == Projection::Orthographic) {
         // The bounding sphere fits the shorter image side.
-        cam.halfHeight = aspect >= 1 ? radius : radius / aspect;
-        // The plane sits outside the sphere; rays start on it (t_entry > 0 always).
-        cam.eye = centre + back * (2 * radius);
+        cam.halfHeight = (aspect >= 1 ? radius : radius / aspect) / view.zoom;
+        // The plane sits outside the sphere, however far the focal point is from it; rays start on it
+        // (t_entry > 0 always).
+        cam.eye = centre + back * (2 * radius + offCentre);
     } else {
-        cam.halfHeight = std::tan(radians(view.fovDeg) / 2);
-        // Distance at which the sphere is tangent to the narrower of the two half-angles of the frustum.
-        const double halfAngle = std::atan(cam.halfHeight * std::min(1.0, aspect));
+        // Distance at which the sphere is tangent to the narrower of the two half-angles of the unzoomed frustum;
+        // zoom then narrows the view angle, as VTK's Zoom does, without moving the eye.
+        const double halfAngle = std::atan(std::tan(radians(view.fovDeg) / 2) * std::min(1.0, aspect));
         cam.eye = centre + back * (radius / std::sin(halfAngle));
+        cam.halfHeight = std::tan(radians(view.fovDeg / view.zoom) / 2);
     }
     return cam;
+}
+
+std::vector<Camera> Camera::orbit(const GridGeometry& grid, const ViewParams& view, int views) {
+    std::vector<Camera> cameras;
+    for (int i = 0; i < views; ++i) {
+        ViewParams v = view;
+        v.orbitDeg = view.orbitDeg + 360.0 * i / views;
+        cameras.push_back(fit(grid, v));
+    }
+    return cameras;
 }
 
 Ray Camera::ray(double px, double py) const {

@@ -107,11 +107,12 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         settings.lightDirection ? std::optional<Vec3d>(normalize(*settings.lightDirection)) : std::nullopt;
 
     RenderResult result = RenderResult::blank(camera.width, camera.height);
+    const RayClip clip = RayClip::of(grid, settings);
 
     auto trace = [&](int px, int py) {
         const Ray ray = camera.ray(px + 0.5, py + 0.5);
         const GridRay g = toGridRay(ray, grid);
-        const RayInterval iv = intersectGrid(g, dims);
+        const RayInterval iv = clipInterval(g, clip);
         const int64_t kCount = latticeCount(iv, dt);
         const int oct = rayOctant(g);
         const Vec3d toEye = -ray.direction;
@@ -126,7 +127,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                                          std::to_string(py) + ") passed the iteration cap of " +
                                          std::to_string(settings.maxIterationsPerRay) + " (a bug)");
             const double t = latticeT(iv, dt, k);
-            const Vec3i v = sampleVoxel(g, t, dims);
+            const Vec3i v = sampleVoxel(g, t, clip);
             const std::size_t i = linearIndex(dims, v.x, v.y, v.z);
             const SampleValue s = settings.trilinear ? sampler.trilinear(g.at(t)) : sampler.nearest(v);
 

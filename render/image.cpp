@@ -30,6 +30,14 @@ static bool isFloatFormat(const fs::path& path) {
     return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
 }
 
+std::vector<unsigned char> srgbBytes(const Image& image) {
+    std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
+    for (std::size_t p = 0; p < bytes.size() / 3; ++p)
+        for (int c = 0; c < 3; ++c)
+            bytes[p * 3 + c] = (unsigned char)std::lround(255 * srgbEncode(image.rgba[p * 4 + c]));
+    return bytes;
+}
+
 void writeImage(const fs::path& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0 || image.rgba.size() != std::size_t(image.width) * image.height * 4)
         throw fileError(path.string(), "cannot write an empty or malformed image");
@@ -43,11 +51,7 @@ void writeImage(const fs::path& path, const Image& image) {
         } else {
             OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
             spec.attribute("oiio:ColorSpace", "sRGB");
-            std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
-            for (std::size_t p = 0; p < bytes.size() / 3; ++p)
-                for (int c = 0; c < 3; ++c)
-                    bytes[p * 3 + c] = (unsigned char)std::lround(255 * srgbEncode(image.rgba[p * 4 + c]));
-            ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+            ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, srgbBytes(image).data());
         }
         ok = out->close() && ok;
         if (!ok) throw fileError(path.string(), "cannot write: " + out->geterror());

@@ -16,6 +16,10 @@ struct Image {
     const float* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
 };
 
+// The picture as seen, 3 bytes a pixel from the top row: RGB over the background, sRGB-encoded, clamped. What 8-bit
+// image files and movie frames hold.
+std::vector<unsigned char> srgbBytes(const Image& image);
+
 // Format by extension: .png (8-bit, sRGB-encoded), .exr (linear float RGBA), others as OIIO allows.
 // Written atomically; throws InputError naming the path.
 void writeImage(const std::filesystem::path& path, const Image& image);

@@ -7,11 +7,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <vector>
 
 #include "render/camera.h"
 #include "core/distance_fields.h"
 #include "core/errors.h"
 #include "core/grid.h"
+#include "shaders/clip_planes.h"
 #include "shaders/device_contract.h"
 
 namespace vr {
@@ -33,23 +35,59 @@ struct RayInterval {
     bool empty() const { return !(tEntry < tExit); }
 };
 
-// Slab test. An axis with d_a == 0 never limits t (its exit is +inf); the ray is inside that slab when
-// 0 <= o_a < N_a (half-open like the voxels: a ray lying on the far face samples no voxel). tEntry is clamped
-// to >= 0 so that a camera inside the volume starts at its eye.
-inline RayInterval intersectGrid(const GridRay& r, const Vec3i& dims) {
+// Slab test against the box [lo, hi] of grid coordinates. An axis with d_a == 0 never limits t (its exit is +inf);
+// the ray is inside that slab when lo_a <= o_a < hi_a (half-open like the voxels: a ray lying on the far face
+// samples no voxel). tEntry is clamped to >= 0 so that a camera inside the volume starts at its eye.
+inline RayInterval intersectBox(const GridRay& r, const Vec3i& lo, const Vec3i& hi) {
     double t0 = 0, t1 = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
         if (r.d[a] == 0) {
-            if (!(r.o[a] >= 0 && r.o[a] < dims[a])) return {0, 0};
+            if (!(r.o[a] >= lo[a] && r.o[a] < hi[a])) return {0, 0};
             continue;
         }
-        double ta = (0 - r.o[a]) / r.d[a], tb = (dims[a] - r.o[a]) / r.d[a];
+        double ta = (lo[a] - r.o[a]) / r.d[a], tb = (hi[a] - r.o[a]) / r.d[a];
         if (ta > tb) std::swap(ta, tb);
         t0 = std::max(t0, ta);
         t1 = std::min(t1, tb);
     }
     if (!(t0 < t1)) return {0, 0};
     return {t0, t1};
+}
+
+// The grid box [0, N].
+inline RayInterval intersectGrid(const GridRay& r, const Vec3i& dims) { return intersectBox(r, {0, 0, 0}, dims); }
+
+// What clips every ray of a render, in grid coordinates: the crop box's faces (voxels lo..hi cover [lo, hi + 1];
+// the grid [0, N] without a crop) and the planes, each keeping dot(normal, p) >= offset. A world plane
+// dot(n, x) >= d becomes dot(n h, p) >= d - dot(n, origin), since x = origin + h p.
+struct RayClip {
+    Vec3i lo, hi;
+    std::vector<ClipPlane> planes;
+
+    static RayClip of(const GridGeometry& grid, const RenderSettings& settings) {
+        RayClip clip{{0, 0, 0}, grid.dims, {}};
+        if (settings.crop) {
+            clip.lo = settings.crop->lo;
+            clip.hi = settings.crop->hi + Vec3i{1, 1, 1};
+        }
+        for (const ClipPlane& p : settings.clipPlanes)
+            clip.planes.push_back({p.normal * grid.spacing, p.offset - dot(p.normal, grid.origin)});
+        return clip;
+    }
+};
+
+// The ray's interval in the crop box, clipped by every plane (shaders/clip_planes.h; the casters' intersectGrid in
+// shaders/ray_setup.glsl): its samples lie on the kept side of each, and a leap, which never passes tExit, never
+// crosses one.
+inline RayInterval clipInterval(const GridRay& r, const RayClip& clip) {
+    RayInterval iv = intersectBox(r, clip.lo, clip.hi);
+    for (const ClipPlane& p : clip.planes) {
+        const double s = p.offset - dot(p.normal, r.o), q = dot(p.normal, r.d);
+        iv.tEntry = device::clipEntry(iv.tEntry, s, q);
+        iv.tExit = device::clipExit(iv.tExit, s, q);
+    }
+    if (iv.empty()) return {0, 0};
+    return iv;
 }
 
 // Lattice indices are exact in double below 2^53 (the shaders count in double) and latticeCount() corrects its
@@ -82,9 +120,12 @@ inline Vec3i floorVoxel(const Vec3d& p) {
 inline Vec3i clampVoxel(const Vec3i& v, const Vec3i& dims) {
     return {std::clamp(v.x, 0, dims.x - 1), std::clamp(v.y, 0, dims.y - 1), std::clamp(v.z, 0, dims.z - 1)};
 }
-// The voxel of the sample at t: floor(o_g + t d_g) clamped into [0, N).
-inline Vec3i sampleVoxel(const GridRay& r, double t, const Vec3i& dims) {
-    return clampVoxel(floorVoxel(r.at(t)), dims);
+// The voxel of the sample at t: floor(o_g + t d_g) clamped into the crop box, [0, N) without a crop. A sample on a
+// face, which rounding may put either side of it, is taken from the voxel inside.
+inline Vec3i sampleVoxel(const GridRay& r, double t, const RayClip& clip) {
+    const Vec3i v = floorVoxel(r.at(t));
+    return {std::clamp(v.x, clip.lo.x, clip.hi.x - 1), std::clamp(v.y, clip.lo.y, clip.hi.y - 1),
+            std::clamp(v.z, clip.lo.z, clip.hi.z - 1)};
 }
 
 // Octants are numbered as the device numbers them; the preprocessor builds each octant's field by core's numbering.

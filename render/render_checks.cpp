@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "render/ray_setup.h"
+#include "shaders/device_contract.h"
 
 namespace vr {
 
@@ -50,7 +51,39 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) 
             need(prepared.fields.hasEACD(), f.empty() ? voxels : f.size(), "EACD");
 }
 
+static std::string planeText(const ClipPlane& p) {
+    char text[128];
+    std::snprintf(text, sizeof text, "--clip %g,%g,%g,%g", p.normal.x, p.normal.y, p.normal.z, p.offset);
+    return text;
+}
+
+void checkClipPlanes(const std::vector<ClipPlane>& planes) {
+    if (planes.size() > std::size_t(device::kMaxClipPlanes))
+        throw InputError("--clip given " + std::to_string(planes.size()) + " times: at most " +
+                         std::to_string(device::kMaxClipPlanes) + " planes");
+    for (const ClipPlane& p : planes) {
+        const double n = length(p.normal);
+        if (!(n > 0) || !std::isfinite(n))
+            throw InputError(planeText(p) + ": the normal must be a non-zero finite vector");
+        if (!std::isfinite(p.offset)) throw InputError(planeText(p) + ": the offset must be a finite number");
+    }
+}
+
+void checkCrop(const GridGeometry& grid, const CropBox& crop) {
+    static constexpr const char* kAxes[] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+        const std::string range = std::to_string(crop.lo[a]) + ".." + std::to_string(crop.hi[a]);
+        if (crop.lo[a] > crop.hi[a])
+            throw InputError("--crop: voxels " + range + " on " + kAxes[a] + " are none (the first is after the last)");
+        if (crop.lo[a] < 0 || crop.hi[a] >= grid.dims[a])
+            throw InputError("--crop: voxels " + range + " on " + kAxes[a] + " reach outside the grid's 0.." +
+                             std::to_string(grid.dims[a] - 1));
+    }
+}
+
 void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& segmentation, const RenderSettings& s) {
+    checkClipPlanes(s.clipPlanes);
+    if (s.crop) checkCrop(grid, *s.crop);
     if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
         throw InputError("--step " + std::to_string(s.stepVoxels) + ": the step must be a positive number of voxels");
     requireLatticeFits(grid, s.stepVoxels);  // first: an absurd spacing is named as such, not as a tiny step

@@ -14,7 +14,13 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& set
 // of failing the render with the cap's error, which is meant for runaway casters.
 void requireSamplesWithinCap(const GridGeometry& grid, const RenderSettings& settings);
 
-// The part of checkRenderInputs that needs no voxel data (step, ERT, light; trilinear leaping on regions made for
+// Throws InputError naming --clip: more than device::kMaxClipPlanes planes, a zero or non-finite normal, a
+// non-finite offset. Needs no volume.
+void checkClipPlanes(const std::vector<ClipPlane>& planes);
+// Throws InputError naming --crop: a crop box that is empty or reaches outside the grid's voxels.
+void checkCrop(const GridGeometry& grid, const CropBox& crop);
+
+// The part of checkRenderInputs that needs no voxel data (step, ERT, light, clipping; trilinear leaping on regions made for
 // it, shaded leaping on regions made with normals): what a render of a volume already on a device checks.
 void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& segmentation,
                          const RenderSettings& settings);

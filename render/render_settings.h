@@ -2,6 +2,7 @@
 #pragma once
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "core/vec3.h"
 
@@ -19,6 +20,24 @@ struct ViewParams {
     double azimuthDeg = 0;    // about the up axis
     double elevationDeg = 0;  // about the right axis
     int width = 512, height = 512;
+    // VTK's camera calls after the fit, in this order: SetViewUp + OrthogonalizeViewUp (empty: +y turned by the
+    // elevation), SetFocalPoint (world; empty: the volume centre), Zoom (> 1 magnifies), then Azimuth by orbitDeg
+    // about the view-up: the turn of a view of an orbit.
+    std::optional<Vec3d> up;
+    std::optional<Vec3d> centre;
+    double zoom = 1;
+    double orbitDeg = 0;
+};
+
+// A clipping plane in world units: it keeps the side where dot(normal, x) >= offset.
+struct ClipPlane {
+    Vec3d normal;
+    double offset = 0;
+};
+
+// An axis-aligned crop in voxel indices: the voxels lo..hi (inclusive) of each axis are kept.
+struct CropBox {
+    Vec3i lo, hi;
 };
 
 struct RenderSettings {
@@ -30,6 +49,10 @@ struct RenderSettings {
     std::optional<Vec3d> lightDirection;  // world direction towards the light; empty: headlight
     Vec3d background{0, 0, 0};
     long long maxIterationsPerRay = 1 << 24;  // a bug must not hang a render
+    // The ray's interval is clipped by these before casting (docs/ALGORITHMS.md section 1): at most
+    // device::kMaxClipPlanes planes.
+    std::vector<ClipPlane> clipPlanes;
+    std::optional<CropBox> crop;
 };
 
 }  // namespace vr

@@ -6,6 +6,7 @@ packages=(
   libvtk9-dev libopenvdb-dev libboost-iostreams-dev libopenimageio-dev
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools
   libtbb-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libzstd-dev
+  libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox libvolpack1-dev
   "$@"

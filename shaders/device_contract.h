@@ -46,6 +46,9 @@ VR_CONSTANT int kExact = 0, kLog16 = 1, kJoint8 = 2;  // how EACD extents are st
 // The scalars' type (core/volume.h ScalarType, in its order).
 VR_CONSTANT int kScalarUInt8 = 0, kScalarInt16 = 1, kScalarUInt16 = 2, kScalarFloat32 = 3;
 
+// The most clipping planes a render takes (RenderSettings::clipPlanes, CasterParams::clipPlanes).
+VR_CONSTANT int kMaxClipPlanes = 6;
+
 // One workgroup takes kWorkgroupSize x kWorkgroupSize pixels (caster.comp orders 8 x 8 of them in 4 x 2 blocks).
 VR_CONSTANT int kWorkgroupSize = 8;
 
@@ -91,6 +94,12 @@ struct CasterParams {
     float tableInverseStep;
     float tableLastEntry;
     float flatGradient;
+    // What clips every ray (render/ray_setup.h RayClip), in grid coordinates: the crop box's faces (0 and dims
+    // without a crop) and the planes, xyz: n, w: c, keeping dot(n, p) >= c (shaders/clip_planes.h).
+    ivec4 cropLo;
+    ivec4 cropHi;
+    vec4 clipPlanes[kMaxClipPlanes];
+    int clipPlaneCount;
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -137,7 +146,10 @@ static_assert(offsetof(CasterParams, tableLo) == 240);
 static_assert(offsetof(CasterParams, tableInverseStep) == 244);
 static_assert(offsetof(CasterParams, tableLastEntry) == 248);
 static_assert(offsetof(CasterParams, flatGradient) == 252);
-static_assert(sizeof(CasterParams) == 256);
+static_assert(offsetof(CasterParams, cropLo) == 256);
+static_assert(offsetof(CasterParams, clipPlanes) == 288);
+static_assert(offsetof(CasterParams, clipPlaneCount) == 384);
+static_assert(sizeof(CasterParams) == 400);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);
 static_assert(sizeof(TilePush) == 96);

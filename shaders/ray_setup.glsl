@@ -7,6 +7,7 @@
 #define VR_RAY_SETUP_GLSL
 
 #include "caster_params.glsl"
+#include "clip_planes.h"
 #include "numerics.glsl"
 
 struct GridRay {
@@ -44,24 +45,32 @@ vec3 rayAt(GridRay r, float t) {
     return p;
 }
 
-// Slab test; an axis with d_a == 0 never limits t, and the ray must then lie in 0 <= o_a < N_a. Written out per
+// Slab test; an axis with d_a == 0 never limits t, and the ray must then lie in lo <= o_a < hi. Written out per
 // axis without a loop or an early return: llvmpipe neither unrolls a loop that returns nor skips the code after a
 // return, and it runs every loop's body for all invocations of a SIMD batch.
-void clipSlab(float o, float d, int n, inout float t0, inout float t1, inout bool outside) {
-    precise float ta = (0.0 - o) / d;
-    precise float tb = (float(n) - o) / d;
+void clipSlab(float o, float d, int lo, int hi, inout float t0, inout float t1, inout bool outside) {
+    precise float ta = (float(lo) - o) / d;
+    precise float tb = (float(hi) - o) / d;
     bool parallel = d == 0.0;
-    outside = outside || (parallel && !(o >= 0.0 && o < float(n)));
+    outside = outside || (parallel && !(o >= float(lo) && o < float(hi)));
     t0 = parallel ? t0 : max(t0, min(ta, tb));
     t1 = parallel ? t1 : min(t1, max(ta, tb));
 }
 
+// RayClip's interval (render/ray_setup.h clipInterval): the crop box (the grid without a crop), then every plane.
 RayInterval intersectGrid(GridRay r) {
     float t0 = 0.0, t1 = kInfinity;
     bool outside = false;
-    clipSlab(r.o.x, r.d.x, params.dims.x, t0, t1, outside);
-    clipSlab(r.o.y, r.d.y, params.dims.y, t0, t1, outside);
-    clipSlab(r.o.z, r.d.z, params.dims.z, t0, t1, outside);
+    clipSlab(r.o.x, r.d.x, params.cropLo.x, params.cropHi.x, t0, t1, outside);
+    clipSlab(r.o.y, r.d.y, params.cropLo.y, params.cropHi.y, t0, t1, outside);
+    clipSlab(r.o.z, r.d.z, params.cropLo.z, params.cropHi.z, t0, t1, outside);
+    for (int i = 0; i < params.clipPlaneCount; ++i) {
+        vec4 plane = params.clipPlanes[i];
+        precise float s = plane.w - dot(plane.xyz, r.o);
+        precise float q = dot(plane.xyz, r.d);
+        t0 = clipEntry(t0, s, q);
+        t1 = clipExit(t1, s, q);
+    }
     if (outside || !(t0 < t1)) return RayInterval(0.0, 0.0);
     return RayInterval(t0, t1);
 }
@@ -89,7 +98,10 @@ uint latticeCount(RayInterval iv) {
 
 ivec3 floorVoxel(vec3 p) { return ivec3(floor(p)); }
 ivec3 clampVoxel(ivec3 v) { return clamp(v, ivec3(0), params.dims.xyz - 1); }
-ivec3 sampleVoxel(GridRay r, RayInterval iv, uint k) { return clampVoxel(floorVoxel(samplePosition(r, iv, k))); }
+// Clamped into the crop box (the grid without a crop), as RayClip::sampleVoxel in render/ray_setup.h.
+ivec3 sampleVoxel(GridRay r, RayInterval iv, uint k) {
+    return clamp(floorVoxel(samplePosition(r, iv, k)), params.cropLo.xyz, params.cropHi.xyz - 1);
+}
 
 int rayOctant(GridRay r) { return octantOf(r.d.x, r.d.y, r.d.z); }
 

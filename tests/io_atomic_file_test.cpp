@@ -111,5 +111,31 @@ TEST(IoAtomicFile, PathWritersCleanUpToo) {
     EXPECT_EQ(test::slurp(out), "next");
 }
 
+// A file filled over a longer time (a movie, frame by frame): its output appears only on commit, and a writer that
+// gives up on the way leaves the previous output and no temporary.
+TEST(IoAtomicFile, PendingFileAppearsOnlyWhenCommitted) {
+    const fs::path dir = test::scratchDir("atomic_file_pending");
+    for (const auto& entry : fs::directory_iterator(dir)) fs::remove_all(entry.path());
+    const fs::path out = dir / "orbit.gif";
+    write(out, "previous");
+    {
+        PendingFile pending(out);
+        std::ofstream(pending.temporary()) << "half of the frames";
+        EXPECT_EQ(namesIn(dir).size(), 2u);
+        EXPECT_EQ(test::slurp(out), "previous");
+    }  // abandoned
+    EXPECT_EQ(namesIn(dir), std::set<std::string>{"orbit.gif"});
+    EXPECT_EQ(test::slurp(out), "previous");
+    {
+        PendingFile pending(out);
+        EXPECT_THROW(pending.commit(), InputError);  // nothing written yet
+        std::ofstream(pending.temporary()) << "every frame";
+        pending.commit();
+    }
+    EXPECT_EQ(namesIn(dir), std::set<std::string>{"orbit.gif"});
+    EXPECT_EQ(test::slurp(out), "every frame");
+    EXPECT_THROW(PendingFile(dir / "absent" / "orbit.gif"), InputError);
+}
+
 }  // namespace
 }  // namespace vr

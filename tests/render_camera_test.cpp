@@ -171,5 +171,141 @@ TEST(RenderCamera, RejectsBadViews) {
     EXPECT_THROW(Camera::fit(boxGrid(), view(Projection::Perspective, 10, 10, std::nan(""), 0)), InputError);
 }
 
+// --up as VTK's SetViewUp then OrthogonalizeViewUp: the view direction stays, the image turns about it.
+TEST(RenderCamera, UpTurnsTheImageAboutTheViewDirection) {
+    const GridGeometry g = boxGrid();
+    for (Projection p : {Projection::Orthographic, Projection::Perspective}) {
+        ViewParams v = view(p, 33, 21, 40, 25);
+        const Camera plain = Camera::fit(g, v);
+        v.up = Vec3d{0, 1, 0};  // +y, the default's own: the same camera
+        const Camera same = Camera::fit(g, v);
+        expectNear(same.up, plain.up);
+        expectNear(same.eye, plain.eye);
+        v.up = Vec3d{1, 2, 0};
+        const Camera turned = Camera::fit(g, v);
+        expectNear(turned.forward, plain.forward, 0);
+        expectNear(turned.eye, plain.eye, 0);
+        EXPECT_NEAR(dot(turned.up, turned.forward), 0, 1e-12);
+        EXPECT_NEAR(length(turned.up), 1, 1e-12);
+        expectNear(cross(turned.forward, turned.up), turned.right);
+        // up lies in the plane of the given vector and the view direction, on the given vector's side.
+        EXPECT_NEAR(dot(cross(Vec3d{1, 2, 0}, turned.forward), turned.up), 0, 1e-12);
+        EXPECT_GT(dot(turned.up, Vec3d{1, 2, 0}), 0);
+        EXPECT_NEAR(distanceToRay(g.centre(), turned.ray(16.5, 10.5)), 0, 1e-9);
+    }
+    // The default view with +x up: the image is turned a quarter, exactly.
+    ViewParams v = view(Projection::Orthographic, 16, 16);
+    v.up = Vec3d{3, 0, 0};
+    const Camera quarter = Camera::fit(g, v);
+    EXPECT_EQ(quarter.up, (Vec3d{1, 0, 0}));
+    EXPECT_EQ(quarter.right, (Vec3d{0, -1, 0}));
+}
+
+// The views of an orbit turn about the view-up through the focal point: about +y by default (a change of azimuth,
+// bit for bit), about --up when given.
+TEST(RenderCamera, OrbitTurnsAboutTheViewUp) {
+    const GridGeometry g = boxGrid();
+    const ViewParams plain = view(Projection::Perspective, 24, 16, 10, 30);
+    const std::vector<Camera> around = Camera::orbit(g, plain, 8);
+    ASSERT_EQ(around.size(), 8u);
+    for (int i = 0; i < 8; ++i) {
+        const Camera byAzimuth = Camera::fit(g, view(Projection::Perspective, 24, 16, 10 + 45.0 * i, 30));
+        EXPECT_EQ(around[i].eye, byAzimuth.eye);
+        EXPECT_EQ(around[i].forward, byAzimuth.forward);
+        EXPECT_EQ(around[i].up, byAzimuth.up);
+    }
+    // A volume with z up, seen from the front and turned about z: every view looks level, with z up exactly.
+    ViewParams zUp = view(Projection::Orthographic, 24, 16, 0, -90);
+    zUp.up = Vec3d{0, 0, 1};
+    const std::vector<Camera> level = Camera::orbit(g, zUp, 4);
+    const Vec3d c = g.centre();
+    const double distance = length(level[0].eye - c);
+    const Vec3d forwards[] = {{0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {1, 0, 0}};
+    for (int i = 0; i < 4; ++i) {
+        EXPECT_EQ(level[i].up, (Vec3d{0, 0, 1})) << i;
+        expectNear(level[i].forward, forwards[i]);
+        EXPECT_NEAR(length(level[i].eye - c), distance, 1e-9);
+        EXPECT_NEAR(distanceToRay(c, level[i].ray(12, 8)), 0, 1e-9);
+    }
+    // Tilted: the eye keeps its angle to the up vector all round.
+    ViewParams tilted = view(Projection::Perspective, 16, 16, 20, 10);
+    tilted.up = normalize(Vec3d{1, 1, 0});
+    for (const Camera& cam : Camera::orbit(g, tilted, 7))
+        EXPECT_NEAR(dot(cam.forward, *tilted.up), dot(Camera::fit(g, tilted).forward, *tilted.up), 1e-12);
+}
+
+// --zoom as VTK's Zoom: the eye stays; orthographic divides the parallel scale, perspective the view angle.
+TEST(RenderCamera, ZoomMagnifiesWithoutMovingTheEye) {
+    const GridGeometry g = boxGrid();
+    ViewParams o = view(Projection::Orthographic, 40, 30, 15, 5);
+    const Camera ortho = Camera::fit(g, o);
+    o.zoom = 2.5;
+    const Camera orthoZoomed = Camera::fit(g, o);
+    EXPECT_EQ(orthoZoomed.eye, ortho.eye);
+    EXPECT_DOUBLE_EQ(orthoZoomed.halfHeight, ortho.halfHeight / 2.5);
+
+    ViewParams p = view(Projection::Perspective, 40, 40, -30, 20);
+    p.fovDeg = 40;
+    const Camera persp = Camera::fit(g, p);
+    p.zoom = 4;
+    const Camera perspZoomed = Camera::fit(g, p);
+    EXPECT_EQ(perspZoomed.eye, persp.eye);
+    const double angle = std::acos(dot(perspZoomed.ray(20, 0).direction, perspZoomed.ray(20, 40).direction));
+    EXPECT_NEAR(angle, 10 * std::numbers::pi / 180, 1e-12);
+    p.zoom = 0.5;  // zoomed out: 80 degrees
+    EXPECT_NEAR(std::acos(dot(Camera::fit(g, p).ray(20, 0).direction, Camera::fit(g, p).ray(20, 40).direction)),
+                80 * std::numbers::pi / 180, 1e-12);
+}
+
+// --center: the centre pixel looks at it; an orthographic image plane stays outside the bounding sphere.
+TEST(RenderCamera, CenterIsTheFocalPoint) {
+    const GridGeometry g = boxGrid();
+    const double radius = 0.5 * length(g.extent());
+    for (Projection p : {Projection::Orthographic, Projection::Perspective})
+        for (const Vec3d& focus : {Vec3d{0, 0, 0}, Vec3d{-3, 4, 7}, g.centre() + Vec3d{40, -25, 60}}) {
+            ViewParams v = view(p, 33, 21, 70, -35);
+            v.centre = focus;
+            const Camera cam = Camera::fit(g, v);
+            EXPECT_NEAR(distanceToRay(focus, cam.ray(16.5, 10.5)), 0, 1e-9);
+            expectNear(cam.forward, Camera::fit(g, view(p, 33, 21, 70, -35)).forward, 0);
+            if (p == Projection::Orthographic) {
+                EXPECT_GT(dot(g.centre() - cam.eye, cam.forward), radius);
+            }
+        }
+}
+
+TEST(RenderCamera, RejectsBadUpZoomAndCenter) {
+    const GridGeometry g = boxGrid();
+    auto refusal = [&](const ViewParams& v) {
+        try {
+            Camera::fit(g, v);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    ViewParams v = view(Projection::Perspective, 16, 16);
+    for (const Vec3d& up : {Vec3d{0, 0, 1}, Vec3d{0, 0, -7}, Vec3d{0, 1e-9, 1}, Vec3d{0, 0, 0},
+                            Vec3d{std::nan(""), 1, 0}, Vec3d{0, double(INFINITY), 0}}) {
+        v.up = up;
+        EXPECT_NE(refusal(v).find("--up"), std::string::npos) << refusal(v);
+    }
+    v.up = Vec3d{0, 0, 1};
+    v.elevationDeg = 90;  // the same up is fine once the view looks down another axis
+    EXPECT_EQ(refusal(v), "accepted");
+    v = view(Projection::Perspective, 16, 16);
+    for (double zoom : {0.0, -1.0, std::nan(""), double(INFINITY), 1e-4, 1e4, 0.1 /* 30 / 0.1 = 300 degrees */}) {
+        v.zoom = zoom;
+        EXPECT_NE(refusal(v).find("--zoom"), std::string::npos) << zoom << ": " << refusal(v);
+    }
+    v = view(Projection::Orthographic, 16, 16);
+    v.zoom = 0.1;  // no angle to exceed
+    EXPECT_EQ(refusal(v), "accepted");
+    for (const Vec3d& far : {Vec3d{1e9, 0, 0}, Vec3d{0, std::nan(""), 0}, Vec3d{0, 0, -double(INFINITY)}}) {
+        v.centre = far;
+        EXPECT_NE(refusal(v).find("--center"), std::string::npos) << refusal(v);
+    }
+}
+
 }  // namespace
 }  // namespace vr

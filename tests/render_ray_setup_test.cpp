@@ -81,8 +81,8 @@ TEST(RenderRaySetup, LatticeAndVoxels) {
         EXPECT_LT(latticeT(iv, dt, k - 1), iv.tExit);
         EXPECT_GE(latticeT(iv, dt, k), iv.tExit);
     }
-    // Voxel of a sample: floor, then clamped into [0, N).
-    const Vec3i dims{4, 4, 4};
+    // Voxel of a sample: floor, then clamped into [0, N) (the crop box of an unclipped render).
+    const RayClip dims{{0, 0, 0}, {4, 4, 4}, {}};
     const GridRay r{{0, 3.5, 2}, {1, 0, 0}};
     EXPECT_EQ(sampleVoxel(r, 0, dims), (Vec3i{0, 3, 2}));
     EXPECT_EQ(sampleVoxel(r, 2, dims), (Vec3i{2, 3, 2}));  // exactly on a face: the voxel beyond it

@@ -58,7 +58,7 @@ TEST(RenderStepCap, StepsBeyondTheIterationCapAreRefusedNamingTheFlag) {
 TEST(RenderStepCap, TheRendererRefusesBeforeCasting) {
     const PreparedVolume p =
         test::syntheticPrepared(kGrid, 1.0, [](const Vec3i&) { return test::VoxelClass{0, {1, 1, 1}}; });
-    const Camera cam = Camera::fit(kGrid, ViewParams{Projection::Orthographic, 30, 0, 0, 4, 4});
+    const Camera cam = Camera::fit(kGrid, test::orbitView(0, 0, 4, 4));
     try {
         renderCpu(p, cam, withStep(1e-9));
         ADD_FAILURE() << "a step of 1e-9 voxels rendered";

@@ -91,7 +91,8 @@ TEST(VolrenderCli, HelpAndDeviceList) {
     EXPECT_EQ(help.status, 0);
     for (const char* flag :
          {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear", "--nearest",
-          "--tf", "--window", "--level", "--list-presets"})
+          "--tf", "--window", "--level", "--list-presets", "--up", "--center", "--zoom", "--fps", ".mp4", "--clip",
+          "--crop"})
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     const test::CliOutcome list = volrender("--list-devices");
     EXPECT_EQ(list.status, 0);

@@ -73,6 +73,45 @@ TEST(VolrenderFaults, ImpossibleSizesAreRefused) {
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
+// The camera flags: malformed vectors (CLI11's refusals name the flag), a zero up or one along the view direction, a
+// zoom that is no magnification, a focal point far off the volume; every refusal names its flag.
+TEST(VolrenderFaults, BadCameraFlagsAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_camera");
+    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --cpu --no-shading --size 8x8";
+    for (const char* up : {"1,2", "1,2,3,4", "a,b,c", "1,,2", "nan,0,1", "0,inf,0", "0,0,0", "0,0,1", "0,0,-3",
+                           "1e-12,0,1"})
+        expectRefused(in + " --up " + up, "--up");
+    expectRefused(in + " --elevation 90 --up 0,1,0", std::vector<std::string>{"--up", "parallel to the view direction"});
+    for (const char* zoom : {"0", "-2", "nan", "inf", "1e-9", "1e9", "two"}) expectRefused(in + " --zoom " + zoom, "--zoom");
+    expectRefused(in + " --projection persp --fov 60 --zoom 0.3", std::vector<std::string>{"--zoom", "--fov"});
+    for (const char* centre : {"1,2", "x,y,z", "nan,0,0", "0,0,-inf", "1e12,0,0"})
+        expectRefused(in + " --center " + centre, "--center");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+    // The Vulkan path refuses them too.
+    expectRefused(shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --up 0,0,1", "--up");
+    expectRefused(shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --center 1e12,0,0", "--center");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// Clipping flags: malformed planes and crops, a zero normal, more than six planes, a crop that is empty or reaches
+// outside the grid (12 x 10 x 8 voxels); every refusal names its flag, and a good clipping renders.
+TEST(VolrenderFaults, BadClippingFlagsAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_clip");
+    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --cpu --no-shading --size 8x8";
+    for (const char* plane : {"1,2,3", "1,2,3,4,5", "a,b,c,d", "1,,2,3", "0,0,0,1", "nan,0,1,0", "0,1,0,inf", "1,0,0,"})
+        expectRefused(in + " --clip " + plane, "--clip");
+    std::string seven;
+    for (int i = 0; i < 7; ++i) seven += " --clip 0,0,1," + std::to_string(i);
+    expectRefused(in + seven, std::vector<std::string>{"--clip", "at most 6"});
+    for (const char* crop : {"0,5,0,5,0", "0,5,0,5,0,5,0", "0,5.5,0,5,0,5", "a,5,0,5,0,5", "0,12,0,5,0,5", "-1,5,0,5,0,5",
+                             "0,5,0,9,3,2", "20,30,0,5,0,5", "0,1e30,0,5,0,5"})
+        expectRefused(in + " --crop " + crop, "--crop");
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+    const test::CliOutcome clipped = volrender(in + " --clip 1,0,0,4 --clip 0,1,1,5 --crop 0,11,2,7,0,3");
+    EXPECT_EQ(clipped.status, 0) << clipped.err;
+    EXPECT_TRUE(fs::exists(dir / "x.png"));
+}
+
 TEST(VolrenderFaults, UnwritableOutputsAreRefused) {
     const fs::path dir = test::scratchDir("volrender_faults_output");
     std::ofstream(dir / "plain.txt") << "a file, not a folder";

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -18,9 +19,12 @@
 #include "io/prepared_file.h"
 #include "preprocess/cmd/volume_flags.h"
 #include "volrender/cmd/calibration_in_use.h"
+#include "volrender/cmd/camera_flags.h"
+#include "volrender/cmd/clip_flags.h"
 #include "volrender/cmd/heatmap.h"
 #include "render/caster_choice.h"
 #include "volrender/cmd/render_stats.h"
+#include "volrender/cmd/view_output.h"
 #include "render/cpu_renderer.h"
 #include "render/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
@@ -40,13 +44,16 @@ constexpr vr::ToolText kText{
 namespace fs = std::filesystem;
 
 struct Flags {
-    std::string input, output, caster = "auto", size = "512x512", projection = "ortho";
+    std::string input, output, caster = "auto", size = "512x512";
     vr::VolumeFlags volume;  // for a volume prepared here
-    double fov = 30, azimuth = 0, elevation = 0, step = 0.5, ert = 0.99;
+    vr::CameraFlags camera;
+    vr::ClipFlags clip;
+    double step = 0.5, ert = 0.99;
     std::vector<double> light, background{0, 0, 0};
     bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false, quiet = false;
     std::string stats, heatmap, calibration;
     int views = 1, device = -1;
+    std::optional<int> fps;
 };
 
 void addFlags(CLI::App& app, Flags& f) {
@@ -54,7 +61,8 @@ void addFlags(CLI::App& app, Flags& f) {
                    "prepared volume written by volprep, or a volume to prepare here (raw, NRRD, MetaImage, NIfTI, "
                    "VTI/VTK, VDB or a DICOM folder, as volprep reads them; needs --tf or --window/--level)");
     vr::addVolumeFlags(app, f.volume);
-    app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...");
+    app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...; or a movie "
+                                            "of the views: .gif (256 colours a frame) or .mp4 (H.264)");
     app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, or auto (chosen from the file's ray probe and "
                                          "the views by a cost model: see --calibration)")->capture_default_str();
     app.add_option("--calibration", f.calibration,
@@ -63,10 +71,8 @@ void addFlags(CLI::App& app, Flags& f) {
                    "~/.config/volrender/calibration.json, when measured on the device rendering; else built-in "
                    "constants measured on lavapipe with 2 cores)");
     app.add_option("--size", f.size, "image size WIDTHxHEIGHT (1..16384 each)")->capture_default_str();
-    app.add_option("--projection", f.projection, "ortho or persp")->capture_default_str();
-    app.add_option("--fov", f.fov, "vertical field of view of persp, degrees")->capture_default_str();
-    app.add_option("--azimuth", f.azimuth, "camera turn about the up axis, degrees")->capture_default_str();
-    app.add_option("--elevation", f.elevation, "camera turn about the right axis, degrees")->capture_default_str();
+    vr::addCameraFlags(app, f.camera);
+    vr::addClipFlags(app, f.clip);
     app.add_option("--step", f.step, "sampling step in voxels of the smallest spacing")->capture_default_str();
     app.add_option("--ert", f.ert, "early ray termination opacity, (0, 1]")->capture_default_str();
     app.add_option("--light", f.light, "direction toward a directional light x,y,z (default: headlight)")
@@ -77,9 +83,11 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_flag("--nearest", f.nearest, "nearest-voxel sampling instead of trilinear")->excludes(trilinear);
     app.add_option("--background", f.background, "background colour r,g,b")->delimiter(',')->expected(3);
     app.add_option("--stats", f.stats, "write timings, iterations per ray and uploaded bytes as JSON");
-    app.add_option("--heatmap", f.heatmap, "write the iterations per pixel as a colour-mapped PNG");
-    app.add_option("--views", f.views, "render an orbit of N views 360/N degrees apart into NAME_000.EXT ...")
+    app.add_option("--heatmap", f.heatmap, "write the iterations per pixel as a colour-mapped PNG (or a movie, as -o)");
+    app.add_option("--views", f.views, "render an orbit of N views 360/N degrees apart about the view-up into "
+                                       "NAME_000.EXT ..., or into the frames of a movie -o NAME.gif / NAME.mp4")
         ->capture_default_str();
+    app.add_option("--fps", f.fps, "frames per second of a movie, 1..60 (default 25)");
     app.add_flag("--list-devices", f.listDevices, "list the Vulkan devices and exit");
     app.add_option("--device", f.device, "Vulkan device index (see --list-devices; default: first discrete GPU)");
     app.add_flag("--cpu", f.cpu, "render with the CPU reference instead of Vulkan");
@@ -99,10 +107,15 @@ void checkWritable(const std::string& path, const char* flag) {
     if (fs::is_directory(out)) throw vr::fileError(path, std::string("cannot write ") + flag + ": it is a folder");
 }
 
-vr::Vec3d vec(const std::vector<double>& v, const char* flag) {
-    for (double x : v)
-        if (!std::isfinite(x)) throw vr::InputError(std::string(flag) + ": components must be finite numbers");
-    return {v[0], v[1], v[2]};
+// The outputs' formats, and --fps only where a movie is written.
+void checkMovieFlags(const Flags& f, const vr::ViewParams& view) {
+    vr::checkViewOutput(f.output, "-o", view.width, view.height);
+    if (!f.heatmap.empty()) vr::checkViewOutput(f.heatmap, "--heatmap", view.width, view.height);
+    if (!f.fps) return;
+    if (!vr::movieFormat(f.output) && !vr::movieFormat(f.heatmap))
+        throw vr::InputError("--fps " + std::to_string(*f.fps) + ": a frame rate is for a movie (-o or --heatmap "
+                             "NAME.gif or NAME.mp4), and " + f.output + " is an image");
+    if (*f.fps < 1 || *f.fps > 60) throw vr::InputError("--fps " + std::to_string(*f.fps) + ": must be in 1..60");
 }
 
 // Checks that need no data, so that a bad run fails before the prepared file is read. Returns whether the input is
@@ -133,26 +146,21 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
         throw vr::InputError("--step " + std::to_string(f.step) + ": the step must be a positive finite number");
     if (!(f.ert > 0 && f.ert <= 1)) throw vr::InputError("--ert " + std::to_string(f.ert) + ": must be in (0, 1]");
     if (f.views < 1 || f.views > 3600) throw vr::InputError("--views must be in 1..3600");
-    if (f.projection != "ortho" && f.projection != "persp")
-        throw vr::InputError("--projection '" + f.projection + "': expected ortho or persp");
-    if (!std::isfinite(f.azimuth) || !std::isfinite(f.elevation))
-        throw vr::InputError("--azimuth and --elevation must be finite");
+    view = vr::viewParams(f.camera, int(w), int(h));
+    checkMovieFlags(f, view);
     checkWritable(f.output, "the image");
     if (!f.heatmap.empty()) checkWritable(f.heatmap, "--heatmap");
     if (!f.stats.empty()) checkWritable(f.stats, "--stats");
 
-    view.projection = f.projection == "ortho" ? vr::Projection::Orthographic : vr::Projection::Perspective;
-    view.fovDeg = f.fov;
-    view.width = int(w);
-    view.height = int(h);
     if (f.caster != "auto") s.caster = vr::parseCaster(f.caster);
     s.stepVoxels = f.step;
     s.ert = f.ert;
     s.shading = !f.noShading;
     s.trilinear = !f.nearest;
-    s.background = vec(f.background, "--background");
+    vr::applyClipFlags(f.clip, s);
+    s.background = vr::finiteVector(f.background, "--background");
     if (!f.light.empty()) {
-        s.lightDirection = vec(f.light, "--light");
+        s.lightDirection = vr::finiteVector(f.light, "--light");
         if (vr::length(*s.lightDirection) == 0) throw vr::InputError("--light: the direction must not be zero");
     }
     return prepared;
@@ -165,15 +173,6 @@ nlohmann::json prepareSeconds(const std::vector<vr::StageTime>& stages) {
     return seconds;
 }
 
-// NAME.EXT -> NAME_007.EXT for view 7 of an orbit; unchanged for a single view.
-std::string numbered(const std::string& path, int index, int views) {
-    if (views == 1) return path;
-    const fs::path p(path);
-    char suffix[16];
-    std::snprintf(suffix, sizeof suffix, "_%03d", index);
-    return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
-}
-
 unsigned fieldsFor(vr::Caster c) {
     switch (c) {
         case vr::Caster::Primitive: return 0;
@@ -182,17 +181,6 @@ unsigned fieldsFor(vr::Caster c) {
         case vr::Caster::EACD: return vr::kFieldEACD;
     }
     return 0;
-}
-
-// The cameras of the orbit: view i turned 360 i / N degrees about the up axis from --azimuth, at --elevation.
-std::vector<vr::Camera> orbit(const Flags& f, vr::ViewParams view, const vr::GridGeometry& grid) {
-    std::vector<vr::Camera> cameras;
-    for (int i = 0; i < f.views; ++i) {
-        view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
-        view.elevationDeg = f.elevation;
-        cameras.push_back(vr::Camera::fit(grid, view));
-    }
-    return cameras;
 }
 
 // The octants of every ray of the cameras.
@@ -211,7 +199,7 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
         return {vr::Caster::Primitive, "the regions were made for nearest sampling only (volprep --nearest): "
                                        "trilinear sampling cannot leap through them (render with --nearest to leap)"};
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
-    for (const vr::Camera& camera : orbit(f, view, header.grid)) d.addView(camera);
+    for (const vr::Camera& camera : vr::Camera::orbit(header.grid, view, f.views)) d.addView(camera);
     return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
 }
 
@@ -223,7 +211,7 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, con
     options.fields = fieldsFor(s.caster);
     options.keepRegions = false;  // the renderers read the field, never the labels: freed once the field has them
     vr::StagedPreparation staged = vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume));
-    options.octants = orbitOctants(orbit(f, view, staged.volume().grid));
+    options.octants = orbitOctants(vr::Camera::orbit(staged.volume().grid, view, f.views));
     staged.prepare(options);
     stages = staged.stageTimes();
     if (!f.quiet) {
@@ -232,6 +220,56 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, con
         std::printf("\n");
     }
     return std::move(staged).takeResult();
+}
+
+int movieFps(const Flags& f) { return f.fps.value_or(25); }
+
+struct RenderedView {
+    vr::RenderResult result;
+    std::vector<vr::UploadedResource> uploads;  // on the device for it (none for the CPU reference)
+};
+
+// Renders the views into their outputs in order: each an image file (a line each), or a frame of a movie (a
+// progress bar over the frames, then one line). Returns each view's statistics.
+nlohmann::json renderViews(const Flags& f, const std::vector<vr::Camera>& cameras, vr::Caster caster,
+                           const std::function<RenderedView(const vr::Camera&)>& render) {
+    const int width = cameras.front().width, height = cameras.front().height;
+    const vr::MovieSpec spec{width, height, f.views, movieFps(f)};
+    vr::ViewOutput images(f.output, spec);
+    std::optional<vr::ViewOutput> heatmaps;
+    if (!f.heatmap.empty()) heatmaps.emplace(f.heatmap, spec);
+    std::optional<vr::ProgressBar> frames;
+    if (images.isMovie()) frames.emplace("frames", f.views);
+    nlohmann::json viewStats = nlohmann::json::array();
+    double deviceMs = 0, wallMs = 0, iterations = 0;  // summed over the views
+    for (int i = 0; i < f.views; ++i) {
+        const RenderedView view = render(cameras[i]);
+        images.add(i, view.result.image);
+        if (heatmaps) heatmaps->add(i, vr::iterationHeatmap(view.result.iterations, width, height));
+        nlohmann::json s = vr::viewStatistics(view.result, view.uploads);
+        s["image"] = images.name(i);
+        if (images.isMovie()) s["frame"] = i;
+        s["orbit"] = 360.0 * i / f.views;  // degrees about the view-up
+        viewStats.push_back(s);
+        deviceMs += view.result.deviceMilliseconds;
+        wallMs += view.result.wallMilliseconds;
+        iterations += s["iterationsPerRay"]["mean"].get<double>();
+        if (frames)
+            frames->advance();
+        else if (!f.quiet)
+            std::printf("%s: %s caster, %.2f ms device, %.2f ms wall, %.1f iterations per ray\n", images.name(i).c_str(),
+                        vr::casterName(caster).data(), view.result.deviceMilliseconds, view.result.wallMilliseconds,
+                        s["iterationsPerRay"]["mean"].get<double>());
+    }
+    images.finish();
+    if (heatmaps) heatmaps->finish();
+    if (!frames) return viewStats;
+    frames->finish();
+    if (!f.quiet)
+        std::printf("%s: %d frames, %s caster, per frame %.2f ms device, %.2f ms wall, %.1f iterations per ray\n",
+                    f.output.c_str(), f.views, vr::casterName(caster).data(), deviceMs / f.views, wallMs / f.views,
+                    iterations / f.views);
+    return viewStats;
 }
 
 int run(const Flags& f) {
@@ -276,7 +314,7 @@ int run(const Flags& f) {
     const vr::PreparedVolume prepared =
         prepareHere ? std::move(*preparedHere) : vr::readPrepared(f.input, fieldsFor(settings.caster));
 
-    const std::vector<vr::Camera> cameras = orbit(f, view, prepared.grid());
+    const std::vector<vr::Camera> cameras = vr::Camera::orbit(prepared.grid(), view, f.views);
     const unsigned octants = orbitOctants(cameras);  // the orbit shares one upload
     std::optional<vr::GpuVolume> uploaded;
     nlohmann::json uploadStats;
@@ -289,40 +327,26 @@ int run(const Flags& f) {
             std::printf("upload: %.2f ms, %.1f MB in %zu brick(s)\n", uploadStats["milliseconds"].get<double>(),
                         double(uploaded->uploadedBytes()) / 1e6, uploaded->bricks().bricks().size());
     }
-    nlohmann::json viewStats = nlohmann::json::array();
-    for (int i = 0; i < f.views; ++i) {
-        view.azimuthDeg = f.azimuth + 360.0 * i / f.views;
-        const vr::Camera& camera = cameras[i];
-        const vr::RenderResult result =
-            renderer ? renderer->render(*uploaded, camera, settings) : vr::renderCpu(prepared, camera, settings);
-        const std::string image = numbered(f.output, i, f.views);
-        vr::writeImage(image, result.image);
-        if (!f.heatmap.empty())
-            vr::writeImage(numbered(f.heatmap, i, f.views),
-                           vr::iterationHeatmap(result.iterations, view.width, view.height));
-        nlohmann::json s = vr::viewStatistics(result, renderer ? renderer->lastUploads()
-                                                               : std::vector<vr::UploadedResource>{});
-        s["image"] = image;
-        s["azimuth"] = view.azimuthDeg;
-        viewStats.push_back(s);
-        if (!f.quiet)
-            std::printf("%s: %s caster, %.2f ms device, %.2f ms wall, %.1f iterations per ray\n", image.c_str(),
-                        vr::casterName(settings.caster).data(), result.deviceMilliseconds, result.wallMilliseconds,
-                        s["iterationsPerRay"]["mean"].get<double>());
-    }
+    const nlohmann::json viewStats = renderViews(f, cameras, settings.caster, [&](const vr::Camera& camera) {
+        if (!renderer) return RenderedView{vr::renderCpu(prepared, camera, settings), {}};
+        vr::RenderResult result = renderer->render(*uploaded, camera, settings);
+        return RenderedView{std::move(result), renderer->lastUploads()};
+    });
     if (context)  // only with VR_VALIDATION=1: what the validation layer reported
         for (const std::string& message : context->validationErrors())
             std::fprintf(stderr, "volrender: validation error: %s\n", message.c_str());
     if (!f.stats.empty()) {
+        nlohmann::json settingsStats{
+            {"caster", vr::casterName(settings.caster)}, {"casterAsked", f.caster}, {"casterChoice", choice},
+            {"size", f.size}, {"step", f.step}, {"ert", f.ert}, {"shading", settings.shading},
+            {"trilinear", settings.trilinear}, {"light", f.light}, {"background", f.background}, {"views", f.views},
+            {"fps", movieFps(f)}};
+        settingsStats.update(vr::cameraStatistics(f.camera));
+        settingsStats.update(vr::clipStatistics(f.clip));
         nlohmann::json stats{
             {"prepared", f.input},
             {"renderer", context ? context->info().name : std::string("cpu reference")},
-            {"settings",
-             {{"caster", vr::casterName(settings.caster)}, {"casterAsked", f.caster}, {"casterChoice", choice},
-              {"size", f.size}, {"projection", f.projection}, {"fov", f.fov},
-              {"azimuth", f.azimuth}, {"elevation", f.elevation}, {"step", f.step}, {"ert", f.ert},
-              {"shading", settings.shading}, {"trilinear", settings.trilinear}, {"light", f.light},
-              {"background", f.background}, {"views", f.views}}},
+            {"settings", settingsStats},
             {"calibration", vr::calibrationStatistics(calibration)},
             {"prepareSeconds", prepareSeconds(stages)},
             {"upload", uploadStats},

@@ -115,6 +115,14 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
     p.tableInverseStep = float(1 / table.step);  // exactly 1 for an integer volume's step of 1
     p.tableLastEntry = float(table.entries - 1);
     p.flatGradient = float(table.flatGradient);
+    const RayClip clip = RayClip::of(grid, s);
+    p.cropLo = toDevice(clip.lo);
+    p.cropHi = toDevice(clip.hi);
+    for (std::size_t i = 0; i < clip.planes.size(); ++i) {
+        const ClipPlane& plane = clip.planes[i];
+        p.clipPlanes[i] = {float(plane.normal.x), float(plane.normal.y), float(plane.normal.z), float(plane.offset)};
+    }
+    p.clipPlaneCount = int(clip.planes.size());
     return p;
 }
 

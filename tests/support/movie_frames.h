@@ -1,0 +1,29 @@
+// Movies read back for tests: every frame of a GIF (OpenImageIO, giflib) or an MP4 (FFmpeg's libavformat and
+// libavcodec) as 8-bit sRGB RGB, and 8-bit images to compare them with.
+#pragma once
+#include <filesystem>
+#include <vector>
+
+namespace vr::test {
+
+struct Frames {
+    int width = 0, height = 0;
+    double fps = 0;
+    std::vector<std::vector<unsigned char>> rgb;  // a frame each, 3 bytes a pixel from the top row
+};
+
+Frames readGifFrames(const std::filesystem::path& path);
+Frames readMp4Frames(const std::filesystem::path& path);
+// An 8-bit image file (e.g. a PNG volrender wrote) as one frame.
+Frames readImageBytes(const std::filesystem::path& path);
+
+// |a - b| over the bytes of two frames of one size, in 8-bit levels: the mean, the largest, and the share of the
+// bytes that differ by more than 16 levels.
+struct FrameDifference {
+    double mean = 0;
+    int max = 0;
+    double beyond16 = 0;
+};
+FrameDifference frameDifference(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b);
+
+}  // namespace vr::test

@@ -1,0 +1,155 @@
+// volrender's movies: an orbit written as one GIF or MP4 holds every view, in order, at its size and rate, each
+// frame the image the same view gives as a file; wrong formats and flags are refused, and a run that does not
+// finish leaves no movie.
+#include <gtest/gtest.h>
+
+#include "support/cli.h"
+#include "support/datasets.h"
+#include "support/movie_frames.h"
+#include "support/render_cases.h"
+#include "io/prepared_file.h"
+
+namespace vr {
+namespace {
+namespace fs = std::filesystem;
+using test::shellQuote;
+
+// Three blocks of different colours placed off the axes, so that every view of an orbit differs from the next.
+const fs::path& preparedBlocks() {
+    static const fs::path path = [] {
+        const GridGeometry grid{{16, 12, 10}, {1, 1, 1.5}, {0, 0, 0}};
+        const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
+            if (v.x >= 2 && v.x < 6 && v.y >= 2 && v.y < 5 && v.z >= 2 && v.z < 8) return test::VoxelClass{0.6, {1, 0.1, 0.1}};
+            if (v.x >= 10 && v.x < 14 && v.y >= 6 && v.y < 10 && v.z >= 1 && v.z < 4)
+                return test::VoxelClass{0.6, {0.1, 1, 0.2}};
+            if (v.x >= 4 && v.x < 12 && v.y >= 8 && v.y < 11 && v.z >= 6 && v.z < 9)
+                return test::VoxelClass{0.6, {0.2, 0.3, 1}};
+            return test::VoxelClass{0.0, {0, 0, 0}};
+        });
+        const fs::path out = test::scratchDir("volrender_movies_prepared") / "blocks.vprep";
+        writePrepared(out, p);
+        return out;
+    }();
+    return path;
+}
+
+constexpr int kViews = 6;
+std::string orbit(const fs::path& output) {
+    return shellQuote(preparedBlocks()) + " -o " + shellQuote(output) + " --cpu --no-shading --nearest --caster eacd" +
+           " --size 48x32 --elevation 25 --views " + std::to_string(kViews);
+}
+
+void expectRefused(const std::string& args, const std::vector<std::string>& mentions) {
+    test::expectRefusal(test::runVolrender(args), "volrender", args, mentions);
+}
+
+// Each frame against the image file of its view and of the next view: the bounds must hold for its own view and
+// fail for the next one, or they would not tell the frames apart.
+void expectFramesAreTheViews(const test::Frames& movie, const std::vector<test::Frames>& views, double meanBound,
+                             double beyond16Bound) {
+    ASSERT_EQ(movie.rgb.size(), std::size_t(kViews));
+    ASSERT_EQ(movie.width, 48);
+    ASSERT_EQ(movie.height, 32);
+    for (int i = 0; i < kViews; ++i) {
+        const test::FrameDifference own = test::frameDifference(movie.rgb[i], views[i].rgb[0]);
+        const test::FrameDifference next = test::frameDifference(movie.rgb[i], views[(i + 1) % kViews].rgb[0]);
+        std::printf("frame %d: mean %.3f max %d levels (%.2f %% beyond 16) from its view; mean %.3f from the next\n",
+                    i, own.mean, own.max, 100 * own.beyond16, next.mean);
+        EXPECT_LE(own.mean, meanBound) << "frame " << i;
+        EXPECT_LE(own.beyond16, beyond16Bound) << "frame " << i;
+        EXPECT_GT(next.mean, meanBound) << "frame " << i;
+    }
+}
+
+TEST(VolrenderMovies, GifAndMp4HoldTheViewsOfTheOrbitInOrder) {
+    const fs::path dir = test::scratchDir("volrender_movies_orbit");
+    ASSERT_EQ(test::runVolrender(orbit(dir / "view.png")).status, 0);
+    std::vector<test::Frames> views;
+    for (int i = 0; i < kViews; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "view_%03d.png", i);
+        views.push_back(test::readImageBytes(dir / name));
+    }
+
+    const test::CliOutcome gif = test::runVolrender(orbit(dir / "orbit.gif"));
+    ASSERT_EQ(gif.status, 0) << gif.err;
+    const test::Frames gifFrames = test::readGifFrames(dir / "orbit.gif");
+    EXPECT_EQ(gifFrames.fps, 25);
+    // 256 colours a frame, chosen by OpenImageIO's GIF writer: the colours of the blocks' blended edges move to a
+    // palette entry, a few by far (measured: mean 0.17-0.55 levels, 0.07-0.72 % of the bytes beyond 16 levels, the
+    // largest 114). The next view is 11-15 levels away on average.
+    expectFramesAreTheViews(gifFrames, views, 1.0, 0.02);
+
+    const test::CliOutcome mp4 = test::runVolrender(orbit(dir / "orbit.mp4") + " --fps 30");
+    ASSERT_EQ(mp4.status, 0) << mp4.err;
+    const test::Frames mp4Frames = test::readMp4Frames(dir / "orbit.mp4");
+    EXPECT_EQ(mp4Frames.fps, 30);
+    // H.264 in 4:2:0 at libx264's quality 18: colour is kept at half the resolution, so the blocks' edges blur in
+    // colour (measured: mean 1.9-2.2 levels, 3.4-4.6 % of the bytes beyond 16 levels).
+    expectFramesAreTheViews(mp4Frames, views, 3.0, 0.08);
+    EXPECT_FALSE(fs::exists(dir / "orbit_000.gif"));
+    EXPECT_FALSE(fs::exists(dir / "orbit_000.mp4"));
+}
+
+TEST(VolrenderMovies, OneViewIsAMovieOfOneFrameAndHeatMapsMayBeMoviesToo) {
+    const fs::path dir = test::scratchDir("volrender_movies_one");
+    const std::string one = shellQuote(preparedBlocks()) + " --cpu --no-shading --nearest --caster eacd --size 48x32";
+    ASSERT_EQ(test::runVolrender(one + " -o " + shellQuote(dir / "still.gif")).status, 0);
+    EXPECT_EQ(test::readGifFrames(dir / "still.gif").rgb.size(), 1u);
+    const test::CliOutcome heat = test::runVolrender(orbit(dir / "x.png") + " --heatmap " + shellQuote(dir / "heat.mp4"));
+    ASSERT_EQ(heat.status, 0) << heat.err;
+    EXPECT_EQ(test::readMp4Frames(dir / "heat.mp4").rgb.size(), std::size_t(kViews));
+    EXPECT_TRUE(fs::exists(dir / "x_005.png"));
+}
+
+TEST(VolrenderMovies, WrongFormatsAndFlagsAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_movies_refused");
+    const std::string in = shellQuote(preparedBlocks()) + " --cpu --no-shading --views 3 -o ";
+    expectRefused(in + shellQuote(dir / "orbit.avi"), {"-o", "orbit.avi", "neither an image format"});
+    expectRefused(in + shellQuote(dir / "orbit.gif") + " --heatmap " + shellQuote(dir / "heat.webm"),
+                  {"--heatmap", "heat.webm"});
+    expectRefused(in + shellQuote(dir / "orbit.mp4") + " --size 33x20", {"-o", "even width and height", "33x20"});
+    expectRefused(in + shellQuote(dir / "orbit.MP4") + " --size 32x21", {"even width and height"});
+    expectRefused(in + shellQuote(dir / "orbit.png") + " --fps 30", {"--fps 30", "for a movie"});
+    for (const char* fps : {"0", "-5", "61"}) expectRefused(in + shellQuote(dir / "orbit.gif") + " --fps " + fps, {"--fps"});
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
+// Killed while its frames go in, or failing on the way (a heat map it cannot write, as root passes the early
+// writability check on /sys): no movie and no temporary is left, and an earlier movie stays as it was.
+TEST(VolrenderMovies, AnUnfinishedMovieLeavesNothing) {
+    const fs::path dir = test::scratchDir("volrender_movies_unfinished");
+    for (const auto& entry : fs::directory_iterator(dir)) fs::remove_all(entry.path());
+    const fs::path out = dir / "orbit.mp4";
+    test::CliOutcome failed = test::runVolrender(orbit(out) + " --heatmap /sys/heat.png");
+    EXPECT_NE(failed.status, 0);
+    EXPECT_TRUE(fs::is_empty(dir));
+
+    ASSERT_EQ(test::runVolrender(orbit(out)).status, 0);
+    const std::string before = test::slurp(out);
+    const bool killed = test::killWhileWriting(
+        test::volrenderExecutable(),
+        {preparedBlocks().string(), "-o", out.string(), "--cpu", "--no-shading", "--size", "256x256", "--views",
+         "400"},
+        dir, ".orbit.tmp", 120);
+    EXPECT_TRUE(killed) << "the render ended before its temporary movie appeared";
+    EXPECT_EQ(test::slurp(out), before);
+    ASSERT_EQ(test::runVolrender(orbit(out)).status, 0);  // and the next run removes the killed one's temporary
+    for (const auto& entry : fs::directory_iterator(dir)) EXPECT_EQ(entry.path().filename(), "orbit.mp4");
+}
+
+// On a terminal a movie shows a bar over its frames and then one line; --quiet shows nothing.
+TEST(VolrenderMovies, ProgressBarOverTheFrames) {
+    const fs::path dir = test::scratchDir("volrender_movies_bar");
+    const test::CliOutcome shown = test::runOnTerminal(test::volrenderExecutable(), orbit(dir / "orbit.gif"));
+    ASSERT_EQ(shown.status, 0) << shown.out;
+    EXPECT_NE(shown.out.find("frames "), std::string::npos) << shown.out;
+    EXPECT_NE(shown.out.find("100%"), std::string::npos) << shown.out;
+    EXPECT_NE(shown.out.find("orbit.gif: 6 frames"), std::string::npos) << shown.out;
+    const test::CliOutcome quiet = test::runOnTerminal(test::volrenderExecutable(), orbit(dir / "orbit.gif") + " -q");
+    ASSERT_EQ(quiet.status, 0) << quiet.out;
+    EXPECT_EQ(quiet.out, "");
+}
+
+}  // namespace
+}  // namespace vr

@@ -1,0 +1,46 @@
+#include "volrender/cmd/view_output.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdio>
+
+#include "core/errors.h"
+
+namespace vr {
+namespace fs = std::filesystem;
+
+void checkViewOutput(const std::string& path, const char* flag, int width, int height) {
+    const std::optional<MovieFormat> movie = movieFormat(path);
+    if (movie == MovieFormat::Mp4 && (width % 2 || height % 2))
+        throw InputError(std::string(flag) + " " + path + ": an MP4 (H.264 in 4:2:0) needs an even width and height, "
+                         "not --size " + std::to_string(width) + "x" + std::to_string(height));
+    if (!movie && !OIIO::ImageOutput::create(path))
+        throw InputError(std::string(flag) + " " + path + ": neither an image format OpenImageIO writes (.png, .exr, "
+                         "...) nor a movie (.gif, .mp4)");
+}
+
+ViewOutput::ViewOutput(std::string path, const MovieSpec& movie) : path_(std::move(path)), views_(movie.frames) {
+    if (movieFormat(path_)) movie_ = openMovie(path_, movie);
+}
+
+// NAME.EXT -> NAME_007.EXT for view 7 of an orbit; unchanged for a single view or a movie.
+std::string ViewOutput::name(int view) const {
+    if (views_ == 1 || movie_) return path_;
+    const fs::path p(path_);
+    char suffix[16];
+    std::snprintf(suffix, sizeof suffix, "_%03d", view);
+    return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+void ViewOutput::add(int view, const Image& image) {
+    if (movie_)
+        movie_->add(image);
+    else
+        writeImage(name(view), image);
+}
+
+void ViewOutput::finish() {
+    if (movie_) movie_->finish();
+}
+
+}  // namespace vr
