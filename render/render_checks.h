@@ -14,8 +14,12 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& set
 // of failing the render with the cap's error, which is meant for runaway casters.
 void requireSamplesWithinCap(const GridGeometry& grid, const RenderSettings& settings);
 
-// The part of checkRenderInputs that needs no voxel data (step, ERT, light; trilinear leaping on regions made for
-// it, shaded leaping on regions made with normals): what a render of a volume already on a device checks.
+// Throws InputError when the caster does not leap in a way the blend allows (PC, ACD and EACD composite only, blocks
+// any other blend) or the iso-value is not finite.
+void checkBlend(const RenderSettings& settings);
+
+// The part of checkRenderInputs that needs no voxel data (step, ERT, light, blend; trilinear leaping on regions
+// made for it, shaded leaping on regions made with normals): what a render of a volume already on a device checks.
 void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& segmentation,
                          const RenderSettings& settings);
 
