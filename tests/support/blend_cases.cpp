@@ -35,10 +35,13 @@ Volume floatNoise() {
     return v;
 }
 
-std::vector<ViewParams> blendViews(int size) {
-    return {orbitView(0, 0, size, size),    orbitView(90, 0, size, size),     orbitView(0, -90, size, size),
-            orbitView(37, 23, size, size),  orbitView(-130, -50, size, size),
-            orbitView(25, 35, size, size, Projection::Perspective)};
+// The first `count` of: a diagonal, a perspective view, views along -z, -x and +y, and a diagonal in another octant.
+std::vector<ViewParams> blendViews(int size, std::size_t count) {
+    std::vector<ViewParams> views{orbitView(37, 23, size, size),  orbitView(25, 35, size, size, Projection::Perspective),
+                                  orbitView(0, 0, size, size),    orbitView(90, 0, size, size),
+                                  orbitView(0, -90, size, size),  orbitView(-130, -50, size, size)};
+    views.resize(std::min(count, views.size()));
+    return views;
 }
 
 std::string where(const std::string& volume, Blend blend, bool trilinear, const std::string& view) {
@@ -165,16 +168,16 @@ RenderSettings blendSettings(Blend blend, Caster caster, bool trilinear, double 
     return s;
 }
 
-CaseCount blocksEqualPrimitive(const RenderFn& render, const BlendTolerance& tolerance) {
+CaseCount blocksEqualPrimitive(const RenderFn& render, const BlendCaseOptions& options) {
     CaseCount n;
     for (const BlendVolume& v : blendVolumes())
         for (Blend blend : kScalarBlends) {
             double primitive = 0, blocks = 0;
             for (bool trilinear : {false, true})
-                for (const ViewParams& view : blendViews(24)) {
+                for (const ViewParams& view : blendViews(24, options.views)) {
                     const RenderSettings s = blendSettings(blend, Caster::Primitive, trilinear, v.isoValue);
                     const auto [p, b] = expectBlocksEqualPrimitive(render, v.prepared, Camera::fit(v.prepared.grid(), view), s,
-                                                                   tolerance.equal,
+                                                                   options.equal,
                                                                    where(v.name, blend, trilinear, viewText(view)), n);
                     primitive += p;
                     blocks += b;
@@ -219,7 +222,7 @@ CaseCount blendsMatchBruteForce(const RenderFn& render, double allowedShare) {
     return n;
 }
 
-CaseCount axisMipIsColumnMaximum(const RenderFn& render) {
+CaseCount axisMipIsColumnMaximum(const RenderFn& render, const BlendCaseOptions& options) {
     CaseCount n;
     const Volume volume = enginePhantom({31, 27, 23});
     const PreparedVolume p = prepareVolume(volume, datasetTransferFunction("mri.tf.json"), {0, 0, false, false}, 0);
@@ -245,13 +248,13 @@ CaseCount axisMipIsColumnMaximum(const RenderFn& render) {
                         ++n.rays;
                         ++n.hits;
                     }
-                EXPECT_LT(worst, 1e-6) << "axis " << axis << (trilinear ? " trilinear " : " nearest ")
+                EXPECT_LE(worst, options.equal) << "axis " << axis << (trilinear ? " trilinear " : " nearest ")
                                        << casterName(caster);
             }
     return n;
 }
 
-CaseCount oppositeViewsMirror(const RenderFn& render) {
+CaseCount oppositeViewsMirror(const RenderFn& render, const BlendCaseOptions& options) {
     CaseCount n;
     const Volume volume = enginePhantom({31, 27, 23});
     const PreparedVolume p = prepareVolume(volume, datasetTransferFunction("mri.tf.json"), {0, 0, false, false}, 0);
@@ -272,7 +275,7 @@ CaseCount oppositeViewsMirror(const RenderFn& render) {
                         ++n.rays;
                         n.hits += a.samples[std::size_t(py) * front.width + px] > 0;
                     }
-                EXPECT_LT(worst, 1e-6) << blendText(blend) << " axis " << axis << (trilinear ? " trilinear" : " nearest");
+                EXPECT_LE(worst, options.equal) << blendText(blend) << " axis " << axis << (trilinear ? " trilinear" : " nearest");
             }
     return n;
 }

@@ -2,6 +2,7 @@
 // face them: the blocks caster against the primitive one, each blend against a brute force written here, an
 // axis-aligned MIP against the maximum of each voxel column, and MIP and MinIP from opposite sides.
 #pragma once
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -25,15 +26,18 @@ const std::vector<BlendVolume>& blendVolumes();
 // Settings of a blend render: unshaded but for the iso-surface, at step 0.5 voxel.
 RenderSettings blendSettings(Blend blend, Caster caster, bool trilinear, double isoValue);
 
-// How far one renderer's images may lie apart where they should be equal: the CPU reference's double sums of
-// average agree to rounding, the device's float pairs to about 1e-7.
-struct BlendTolerance {
-    double equal = 1e-12;
+// What a renderer is asked: how far its images may lie apart where they should be equal (images hold float; the
+// CPU reference's double sums of average agree to rounding, the device's float pairs to about 1e-7; the device
+// classifies in float), and how many of the views (a diagonal, a perspective, then views along the axes and another diagonal)
+// it renders (the device compiles a pipeline per variant).
+struct BlendCaseOptions {
+    double equal = 1e-7;
+    std::size_t views = 6;
 };
 
-// At views along the axes, diagonal and in perspective, nearest and trilinear: the blocks caster renders the
-// primitive caster's image with no more iterations on any pixel, and fewer in all for MIP and the iso-surface.
-CaseCount blocksEqualPrimitive(const RenderFn& render, const BlendTolerance& tolerance);
+// At those views, nearest and trilinear: the blocks caster renders the primitive caster's image with no more
+// iterations on any pixel, and fewer in all for MIP and the iso-surface where there is air.
+CaseCount blocksEqualPrimitive(const RenderFn& render, const BlendCaseOptions& options);
 
 // Every blend against a brute force that samples each ray's whole lattice: MIP, MinIP and average show the TF
 // colour and opacity of the largest, smallest and mean scalar; the unshaded iso-surface its TF colour where a ray
@@ -43,10 +47,10 @@ CaseCount blocksEqualPrimitive(const RenderFn& render, const BlendTolerance& tol
 CaseCount blendsMatchBruteForce(const RenderFn& render, double allowedShare);
 
 // An orthographic MIP along each axis, nearest and trilinear, with a ray through the centre of every voxel column:
-// each pixel shows the largest scalar of its column.
-CaseCount axisMipIsColumnMaximum(const RenderFn& render);
+// each pixel shows the largest scalar of its column (within options.equal).
+CaseCount axisMipIsColumnMaximum(const RenderFn& render, const BlendCaseOptions& options);
 
-// MIP and MinIP along an axis from either side, the second camera's right the first's left: mirror images.
-CaseCount oppositeViewsMirror(const RenderFn& render);
+// MIP and MinIP along each axis from either side, the second camera's right the first's left: mirror images.
+CaseCount oppositeViewsMirror(const RenderFn& render, const BlendCaseOptions& options);
 
 }  // namespace vr::test
