@@ -6,12 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "shaders/blend.h"
-
 namespace vr {
 namespace {
-
-constexpr int kBlock = device::kBlockSize;
 
 // The float at or below (at or above) x.
 float floatBelow(double x) {
@@ -23,21 +19,36 @@ float floatAbove(double x) {
     return double(f) >= x ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
 }
 
+int blocksAlong(int voxels, int level) {
+    const int size = device::kBlockSize << level;
+    return (voxels + size - 1) / size;
+}
+
 }  // namespace
 
-std::size_t BlockExtrema::index(const Vec3i& v) const {
-    return (std::size_t(v.z / kBlock) * blocks.y + std::size_t(v.y / kBlock)) * blocks.x + std::size_t(v.x / kBlock);
+std::size_t BlockExtrema::texel(int level, const Vec3i& v) const {
+    const int size = device::kBlockSize << level;
+    return (std::size_t(levelZ[level] + v.z / size) * imageDims.y + std::size_t(v.y / size)) * imageDims.x +
+           std::size_t(v.x / size);
 }
 
 BlockExtrema blockExtrema(const Volume& scalars) {
     const Vec3i dims = scalars.grid.dims;
     BlockExtrema e;
-    e.blocks = {(dims.x + kBlock - 1) / kBlock, (dims.y + kBlock - 1) / kBlock, (dims.z + kBlock - 1) / kBlock};
-    e.range.resize(2 * std::size_t(e.blocks.x) * e.blocks.y * e.blocks.z);
+    e.imageDims = {blocksAlong(dims.x, 0), blocksAlong(dims.y, 0), 0};
+    for (int level = 0; level < device::kBlockLevels; ++level) {
+        e.levelZ[level] = e.imageDims.z;
+        e.imageDims.z += blocksAlong(dims.z, level);
+    }
+    e.range.assign(2 * std::size_t(e.imageDims.x) * e.imageDims.y * e.imageDims.z, 0.0f);
+    auto at = [&](int level, const Vec3i& b) {  // texel index of block b of a level
+        return (std::size_t(e.levelZ[level] + b.z) * e.imageDims.y + b.y) * e.imageDims.x + b.x;
+    };
     const bool widen = scalars.sourceType == ScalarType::Float32;
-    tbb::parallel_for(0, e.blocks.z, [&](int bz) {
-        for (int by = 0; by < e.blocks.y; ++by)
-            for (int bx = 0; bx < e.blocks.x; ++bx) {
+    constexpr int kBlock = device::kBlockSize;
+    tbb::parallel_for(0, blocksAlong(dims.z, 0), [&](int bz) {
+        for (int by = 0; by < e.imageDims.y; ++by)
+            for (int bx = 0; bx < e.imageDims.x; ++bx) {
                 const Vec3i b{bx, by, bz};
                 Vec3i first, last;  // the block grown by one voxel, within the volume
                 for (int a = 0; a < 3; ++a) {
@@ -52,12 +63,28 @@ BlockExtrema blockExtrema(const Volume& scalars) {
                         lo = std::min(lo, *rowLo);
                         hi = std::max(hi, *rowHi);
                     }
-                const double slack = widen && lo != hi ? std::ldexp(std::max(std::abs(double(lo)), std::abs(double(hi))), -20) : 0;
-                const std::size_t i = (std::size_t(bz) * e.blocks.y + by) * e.blocks.x + bx;
-                e.range[2 * i] = floatBelow(double(lo) - slack);
-                e.range[2 * i + 1] = floatAbove(double(hi) + slack);
+                const double slack =
+                    widen && lo != hi ? std::ldexp(std::max(std::abs(double(lo)), std::abs(double(hi))), -20) : 0;
+                e.range[2 * at(0, b)] = floatBelow(double(lo) - slack);
+                e.range[2 * at(0, b) + 1] = floatAbove(double(hi) + slack);
             }
     });
+    for (int level = 1; level < device::kBlockLevels; ++level)
+        for (int bz = 0; bz < blocksAlong(dims.z, level); ++bz)
+            for (int by = 0; by < blocksAlong(dims.y, level); ++by)
+                for (int bx = 0; bx < blocksAlong(dims.x, level); ++bx) {
+                    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+                    for (int c = 0; c < 8; ++c) {
+                        const Vec3i child{2 * bx + (c & 1), 2 * by + (c >> 1 & 1), 2 * bz + (c >> 2 & 1)};
+                        if (child.x >= blocksAlong(dims.x, level - 1) || child.y >= blocksAlong(dims.y, level - 1) ||
+                            child.z >= blocksAlong(dims.z, level - 1))
+                            continue;
+                        lo = std::min(lo, e.range[2 * at(level - 1, child)]);
+                        hi = std::max(hi, e.range[2 * at(level - 1, child) + 1]);
+                    }
+                    e.range[2 * at(level, {bx, by, bz})] = lo;
+                    e.range[2 * at(level, {bx, by, bz}) + 1] = hi;
+                }
     return e;
 }
 

@@ -115,6 +115,14 @@ Vec3d shownValue(const Sampler& sampler, const ScalarClassification& c, double v
     return s.colour * alpha + background * (1 - alpha);
 }
 
+// The extents of the box from v to the far faces of its block of `size` voxels in the ray's octant: a block's leap
+// (shaders/blend.h).
+Vec3i blockExtents(const Vec3i& v, int oct, int size) {
+    Vec3i ext;
+    for (int a = 0; a < 3; ++a) ext[a] = device::blockExtent(v[a], octantSign(oct, a), size);
+    return ext;
+}
+
 // The iso-surface between samples k - 1 and k of the ray, on opposite sides of the iso-value: the interval halved
 // kIsoBisections times by the side of the interpolated scalar at its middle, the hit at the middle of the last one.
 // Returns its TF colour, shaded with the normal there.
@@ -175,6 +183,13 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         double sum = 0;
         bool inside = false, hit = false;
         long long iterations = 0;
+        // MIP and MinIP with blocks: the running value starts at the probe samples (shaders/blend.h).
+        if (blocks && device::blendProbes(deviceBlend) && kCount > 0 && kCount <= INT32_MAX)
+            for (int i = 0; i < device::kProbes; ++i, ++iterations) {
+                const double t = latticeT(iv, dt, device::probeSample(i, device::uint(kCount)));
+                running = device::foldRunning(deviceBlend, running, sampler.scalar(g.at(t), sampleVoxel(g, t, dims)));
+            }
+        int64_t blockEnd = 0;  // blocks: the samples before it lie in a block that could change the result
         int64_t k = 0;  // the next lattice sample: also the samples the spans so far represent
         for (int64_t n = 1; k < kCount && acc.alpha < settings.ert; k += n) {
             if (++iterations > settings.maxIterationsPerRay)
@@ -184,14 +199,34 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             const double t = latticeT(iv, dt, k);
             const Vec3i v = sampleVoxel(g, t, dims);
             const std::size_t i = linearIndex(dims, v.x, v.y, v.z);
+            // Blocks, at a new block: the coarsest block that cannot change the result is leapt over without a
+            // sample (average adds its one value n times); else the finest block's samples are taken one by one,
+            // without another lookup.
+            if (blocks && k >= blockEnd) {
+                int size = 0;
+                double value = 0;
+                for (int level = device::kBlockLevels - 1; level >= 0 && size == 0; --level)
+                    if (device::blockSkipped(deviceBlend, blocks->lo(level, v), blocks->hi(level, v), running, iso,
+                                             inside)) {
+                        size = device::kBlockSize << level;
+                        value = blocks->lo(level, v);
+                    }
+                const Vec3i ext = blockExtents(v, oct, size > 0 ? size : device::kBlockSize);
+                n = leapCount(g, iv, dt, k, kCount, boxLeapSamples(boxExitT(g, v, oct, ext), t, dt),
+                              octantBox(v, oct, ext));
+                if (size > 0) {
+                    sum += double(n) * value;
+                    continue;
+                }
+                blockEnd = k + n;
+            }
             const double scalar = sampler.scalar(g.at(t), v);
             if (blend == Blend::Iso) {  // the surface lies between the last sample and this one: refined below
                 hit = k > 0 && device::isoInside(scalar, iso) != inside;
                 if (hit) break;
                 inside = device::isoInside(scalar, iso);
             }
-            if (blend == Blend::MIP) running = std::max(running, scalar);
-            if (blend == Blend::MinIP) running = std::min(running, scalar);
+            running = device::foldRunning(deviceBlend, running, scalar);
             const SampleValue s = blend == Blend::Composite ? sampler.classified(scalar) : SampleValue{};
 
             double wanted = 1;
@@ -218,19 +253,11 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t, dt);
                     break;
                 }
-                case Caster::Blocks: {
-                    // A block that cannot change the result is leapt to its far faces; else the voxel alone (whose
-                    // nearest samples share its scalar; a trilinear sample steps).
-                    Vec3i ext{1, 1, 1};
-                    if (device::blockSkipped(deviceBlend, blocks->lo(v), blocks->hi(v), running, iso, inside))
-                        for (int a = 0; a < 3; ++a) ext[a] = device::blockExtent(v[a], octantSign(oct, a));
-                    box = octantBox(v, oct, ext);
-                    wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t, dt);
-                    break;
-                }
+                case Caster::Blocks: break;  // one sample here (above: its leaps)
             }
-            // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap check.
-            if (settings.caster != Caster::Primitive) {
+            // The primitive caster steps one sample (n = 1): it needs no termination count and no leap check.
+            n = 1;
+            if (settings.caster != Caster::Primitive && settings.caster != Caster::Blocks) {
                 if (settings.trilinear) wanted = trilinearLeapSamples(wanted, box);
                 wanted = std::min(wanted, samplesToTermination(acc.depth, s.sigma, dt, ertDepth));
                 n = leapCount(g, iv, dt, k, kCount, wanted, box);

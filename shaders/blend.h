@@ -12,8 +12,13 @@
 namespace vr::device {
 #endif
 
-// Edge of the blocks whose scalar range the blocks caster reads, in voxels.
-VR_CONSTANT int kBlockSize = 8;
+// Edge of the finest blocks whose scalar range the blocks caster reads, in voxels, and the levels of coarser blocks
+// above them, each block of a level the union of 2 x 2 x 2 of the level below (8, 16, 32 and 64 voxels). At a new
+// block the caster leaps over the coarsest block that cannot change the result, else steps sample by sample to the
+// finest block's far faces.
+VR_CONSTANT int kBlockShift = 3;
+VR_CONSTANT int kBlockSize = 1 << kBlockShift;
+VR_CONSTANT int kBlockLevels = 4;
 
 // Bisections of the interval between the last sample before an iso-surface and the first beyond it: the hit lies
 // within dt 2^-(kIsoBisections + 1) of the surface of the interpolated scalar.
@@ -35,11 +40,27 @@ VR_FUNCTION bool blockSkipped(int blend, VR_REAL lo, VR_REAL hi, VR_REAL running
     return false;
 }
 
-// The box extent along one axis, from voxel v to the far face of its block in the direction `sign` of the ray
-// (octantBox's ext: the voxels from v to the block's last one that way, v's included).
-VR_FUNCTION int blockExtent(int v, int sign) {
-    int first = v - v % kBlockSize;
-    return sign > 0 ? first + kBlockSize - v : v - first + 1;
+// The running value after a scalar: MIP's largest, MinIP's smallest (the other blends keep none).
+VR_FUNCTION VR_REAL foldRunning(int blend, VR_REAL running, VR_REAL scalar) {
+    if (blend == kBlendMIP) return scalar > running ? scalar : running;
+    if (blend == kBlendMinIP) return scalar < running ? scalar : running;
+    return running;
+}
+
+// MIP and MinIP with the blocks caster start their running value at kProbes samples of the ray, at lattice indices
+// i kCount / (kProbes + 1): a value the result reaches (it is a sample's), so that a block that cannot pass it is
+// leapt over from the start (air before the first structure). The result, the running value, is the primitive
+// caster's exactly: the largest sample is sampled, or lies in a block that could not pass a value the ray has.
+VR_CONSTANT int kProbes = 3;
+VR_FUNCTION bool blendProbes(int blend) { return blend == kBlendMIP || blend == kBlendMinIP; }
+VR_FUNCTION uint probeSample(int i, uint kCount) { return uint(i + 1) * kCount / uint(kProbes + 1); }
+
+// The box extent along one axis, from voxel v >= 0 to the far face of its block of `size` voxels (a power of two) in
+// the direction `sign` of the ray (octantBox's ext: the voxels from v to the block's last one that way, v's
+// included). A mask, not a remainder: llvmpipe divides lane by lane.
+VR_FUNCTION int blockExtent(int v, int sign, int size) {
+    int first = v & ~(size - 1);
+    return sign > 0 ? first + size - v : v - first + 1;
 }
 
 #ifdef __cplusplus

@@ -178,6 +178,26 @@ vec3 normalOf(vec3 g) {
     return len > params.flatGradient ? g / len : vec3(0.0);
 }
 
+// A leap from sample k (voxel v) to the far faces of v's box of extents ext in the ray's octant (ACD, EACD, blocks):
+// the samples it wants without and with the margin of docs/ALGORITHMS.md section 8, and the box.
+struct BoxLeap {
+    float wanted, wantedWithMargin;
+    VoxelBox box;
+};
+
+BoxLeap octantBoxLeap(GridRay g, RayInterval iv, uint k, ivec3 v, int oct, ivec3 ext, LeapSlack slack) {
+    vec3 exits = boxExitsT(g, v, oct, ext);
+    float t = latticeT(iv, k);
+    return BoxLeap(boxLeapSamples(exits, vec3(0.0), t), boxLeapSamples(exits, slack.boxExit, t), octantBox(v, oct, ext));
+}
+
+// The first z texel of a level in the block extrema image. Selected, not indexed: an index into the uniforms' copy
+// would make llvmpipe keep all of it in memory.
+int levelZ(int level) {
+    ivec4 z = params.blockLevelZ;
+    return level == 0 ? z.x : level == 1 ? z.y : level == 2 ? z.z : z.w;
+}
+
 // A ray's state before its first sample: nothing composited, or the blend's running value before any scalar.
 vec4 initialComposite() {
     if (BLEND == kBlendMIP) return vec4(-kInfinity);
@@ -259,6 +279,12 @@ void main() {
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
     bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, iv, k))));
     if (!mine && !firstDispatch && !lastDispatch) return;
+    // MIP and MinIP with blocks: the running value starts at the probe samples (blend.h), which a volume of one brick
+    // holds (a bricked one starts without).
+    if (CASTER == kBlocks && blendProbes(BLEND) && !BRICKED && kCount > 0u)
+        for (int i = 0; i < kProbes; ++i, ++iterations)
+            running = foldRunning(BLEND, running, scalarAt(samplePosition(g, iv, probeSample(i, kCount))));
+    uint blockEnd = 0u;  // blocks: the samples before it lie in a block that could change the result
     for (uint n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth); k += n) {
         ivec3 v = sampleVoxel(g, iv, k);
         if (BRICKED && !inBrick(v)) break;
@@ -266,6 +292,32 @@ void main() {
             failed = true;
             break;
         }
+        // Blocks, at a new block: the coarsest block that cannot change the result is leapt over without a sample
+        // (average adds its one value n times); else the finest block's samples are taken one by one, without
+        // another lookup.
+        if (CASTER == kBlocks && k >= blockEnd) {
+            int size = 0;
+            float value = 0.0;
+            for (int level = kBlockLevels - 1; level >= 0; --level) {
+                int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
+                vec2 range = imageLoad(blockExtrema, ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift))).rg;
+                if (size == 0 && blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
+                    size = 1 << shift;
+                    value = range.x;
+                }
+            }
+            int edge = size > 0 ? size : kBlockSize;
+            ivec3 ext = ivec3(blockExtent(v.x, octantSign(oct, 0), edge), blockExtent(v.y, octantSign(oct, 1), edge),
+                              blockExtent(v.z, octantSign(oct, 2), edge));
+            BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
+            n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
+            if (size > 0) {
+                if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
+                continue;
+            }
+            blockEnd = k + n;
+        }
+
         // The sample's scalar. Composite classifies it (docs/ALGORITHMS.md section 2) and takes its gradient only
         // where its span is composited and shaded, below: a transparent span needs none.
         Footprint fp;
@@ -276,8 +328,7 @@ void main() {
             if (hit) break;
             inside = isoInside(scalar, params.isoValue);
         }
-        if (BLEND == kBlendMIP) running = max(running, scalar);
-        if (BLEND == kBlendMinIP) running = min(running, scalar);
+        running = foldRunning(BLEND, running, scalar);
         vec4 s = BLEND == kBlendComposite ? classify(scalar) : vec4(0.0);  // rgb colour, a: sigma
         precise float sampleDepth = s.a * params.dt;
 
@@ -289,34 +340,24 @@ void main() {
             wanted = pcLeapSamples(r, g, 0.0);
             wantedWithMargin = pcLeapSamples(r, g, slack.ball);
             box = chebyshevBall(v, r);
-        } else if (CASTER == kACD || CASTER == kEACD || CASTER == kBlocks) {
-            ivec3 ext = ivec3(1);
-            if (CASTER == kBlocks) {
-                // A block that cannot change the result is leapt to its far faces; else the voxel alone (whose
-                // nearest samples share its scalar; a trilinear sample steps).
-                vec2 range = imageLoad(blockExtrema, v / kBlockSize).rg;
-                if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside))
-                    ext = ivec3(blockExtent(v.x, octantSign(oct, 0)), blockExtent(v.y, octantSign(oct, 1)),
-                                blockExtent(v.z, octantSign(oct, 2)));
-            } else {
-                uvec4 f = loadField(fieldTexel(v, slot));
-                // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
-                ext = CASTER == kACD ? max(ivec3(1), ivec3(f.r)) : decodeExtents(f);
-            }
-            box = octantBox(v, oct, ext);
-            vec3 exits = boxExitsT(g, v, oct, ext);
-            float t = latticeT(iv, k);
-            wanted = boxLeapSamples(exits, vec3(0.0), t);
-            wantedWithMargin = boxLeapSamples(exits, slack.boxExit, t);
+        } else if (CASTER == kACD || CASTER == kEACD) {
+            uvec4 f = loadField(fieldTexel(v, slot));
+            // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
+            BoxLeap b = octantBoxLeap(g, iv, k, v, oct, CASTER == kACD ? max(ivec3(1), ivec3(f.r)) : decodeExtents(f),
+                                      slack);
+            wanted = b.wanted;
+            wantedWithMargin = b.wantedWithMargin;
+            box = b.box;
         }
-        // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count.
-        if (CASTER != kPrimitive) {
+        // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count; the
+        // blocks caster's samples here are one each.
+        if (CASTER != kPrimitive && CASTER != kBlocks) {
             float termination = samplesToTermination(depth, sampleDepth);
             if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
             n = leapCount(g, iv, k, kCount, min(wanted, termination), min(wantedWithMargin, termination), box);
         }
-        if (BLEND == kBlendAverage) sum = addPair(sum, CASTER == kPrimitive ? vec2(scalar, 0.0)
-                                                                             : exactProduct(float(n), scalar));
+        if (CASTER == kBlocks) n = 1u;
+        if (BLEND == kBlendAverage) sum = addPair(sum, vec2(scalar, 0.0));
         if (BLEND != kBlendComposite) continue;
 
         // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.

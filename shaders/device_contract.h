@@ -101,6 +101,7 @@ struct CasterParams {
     float isoValue;       // Blend::Iso's scalar
     float opacityLength;  // the length over which the TF gives its opacity (ScalarClassification::referenceStep):
                           // MIP, MinIP and average show the TF's opacity at their value as alpha
+    ivec4 blockLevelZ;    // the blocks caster: the first z texel of each level of blocks (render/block_extrema.h)
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -150,7 +151,8 @@ static_assert(offsetof(CasterParams, tableLastEntry) == 248);
 static_assert(offsetof(CasterParams, flatGradient) == 252);
 static_assert(offsetof(CasterParams, isoValue) == 256);
 static_assert(offsetof(CasterParams, opacityLength) == 260);
-static_assert(sizeof(CasterParams) == 272);  // the C++ struct rounds up to its vec4 alignment; std140 needs 264
+static_assert(offsetof(CasterParams, blockLevelZ) == 272);
+static_assert(sizeof(CasterParams) == 288);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);
 static_assert(sizeof(TilePush) == 96);

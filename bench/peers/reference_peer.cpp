@@ -18,12 +18,13 @@ PeerRun runReferencePeer(const PeerScene& scene, const std::filesystem::path& ou
 
     RenderSettings settings;
     settings.caster = Caster::Primitive;
+    settings.blend = scene.options.blend;
     settings.stepVoxels = scene.options.stepVoxels;
     settings.ert = scene.options.ert;
     // The primitive caster leaps nowhere, so trilinear sampling needs no trilinear regions; shading takes its
     // normals from the scalars' gradient at each sample (no normals in the classification).
     settings.trilinear = scene.options.userSettings;
-    settings.shading = scene.options.userSettings;
+    settings.shading = scene.options.userSettings && scene.options.blend == Blend::Composite;
     PeerRun run = runViews("ours-cpu-primitive", scene, outDir, [&](std::size_t i, Image& out) {
         const auto start = std::chrono::steady_clock::now();
         out = renderCpu(prepared, scene.views[i], settings).image;

@@ -36,7 +36,8 @@ struct BlendCaseOptions {
 };
 
 // At those views, nearest and trilinear: the blocks caster renders the primitive caster's image with no more
-// iterations on any pixel, and fewer in all for MIP and the iso-surface where there is air.
+// iterations on any pixel (but MIP's and MinIP's probe samples), and fewer in all for MIP and the iso-surface where
+// there is air.
 CaseCount blocksEqualPrimitive(const RenderFn& render, const BlendCaseOptions& options);
 
 // Every blend against a brute force that samples each ray's whole lattice: MIP, MinIP and average show the TF

@@ -9,6 +9,7 @@
 
 #include "core/prepared_volume.h"
 #include "render/render_settings.h"
+#include "shaders/blend.h"
 #include "volrender/vulkan/brick_grid.h"
 #include "volrender/vulkan/gpu_buffer.h"
 
@@ -81,6 +82,8 @@ public:
     const VolumeImage* field(Caster caster, int brick) const;
     // Each block's scalar range, one image for every brick (in whole-volume blocks); null when not uploaded.
     const VolumeImage* blockExtrema() const { return blockExtrema_.get(); }
+    // The first z texel of each level of blocks in that image.
+    const std::array<int, device::kBlockLevels>& blockLevelZ() const { return blockLevelZ_; }
     // Slab of each octant in the ACD / EACD images, -1 when not uploaded.
     const std::array<int, kOctants>& octantSlot() const { return slot_; }
     // How the EACD image holds the extents (RGBA8 exact, R16 log16, R8 joint8; see core/extent_code.h).
@@ -107,6 +110,7 @@ private:
     std::unique_ptr<DeviceBuffer> table_;
     std::array<Bricked, 4> fields_;  // by Caster, but blocks
     std::unique_ptr<VolumeImage> blockExtrema_;
+    std::array<int, device::kBlockLevels> blockLevelZ_{};
     std::array<int, kOctants> slot_;
     std::vector<UploadedResource> uploads_;
 };
