@@ -205,7 +205,9 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             if (blocks && k >= blockEnd) {
                 int size = 0;
                 double value = 0;
-                for (int level = device::kBlockLevels - 1; level >= 0 && size == 0; --level)
+                // Fine to coarse: a block contains its finer ones, so it can be leapt only where they can.
+                for (int level = 0; level < device::kBlockLevels && size == (level == 0 ? 0 : device::kBlockSize << (level - 1));
+                     ++level)
                     if (device::blockSkipped(deviceBlend, blocks->lo(level, v), blocks->hi(level, v), running, iso,
                                              inside)) {
                         size = device::kBlockSize << level;

@@ -16,7 +16,7 @@ namespace vr::device {
 // above them, each block of a level the union of 2 x 2 x 2 of the level below (8, 16, 32 and 64 voxels). At a new
 // block the caster leaps over the coarsest block that cannot change the result, else steps sample by sample to the
 // finest block's far faces.
-VR_CONSTANT int kBlockShift = 3;
+VR_CONSTANT int kBlockShift = 2;
 VR_CONSTANT int kBlockSize = 1 << kBlockShift;
 VR_CONSTANT int kBlockLevels = 4;
 

@@ -298,10 +298,11 @@ void main() {
         if (CASTER == kBlocks && k >= blockEnd) {
             int size = 0;
             float value = 0.0;
-            for (int level = kBlockLevels - 1; level >= 0; --level) {
+            for (int level = 0; level < kBlockLevels; ++level) {
                 int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
+                if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
                 vec2 range = imageLoad(blockExtrema, ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift))).rg;
-                if (size == 0 && blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
+                if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
                     size = 1 << shift;
                     value = range.x;
                 }

@@ -31,7 +31,11 @@ PeerRun runReferencePeer(const PeerScene& scene, const std::filesystem::path& ou
         return millisecondsSince(start);
     });
     run.setupMs = setupMs;
-    run.notes = scene.options.userSettings
+    run.notes = scene.options.blend == Blend::MIP
+                    ? std::string("our CPU reference (volrender --cpu --caster primitive --blend mip") +
+                          (scene.options.userSettings ? ")" : " --nearest)") +
+                          ": the image to compare with; double precision, not a speed contender"
+                : scene.options.userSettings
                     ? "our CPU reference (volrender --cpu --caster primitive): trilinear, Phong with a headlight "
                       "(gradient interpolated per sample, then shaded); the image to compare with; double precision, "
                       "not a speed contender; setup = load + classify + segment"

@@ -97,7 +97,9 @@ PeerRun runVtkPeer(const PeerScene& scene, VtkMapper kind, const std::filesystem
         return ms;
     });
     run.setupMs = setupMs;
-    run.notes = notes(kind, user);
+    run.notes = scene.options.blend == Blend::MIP
+                    ? std::string("SetBlendModeToMaximumIntensity (shading unused); ") + notes(kind, user)
+                    : std::string(notes(kind, user));
     return run;
 }
 
