@@ -45,8 +45,9 @@ layout(set = 0, binding = kBindingScalarsFloat, r32f) uniform readonly image3D s
 layout(set = 0, binding = kBindingField8, r8ui) uniform readonly uimage3D field8;
 layout(set = 0, binding = kBindingField16, r16ui) uniform readonly uimage3D field16;
 layout(set = 0, binding = kBindingFieldRGBA8, rgba8ui) uniform readonly uimage3D fieldRGBA8;
-// Each block's scalar range (lo, hi) over the whole volume, for the blocks caster (render/block_extrema.h).
-layout(set = 0, binding = kBindingBlockExtrema, rg32f) uniform readonly image3D blockExtrema;
+// Each block's scalar range over the whole volume, lo and hi side by side along x, for the blocks caster
+// (render/block_extrema.h).
+layout(set = 0, binding = kBindingBlockExtrema, r32f) uniform readonly image3D blockExtrema;
 // The transfer table: entry i classifies the scalar tableLo + i step (rgb colour, a: extinction sigma).
 layout(set = 0, binding = kBindingTransferTable, std430) readonly buffer TransferTable { vec4 transferEntry[]; };
 layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels { OutPixel outPixel[]; };
@@ -301,7 +302,9 @@ void main() {
             for (int level = 0; level < kBlockLevels; ++level) {
                 int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
                 if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
-                vec2 range = imageLoad(blockExtrema, ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift))).rg;
+                ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
+                vec2 range = vec2(imageLoad(blockExtrema, ivec3(2 * block.x, block.yz)).r,
+                                  imageLoad(blockExtrema, ivec3(2 * block.x + 1, block.yz)).r);
                 if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
                     size = 1 << shift;
                     value = range.x;

@@ -54,9 +54,8 @@ const std::vector<CasterImageFormat>& casterImageFormats() {
         {scalarFormat(ScalarType::UInt8), "R8_UINT", "uint8 scalars, PC, ACD and joint8 EACD"},
         {scalarFormat(ScalarType::Int16), "R16_SINT", "int16 scalars"},
         {scalarFormat(ScalarType::UInt16), "R16_UINT", "uint16 scalars and log16 EACD"},
-        {scalarFormat(ScalarType::Float32), "R32_SFLOAT", "float32 scalars"},
-        {eacdFormat(ExtentCode::Exact), "R8G8B8A8_UINT", "exact EACD"},
-        {kBlockExtremaFormat, "R32G32_SFLOAT", "the blocks caster's scalar ranges"}};
+        {scalarFormat(ScalarType::Float32), "R32_SFLOAT", "float32 scalars and the blocks caster's scalar ranges"},
+        {eacdFormat(ExtentCode::Exact), "R8G8B8A8_UINT", "exact EACD"}};
     return formats;
 }
 
@@ -195,7 +194,8 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     if (std::find(contents.casters.begin(), contents.casters.end(), Caster::Blocks) != contents.casters.end()) {
         const BlockExtrema e = vr::blockExtrema(prepared.scalars);
         const std::size_t bytes = e.range.size() * sizeof(float);
-        blockExtrema_ = std::make_unique<VolumeImage>(ctx, pool, e.imageDims, kBlockExtremaFormat, e.range.data(), bytes);
+        const Vec3i texels{2 * e.imageDims.x, e.imageDims.y, e.imageDims.z};  // lo, hi side by side
+        blockExtrema_ = std::make_unique<VolumeImage>(ctx, pool, texels, kBlockExtremaFormat, e.range.data(), bytes);
         blockLevelZ_ = e.levelZ;
         uploads_.push_back({"blocks", bytes, 0});
     }

@@ -29,8 +29,9 @@ struct GpuVolumeContents {
     unsigned octants = 0;
 };
 
-// The block extrema's format (lo, hi per block: render/block_extrema.h).
-constexpr vk::Format kBlockExtremaFormat = vk::Format::eR32G32Sfloat;
+// The block extrema's format: R32F, a block's lo and hi side by side along x (render/block_extrema.h's texels, two
+// floats each), a format every caster device reads already (float scalars), where RG32F would be one more.
+constexpr vk::Format kBlockExtremaFormat = vk::Format::eR32Sfloat;
 
 // The storage-image format of the scalars of each type: R8_UINT, R16_SINT, R16_UINT, R32_SFLOAT.
 vk::Format scalarFormat(ScalarType type);
