@@ -1,7 +1,7 @@
-// The scalar range of each block of the volume at every level of shaders/blend.h (edges of 8, 16, 32 and 64 voxels),
+// The scalar range of each block of the volume at every level of shaders/blend.h (edges of 4, 8, 16 and 32 voxels),
 // what the blocks caster leaps by (docs/ALGORITHMS.md section 11): over the block's voxels and the trilinear
 // footprints of its samples, so that any sample whose voxel lies in the block, nearest or trilinear, takes a value
-// in the range. Built from the scalars at render time (the CPU reference) or upload (the device); 8 bytes per 512
+// in the range. Built from the scalars at render time (the CPU reference) or upload (the device); 8 bytes per 64
 // voxels and a seventh more for the coarser levels.
 #pragma once
 #include <array>

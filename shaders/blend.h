@@ -13,7 +13,7 @@ namespace vr::device {
 #endif
 
 // Edge of the finest blocks whose scalar range the blocks caster reads, in voxels, and the levels of coarser blocks
-// above them, each block of a level the union of 2 x 2 x 2 of the level below (8, 16, 32 and 64 voxels). At a new
+// above them, each block of a level the union of 2 x 2 x 2 of the level below (4, 8, 16 and 32 voxels). At a new
 // block the caster leaps over the coarsest block that cannot change the result, else steps sample by sample to the
 // finest block's far faces.
 VR_CONSTANT int kBlockShift = 2;
