@@ -266,6 +266,7 @@ bool hasFieldOf(const PreparedVolume& p, Caster c) {
         case Caster::PC: return p.fields.hasPC();
         case Caster::ACD: return p.fields.hasACD();
         case Caster::EACD: return p.fields.hasEACD();
+        case Caster::Blocks: return true;  // built from the scalars
     }
     return false;
 }

@@ -39,6 +39,7 @@ const ProbeCounts* countsOf(const RayProbe& probe, Caster c) {
         case Caster::PC: return present(probe.pc);
         case Caster::ACD: return present(probe.acd);
         case Caster::EACD: return present(probe.eacd);
+        case Caster::Blocks: return nullptr;  // a composite render never leaps by blocks
     }
     return nullptr;
 }
@@ -49,6 +50,7 @@ double fieldBytesOf(const FieldBytes& bytes, Caster c) {
         case Caster::PC: return double(bytes.pc);
         case Caster::ACD: return double(bytes.acd);
         case Caster::EACD: return double(bytes.eacd);
+        case Caster::Blocks: return 0;
     }
     return 0;
 }

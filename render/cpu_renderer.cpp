@@ -1,5 +1,6 @@
-// The CPU reference: one loop for the four casters (docs/ALGORITHMS.md section 5), double precision throughout.
-// The caster only decides n, the number of lattice samples one fetch stands for. Each span is shaded once, at
+// The CPU reference: one loop for the casters and the blends (docs/ALGORITHMS.md sections 5 and 11), double
+// precision throughout. The caster only decides n, the number of lattice samples one fetch stands for; the blend
+// what the ray makes of them. Each span is shaded once, at
 // its first sample (as the thesis does); with a headlight or any directional light the shade is constant along
 // a ray, so with thresholds 0 this equals shading every sample.
 #include "render/cpu_renderer.h"
@@ -9,15 +10,19 @@
 
 #include <chrono>
 #include <climits>
+#include <limits>
+#include <optional>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
 
 #include "core/errors.h"
 #include "core/gradient.h"
+#include "render/block_extrema.h"
 #include "render/ray_setup.h"
 #include "render/render_checks.h"
 #include "render/span.h"
+#include "shaders/blend.h"
 #include "shaders/transfer_lookup.h"
 
 namespace vr {
@@ -34,47 +39,56 @@ struct SampleValue {
 // shaders/transfer_lookup.h's, here in double.
 class Sampler {
 public:
-    Sampler(const Volume& scalars, const ScalarClassification& c, bool shading)
-        : scalars_(scalars), c_(c), shading_(shading) {}
+    Sampler(const Volume& scalars, const ScalarClassification& c, bool trilinear)
+        : scalars_(scalars), c_(c), trilinear_(trilinear) {}
 
-    SampleValue nearest(const Vec3i& v) const {
-        SampleValue s = classified(scalars_.at(v.x, v.y, v.z));
-        if (shading_) s.normal = normalOf(centralGradient(scalars_, v.x, v.y, v.z));
-        return s;
+    // The scalar of the sample at grid position p, whose voxel is v: v's (nearest), or cell-centred trilinear
+    // (voxel u's value sits at u + 0.5; clamped to the edge outside), interpolated before it is classified.
+    double scalar(const Vec3d& p, const Vec3i& v) const {
+        if (!trilinear_) return scalars_.at(v.x, v.y, v.z);
+        const Cell c = cellOf(p);
+        std::array<double, 8> s;
+        for (int i = 0; i < 8; ++i) s[i] = scalars_.at(c.corner[i].x, c.corner[i].y, c.corner[i].z);
+        return device::trilinearBlend(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], c.f.x, c.f.y, c.f.z);
     }
 
-    // Cell-centred trilinear: voxel v's value sits at v + 0.5; clamped to the edge outside. The scalar is
-    // interpolated, then classified (post-classification); the gradient is the same blend of the corners' gradients.
-    SampleValue trilinear(const Vec3d& p) const {
-        const Vec3i& dims = scalars_.grid.dims;
-        const Vec3d q = p - Vec3d{0.5, 0.5, 0.5};
-        const Vec3i base = floorVoxel(q);
-        const Vec3d f = q - Vec3d(base);
-        std::array<Vec3i, 8> corner;  // x fastest: c000, c100, c010, c110, c001, ...
-        for (int c = 0; c < 8; ++c)
-            corner[c] = clampVoxel({base.x + (c & 1), base.y + ((c >> 1) & 1), base.z + ((c >> 2) & 1)}, dims);
-        auto blend = [&](auto value) {
-            std::array<double, 8> v;
-            for (int c = 0; c < 8; ++c) v[c] = value(corner[c]);
-            return device::trilinearBlend(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], f.x, f.y, f.z);
-        };
-        SampleValue s = classified(blend([&](const Vec3i& u) { return double(scalars_.at(u.x, u.y, u.z)); }));
-        if (shading_) {
-            std::array<Vec3d, 8> g;
-            for (int c = 0; c < 8; ++c) g[c] = centralGradient(scalars_, corner[c].x, corner[c].y, corner[c].z);
-            Vec3d gradient;
-            for (int a = 0; a < 3; ++a)
-                gradient[a] = device::trilinearBlend(g[0][a], g[1][a], g[2][a], g[3][a], g[4][a], g[5][a], g[6][a],
-                                                     g[7][a], f.x, f.y, f.z);
-            s.normal = normalOf(gradient);
-        }
-        return s;
+    // The unit gradient at the sample, or zero where flat: v's central difference, or the same trilinear blend of
+    // the corners' gradients as the scalar's.
+    Vec3d normal(const Vec3d& p, const Vec3i& v) const {
+        if (!trilinear_) return normalOf(centralGradient(scalars_, v.x, v.y, v.z));
+        const Cell c = cellOf(p);
+        std::array<Vec3d, 8> g;
+        for (int i = 0; i < 8; ++i) g[i] = centralGradient(scalars_, c.corner[i].x, c.corner[i].y, c.corner[i].z);
+        Vec3d gradient;
+        for (int a = 0; a < 3; ++a)
+            gradient[a] = device::trilinearBlend(g[0][a], g[1][a], g[2][a], g[3][a], g[4][a], g[5][a], g[6][a],
+                                                 g[7][a], c.f.x, c.f.y, c.f.z);
+        return normalOf(gradient);
     }
 
-private:
+    const Vec3i& dims() const { return scalars_.grid.dims; }
+
     SampleValue classified(double scalar) const {
         const device::TableSample t = device::lookUpTable(c_.table, scalar);
         return {t.sigma, {t.colour[0], t.colour[1], t.colour[2]}, {0, 0, 0}};
+    }
+
+private:
+    // The cell of a trilinear sample at p: its corners, clamped to the volume (x fastest: c000, c100, c010, c110,
+    // c001, ...), and the weights of the upper ones.
+    struct Cell {
+        std::array<Vec3i, 8> corner;
+        Vec3d f;
+    };
+    Cell cellOf(const Vec3d& p) const {
+        const Vec3d q = p - Vec3d{0.5, 0.5, 0.5};
+        const Vec3i base = floorVoxel(q);
+        Cell c;
+        c.f = q - Vec3d(base);
+        for (int i = 0; i < 8; ++i)
+            c.corner[i] = clampVoxel({base.x + (i & 1), base.y + ((i >> 1) & 1), base.z + ((i >> 2) & 1)},
+                                     scalars_.grid.dims);
+        return c;
     }
 
     // The unit gradient, or zero where the gradient is no longer than the flat length.
@@ -85,8 +99,46 @@ private:
 
     const Volume& scalars_;
     const ScalarClassification& c_;
-    bool shading_;
+    bool trilinear_;
 };
+
+// What MIP, MinIP and average show (docs/ALGORITHMS.md section 11): the value's TF colour at the TF's opacity,
+// over the background; the background alone for a ray without samples.
+Vec3d shownValue(const Sampler& sampler, const ScalarClassification& c, double value, bool sampled,
+                 const Vec3d& background, double& alpha) {
+    if (!sampled) {
+        alpha = 0;
+        return background;
+    }
+    const SampleValue s = sampler.classified(value);
+    alpha = opacityFromExtinction(s.sigma, c.referenceStep);
+    return s.colour * alpha + background * (1 - alpha);
+}
+
+// The extents of the box from v to the far faces of its block of `size` voxels in the ray's octant: a block's leap
+// (shaders/blend.h).
+Vec3i blockExtents(const Vec3i& v, int oct, int size) {
+    Vec3i ext;
+    for (int a = 0; a < 3; ++a) ext[a] = device::blockExtent(v[a], octantSign(oct, a), size);
+    return ext;
+}
+
+// The iso-surface between samples k - 1 and k of the ray, on opposite sides of the iso-value: the interval halved
+// kIsoBisections times by the side of the interpolated scalar at its middle, the hit at the middle of the last one.
+// Returns its TF colour, shaded with the normal there.
+Vec3d isoSurface(const Sampler& sampler, const GridRay& g, const RayClip& clip, const RayInterval& iv, double dt,
+                 int64_t k, double iso, bool shading, const Vec3d& toEye, const Vec3d& toLight) {
+    double before = latticeT(iv, dt, k - 1), beyond = latticeT(iv, dt, k);
+    const bool insideBeyond = device::isoInside(sampler.scalar(g.at(beyond), sampleVoxel(g, beyond, clip)), iso);
+    for (int i = 0; i < device::kIsoBisections; ++i) {
+        const double middle = (before + beyond) / 2;
+        const bool insideMiddle = device::isoInside(sampler.scalar(g.at(middle), sampleVoxel(g, middle, clip)), iso);
+        (insideMiddle == insideBeyond ? beyond : before) = middle;
+    }
+    const double t = (before + beyond) / 2;
+    const Vec3d colour = sampler.classified(iso).colour;
+    return shading ? shade(colour, sampler.normal(g.at(t), sampleVoxel(g, t, clip)), toEye, toLight) : colour;
+}
 
 }  // namespace
 
@@ -98,7 +150,13 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const DistanceFields& fields = prepared.fields;
     const Vec3i dims = grid.dims;
     const double dt = settings.stepVoxels * grid.smallestSpacing(), ertDepth = terminationDepth(settings.ert);
-    const Sampler sampler(prepared.scalars, prepared.classification, settings.shading);
+    const Sampler sampler(prepared.scalars, prepared.classification, settings.trilinear);
+    const Blend blend = settings.blend;
+    const int deviceBlend = int(blend);  // shaders/blend.h's numbering
+    static_assert(int(Blend::Iso) == device::kBlendIso && int(Blend::Average) == device::kBlendAverage);
+    const double iso = settings.isoValue;
+    const std::optional<BlockExtrema> blocks =
+        settings.caster == Caster::Blocks ? std::optional(blockExtrema(prepared.scalars)) : std::nullopt;
     // ACD and EACD may hold only the octants some views need (volrender's one-command path).
     const unsigned heldOctants = settings.caster == Caster::ACD    ? fields.acdOctants()
                                  : settings.caster == Caster::EACD ? fields.eacdOctants()
@@ -119,7 +177,19 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         const Vec3d toLight = light ? *light : toEye;
 
         Accumulator acc;
+        // The other blends' running values: the largest or smallest scalar, the sum, the iso-surface's side.
+        double running = blend == Blend::MinIP ? std::numeric_limits<double>::infinity()
+                                               : -std::numeric_limits<double>::infinity();
+        double sum = 0;
+        bool inside = false, hit = false;
         long long iterations = 0;
+        // MIP and MinIP with blocks: the running value starts at the probe samples (shaders/blend.h).
+        if (blocks && device::blendProbes(deviceBlend) && kCount > 0 && kCount <= INT32_MAX)
+            for (int i = 0; i < device::kProbes; ++i, ++iterations) {
+                const double t = latticeT(iv, dt, device::probeSample(i, device::uint(kCount)));
+                running = device::foldRunning(deviceBlend, running, sampler.scalar(g.at(t), sampleVoxel(g, t, clip)));
+            }
+        int64_t blockEnd = 0;  // blocks: the samples before it lie in a block that could change the result
         int64_t k = 0;  // the next lattice sample: also the samples the spans so far represent
         for (int64_t n = 1; k < kCount && acc.alpha < settings.ert; k += n) {
             if (++iterations > settings.maxIterationsPerRay)
@@ -129,7 +199,37 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             const double t = latticeT(iv, dt, k);
             const Vec3i v = sampleVoxel(g, t, clip);
             const std::size_t i = linearIndex(dims, v.x, v.y, v.z);
-            const SampleValue s = settings.trilinear ? sampler.trilinear(g.at(t)) : sampler.nearest(v);
+            // Blocks, at a new block: the coarsest block that cannot change the result is leapt over without a
+            // sample (average adds its one value n times); else the finest block's samples are taken one by one,
+            // without another lookup.
+            if (blocks && k >= blockEnd) {
+                int size = 0;
+                double value = 0;
+                // Fine to coarse: a block contains its finer ones, so it can be leapt only where they can.
+                for (int level = 0; level < device::kBlockLevels && size == (level == 0 ? 0 : device::kBlockSize << (level - 1));
+                     ++level)
+                    if (device::blockSkipped(deviceBlend, blocks->lo(level, v), blocks->hi(level, v), running, iso,
+                                             inside)) {
+                        size = device::kBlockSize << level;
+                        value = blocks->lo(level, v);
+                    }
+                const Vec3i ext = blockExtents(v, oct, size > 0 ? size : device::kBlockSize);
+                n = leapCount(g, iv, dt, k, kCount, boxLeapSamples(boxExitT(g, v, oct, ext), t, dt),
+                              octantBox(v, oct, ext));
+                if (size > 0) {
+                    sum += double(n) * value;
+                    continue;
+                }
+                blockEnd = k + n;
+            }
+            const double scalar = sampler.scalar(g.at(t), v);
+            if (blend == Blend::Iso) {  // the surface lies between the last sample and this one: refined below
+                hit = k > 0 && device::isoInside(scalar, iso) != inside;
+                if (hit) break;
+                inside = device::isoInside(scalar, iso);
+            }
+            running = device::foldRunning(deviceBlend, running, scalar);
+            const SampleValue s = blend == Blend::Composite ? sampler.classified(scalar) : SampleValue{};
 
             double wanted = 1;
             VoxelBox box{v, v};
@@ -155,27 +255,43 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t, dt);
                     break;
                 }
+                case Caster::Blocks: break;  // one sample here (above: its leaps)
             }
-            // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap check.
-            if (settings.caster != Caster::Primitive) {
+            // The primitive caster steps one sample (n = 1): it needs no termination count and no leap check.
+            n = 1;
+            if (settings.caster != Caster::Primitive && settings.caster != Caster::Blocks) {
                 if (settings.trilinear) wanted = trilinearLeapSamples(wanted, box);
                 wanted = std::min(wanted, samplesToTermination(acc.depth, s.sigma, dt, ertDepth));
                 n = leapCount(g, iv, dt, k, kCount, wanted, box);
             }
+            if (blend == Blend::Average) sum += double(n) * scalar;
+            if (blend != Blend::Composite) continue;
 
             const double length = double(n) * dt, spanAlpha = spanOpacity(s.sigma, length);
-            if (spanAlpha > 0)
-                acc.composite(settings.shading ? shade(s.colour, s.normal, toEye, toLight) : s.colour, spanAlpha,
-                              s.sigma * length);
+            if (spanAlpha > 0) {
+                const Vec3d shaded =
+                    settings.shading ? shade(s.colour, sampler.normal(g.at(t), v), toEye, toLight) : s.colour;
+                acc.composite(shaded, spanAlpha, s.sigma * length);
+            }
         }
 
+        Vec3d c = acc.colour + settings.background * (1 - acc.alpha);
+        double alpha = acc.alpha;
+        const ScalarClassification& classification = prepared.classification;
+        if (blend == Blend::MIP || blend == Blend::MinIP)
+            c = shownValue(sampler, classification, running, kCount > 0, settings.background, alpha);
+        if (blend == Blend::Average)
+            c = shownValue(sampler, classification, sum / double(kCount), kCount > 0, settings.background, alpha);
+        if (blend == Blend::Iso) {
+            alpha = hit ? 1 : 0;
+            c = hit ? isoSurface(sampler, g, clip, iv, dt, k, iso, settings.shading, toEye, toLight) : settings.background;
+        }
         const std::size_t p = std::size_t(py) * camera.width + px;
         float* out = result.image.pixel(px, py);
-        const Vec3d c = acc.colour + settings.background * (1 - acc.alpha);
         out[0] = float(c.x);
         out[1] = float(c.y);
         out[2] = float(c.z);
-        out[3] = float(acc.alpha);
+        out[3] = float(alpha);
         result.iterations[p] = uint32_t(std::min<long long>(iterations, UINT32_MAX));
         result.samples[p] = uint64_t(k);
     };

@@ -1,4 +1,5 @@
-// The CPU reference renderer: the four casters of docs/ALGORITHMS.md section 5 in double precision.
+// The CPU reference renderer: the casters of docs/ALGORITHMS.md section 5 and the blends of section 11 in double
+// precision.
 #pragma once
 #include "render/camera.h"
 #include "core/prepared_volume.h"

@@ -27,6 +27,21 @@ void requireSamplesWithinCap(const GridGeometry& grid, const RenderSettings& s) 
     throw InputError(text);
 }
 
+void checkBlend(const RenderSettings& s) {
+    const std::string caster(casterName(s.caster)), blend(blendName(s.blend));
+    // The regions are made of one classification each, which bounds no scalar: a leap through them could pass a
+    // larger maximum or an iso-crossing.
+    if (s.blend != Blend::Composite && leapsThroughRegions(s.caster))
+        throw InputError("--caster " + caster + " with --blend " + blend + ": the " + caster +
+                         " caster leaps through regions of one classification, which do not bound the scalar a " +
+                         blend + " blend follows (use --caster blocks or primitive)");
+    if (s.blend == Blend::Composite && s.caster == Caster::Blocks)
+        throw InputError("--caster blocks with --blend composite: the blocks caster leaps by scalar extrema, for "
+                         "--blend mip, minip, average or iso (composite leaps with pc, acd or eacd)");
+    if (s.blend == Blend::Iso && !std::isfinite(s.isoValue))
+        throw InputError("--iso: the iso-value must be a finite number");
+}
+
 void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) {
     const GridGeometry& grid = prepared.grid();
     const std::size_t voxels = grid.voxels();
@@ -92,12 +107,13 @@ void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& seg
         throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
     if (s.lightDirection && !(length(*s.lightDirection) > 0 && std::isfinite(length(*s.lightDirection))))
         throw InputError("--light: the light direction must be a finite non-zero vector");
-    if (s.trilinear && s.caster != Caster::Primitive && !segmentation.trilinear)
+    checkBlend(s);
+    if (s.trilinear && leapsThroughRegions(s.caster) && !segmentation.trilinear)
         throw InputError("trilinear sampling with the " + std::string(casterName(s.caster)) +
                          " caster needs a volume segmented for trilinear sampling (volprep without --nearest; or "
                          "render with --nearest)");
     // Regions that ignored the normals would let a leap carry one shade across a change of normal.
-    if (s.shading && s.caster != Caster::Primitive && !segmentation.useNormals)
+    if (s.shading && s.blend == Blend::Composite && leapsThroughRegions(s.caster) && !segmentation.useNormals)
         throw InputError("shading with the " + std::string(casterName(s.caster)) +
                          " caster needs regions made with normals (prepared with --no-normals: render without "
                          "shading, or with the primitive caster)");

@@ -20,8 +20,13 @@ void checkClipPlanes(const std::vector<ClipPlane>& planes);
 // Throws InputError naming --crop: a crop box that is empty or reaches outside the grid's voxels.
 void checkCrop(const GridGeometry& grid, const CropBox& crop);
 
-// The part of checkRenderInputs that needs no voxel data (step, ERT, light, clipping; trilinear leaping on regions made for
-// it, shaded leaping on regions made with normals): what a render of a volume already on a device checks.
+// Throws InputError when the caster does not leap in a way the blend allows (PC, ACD and EACD composite only, blocks
+// any other blend) or the iso-value is not finite.
+void checkBlend(const RenderSettings& settings);
+
+// The part of checkRenderInputs that needs no voxel data (step, ERT, light, clipping, blend; trilinear leaping on
+// regions made for it, shaded leaping on regions made with normals): what a render of a volume already on a device
+// checks.
 void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& segmentation,
                          const RenderSettings& settings);
 

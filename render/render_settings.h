@@ -8,11 +8,20 @@
 
 namespace vr {
 
-enum class Caster { Primitive, PC, ACD, EACD };
+// Blocks leaps by the per-block scalar extrema (render/block_extrema.h): the leap of the blends other than composite,
+// whose results follow the scalar, not the classification the regions of PC, ACD and EACD are made of.
+enum class Caster { Primitive, PC, ACD, EACD, Blocks };
 enum class Projection { Orthographic, Perspective };
+// What a ray makes of its samples (docs/ALGORITHMS.md section 11): front-to-back compositing of the classified
+// samples; the largest, smallest or mean scalar; the first crossing of an iso-value.
+enum class Blend { Composite, MIP, MinIP, Average, Iso };
 
-std::string_view casterName(Caster c);    // "primitive", "pc", "acd", "eacd"
+std::string_view casterName(Caster c);    // "primitive", "pc", "acd", "eacd", "blocks"
 Caster parseCaster(std::string_view name); // throws InputError
+std::string_view blendName(Blend b);      // "composite", "mip", "minip", "average", "iso"
+Blend parseBlend(std::string_view name);  // throws InputError naming --blend
+// Whether the caster leaps through the regions of one classification (PC, ACD, EACD).
+inline bool leapsThroughRegions(Caster c) { return c == Caster::PC || c == Caster::ACD || c == Caster::EACD; }
 
 struct ViewParams {
     Projection projection = Projection::Orthographic;
@@ -42,6 +51,8 @@ struct CropBox {
 
 struct RenderSettings {
     Caster caster = Caster::Primitive;
+    Blend blend = Blend::Composite;
+    double isoValue = 0;       // the iso-surface's scalar (Blend::Iso)
     double stepVoxels = 0.5;   // dt in voxels of the smallest spacing
     double ert = 0.99;         // early ray termination: stop when alpha >= ert
     bool shading = true;       // Phong with one directional light; false: emission-absorption only

@@ -1,6 +1,6 @@
-// The four casters of docs/ALGORITHMS.md section 5 in one loop: renderCpu's trace in GLSL.
-// Specialization constants pick the caster, the sampling, the shading and the scalars' type, so each variant
-// compiles to a pipeline without the others' branches. One invocation per pixel of one tile and one brick
+// The casters of docs/ALGORITHMS.md section 5 and the blends of section 11 in one loop: renderCpu's trace in GLSL.
+// Specialization constants pick the caster, the blend, the sampling, the shading and the scalars' type, so each
+// variant compiles to a pipeline without the others' branches. One invocation per pixel of one tile and one brick
 // (brick_state.glsl: a ray's state carries over from brick to brick, so bricks change no leap). Every sample is
 // classified from the scalars through the transfer table, as the CPU reference classifies it; each span is shaded
 // once, at its first sample (equal to shading every sample for a directional light or headlight when thresholds
@@ -8,6 +8,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
+#include "blend.h"
 #include "device_contract.h"
 #include "transfer_lookup.h"
 
@@ -23,6 +24,9 @@ layout(constant_id = kSpecIdBricked) const bool BRICKED = true;
 layout(constant_id = kSpecIdPerspective) const bool PERSPECTIVE = false;
 // Which of the scalar images holds the volume (its type).
 layout(constant_id = kSpecIdScalarType) const int SCALAR_TYPE = kScalarFloat32;
+// What a ray makes of its samples (blend.h): composite, or a running value of the scalar that the blocks caster
+// leaps by.
+layout(constant_id = kSpecIdBlend) const int BLEND = kBlendComposite;
 
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
@@ -41,6 +45,9 @@ layout(set = 0, binding = kBindingScalarsFloat, r32f) uniform readonly image3D s
 layout(set = 0, binding = kBindingField8, r8ui) uniform readonly uimage3D field8;
 layout(set = 0, binding = kBindingField16, r16ui) uniform readonly uimage3D field16;
 layout(set = 0, binding = kBindingFieldRGBA8, rgba8ui) uniform readonly uimage3D fieldRGBA8;
+// Each block's scalar range over the whole volume, lo and hi side by side along x, for the blocks caster
+// (render/block_extrema.h).
+layout(set = 0, binding = kBindingBlockExtrema, r32f) uniform readonly image3D blockExtrema;
 // The transfer table: entry i classifies the scalar tableLo + i step (rgb colour, a: extinction sigma).
 layout(set = 0, binding = kBindingTransferTable, std430) readonly buffer TransferTable { vec4 transferEntry[]; };
 layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels { OutPixel outPixel[]; };
@@ -172,6 +179,65 @@ vec3 normalOf(vec3 g) {
     return len > params.flatGradient ? g / len : vec3(0.0);
 }
 
+// A leap from sample k (voxel v) to the far faces of v's box of extents ext in the ray's octant (ACD, EACD, blocks):
+// the samples it wants without and with the margin of docs/ALGORITHMS.md section 8, and the box.
+struct BoxLeap {
+    float wanted, wantedWithMargin;
+    VoxelBox box;
+};
+
+BoxLeap octantBoxLeap(GridRay g, RayInterval iv, uint k, ivec3 v, int oct, ivec3 ext, LeapSlack slack) {
+    vec3 exits = boxExitsT(g, v, oct, ext);
+    float t = latticeT(iv, k);
+    return BoxLeap(boxLeapSamples(exits, vec3(0.0), t), boxLeapSamples(exits, slack.boxExit, t), octantBox(v, oct, ext));
+}
+
+// The first z texel of a level in the block extrema image. Selected, not indexed: an index into the uniforms' copy
+// would make llvmpipe keep all of it in memory.
+int levelZ(int level) {
+    ivec4 z = params.blockLevelZ;
+    return level == 0 ? z.x : level == 1 ? z.y : level == 2 ? z.z : z.w;
+}
+
+// A ray's state before its first sample: nothing composited, or the blend's running value before any scalar.
+vec4 initialComposite() {
+    if (BLEND == kBlendMIP) return vec4(-kInfinity);
+    if (BLEND == kBlendMinIP) return vec4(kInfinity);
+    if (BLEND == kBlendAverage) return vec4(0.0);
+    return vec4(vec3(0.0), 1.0);
+}
+
+// What MIP, MinIP and average show (docs/ALGORITHMS.md section 11): the value's TF colour at the TF's opacity, over
+// the background; the background alone for a ray without samples.
+vec4 shownValue(float value, bool sampled) {
+    if (!sampled) return vec4(params.background.rgb, 0.0);
+    vec4 c = classify(value);
+    float alpha = spanOpacity(c.a * params.opacityLength);
+    return vec4(c.rgb * alpha + params.background.rgb * (1.0 - alpha), alpha);
+}
+
+// The scalar at grid position p, sampled as the loop samples it.
+float scalarAt(vec3 p) { return TRILINEAR ? footprintScalar(footprintAt(p)) : loadScalar(clampVoxel(floorVoxel(p))); }
+
+// The iso-surface between samples k - 1 and k, on opposite sides of the iso-value: the interval halved
+// kIsoBisections times by the side of the interpolated scalar at its middle, the hit at the middle of the last one
+// (renderCpu's isoSurface). Its TF colour, shaded with the normal there.
+vec3 isoSurface(GridRay g, RayInterval iv, uint k, vec3 toEye, vec3 toLight) {
+    float before = latticeT(iv, k - 1u), beyond = latticeT(iv, k);
+    bool insideBeyond = isoInside(scalarAt(rayAt(g, beyond)), params.isoValue);
+    for (int i = 0; i < kIsoBisections; ++i) {
+        precise float middle = (before + beyond) * 0.5;
+        if (isoInside(scalarAt(rayAt(g, middle)), params.isoValue) == insideBeyond) beyond = middle;
+        else before = middle;
+    }
+    precise float t = (before + beyond) * 0.5;
+    vec3 p = rayAt(g, t);
+    vec3 colour = classify(params.isoValue).rgb;
+    if (!SHADING) return colour;
+    return shade(colour, normalOf(TRILINEAR ? footprintGradient(footprintAt(p)) : voxelGradient(clampVoxel(floorVoxel(p)))),
+                 toEye, toLight);
+}
+
 void main() {
     copyUniforms();
     // llvmpipe runs the 8 invocations of a row of this 8x8 workgroup as one SIMD batch, for as long as its
@@ -197,12 +263,16 @@ void main() {
 
     bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
-    RayState state = firstDispatch
-                         ? RayState(vec4(vec3(0.0), 1.0), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u)
-                         : loadRayState(outIndex);
+    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u)
+                                   : loadRayState(outIndex);
     vec3 colour = state.composite.rgb;
     float transmittance = state.composite.a;  // 1 - alpha, for the colour's weights
     vec2 depth = state.depth;                 // the optical depth: alpha and early ray termination
+    // The other blends' running values (blend.h): the largest or smallest scalar, the sum as a float pair (whose
+    // sums agree however the samples are grouped into leaps), the iso-surface's side of the last sample.
+    float running = state.composite.x;
+    vec2 sum = state.composite.xy;
+    bool inside = (state.flags & kIsoInside) != 0u, hit = (state.flags & kIsoHit) != 0u;
     uint iterations = state.iterations;
     bool failed = (state.flags & kFailed) != 0u;
     uint k = state.k;
@@ -210,18 +280,60 @@ void main() {
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
     bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, iv, k))));
     if (!mine && !firstDispatch && !lastDispatch) return;
-    for (uint n = 1u; mine && !failed && k < kCount && pairLess(depth, params.ertDepth); k += n) {
+    // MIP and MinIP with blocks: the running value starts at the probe samples (blend.h), which a volume of one brick
+    // holds (a bricked one starts without).
+    if (CASTER == kBlocks && blendProbes(BLEND) && !BRICKED && kCount > 0u)
+        for (int i = 0; i < kProbes; ++i, ++iterations)
+            running = foldRunning(BLEND, running, scalarAt(samplePosition(g, iv, probeSample(i, kCount))));
+    uint blockEnd = 0u;  // blocks: the samples before it lie in a block that could change the result
+    for (uint n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth); k += n) {
         ivec3 v = sampleVoxel(g, iv, k);
         if (BRICKED && !inBrick(v)) break;
         if (++iterations > params.maxIterations) {
             failed = true;
             break;
         }
-        // The sample's scalar, classified (docs/ALGORITHMS.md section 2). Its gradient is taken only where its span
-        // is composited and shaded, below: a transparent span needs none.
+        // Blocks, at a new block: the coarsest block that cannot change the result is leapt over without a sample
+        // (average adds its one value n times); else the finest block's samples are taken one by one, without
+        // another lookup.
+        if (CASTER == kBlocks && k >= blockEnd) {
+            int size = 0;
+            float value = 0.0;
+            for (int level = 0; level < kBlockLevels; ++level) {
+                int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
+                if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
+                ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
+                vec2 range = vec2(imageLoad(blockExtrema, ivec3(2 * block.x, block.yz)).r,
+                                  imageLoad(blockExtrema, ivec3(2 * block.x + 1, block.yz)).r);
+                if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
+                    size = 1 << shift;
+                    value = range.x;
+                }
+            }
+            int edge = size > 0 ? size : kBlockSize;
+            ivec3 ext = ivec3(blockExtent(v.x, octantSign(oct, 0), edge), blockExtent(v.y, octantSign(oct, 1), edge),
+                              blockExtent(v.z, octantSign(oct, 2), edge));
+            BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
+            n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
+            if (size > 0) {
+                if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
+                continue;
+            }
+            blockEnd = k + n;
+        }
+
+        // The sample's scalar. Composite classifies it (docs/ALGORITHMS.md section 2) and takes its gradient only
+        // where its span is composited and shaded, below: a transparent span needs none.
         Footprint fp;
         if (TRILINEAR) fp = footprintAt(samplePosition(g, iv, k));
-        vec4 s = classify(TRILINEAR ? footprintScalar(fp) : loadScalar(v));  // rgb colour, a: sigma
+        float scalar = TRILINEAR ? footprintScalar(fp) : loadScalar(v);
+        if (BLEND == kBlendIso) {  // the surface lies between the last sample and this one: refined below
+            hit = k > 0u && isoInside(scalar, params.isoValue) != inside;
+            if (hit) break;
+            inside = isoInside(scalar, params.isoValue);
+        }
+        running = foldRunning(BLEND, running, scalar);
+        vec4 s = BLEND == kBlendComposite ? classify(scalar) : vec4(0.0);  // rgb colour, a: sigma
         precise float sampleDepth = s.a * params.dt;
 
         // What the leap wants without and with the margin of docs/ALGORITHMS.md section 8.
@@ -235,19 +347,22 @@ void main() {
         } else if (CASTER == kACD || CASTER == kEACD) {
             uvec4 f = loadField(fieldTexel(v, slot));
             // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
-            ivec3 ext = CASTER == kACD ? max(ivec3(1), ivec3(f.r)) : decodeExtents(f);
-            box = octantBox(v, oct, ext);
-            vec3 exits = boxExitsT(g, v, oct, ext);
-            float t = latticeT(iv, k);
-            wanted = boxLeapSamples(exits, vec3(0.0), t);
-            wantedWithMargin = boxLeapSamples(exits, slack.boxExit, t);
+            BoxLeap b = octantBoxLeap(g, iv, k, v, oct, CASTER == kACD ? max(ivec3(1), ivec3(f.r)) : decodeExtents(f),
+                                      slack);
+            wanted = b.wanted;
+            wantedWithMargin = b.wantedWithMargin;
+            box = b.box;
         }
-        // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count.
-        if (CASTER != kPrimitive) {
+        // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count; the
+        // blocks caster's samples here are one each.
+        if (CASTER != kPrimitive && CASTER != kBlocks) {
             float termination = samplesToTermination(depth, sampleDepth);
             if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
             n = leapCount(g, iv, k, kCount, min(wanted, termination), min(wantedWithMargin, termination), box);
         }
+        if (CASTER == kBlocks) n = 1u;
+        if (BLEND == kBlendAverage) sum = addPair(sum, vec2(scalar, 0.0));
+        if (BLEND != kBlendComposite) continue;
 
         // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.
         vec2 spanDepth = CASTER == kPrimitive ? vec2(sampleDepth, 0.0) : exactProduct(float(n), sampleDepth);
@@ -269,14 +384,23 @@ void main() {
     int probe = 0;
     for (float i = 0.0; i < params.loopProbe; i += 1.0) ++probe;
     uint flags = state.flags | (probe < kLoopProbeTrips ? kCutShort : 0u);
-    if (lastDispatch && k < kCount && pairLess(depth, params.ertDepth)) failed = true;  // in no pass: a bug
+    bool unfinished = k < kCount && !hit && (BLEND != kBlendComposite || pairLess(depth, params.ertDepth));
+    if (lastDispatch && unfinished) failed = true;  // in no pass: a bug
     if (failed) flags |= kFailed;
+    flags = (flags & ~kIsoInside) | (inside ? kIsoInside : 0u) | (hit ? kIsoHit : 0u);
     // The next brick's dispatch reads this state; after the last one, nothing does.
-    if (!lastDispatch) storeRayState(outIndex, RayState(vec4(colour, transmittance), depth, k, iterations, flags));
+    vec4 carried = BLEND == kBlendComposite ? vec4(colour, transmittance)
+                   : BLEND == kBlendAverage ? vec4(sum, 0.0, 0.0)
+                                            : vec4(running, 0.0, 0.0, 0.0);
+    if (!lastDispatch) storeRayState(outIndex, RayState(carried, depth, k, iterations, flags));
 
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.
     float alpha = spanOpacity(depth.x + depth.y);
-    vec3 pixelColour = colour + params.background.rgb * (1.0 - alpha);
-    outPixel[outIndex].colour = floatBitsToUint(vec4(pixelColour, alpha));
-    outPixel[outIndex].counts = uvec4(k, iterations | flags, 0u, 0u);
+    vec4 pixelColour = vec4(colour + params.background.rgb * (1.0 - alpha), alpha);
+    if (BLEND == kBlendMIP || BLEND == kBlendMinIP) pixelColour = shownValue(running, kCount > 0u);
+    if (BLEND == kBlendAverage) pixelColour = shownValue((sum.x + sum.y) / float(kCount), kCount > 0u);
+    if (BLEND == kBlendIso)
+        pixelColour = hit ? vec4(isoSurface(g, iv, k, toEye, toLight), 1.0) : vec4(params.background.rgb, 0.0);
+    outPixel[outIndex].colour = floatBitsToUint(pixelColour);
+    outPixel[outIndex].counts = uvec4(k, iterations | (flags & (kFailed | kCutShort)), 0u, 0u);
 }

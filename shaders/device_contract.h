@@ -32,6 +32,8 @@ VR_CONSTANT int kBindingScalarsFloat = 8;   // R32_SFLOAT
 VR_CONSTANT int kBindingField8 = 9;         // storage images of the distance field, one per format: R8 (PC, ACD,
 VR_CONSTANT int kBindingField16 = 10;       // joint8 EACD), R16 (log16 EACD), RGBA8 (exact EACD)
 VR_CONSTANT int kBindingFieldRGBA8 = 11;
+VR_CONSTANT int kBindingBlockExtrema = 12;  // storage image R32F: each block's scalar range (lo, hi side by side
+                                            // along x) for the blocks caster (render/block_extrema.h)
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
@@ -41,7 +43,10 @@ VR_CONSTANT int kSpecIdExtentCode = 3;   // one of the extent codes below
 VR_CONSTANT int kSpecIdBricked = 4;      // bool: false for a volume of one brick (no ray state is carried)
 VR_CONSTANT int kSpecIdPerspective = 5;  // bool: the camera's projection
 VR_CONSTANT int kSpecIdScalarType = 6;   // one of the scalar types below: which scalar image the casters read
-VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3;
+VR_CONSTANT int kSpecIdBlend = 7;        // one of the blends below
+VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4;
+// What a ray makes of its samples (render/render_settings.h Blend, in its order; shaders/blend.h).
+VR_CONSTANT int kBlendComposite = 0, kBlendMIP = 1, kBlendMinIP = 2, kBlendAverage = 3, kBlendIso = 4;
 VR_CONSTANT int kExact = 0, kLog16 = 1, kJoint8 = 2;  // how EACD extents are stored (core/extent_code.h)
 // The scalars' type (core/volume.h ScalarType, in its order).
 VR_CONSTANT int kScalarUInt8 = 0, kScalarInt16 = 1, kScalarUInt16 = 2, kScalarFloat32 = 3;
@@ -55,6 +60,8 @@ VR_CONSTANT int kWorkgroupSize = 8;
 // Set in a pixel's iteration count: the ray hit the iteration cap, needed an octant that was not uploaded or was
 // in no pass over the bricks (a bug); the driver ended the shader's loops early.
 VR_CONSTANT uint kFailed = 0x80000000u, kCutShort = 0x40000000u;
+// Carried in a ray's state between bricks, never output: the iso-surface's side of the last sample, and a hit.
+VR_CONSTANT uint kIsoInside = 0x20000000u, kIsoHit = 0x10000000u;
 // The trip count of the loop that detects a driver's loop limit: uploaded (CasterParams::loopProbe), so the
 // compiler cannot know it, and compared with what the loop counted.
 VR_CONSTANT int kLoopProbeTrips = 2;
@@ -94,6 +101,10 @@ struct CasterParams {
     float tableInverseStep;
     float tableLastEntry;
     float flatGradient;
+    float isoValue;       // Blend::Iso's scalar
+    float opacityLength;  // the length over which the TF gives its opacity (ScalarClassification::referenceStep):
+                          // MIP, MinIP and average show the TF's opacity at their value as alpha
+    ivec4 blockLevelZ;    // the blocks caster: the first z texel of each level of blocks (render/block_extrema.h)
     // What clips every ray (render/ray_setup.h RayClip), in grid coordinates: the crop box's faces (0 and dims
     // without a crop) and the planes, xyz: n, w: c, keeping dot(n, p) >= c (shaders/clip_planes.h).
     ivec4 cropLo;
@@ -118,11 +129,12 @@ struct TilePush {
 
 // A ray's state between the dispatches of its bricks (std430; shaders/brick_state.glsl).
 struct RayState {
-    vec4 composite;  // premultiplied colour, transmittance 1 - alpha
+    vec4 composite;  // premultiplied colour, transmittance 1 - alpha; the other blends: their running value in x
+                     // (MIP, MinIP) or their sum as a float pair in xy (average)
     vec2 depth;      // optical depth so far, a float pair as CasterParams::ertDepth
     uint k;          // the next lattice sample: also the samples the spans so far represent
     uint iterations;
-    uint flags;      // kFailed, kCutShort
+    uint flags;      // kFailed, kCutShort, kIsoInside, kIsoHit
 };
 
 // A pixel's result (std430): the colour's four floats' bits, then the samples and the iteration count with its
@@ -146,10 +158,13 @@ static_assert(offsetof(CasterParams, tableLo) == 240);
 static_assert(offsetof(CasterParams, tableInverseStep) == 244);
 static_assert(offsetof(CasterParams, tableLastEntry) == 248);
 static_assert(offsetof(CasterParams, flatGradient) == 252);
-static_assert(offsetof(CasterParams, cropLo) == 256);
-static_assert(offsetof(CasterParams, clipPlanes) == 288);
-static_assert(offsetof(CasterParams, clipPlaneCount) == 384);
-static_assert(sizeof(CasterParams) == 400);
+static_assert(offsetof(CasterParams, isoValue) == 256);
+static_assert(offsetof(CasterParams, opacityLength) == 260);
+static_assert(offsetof(CasterParams, blockLevelZ) == 272);
+static_assert(offsetof(CasterParams, cropLo) == 288);
+static_assert(offsetof(CasterParams, clipPlanes) == 320);
+static_assert(offsetof(CasterParams, clipPlaneCount) == 416);
+static_assert(sizeof(CasterParams) == 432);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);
 static_assert(sizeof(TilePush) == 96);

@@ -63,6 +63,7 @@ long long fieldBytes(const DistanceFields& f, Caster c) {
         case Caster::PC: return (long long)f.pc.size();
         case Caster::ACD: return (long long)(f.acd[0].size() * kOctants);
         case Caster::EACD: return (long long)(f.eacd[0].bytes() * kOctants);
+        case Caster::Blocks: return 0;  // built at render time from the scalars
     }
     return 0;
 }

@@ -92,7 +92,7 @@ TEST(VolrenderCli, HelpAndDeviceList) {
     for (const char* flag :
          {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear", "--nearest",
           "--tf", "--window", "--level", "--list-presets", "--up", "--center", "--zoom", "--fps", ".mp4", "--clip",
-          "--crop"})
+          "--crop", "--blend", "--iso"})
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     const test::CliOutcome list = volrender("--list-devices");
     EXPECT_EQ(list.status, 0);
@@ -205,6 +205,24 @@ TEST(VolrenderCli, RendersTheCraniumWithAPresetInOneCommand) {
     expectRejected(q(preparedHead()) + " --window 400 --level 40 -o " + q(dir / "y.png"),
                    "a prepared file holds its transfer function and grid: --tf, --window, --level");
     EXPECT_FALSE(fs::exists(dir / "y.png"));
+}
+
+// The blends other than composite: auto leaps by blocks, and the device renders what the CPU reference renders.
+TEST(VolrenderCli, BlendModesRenderOnTheDeviceAsOnTheCpu) {
+    const fs::path dir = test::scratchDir("volrender_cli_blend");
+    for (const char* blend : {"mip", "minip", "average", "iso --iso 1000"}) {
+        const std::string run = q(preparedHead()) + " --size 40x36 --azimuth 30 --elevation 20 --blend " + blend;
+        const test::CliOutcome device = volrender(run + " -o " + q(dir / "device.exr") + " --stats " + q(dir / "s.json"));
+        ASSERT_EQ(device.status, 0) << device.err;
+        ASSERT_EQ(volrender(run + " --cpu -o " + q(dir / "cpu.exr")).status, 0);
+        const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "s.json"));
+        EXPECT_EQ(stats["settings"]["caster"], "blocks") << blend;
+        EXPECT_EQ(stats["settings"]["blend"], std::string(blend).substr(0, std::string(blend).find(' ')));
+        const Image a = readImage(dir / "device.exr"), b = readImage(dir / "cpu.exr");
+        std::size_t differ = 0;
+        for (std::size_t i = 0; i < a.rgba.size(); ++i) differ += std::abs(a.rgba[i] - b.rgba[i]) > 1e-3f;
+        EXPECT_LE(differ, a.rgba.size() / 50) << blend;  // float positions move a few samples to the next voxel
+    }
 }
 
 // The one-command path on a terminal: a bar per preparing stage; --quiet leaves the terminal to errors.

@@ -112,6 +112,29 @@ TEST(VolrenderFaults, BadClippingFlagsAreRefused) {
     EXPECT_TRUE(fs::exists(dir / "x.png"));
 }
 
+TEST(VolrenderFaults, BlendFlagsThatDoNotFitAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_blend");
+    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
+    for (const char* where : {" --cpu", ""}) {
+        const std::string run = in + where;
+        expectRefused(run + " --iso 100", std::vector<std::string>{"--iso", "--blend iso"});
+        expectRefused(run + " --blend mip --iso 100", {"--iso", "--blend iso", "--blend mip"});
+        expectRefused(run + " --blend iso", std::vector<std::string>{"--blend iso", "--iso VALUE"});
+        expectRefused(run + " --blend maximum", {"--blend", "'maximum'", "composite, mip, minip, average or iso"});
+        expectRefused(run + " --blend iso --iso nan", "--iso");
+        expectRefused(run + " --blend mip --caster eacd", {"--caster eacd", "--blend mip", "--caster blocks"});
+        expectRefused(run + " --caster blocks", std::vector<std::string>{"--caster blocks", "--blend composite"});
+    }
+    expectRefused(in + " --iso", "--iso");  // no value
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+    // The same flags, fitting, render.
+    for (const char* blend : {" --blend mip", " --blend minip --caster primitive", " --blend average --caster blocks",
+                              " --blend iso --iso 1.5"}) {
+        const test::CliOutcome r = volrender(in + " --cpu" + blend);
+        EXPECT_EQ(r.status, 0) << blend << ": " << r.err;
+    }
+}
+
 TEST(VolrenderFaults, UnwritableOutputsAreRefused) {
     const fs::path dir = test::scratchDir("volrender_faults_output");
     std::ofstream(dir / "plain.txt") << "a file, not a folder";

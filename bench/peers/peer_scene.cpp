@@ -14,6 +14,10 @@ std::size_t PeerScene::tableIndex(float value) const {
 }
 
 std::string settingsDescription(const PeerSceneOptions& options) {
+    if (options.blend == Blend::MIP)
+        return std::string("maximum intensity projection (--blend mip), ") +
+               (options.userSettings ? "trilinear (linear) interpolation" : "nearest sampling") +
+               ", the largest scalar shown in its TF colour at its TF opacity";
     if (!options.userSettings)
         return "nearest sampling, unshaded (emission-absorption only), the algorithm comparison (--user-settings: "
                "trilinear and shaded)";

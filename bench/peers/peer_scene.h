@@ -9,6 +9,7 @@
 #include "preprocess/classify/transfer_function.h"
 #include "preprocess/load/load_volume.h"
 #include "render/camera.h"
+#include "render/render_settings.h"
 #include "render/span.h"
 
 namespace vr {
@@ -25,6 +26,9 @@ struct PeerSceneOptions {
     // true (--user-settings): what users render with: trilinear (linear) interpolation, shaded with our Phong
     // material (render/span.h ShadingModel) and one white headlight; the peers that cannot are skipped.
     bool userSettings = false;
+    // composite, or MIP (--blend mip): VTK's MAXIMUM_INTENSITY blend, our CPU reference's mip; the peers without a
+    // MIP are skipped.
+    Blend blend = Blend::Composite;
 };
 
 // The render settings every peer is set up for, in words: the caption of vr_peers' table.

@@ -18,19 +18,24 @@ PeerRun runReferencePeer(const PeerScene& scene, const std::filesystem::path& ou
 
     RenderSettings settings;
     settings.caster = Caster::Primitive;
+    settings.blend = scene.options.blend;
     settings.stepVoxels = scene.options.stepVoxels;
     settings.ert = scene.options.ert;
     // The primitive caster leaps nowhere, so trilinear sampling needs no trilinear regions; shading takes its
     // normals from the scalars' gradient at each sample (no normals in the classification).
     settings.trilinear = scene.options.userSettings;
-    settings.shading = scene.options.userSettings;
+    settings.shading = scene.options.userSettings && scene.options.blend == Blend::Composite;
     PeerRun run = runViews("ours-cpu-primitive", scene, outDir, [&](std::size_t i, Image& out) {
         const auto start = std::chrono::steady_clock::now();
         out = renderCpu(prepared, scene.views[i], settings).image;
         return millisecondsSince(start);
     });
     run.setupMs = setupMs;
-    run.notes = scene.options.userSettings
+    run.notes = scene.options.blend == Blend::MIP
+                    ? std::string("our CPU reference (volrender --cpu --caster primitive --blend mip") +
+                          (scene.options.userSettings ? ")" : " --nearest)") +
+                          ": the image to compare with; double precision, not a speed contender"
+                : scene.options.userSettings
                     ? "our CPU reference (volrender --cpu --caster primitive): trilinear, Phong with a headlight "
                       "(gradient interpolated per sample, then shaded); the image to compare with; double precision, "
                       "not a speed contender; setup = load + classify + segment"

@@ -25,6 +25,12 @@ namespace fs = std::filesystem;
 const std::vector<std::string> kPeers = {"ours-cpu-primitive", "vtk-fixed-point", "vtk-gpu-llvmpipe", "volpack",
                                          "vdb_render"};
 
+// Why a peer cannot render a blend other than composite, or empty when it can.
+std::string blendSkipReason(const std::string& name, vr::Blend blend) {
+    if (blend == vr::Blend::Composite || name == "ours-cpu-primitive" || name.rfind("vtk-", 0) == 0) return "";
+    return name + " has no " + std::string(vr::blendName(blend)) + " blend";
+}
+
 // Why a peer cannot render at the user settings (trilinear, Phong-shaded), or empty when it can.
 std::string userSettingsSkipReason(const std::string& name) {
     if (name == "volpack")
@@ -70,7 +76,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Renders one volume with VTK (fixed-point CPU and GPU ray casters), VolPack and vdb_render on our "
                  "views, timing each; see docs/BENCH.md \"Peers\""};
     vr::PeerSceneOptions o;
-    std::string volume, tf, size = "512x512", out = "peers_out";
+    std::string volume, tf, size = "512x512", out = "peers_out", blend = "composite";
     std::vector<double> spacing;
     std::vector<std::string> peers = kPeers;
     app.add_option("volume", volume, "volume file (e.g. a .raw.gz named NAME_XxYxZ_TYPE.raw.gz)")->required();
@@ -81,6 +87,8 @@ int main(int argc, char** argv) {
     app.add_option("--size", size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--step", o.stepVoxels, "sample distance in voxels of the smallest spacing")->capture_default_str();
     app.add_option("--threads", o.threads, "threads for every peer that can use them")->capture_default_str();
+    app.add_option("--blend", blend, "composite or mip (VTK's MAXIMUM_INTENSITY; VolPack and vdb_render are skipped)")
+        ->capture_default_str();
     app.add_option("--peers", peers, "peers to run")->delimiter(',')->check(CLI::IsMember(kPeers));
     app.add_option("-o,--out", out, "output folder")->capture_default_str();
     app.add_flag("--user-settings", o.userSettings,
@@ -92,6 +100,9 @@ int main(int argc, char** argv) {
         if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 || o.height < 1)
             throw vr::InputError("--size " + size + ": expected WIDTHxHEIGHT");
         if (o.threads < 1) throw vr::InputError("--threads must be at least 1");
+        o.blend = vr::parseBlend(blend);
+        if (o.blend != vr::Blend::Composite && o.blend != vr::Blend::MIP)
+            throw vr::InputError("--blend " + blend + ": the peers are set up for composite and mip only");
         o.volume = volume;
         o.transferFunction = tf;
         if (!spacing.empty()) o.raw.spacing = vr::Vec3d{spacing[0], spacing[1], spacing[2]};
@@ -107,7 +118,9 @@ int main(int argc, char** argv) {
         table << "Settings: " << vr::settingsDescription(o) << ". Each peer's notes say where it differs.\n\n"
               << "| peer | median ms | p95 ms | image size | views | notes |\n|---|---:|---:|---|---:|---|\n";
         for (const std::string& name : peers) {
-            if (const std::string why = o.userSettings ? userSettingsSkipReason(name) : ""; !why.empty()) {
+            std::string why = blendSkipReason(name, o.blend);
+            if (why.empty() && o.userSettings) why = userSettingsSkipReason(name);
+            if (!why.empty()) {
                 std::fprintf(stderr, "%s: skipped (%s)\n", name.c_str(), why.c_str());
                 skipped.push_back({{"peer", name}, {"reason", why}});
                 table << "| " << name << " | - | - | - | - | skipped: " << why << " |\n";
@@ -131,6 +144,7 @@ int main(int argc, char** argv) {
              scene.volume.grid.spacing.y, scene.volume.grid.spacing.z}}, {"views", o.views},
             {"width", o.width}, {"height", o.height}, {"step_voxels", o.stepVoxels},
             {"sample_distance", scene.sampleDistance()}, {"threads", o.threads}, {"settings", settingsJson(o)},
+            {"blend", blend},
             {"peers", runs}, {"skipped", skipped}};
         vr::writeFileAtomically(fs::path(out) / "peers.json", [&](std::ostream& s) { s << doc.dump(2) << '\n'; });
         std::fputs(table.str().c_str(), stdout);

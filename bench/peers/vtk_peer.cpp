@@ -68,7 +68,10 @@ PeerRun runVtkPeer(const PeerScene& scene, VtkMapper kind, const std::filesystem
     vtkSmartPointer<vtkImageData> image = vtkImageOf(scene.volume, kind == VtkMapper::FixedPoint && !user);
     vtkSmartPointer<vtkVolumeMapper> mapper = makeMapper(scene, kind);
     mapper->SetInputData(image);
-    mapper->SetBlendModeToComposite();
+    if (scene.options.blend == Blend::MIP)
+        mapper->SetBlendModeToMaximumIntensity();
+    else
+        mapper->SetBlendModeToComposite();
     vtkNew<vtkVolume> volume;
     volume->SetMapper(mapper);
     volume->SetProperty(vtkVolumePropertyOf(scene.table, scene.referenceStep(), user));
@@ -94,7 +97,9 @@ PeerRun runVtkPeer(const PeerScene& scene, VtkMapper kind, const std::filesystem
         return ms;
     });
     run.setupMs = setupMs;
-    run.notes = notes(kind, user);
+    run.notes = scene.options.blend == Blend::MIP
+                    ? std::string("SetBlendModeToMaximumIntensity (shading unused); ") + notes(kind, user)
+                    : std::string(notes(kind, user));
     return run;
 }
 

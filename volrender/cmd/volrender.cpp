@@ -26,6 +26,7 @@
 #include "volrender/cmd/render_stats.h"
 #include "volrender/cmd/view_output.h"
 #include "render/cpu_renderer.h"
+#include "render/render_checks.h"
 #include "render/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -38,7 +39,9 @@ constexpr vr::ToolText kText{
     "caster samples every step; pc, acd and eacd leap through regions with their distance fields and give the "
     "same image at thresholds 0; auto (the default) picks the cheapest for the views. Each sample is interpolated "
     "from the scalars (trilinear by default), classified through the transfer table and shaded from the scalars' "
-    "gradient. Runs on a Vulkan device (or --cpu).",
+    "gradient. --blend mip, minip, average or iso shows the largest, smallest or mean scalar, or the iso-surface of "
+    "--iso VALUE, instead, leaping over blocks that cannot change it (--caster blocks). Runs on a Vulkan device (or "
+    "--cpu).",
     "Exit status: 0 done, 1 bad input or device failure, 2 bad command line."};
 
 namespace fs = std::filesystem;
@@ -51,7 +54,8 @@ struct Flags {
     double step = 0.5, ert = 0.99;
     std::vector<double> light, background{0, 0, 0};
     bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false, quiet = false;
-    std::string stats, heatmap, calibration;
+    std::string stats, heatmap, calibration, blend = "composite";
+    std::optional<double> iso;
     int views = 1, device = -1;
     std::optional<int> fps;
 };
@@ -63,8 +67,14 @@ void addFlags(CLI::App& app, Flags& f) {
     vr::addVolumeFlags(app, f.volume);
     app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...; or a movie "
                                             "of the views: .gif (256 colours a frame) or .mp4 (H.264)");
-    app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, or auto (chosen from the file's ray probe and "
-                                         "the views by a cost model: see --calibration)")->capture_default_str();
+    app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, blocks, or auto (composite: chosen from the "
+                                         "file's ray probe and the views by a cost model, see --calibration; the "
+                                         "other blends: blocks)")->capture_default_str();
+    app.add_option("--blend", f.blend, "what a ray shows: composite (front-to-back compositing of the classified "
+                                       "samples), mip or minip (the largest or smallest scalar), average (the mean "
+                                       "scalar), each in its transfer-function colour at its opacity, or iso (the "
+                                       "first crossing of --iso, shaded in its colour)")->capture_default_str();
+    app.add_option("--iso", f.iso, "the iso-surface's scalar value (--blend iso)");
     app.add_option("--calibration", f.calibration,
                    "the auto caster's cost constants, as auto_caster_bench --write-calibration measures them on a "
                    "device (default: $XDG_CONFIG_HOME/volrender/calibration.json, else "
@@ -118,6 +128,18 @@ void checkMovieFlags(const Flags& f, const vr::ViewParams& view) {
     if (*f.fps < 1 || *f.fps > 60) throw vr::InputError("--fps " + std::to_string(*f.fps) + ": must be in 1..60");
 }
 
+// --blend and --iso into the settings; auto leaps by blocks for the blends other than composite. Throws InputError
+// for an unknown blend, an iso-value without the iso blend or the reverse, and a caster the blend cannot leap with.
+void applyBlend(const Flags& f, vr::RenderSettings& s) {
+    s.blend = vr::parseBlend(f.blend);
+    if (f.iso && s.blend != vr::Blend::Iso)
+        throw vr::InputError("--iso is the iso-surface's value: it needs --blend iso (not --blend " + f.blend + ")");
+    if (s.blend == vr::Blend::Iso && !f.iso) throw vr::InputError("--blend iso needs the iso-value: --iso VALUE");
+    if (f.iso) s.isoValue = *f.iso;
+    if (s.blend != vr::Blend::Composite && f.caster == "auto") s.caster = vr::Caster::Blocks;
+    vr::checkBlend(s);
+}
+
 // Checks that need no data, so that a bad run fails before the prepared file is read. Returns whether the input is
 // a prepared file (else a volume to prepare here).
 bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
@@ -163,6 +185,7 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
         s.lightDirection = vr::finiteVector(f.light, "--light");
         if (vr::length(*s.lightDirection) == 0) throw vr::InputError("--light: the direction must not be zero");
     }
+    applyBlend(f, s);
     return prepared;
 }
 
@@ -179,6 +202,7 @@ unsigned fieldsFor(vr::Caster c) {
         case vr::Caster::PC: return vr::kFieldPC;
         case vr::Caster::ACD: return vr::kFieldACD;
         case vr::Caster::EACD: return vr::kFieldEACD;
+        case vr::Caster::Blocks: return 0;  // built from the scalars
     }
     return 0;
 }
@@ -285,7 +309,10 @@ int run(const Flags& f) {
     const bool prepareHere = !checkFlags(f, view, settings);
     if (f.quiet) vr::ProgressBar::silenceAll();
     std::string choice;  // why --caster auto chose its caster
-    if (prepareHere && f.caster == "auto") {
+    const bool chooseCaster = f.caster == "auto" && settings.blend == vr::Blend::Composite;
+    if (settings.blend != vr::Blend::Composite && f.caster == "auto")
+        choice = "the " + f.blend + " blend leaps by the blocks' scalar extrema";
+    if (prepareHere && chooseCaster) {
         settings.caster = vr::Caster::EACD;
         choice = "a volume prepared here has no ray probe before its fields exist: EACD, which leaps furthest";
     }
@@ -302,7 +329,7 @@ int run(const Flags& f) {
     }
     const vr::CalibrationInUse calibration =
         vr::calibrationInUse(f.calibration, context ? std::optional(context->info().name) : std::nullopt);
-    if (f.caster == "auto" && !prepareHere) {
+    if (chooseCaster && !prepareHere) {
         if (!calibration.note.empty() && !f.quiet) std::fprintf(stderr, "volrender: %s\n", calibration.note.c_str());
         const vr::CasterChoice c = autoCaster(f, view, settings, calibration.constants);
         settings.caster = c.caster;
@@ -340,7 +367,7 @@ int run(const Flags& f) {
             {"caster", vr::casterName(settings.caster)}, {"casterAsked", f.caster}, {"casterChoice", choice},
             {"size", f.size}, {"step", f.step}, {"ert", f.ert}, {"shading", settings.shading},
             {"trilinear", settings.trilinear}, {"light", f.light}, {"background", f.background}, {"views", f.views},
-            {"fps", movieFps(f)}};
+            {"fps", movieFps(f)}, {"blend", f.blend}, {"iso", f.iso ? nlohmann::json(*f.iso) : nlohmann::json()}};
         settingsStats.update(vr::cameraStatistics(f.camera));
         settingsStats.update(vr::clipStatistics(f.clip));
         nlohmann::json stats{

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/errors.h"
+#include "render/block_extrema.h"
 #include "render/render_checks.h"
 
 namespace vr {
@@ -53,7 +54,7 @@ const std::vector<CasterImageFormat>& casterImageFormats() {
         {scalarFormat(ScalarType::UInt8), "R8_UINT", "uint8 scalars, PC, ACD and joint8 EACD"},
         {scalarFormat(ScalarType::Int16), "R16_SINT", "int16 scalars"},
         {scalarFormat(ScalarType::UInt16), "R16_UINT", "uint16 scalars and log16 EACD"},
-        {scalarFormat(ScalarType::Float32), "R32_SFLOAT", "float32 scalars"},
+        {scalarFormat(ScalarType::Float32), "R32_SFLOAT", "float32 scalars and the blocks caster's scalar ranges"},
         {eacdFormat(ExtentCode::Exact), "R8G8B8A8_UINT", "exact EACD"}};
     return formats;
 }
@@ -84,6 +85,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     for (Caster caster : checked) {
         RenderSettings needs;
         needs.caster = caster;
+        needs.blend = caster == Caster::Blocks ? Blend::MIP : Blend::Composite;  // one blend the caster serves
         needs.shading = false;
         checkRenderInputs(prepared, needs);
         if ((caster == Caster::ACD || caster == Caster::EACD) && (octants & kAllOctants) == 0)
@@ -99,7 +101,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     // The table first: a device whose storage buffers cannot hold it is refused before any image is made.
     const ScalarClassification& classification = prepared.classification;
     const TransferTable& table = classification.table;
-    placement_ = {table.lo, table.step, table.size(), classification.flatGradient};
+    placement_ = {table.lo, table.step, table.size(), classification.flatGradient, classification.referenceStep};
     vk::DeviceSize bufferRange = ctx.physicalDevice().getProperties().limits.maxStorageBufferRange;
     if (limits.maxStorageBufferRange > 0) bufferRange = std::min(bufferRange, limits.maxStorageBufferRange);
     constexpr std::size_t kEntryBytes = 4 * sizeof(float);  // the shader's vec4
@@ -189,6 +191,14 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
             uploads_.push_back({w.name, bytes, int(i)});
         }
     }
+    if (std::find(contents.casters.begin(), contents.casters.end(), Caster::Blocks) != contents.casters.end()) {
+        const BlockExtrema e = vr::blockExtrema(prepared.scalars);
+        const std::size_t bytes = e.range.size() * sizeof(float);
+        const Vec3i texels{2 * e.imageDims.x, e.imageDims.y, e.imageDims.z};  // lo, hi side by side
+        blockExtrema_ = std::make_unique<VolumeImage>(ctx, pool, texels, kBlockExtremaFormat, e.range.data(), bytes);
+        blockLevelZ_ = e.levelZ;
+        uploads_.push_back({"blocks", bytes, 0});
+    }
     if (!scalarsFit)
         throw InputError("prepared volume: its " + std::string(scalarTypeName(scalarType_)) +
                          " scalars hold a value that is no " + std::string(scalarTypeName(scalarType_)) +
@@ -196,6 +206,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
 }
 
 const VolumeImage* GpuVolume::field(Caster caster, int brick) const {
+    if (caster == Caster::Blocks) return nullptr;
     const Bricked& f = fields_[int(caster)];
     return f.empty() ? nullptr : f[brick].get();
 }
@@ -208,7 +219,9 @@ std::size_t GpuVolume::uploadedBytes() const {
 
 void GpuVolume::requireHolds(const RenderSettings& s, unsigned viewOctants) const {
     const std::string caster(casterName(s.caster));
-    if (s.caster != Caster::Primitive && fields_[int(s.caster)].empty())
+    if (s.caster == Caster::Blocks && !blockExtrema_)
+        throw std::invalid_argument("the uploaded volume holds no block extrema for the blocks caster");
+    if (leapsThroughRegions(s.caster) && fields_[int(s.caster)].empty())
         throw std::invalid_argument("the uploaded volume holds no field of the " + caster + " caster");
     if (s.caster == Caster::ACD || s.caster == Caster::EACD)
         for (int oct = 0; oct < kOctants; ++oct)

@@ -9,24 +9,29 @@
 
 #include "core/prepared_volume.h"
 #include "render/render_settings.h"
+#include "shaders/blend.h"
 #include "volrender/vulkan/brick_grid.h"
 #include "volrender/vulkan/gpu_buffer.h"
 
 namespace vr {
 
 struct UploadedResource {
-    std::string name;  // "scalars", "table", "pc", "acd", "eacd"
+    std::string name;  // "scalars", "table", "pc", "acd", "eacd", "blocks"
     std::size_t bytes = 0;
     int brick = 0;     // index into GpuVolume::bricks(); the table, which every brick reads, counts as brick 0's
 };
 
 // What one upload holds besides the scalars and the transfer table, which every render reads: the fields of these
-// casters (none for primitive) and the ACD / EACD octants of the mask (viewOctants of every camera it will render).
+// casters (none for primitive; the block extrema for blocks) and the ACD / EACD octants of the mask (viewOctants of every camera it will render).
 // Shading needs nothing more: the casters take the gradient from the scalars.
 struct GpuVolumeContents {
     std::vector<Caster> casters;
     unsigned octants = 0;
 };
+
+// The block extrema's format: R32F, a block's lo and hi side by side along x (render/block_extrema.h's texels, two
+// floats each), a format every caster device reads already (float scalars), where RG32F would be one more.
+constexpr vk::Format kBlockExtremaFormat = vk::Format::eR32Sfloat;
 
 // The storage-image format of the scalars of each type: R8_UINT, R16_SINT, R16_UINT, R32_SFLOAT.
 vk::Format scalarFormat(ScalarType type);
@@ -47,12 +52,13 @@ const std::vector<CasterImageFormat>& casterImageFormats();
 void requireCasterImageSupport(const std::string& deviceName, const vk::PhysicalDeviceFeatures& features,
                                const std::function<vk::FormatProperties(vk::Format)>& formatProperties);
 
-// Where the transfer table's entries lie in scalar and when a gradient is flat: what the casters need of
-// ScalarClassification besides the entries themselves, which are on the device.
+// Where the transfer table's entries lie in scalar, when a gradient is flat and the length of the TF's opacity:
+// what the casters need of ScalarClassification besides the entries themselves, which are on the device.
 struct TablePlacement {
     double lo = 0, step = 1;
     std::size_t entries = 0;
     double flatGradient = 0;
+    double referenceStep = 1;
 };
 
 class GpuVolume {
@@ -73,8 +79,12 @@ public:
     const VolumeImage& scalars(int brick) const { return *scalars_[brick]; }
     const DeviceBuffer& table() const { return *table_; }
     const TablePlacement& tablePlacement() const { return placement_; }
-    // Null for primitive or a caster not uploaded.
+    // Null for primitive, blocks or a caster not uploaded.
     const VolumeImage* field(Caster caster, int brick) const;
+    // Each block's scalar range, one image for every brick (in whole-volume blocks); null when not uploaded.
+    const VolumeImage* blockExtrema() const { return blockExtrema_.get(); }
+    // The first z texel of each level of blocks in that image.
+    const std::array<int, device::kBlockLevels>& blockLevelZ() const { return blockLevelZ_; }
     // Slab of each octant in the ACD / EACD images, -1 when not uploaded.
     const std::array<int, kOctants>& octantSlot() const { return slot_; }
     // How the EACD image holds the extents (RGBA8 exact, R16 log16, R8 joint8; see core/extent_code.h).
@@ -99,7 +109,9 @@ private:
     BrickGrid bricks_;
     Bricked scalars_;
     std::unique_ptr<DeviceBuffer> table_;
-    std::array<Bricked, 4> fields_;  // by Caster
+    std::array<Bricked, 4> fields_;  // by Caster, but blocks
+    std::unique_ptr<VolumeImage> blockExtrema_;
+    std::array<int, device::kBlockLevels> blockLevelZ_{};
     std::array<int, kOctants> slot_;
     std::vector<UploadedResource> uploads_;
 };

@@ -38,8 +38,20 @@ int deviceCaster(Caster caster) {
         case Caster::PC: return device::kPC;
         case Caster::ACD: return device::kACD;
         case Caster::EACD: return device::kEACD;
+        case Caster::Blocks: return device::kBlocks;
     }
     throw std::logic_error("deviceCaster: a caster the device does not know");
+}
+
+int deviceBlend(Blend blend) {
+    switch (blend) {
+        case Blend::Composite: return device::kBlendComposite;
+        case Blend::MIP: return device::kBlendMIP;
+        case Blend::MinIP: return device::kBlendMinIP;
+        case Blend::Average: return device::kBlendAverage;
+        case Blend::Iso: return device::kBlendIso;
+    }
+    throw std::logic_error("deviceBlend: a blend the device does not know");
 }
 
 int deviceScalarType(ScalarType type) {
@@ -115,6 +127,11 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
     p.tableInverseStep = float(1 / table.step);  // exactly 1 for an integer volume's step of 1
     p.tableLastEntry = float(table.entries - 1);
     p.flatGradient = float(table.flatGradient);
+    p.isoValue = float(s.isoValue);
+    p.opacityLength = float(table.referenceStep);
+    static_assert(device::kBlockLevels == 4, "blockLevelZ holds an ivec4");
+    const std::array<int, device::kBlockLevels>& levelZ = volume.blockLevelZ();
+    p.blockLevelZ = {levelZ[0], levelZ[1], levelZ[2], levelZ[3]};
     const RayClip clip = RayClip::of(grid, s);
     p.cropLo = toDevice(clip.lo);
     p.cropHi = toDevice(clip.hi);
@@ -145,6 +162,7 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
         {device::kBindingTransferTable, T::eStorageBuffer, 1, compute}};
     for (uint32_t binding : kScalarBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     for (uint32_t binding : kFieldBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
+    bindings.emplace_back(device::kBindingBlockExtrema, T::eStorageImage, 1, compute);
     setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     vk::PushConstantRange push(compute, 0, sizeof(device::TilePush));
     vk::DescriptorSetLayout layout = *setLayout_;
@@ -164,21 +182,28 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     for (int i = 0; i < 3; ++i)
         unusedFields_[i] = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kFieldFormats[i], zeros,
                                                          formatBytes(kFieldFormats[i]));
+    unusedBlockExtrema_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kBlockExtremaFormat, zeros,
+                                                        formatBytes(kBlockExtremaFormat));
 }
 
-const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode,
-                                                   bool bricked, bool perspective, ScalarType scalarType) {
-    // Only the EACD caster reads the code: the others share one pipeline whatever the volume's code.
-    const auto key = std::make_tuple(caster, trilinear, shading, caster == Caster::EACD ? eacdCode : ExtentCode::Exact,
-                                     bricked, perspective, scalarType);
+const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, Blend blend, bool trilinear, bool shading,
+                                                   ExtentCode eacdCode, bool bricked, bool perspective,
+                                                   ScalarType scalarType) {
+    // Only the EACD caster reads the code: the others share one pipeline whatever the volume's code. Only composite
+    // and the iso-surface shade.
+    const bool shaded = shading && (blend == Blend::Composite || blend == Blend::Iso);
+    const auto key = std::make_tuple(caster, blend, trilinear, shaded,
+                                     caster == Caster::EACD ? eacdCode : ExtentCode::Exact, bricked, perspective,
+                                     scalarType);
     auto it = pipelines_.find(key);
     if (it != pipelines_.end()) return it->second;
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
-    const std::array<std::pair<int, uint32_t>, 7> constants{{
+    const std::array<std::pair<int, uint32_t>, 8> constants{{
         {device::kSpecIdCaster, uint32_t(deviceCaster(caster))},
+        {device::kSpecIdBlend, uint32_t(deviceBlend(blend))},
         {device::kSpecIdTrilinear, trilinear ? 1u : 0u},
-        {device::kSpecIdShading, shading ? 1u : 0u},
-        {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(std::get<3>(key)))},
+        {device::kSpecIdShading, shaded ? 1u : 0u},
+        {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(std::get<4>(key)))},
         {device::kSpecIdBricked, bricked ? 1u : 0u},
         {device::kSpecIdPerspective, perspective ? 1u : 0u},
         {device::kSpecIdScalarType, uint32_t(deviceScalarType(scalarType))}}};
@@ -218,6 +243,12 @@ RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camer
     checkRenderSettings(volume.grid(), volume.segmentation(), settings);
     requireDeviceLattice(volume.grid(), settings.stepVoxels);
     volume.requireHolds(settings, viewOctants(camera));
+    // The iso-surface is refined between two samples, which may lie in different bricks: one brick's images do not
+    // hold the scalars of the other's.
+    if (settings.blend == Blend::Iso && volume.bricks().bricks().size() > 1)
+        throw InputError("--blend iso on a volume split into " + std::to_string(volume.bricks().bricks().size()) +
+                         " bricks for this Vulkan device: the iso-surface is rendered from one brick only (render "
+                         "with --cpu)");
     uploads_.clear();  // what this render reads of the volume
     for (const UploadedResource& u : volume.uploads())
         if (u.name == "scalars" || u.name == "table" ||
@@ -241,7 +272,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                             const RenderSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
-    const vk::raii::Pipeline& pipe = pipeline(settings.caster, settings.trilinear, settings.shading, volume.eacdCode(),
+    const vk::raii::Pipeline& pipe = pipeline(settings.caster, settings.blend, settings.trilinear, settings.shading,
+                                              volume.eacdCode(),
                                               volume.bricks().bricks().size() > 1,
                                               camera.projection == Projection::Perspective, volume.scalarType());
 
@@ -260,7 +292,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const uint32_t brickCount = uint32_t(bricks.size());
     std::array<vk::DescriptorPoolSize, 3> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 7 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 8 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
@@ -275,6 +307,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                                  {*rayState.buffer(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo transferEntries(*volume.table().buffer(), 0, VK_WHOLE_SIZE);
+    const vk::DescriptorImageInfo blockRanges =
+        imageInfo(volume.blockExtrema() ? *volume.blockExtrema() : *unusedBlockExtrema_);
     for (uint32_t b = 0; b < brickCount; ++b) {
         const vk::DescriptorSet set = *sets[b];
         const VolumeImage* field = volume.field(settings.caster, int(b));
@@ -292,6 +326,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             {set, device::kBindingTransferTable, 0, 1, T::eStorageBuffer, nullptr, &transferEntries}};
         for (int i = 0; i < 4; ++i) writes.emplace_back(set, kScalarBindings[i], 0, 1, T::eStorageImage, &scalars[i]);
         for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
+        writes.emplace_back(set, device::kBindingBlockExtrema, 0, 1, T::eStorageImage, &blockRanges);
         device.updateDescriptorSets(writes, {});
     }
 

@@ -42,8 +42,8 @@ public:
 private:
     RenderResult renderOnDevice(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
     // bricked: the volume is split into bricks, whose dispatches carry each ray's state to the next.
-    const vk::raii::Pipeline& pipeline(Caster caster, bool trilinear, bool shading, ExtentCode eacdCode, bool bricked,
-                                       bool perspective, ScalarType scalarType);
+    const vk::raii::Pipeline& pipeline(Caster caster, Blend blend, bool trilinear, bool shading, ExtentCode eacdCode,
+                                       bool bricked, bool perspective, ScalarType scalarType);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
     auto deviceErrors(Work&& work) -> decltype(work());
@@ -58,10 +58,10 @@ private:
     vk::raii::QueryPool queries_{nullptr};
     double timestampPeriodNs_ = 0;  // 0: the queue has no timestamps
     uint64_t timestampMask_ = 0;
-    std::map<std::tuple<Caster, bool, bool, ExtentCode, bool, bool, ScalarType>, vk::raii::Pipeline> pipelines_;
+    std::map<std::tuple<Caster, Blend, bool, bool, ExtentCode, bool, bool, ScalarType>, vk::raii::Pipeline> pipelines_;
     // Bound where a variant reads nothing (the scalar bindings of the other types, the field for primitive, the
-    // field bindings of the other formats): never read.
-    std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3];
+    // field bindings of the other formats, the block extrema for every caster but blocks): never read.
+    std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3], unusedBlockExtrema_;
     std::vector<UploadedResource> uploads_;
 };
 

@@ -1,0 +1,138 @@
+// Blend benchmark (prints a Markdown table): per shared CT, the median device time over an orbit of MIP with the
+// primitive and the blocks caster (the figure to set beside VTK's MIP: `vr_peers --blend mip`, docs/BENCH.md), and
+// of the iso-surface with both casters against the composite primitive caster, with iterations per ray. The blocks
+// caster must render its primitive caster's image (checked).
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "bench/bench_checks.h"
+#include "preprocess/classify/transfer_function.h"
+#include "preprocess/pipeline/staged_prepare.h"
+#include "render/view_octants.h"
+#include "support/datasets.h"
+#include "sweep/order_statistics.h"
+#include "volrender/vulkan/vulkan_renderer.h"
+
+namespace {
+using namespace vr;
+
+// The scalar at which the TF's extinction first reaches half its largest: the surface the TF shows most.
+double isoValueOf(const PreparedVolume& p) {
+    const TransferTable& t = p.classification.table;
+    const float largest = *std::max_element(t.sigma.begin(), t.sigma.end());
+    std::size_t i = 0;
+    while (i + 1 < t.size() && t.sigma[i] < largest / 2) ++i;
+    return t.lo + double(i) * t.step;
+}
+
+struct Orbit {
+    double medianMs = 0, iterationsPerRay = 0;
+    std::vector<Image> images;
+};
+
+Orbit renderOrbit(VulkanRenderer& renderer, const GpuVolume& volume, const std::vector<Camera>& cameras,
+                  const RenderSettings& s) {
+    renderer.render(volume, cameras.front(), s);  // warm-up: the pipeline is compiled
+    Orbit o;
+    std::vector<double> ms;
+    double iterations = 0, rays = 0;
+    for (const Camera& c : cameras) {
+        RenderResult r = renderer.render(volume, c, s);
+        ms.push_back(r.deviceMilliseconds);
+        for (uint32_t n : r.iterations) iterations += n;
+        rays += double(r.iterations.size());
+        o.images.push_back(std::move(r.image));
+    }
+    o.medianMs = median(ms);
+    o.iterationsPerRay = iterations / rays;
+    return o;
+}
+
+double maxDifference(const Orbit& a, const Orbit& b) {
+    double d = 0;
+    for (std::size_t i = 0; i < a.images.size(); ++i) d = std::max(d, maxAbsDifference(a.images[i], b.images[i]));
+    return d;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Blend benchmark: MIP and the iso-surface, primitive and blocks casters, against composite"};
+    std::vector<std::string> datasets{"boston_teapot", "cranium_ct", "vtk_headsq_ct"};
+    int size = 512, views = 4, device = -1;
+    double step = 0.5;
+    bool nearest = false;
+    app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->delimiter(',')->capture_default_str();
+    app.add_option("--size", size, "image width = height")->capture_default_str();
+    app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 0: vr_peers' views)")
+        ->capture_default_str();
+    app.add_option("--step", step, "step in voxels of the smallest spacing")->capture_default_str();
+    app.add_flag("--nearest", nearest, "nearest sampling (default: trilinear, as users render)");
+    app.add_option("--device", device, "Vulkan device index");
+    CLI11_PARSE(app, argc, argv);
+
+    bench::Checks checks("blend_bench");
+    try {
+        VulkanContext ctx(VulkanOptions{device, false});
+        VulkanRenderer renderer(ctx);
+        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 0), step %g voxel, %s; MIP and average unshaded, "
+                    "iso and composite Phong with a headlight; composite with ERT 0.99.\n\n",
+                    ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear");
+        std::printf("| dataset | iso-value | MIP primitive ms | MIP blocks ms | MIP speed-up | MIP iterations "
+                    "(prim / blocks) | composite primitive ms | iso primitive ms | iso blocks ms | composite / iso "
+                    "blocks | iso iterations (prim / blocks) |\n|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---|\n");
+        for (const std::string& name : datasets) {
+            const test::DatasetEntry e = test::rawDataset(name);
+            PrepareOptions options;
+            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
+            options.fields = 0;  // neither caster reads a field
+            RawOptions raw;
+            raw.dims = e.dims;
+            raw.type = e.type;
+            raw.spacing = e.spacing;
+            const PreparedVolume p = prepare(loadVolume(test::datasetsDir() / e.file, raw), options);
+            std::vector<Camera> cameras;
+            for (int i = 0; i < views; ++i) {
+                ViewParams v;
+                v.width = v.height = size;
+                v.azimuthDeg = 360.0 * i / views;
+                cameras.push_back(Camera::fit(p.grid(), v));
+            }
+            const GpuVolume volume = renderer.upload(p, {{Caster::Primitive, Caster::Blocks}, kAllOctants});
+            RenderSettings s;
+            s.stepVoxels = step;
+            s.trilinear = !nearest;
+            s.isoValue = isoValueOf(p);
+            const Orbit composite = renderOrbit(renderer, volume, cameras, s);
+            s.shading = false;
+            s.blend = Blend::MIP;
+            const Orbit mip = renderOrbit(renderer, volume, cameras, s);
+            s.caster = Caster::Blocks;
+            const Orbit mipBlocks = renderOrbit(renderer, volume, cameras, s);
+            s.shading = true;
+            s.blend = Blend::Iso;
+            const Orbit isoBlocks = renderOrbit(renderer, volume, cameras, s);
+            s.caster = Caster::Primitive;
+            const Orbit iso = renderOrbit(renderer, volume, cameras, s);
+            checks.expect(maxDifference(mip, mipBlocks) <= 1e-5, "%s: MIP blocks renders MIP primitive's images",
+                          name.c_str());
+            checks.expect(maxDifference(iso, isoBlocks) <= 1e-5, "%s: iso blocks renders iso primitive's images",
+                          name.c_str());
+            checks.expect(mipBlocks.iterationsPerRay < mip.iterationsPerRay, "%s: MIP blocks iterates less",
+                          name.c_str());
+            std::printf("| %s | %g | %.1f | %.1f | %.2fx | %.1f / %.1f | %.1f | %.1f | %.1f | %.2fx | %.1f / %.1f |\n",
+                        name.c_str(), s.isoValue, mip.medianMs, mipBlocks.medianMs, mip.medianMs / mipBlocks.medianMs,
+                        mip.iterationsPerRay, mipBlocks.iterationsPerRay, composite.medianMs, iso.medianMs,
+                        isoBlocks.medianMs, composite.medianMs / isoBlocks.medianMs, iso.iterationsPerRay,
+                        isoBlocks.iterationsPerRay);
+            std::fflush(stdout);
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "blend_bench: %s\n", e.what());
+        return 1;
+    }
+    return checks.exitStatus();
+}

@@ -1,0 +1,37 @@
+// The scalar range of each block of the volume at every level of shaders/blend.h (edges of 4, 8, 16 and 32 voxels),
+// what the blocks caster leaps by (docs/ALGORITHMS.md section 11): over the block's voxels and the trilinear
+// footprints of its samples, so that any sample whose voxel lies in the block, nearest or trilinear, takes a value
+// in the range. Built from the scalars at render time (the CPU reference) or upload (the device); 8 bytes per 64
+// voxels and a seventh more for the coarser levels.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "core/vec3.h"
+#include "core/volume.h"
+#include "shaders/blend.h"
+
+namespace vr {
+
+// The levels stacked along z in one image, as the device reads them (two R32F texels per block along x: lo, hi):
+// level j's block b at (b.x, b.y, levelZ[j] + b.z) in blocks.
+struct BlockExtrema {
+    Vec3i imageDims;
+    std::array<int, device::kBlockLevels> levelZ{};
+    std::vector<float> range;  // lo, hi per texel, x fastest (texels beyond a coarse level's blocks are unused)
+
+    float lo(int level, const Vec3i& voxel) const { return range[2 * texel(level, voxel)]; }
+    float hi(int level, const Vec3i& voxel) const { return range[2 * texel(level, voxel) + 1]; }
+
+    // The texel of the level's block that holds the voxel.
+    std::size_t texel(int level, const Vec3i& voxel) const;
+};
+
+// Each finest block's range over its voxels and one voxel around it (a trilinear sample in a voxel reads its
+// neighbours), each coarser block's over its 8 children. For float scalars the range is widened by 2^-20 of its
+// largest magnitude: a float blend of a footprint's corners may round a little past them (integer scalars' blends
+// stay within them exactly; a blend of equal corners is exact, so a block of one value keeps it: average leaps over
+// it).
+BlockExtrema blockExtrema(const Volume& scalars);
+
+}  // namespace vr

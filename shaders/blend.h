@@ -1,0 +1,70 @@
+// The blends other than composite (docs/ALGORITHMS.md section 11) and their leap, stated once: the CPU reference
+// reads this file in double, the casters in float (shared_language.h). A ray folds each sample's scalar into a
+// running value (the largest, the smallest, the sum) or, for the iso-surface, into the side of the iso-value it lies
+// on; the blocks caster leaps over a block of the volume whenever the block's scalar range (its voxels and their
+// trilinear footprints: render/block_extrema.h) shows that none of its samples can change the ray's result.
+#ifndef VR_BLEND_H
+#define VR_BLEND_H
+
+#include "device_contract.h"
+
+#ifdef __cplusplus
+namespace vr::device {
+#endif
+
+// Edge of the finest blocks whose scalar range the blocks caster reads, in voxels, and the levels of coarser blocks
+// above them, each block of a level the union of 2 x 2 x 2 of the level below (4, 8, 16 and 32 voxels). At a new
+// block the caster leaps over the coarsest block that cannot change the result, else steps sample by sample to the
+// finest block's far faces.
+VR_CONSTANT int kBlockShift = 2;
+VR_CONSTANT int kBlockSize = 1 << kBlockShift;
+VR_CONSTANT int kBlockLevels = 4;
+
+// Bisections of the interval between the last sample before an iso-surface and the first beyond it: the hit lies
+// within dt 2^-(kIsoBisections + 1) of the surface of the interpolated scalar.
+VR_CONSTANT int kIsoBisections = 12;
+
+// The side of the iso-value a scalar lies on: inside at or above it.
+VR_FUNCTION bool isoInside(VR_REAL scalar, VR_REAL isoValue) { return scalar >= isoValue; }
+
+// Whether no sample in a block whose scalars lie in [lo, hi] can change the ray's result, given the running value
+// (MIP: the largest scalar so far; MinIP: the smallest) and, for the iso-surface, the side of the last sample: such a
+// block is leapt over whole. Exact: MIP skips a block that cannot raise the maximum, MinIP one that cannot lower the
+// minimum, the iso-surface one that lies wholly on the ray's side (the crossing cannot be inside it), and average
+// one of a single value, whose n samples add n times it.
+VR_FUNCTION bool blockSkipped(int blend, VR_REAL lo, VR_REAL hi, VR_REAL running, VR_REAL isoValue, bool inside) {
+    if (blend == kBlendMIP) return hi <= running;
+    if (blend == kBlendMinIP) return lo >= running;
+    if (blend == kBlendAverage) return lo == hi;
+    if (blend == kBlendIso) return inside ? isoInside(lo, isoValue) : !isoInside(hi, isoValue);
+    return false;
+}
+
+// The running value after a scalar: MIP's largest, MinIP's smallest (the other blends keep none).
+VR_FUNCTION VR_REAL foldRunning(int blend, VR_REAL running, VR_REAL scalar) {
+    if (blend == kBlendMIP) return scalar > running ? scalar : running;
+    if (blend == kBlendMinIP) return scalar < running ? scalar : running;
+    return running;
+}
+
+// MIP and MinIP with the blocks caster start their running value at kProbes samples of the ray, at lattice indices
+// i kCount / (kProbes + 1): a value the result reaches (it is a sample's), so that a block that cannot pass it is
+// leapt over from the start (air before the first structure). The result, the running value, is the primitive
+// caster's exactly: the largest sample is sampled, or lies in a block that could not pass a value the ray has.
+VR_CONSTANT int kProbes = 3;
+VR_FUNCTION bool blendProbes(int blend) { return blend == kBlendMIP || blend == kBlendMinIP; }
+VR_FUNCTION uint probeSample(int i, uint kCount) { return uint(i + 1) * kCount / uint(kProbes + 1); }
+
+// The box extent along one axis, from voxel v >= 0 to the far face of its block of `size` voxels (a power of two) in
+// the direction `sign` of the ray (octantBox's ext: the voxels from v to the block's last one that way, v's
+// included). A mask, not a remainder: llvmpipe divides lane by lane.
+VR_FUNCTION int blockExtent(int v, int sign, int size) {
+    int first = v & ~(size - 1);
+    return sign > 0 ? first + size - v : v - first + 1;
+}
+
+#ifdef __cplusplus
+}  // namespace vr::device
+#endif
+
+#endif
