@@ -13,25 +13,7 @@
 #include "resampled_volume.h"
 #include "support/datasets.h"
 
-namespace {
 namespace fs = std::filesystem;
-
-vr::test::DatasetEntry findDataset(const std::string& file) {
-    for (const auto& e : vr::test::rawManifest())
-        if (e.file == file) return e;
-    throw vr::InputError(file + ": not a raw dataset of " + (vr::test::datasetsDir() / "MANIFEST.tsv").string());
-}
-
-std::string typeName(vr::ScalarType t) {
-    switch (t) {
-        case vr::ScalarType::UInt8: return "uint8";
-        case vr::ScalarType::Int16: return "int16";
-        case vr::ScalarType::UInt16: return "uint16";
-        default: return "float32";
-    }
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Write a CT of clinical size: a shared CT resampled to --dims with CT-like noise"};
@@ -39,7 +21,7 @@ int main(int argc, char** argv) {
     fs::path outDir = ".";
     double noise = 20;
     unsigned seed = 1;
-    app.add_option("--from", from, "raw dataset of MANIFEST.tsv to resample")->capture_default_str();
+    app.add_option("--from", from, "raw dataset of MANIFEST.tsv to resample (its file name or the start of it)")->capture_default_str();
     app.add_option("--dims", dimsText, "size of the volume written, XxYxZ")->capture_default_str();
     app.add_option("--noise", noise, "standard deviation of the Gaussian noise, in the volume's units")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
@@ -53,7 +35,7 @@ int main(int argc, char** argv) {
         if (std::sscanf(dimsText.c_str(), "%dx%dx%d%c", &dims.x, &dims.y, &dims.z, &tail) != 3 || dims.x < 1 ||
             dims.y < 1 || dims.z < 1 || dims.x > 4096 || dims.y > 4096 || dims.z > 4096)
             throw vr::InputError("--dims: expected XxYxZ with each edge in 1..4096, got " + dimsText);
-        const vr::test::DatasetEntry entry = findDataset(from);
+        const vr::test::DatasetEntry entry = vr::test::rawDataset(from);
         vr::RawOptions raw;
         raw.dims = entry.dims;
         raw.type = entry.type;
@@ -61,14 +43,14 @@ int main(int argc, char** argv) {
         const vr::Volume v =
             vr::bench::withNoise(vr::bench::resample(vr::loadVolume(vr::test::datasetsDir() / entry.file, raw), dims),
                                  noise, seed);
-        const fs::path path = outDir / (name + "_" + dimsText + "_" + typeName(v.sourceType) + ".raw");
+        const fs::path path = outDir / (name + "_" + dimsText + "_" + std::string(vr::scalarTypeName(v.sourceType)) + ".raw");
         std::vector<unsigned char> bytes(v.values.size() * vr::scalarBytes(v.sourceType));
         vr::narrowScalars(v.values.data(), v.values.size(), v.sourceType, bytes.data());
         vr::writeFileAtomically(path, [&](std::ostream& out) {
             out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
         });
         std::printf("%s %g,%g,%g\n", path.c_str(), v.grid.spacing.x, v.grid.spacing.y, v.grid.spacing.z);
-    } catch (const vr::InputError& e) {
+    } catch (const std::exception& e) {  // bad input, or no such dataset in the manifest
         std::fprintf(stderr, "make_clinical_volume: %s\n", e.what());
         return 1;
     }

@@ -120,11 +120,9 @@ const std::vector<uint8_t>& AxialRuns::get(int axis, int sign) {
 }
 
 void AxialRuns::computeAll(unsigned octants) {
-    std::array<bool, 6> read{};
-    for (int o = 0; o < kOctants; ++o)
-        for (int a = 0; a < 3 && (octants >> o & 1u); ++a) read[2 * a + (octantSign(o, a) < 0)] = true;
     tbb::parallel_for(0, 6, [&](int i) {
-        if (read[i] && runs_[i].empty()) runs_[i] = axialRuns(regions_, i / 2, i % 2 ? -1 : 1);
+        const int axis = i / 2, sign = i % 2 ? -1 : 1;
+        if (read(octants, axis, sign) && runs_[i].empty()) runs_[i] = axialRuns(regions_, axis, sign);
     });
 }
 

@@ -24,6 +24,12 @@ public:
     // In parallel, the fields that the octants of the mask read (each octant one sign per axis): all six for all
     // octants, three for one (an orthographic view's).
     void computeAll(unsigned octants = kAllOctants);
+    // Whether some octant of the mask reads the runs along `axis` toward `sign`.
+    static bool read(unsigned octants, int axis, int sign) {
+        for (int o = 0; o < kOctants; ++o)
+            if ((octants >> o & 1u) && octantSign(o, axis) == sign) return true;
+        return false;
+    }
 
 private:
     const Regions& regions_;

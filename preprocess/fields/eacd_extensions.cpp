@@ -116,14 +116,11 @@ OctantState::OctantState(AxialRuns& allRuns, unsigned octants) : runs(allRuns) {
     const std::size_t voxels = voxelCount(n);
     for (ByteVolume* v : {&ext[0], &ext[1], &ext[2], &widest, &longest}) v->allocate(voxels);
     const int width = slabWidth(0), slabs = (n.x + width - 1) / width;
-    std::array<bool, 2> read{};  // [sign < 0]
-    for (int o = 0; o < kOctants; ++o)
-        if (octants >> o & 1u) read[octantSign(o, 0) < 0] = true;
-    for (int s = 0; s < 2; ++s)
-        if (read[s]) runsAcrossX[s].resize(Slab(n, 0, 0, n.x).size());
+    for (int sign : {1, -1})
+        if (AxialRuns::read(octants, 0, sign)) runsAcrossX[sign < 0].resize(Slab(n, 0, 0, n.x).size());
     tbb::parallel_for(0, 2 * slabs, [&](int i) {
         const int sign = i < slabs ? 1 : -1, s = i % slabs;
-        if (!read[sign < 0]) return;
+        if (!AxialRuns::read(octants, 0, sign)) return;
         const Slab slab(n, 0, s * width, std::min(n.x, (s + 1) * width));
         slab.gather(runs.get(0, sign).data(), runsAcrossX[sign < 0].data() + std::size_t(slab.t0) * slab.pitch);
     });
