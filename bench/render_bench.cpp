@@ -36,7 +36,7 @@ ManifestRow manifestRow(const fs::path& dir, const std::string& prefix) {
         std::vector<std::string> col;
         std::stringstream ss(line);
         for (std::string c; std::getline(ss, c, '\t');) col.push_back(c);
-        if (col.size() < 9 || col[0].rfind(prefix, 0) != 0 || col[0].find(".raw.gz") == std::string::npos) continue;
+        if (col.size() < 9 || col[0].rfind(prefix, 0) != 0 || col[0].find(".raw") == std::string::npos) continue;
         ManifestRow row{col[0], col[8], {}};
         Vec3i dims;
         std::istringstream(col[1]) >> dims.x >> dims.y >> dims.z;
@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
     int size = 512, views = 8, device = -1;
     double to = 0.02, ta = 10, step = 0.5;
     bool nearest = false, noShading = false;
+    int tile = VulkanRenderer::kAutoTile;
     std::string dir = VR_DATASETS_DIR;
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->capture_default_str();
     app.add_option("--size", size, "image width = height")->capture_default_str();
@@ -69,15 +70,17 @@ int main(int argc, char** argv) {
     app.add_flag("--nearest", nearest, "nearest sampling and regions for it (default: trilinear, as users render)");
     app.add_flag("--no-shading", noShading, "emission-absorption only, regions without normals (default: Phong)");
     app.add_option("--device", device, "Vulkan device index");
+    app.add_option("--tile", tile, "pixels per side of one submit (0: the renderer's choice for the device)")
+        ->capture_default_str();
     app.add_option("--data", dir, "datasets folder")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     try {
         VulkanContext ctx(VulkanOptions{device, false});
-        VulkanRenderer renderer(ctx);
-        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, %s, %s, ERT 0.99.\n\n",
+        VulkanRenderer renderer(ctx, tile);
+        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, %s, %s, ERT 0.99, tiles of %d px.\n\n",
                     ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear",
-                    noShading ? "unshaded" : "Phong headlight");
+                    noShading ? "unshaded" : "Phong headlight", renderer.tileSize());
         std::printf("| dataset | T_o, T_a | caster | upload ms (MB) | median device ms | x primitive (time) | "
                     "iterations/ray | x primitive (iterations) | PSNR vs primitive T=0, worst view (dB) |\n");
         std::printf("|---|---|---|---|---|---|---|---|---|\n");

@@ -146,7 +146,7 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
 }  // namespace
 
 VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const ImageLimits& limits)
-    : ctx_(ctx), tileSize_(tileSize != kAutoTile ? tileSize : ctx.info().type == "cpu" ? 512 : 128), limits_(limits) {
+    : ctx_(ctx), tileSize_(tileSize != kAutoTile ? tileSize : ctx.info().type == "cpu" ? 512 : 1024), limits_(limits) {
     const vk::raii::Device& device = ctx.device();
     requireCasterImageSupport(ctx.info().name, ctx.physicalDevice().getFeatures(),
                               [&](vk::Format f) { return ctx.physicalDevice().getFormatProperties(f); });

@@ -16,12 +16,13 @@ namespace vr {
 class VulkanRenderer {
 public:
     // Tiles of tileSize x tileSize pixels are separate submits, so no dispatch runs long enough to trip a
-    // GPU watchdog; kAutoTile: 128, or 512 on a CPU device (no watchdog; each submit costs llvmpipe a
-    // thread-pool round). `limits` lowers the device's image and storage-buffer limits (tests force bricks and
-    // refusals with it). Throws std::runtime_error for a device that cannot read the casters' storage-image formats
-    // (requireCasterImageSupport).
+    // GPU watchdog; kAutoTile: 1024 on a GPU (smaller tiles leave most of a large GPU idle), or 512 on a CPU
+    // device (no watchdog; each submit costs llvmpipe a thread-pool round). `limits` lowers the device's image and
+    // storage-buffer limits (tests force bricks and refusals with it). Throws std::runtime_error for a device that
+    // cannot read the casters' storage-image formats (requireCasterImageSupport).
     static constexpr int kAutoTile = 0;
     explicit VulkanRenderer(const VulkanContext& ctx, int tileSize = kAutoTile, const ImageLimits& limits = {});
+    int tileSize() const { return tileSize_; }
 
     // Uploads a prepared volume once for many renders (see GpuVolume); a volume too large for one image is split
     // into bricks. Throws InputError when the prepared volume lacks what `contents` asks for.
