@@ -1,5 +1,5 @@
-// The camera convention of docs/ALGORITHMS.md section 1. The Vulkan casters build their rays on the host with this
-// class and shaders/ray_setup.glsl must mirror Camera::ray() exactly (same pixel mapping, same orthographic plane).
+// The camera convention of docs/ALGORITHMS.md section 1. The casters take this class's eye, axes and half height,
+// and map pixels to the image plane with the same function (shaders/ray_math.h), so they cast the same rays.
 #include "render/camera.h"
 
 #include <cmath>
@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "shaders/ray_math.h"
 
 namespace vr {
 
@@ -144,10 +145,7 @@ std::vector<Camera> Camera::orbit(const GridGeometry& grid, const ViewParams& vi
 }
 
 Ray Camera::ray(double px, double py) const {
-    // Image-plane coordinates in [-1, 1]: (0,0) is the top-left corner, the image centre maps to (0,0).
-    const double aspect = double(width) / double(height);
-    const double u = (2 * px / width - 1) * halfHeight * aspect;
-    const double v = (1 - 2 * py / height) * halfHeight;
+    const double u = device::imagePlaneU(px, width, height, halfHeight), v = device::imagePlaneV(py, height, halfHeight);
     if (projection == Projection::Orthographic) return {eye + right * u + up * v, forward};
     return {eye, normalize(forward + right * u + up * v)};
 }

@@ -1,6 +1,6 @@
 // Ray setup shared by every caster (docs/ALGORITHMS.md sections 1 and 5): world ray -> grid ray, the volume
-// interval, the sampling lattice, the voxel of a sample and the leap count n of each caster.
-// GLSL counterpart: shaders/ray_setup.glsl, the same functions, also in double (positions, lattice, leaps).
+// interval, the sampling lattice, the voxel of a sample and the leap count n of each caster. The math is
+// shaders/ray_math.h's, which the casters compile in float; here it is double, with the CPU reference's types.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -15,6 +15,7 @@
 #include "core/grid.h"
 #include "shaders/clip_planes.h"
 #include "shaders/device_contract.h"
+#include "shaders/ray_math.h"
 
 namespace vr {
 
@@ -35,22 +36,13 @@ struct RayInterval {
     bool empty() const { return !(tEntry < tExit); }
 };
 
-// Slab test against the box [lo, hi] of grid coordinates. An axis with d_a == 0 never limits t (its exit is +inf);
-// the ray is inside that slab when lo_a <= o_a < hi_a (half-open like the voxels: a ray lying on the far face
-// samples no voxel). tEntry is clamped to >= 0 so that a camera inside the volume starts at its eye.
+// Slab test against the box [lo, hi] of grid coordinates (device::clipSlab per axis). tEntry is clamped to >= 0
+// so that a camera inside the volume starts at its eye.
 inline RayInterval intersectBox(const GridRay& r, const Vec3i& lo, const Vec3i& hi) {
     double t0 = 0, t1 = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        if (r.d[a] == 0) {
-            if (!(r.o[a] >= lo[a] && r.o[a] < hi[a])) return {0, 0};
-            continue;
-        }
-        double ta = (lo[a] - r.o[a]) / r.d[a], tb = (hi[a] - r.o[a]) / r.d[a];
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-    }
-    if (!(t0 < t1)) return {0, 0};
+    bool outside = false;
+    for (int a = 0; a < 3; ++a) device::clipSlab(r.o[a], r.d[a], lo[a], hi[a], t0, t1, outside);
+    if (outside || !(t0 < t1)) return {0, 0};
     return {t0, t1};
 }
 
@@ -102,16 +94,10 @@ inline void requireLatticeFits(const GridGeometry& grid, double stepVoxels) {
 }
 
 // The lattice t_k = tEntry + k dt, shared by every caster. Positions are recomputed from k, never accumulated.
-inline double latticeT(const RayInterval& iv, double dt, int64_t k) { return iv.tEntry + double(k) * dt; }
+inline double latticeT(const RayInterval& iv, double dt, int64_t k) { return device::latticeT(iv.tEntry, dt, k); }
 
 // Number of lattice samples with t_k < tExit (exactly as the comparison decides it, not as the division rounds).
-inline int64_t latticeCount(const RayInterval& iv, double dt) {
-    if (iv.empty()) return 0;
-    int64_t k = std::max<int64_t>(1, int64_t(std::ceil((iv.tExit - iv.tEntry) / dt)));
-    while (k > 1 && latticeT(iv, dt, k - 1) >= iv.tExit) --k;
-    while (latticeT(iv, dt, k) < iv.tExit) ++k;
-    return k;
-}
+inline int64_t latticeCount(const RayInterval& iv, double dt) { return device::latticeCount(iv.tEntry, iv.tExit, dt); }
 
 // The voxel holding a grid position, before clamping (may be outside [0, N) by rounding at the box faces).
 inline Vec3i floorVoxel(const Vec3d& p) {
@@ -159,34 +145,28 @@ inline VoxelBox octantBox(const Vec3i& v, int oct, const Vec3i& ext) {
     return b;
 }
 
-// PC: samples t, t + dt, ... t + (n-1) dt stay in the ball while (n-1) dt max|d_g| <= r.
-// Returned as a double: it may exceed any integer when dt is tiny; leapCount() bounds it.
+// PC: the samples that stay in the Chebyshev ball of radius r (device::pcLeapSamples; no slack in double). Returned
+// as a double: it may exceed any integer when dt is tiny; leapCount() bounds it.
 inline double pcLeapSamples(int r, double dt, const GridRay& ray) {
-    const double speed = maxComponent(abs(ray.d));
-    return std::max(1.0, 1.0 + std::floor(double(r) / (dt * speed)));
+    return device::pcLeapSamples(r, maxComponent(abs(ray.d)), dt, 0);
 }
 
-// ACD / EACD: the t at which the ray leaves the box through its far faces, far_a = v_a + s_a (ext_a - 1) + (s_a > 0).
-// An axis with d_a == 0 never limits the box (+inf, never 0/0).
+// ACD / EACD: the t at which the ray leaves the box through its far faces (device::boxAxisExitT per axis). An
+// axis with d_a == 0 never limits the box (+inf, never 0/0).
 inline double boxExitT(const GridRay& ray, const Vec3i& v, int oct, const Vec3i& ext) {
     double t = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        if (ray.d[a] == 0) continue;
-        const int s = device::octantSign(oct, a);
-        const double far = v[a] + s * (ext[a] - 1) + (s > 0 ? 1 : 0);
-        t = std::min(t, (far - ray.o[a]) / ray.d[a]);
-    }
+    for (int a = 0; a < 3; ++a)
+        if (ray.d[a] != 0)
+            t = std::min(t, device::boxAxisExitT(v[a], device::octantSign(oct, a), ext[a], ray.o[a], ray.d[a]));
     return t;
 }
 
-// ACD / EACD: the samples strictly before the box exit, at least one.
-inline double boxLeapSamples(double tBoxExit, double t, double dt) {
-    return std::max(1.0, std::ceil((tBoxExit - t) / dt));
-}
+using device::boxLeapSamples;
 
-// Trilinear sampling: a leap whose box is the voxel alone may start in a border voxel (a region of its own, thesis
-// 4.3.2), inside which the interpolated value changes; such a voxel is stepped sample by sample.
-inline double trilinearLeapSamples(double wanted, const VoxelBox& box) { return box.lo == box.hi ? 1.0 : wanted; }
+// Trilinear sampling steps a single-voxel box sample by sample (device::trilinearLeapSamples).
+inline double trilinearLeapSamples(double wanted, const VoxelBox& box) {
+    return device::trilinearLeapSamples(wanted, box.lo == box.hi);
+}
 
 // Whether the sample at t lies in `box` as floorVoxel places it, given that the span's first sample does (its
 // voxel is the box's corner v): positions only grow along an axis the ray climbs and only shrink along one it

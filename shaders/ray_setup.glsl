@@ -1,5 +1,5 @@
-// Ray setup shared by every caster: render/ray_setup.h and Camera::ray() in GLSL, in float (docs/ALGORITHMS.md
-// section 8). Every caster computes a sample's position from its lattice index with one expression
+// Ray setup shared by every caster, in float (docs/ALGORITHMS.md section 8): shaders/ray_math.h's math on the
+// casters' parameters and GLSL types, as render/ray_setup.h and Camera::ray() put it in double. Every caster computes a sample's position from its lattice index with one expression
 // (samplePosition), so at thresholds 0 they all fetch the same voxels; a leap counts only samples that lie in its
 // box as that expression rounds them. `precise` forbids fused multiply-adds, which would let the compiler round one
 // call site differently from another.
@@ -8,7 +8,7 @@
 
 #include "caster_params.glsl"
 #include "clip_planes.h"
-#include "numerics.glsl"
+#include "ray_math.h"
 
 struct GridRay {
     vec3 o, d;
@@ -20,9 +20,8 @@ struct RayInterval {
 
 // Camera::ray() for the pixel centre (px, py), then toGridRay().
 GridRay cameraGridRay(float px, float py, out vec3 worldDirection) {
-    precise float aspect = float(params.imageSize.x) / float(params.imageSize.y);
-    precise float u = (2.0 * px / float(params.imageSize.x) - 1.0) * params.halfHeight * aspect;
-    precise float v = (1.0 - 2.0 * py / float(params.imageSize.y)) * params.halfHeight;
+    float u = imagePlaneU(px, params.imageSize.x, params.imageSize.y, params.halfHeight);
+    float v = imagePlaneV(py, params.imageSize.y, params.halfHeight);
     precise vec3 origin, direction;
     if (!PERSPECTIVE) {  // the including shader's specialization constant (caster.comp)
         origin = params.eye.xyz + params.right.xyz * u + params.up.xyz * v;
@@ -45,19 +44,8 @@ vec3 rayAt(GridRay r, float t) {
     return p;
 }
 
-// Slab test; an axis with d_a == 0 never limits t, and the ray must then lie in lo <= o_a < hi. Written out per
-// axis without a loop or an early return: llvmpipe neither unrolls a loop that returns nor skips the code after a
-// return, and it runs every loop's body for all invocations of a SIMD batch.
-void clipSlab(float o, float d, int lo, int hi, inout float t0, inout float t1, inout bool outside) {
-    precise float ta = (float(lo) - o) / d;
-    precise float tb = (float(hi) - o) / d;
-    bool parallel = d == 0.0;
-    outside = outside || (parallel && !(o >= float(lo) && o < float(hi)));
-    t0 = parallel ? t0 : max(t0, min(ta, tb));
-    t1 = parallel ? t1 : min(t1, max(ta, tb));
-}
-
 // RayClip's interval (render/ray_setup.h clipInterval): the crop box (the grid without a crop), then every plane.
+// The slabs are written out per axis: llvmpipe runs every loop's body for all invocations of a SIMD batch.
 RayInterval intersectGrid(GridRay r) {
     float t0 = 0.0, t1 = kInfinity;
     bool outside = false;
@@ -78,23 +66,12 @@ RayInterval intersectGrid(GridRay r) {
 bool intervalEmpty(RayInterval iv) { return !(iv.tEntry < iv.tExit); }
 
 // The lattice t_k = tEntry + k dt (k is exact in float below 2^24; beyond, t_k stays monotone in k).
-float latticeT(RayInterval iv, uint k) {
-    precise float t = iv.tEntry + float(k) * params.dt;
-    return t;
-}
+float latticeT(RayInterval iv, uint k) { return latticeT(iv.tEntry, params.dt, k); }
 
 // The one position expression of the lattice rule: sample k of the ray.
 vec3 samplePosition(GridRay r, RayInterval iv, uint k) { return rayAt(r, latticeT(iv, k)); }
 
-// Samples with t_k < tExit, exactly as the comparison decides (t_k is monotone in k).
-uint latticeCount(RayInterval iv) {
-    if (intervalEmpty(iv)) return 0u;
-    precise float q = (iv.tExit - iv.tEntry) / params.dt;
-    uint k = uint(max(1.0, ceil(q)));
-    while (k > 1u && latticeT(iv, k - 1u) >= iv.tExit) --k;
-    while (latticeT(iv, k) < iv.tExit) ++k;
-    return k;
-}
+uint latticeCount(RayInterval iv) { return latticeCount(iv.tEntry, iv.tExit, params.dt); }
 
 ivec3 floorVoxel(vec3 p) { return ivec3(floor(p)); }
 ivec3 clampVoxel(ivec3 v) { return clamp(v, ivec3(0), params.dims.xyz - 1); }
@@ -142,38 +119,27 @@ VoxelBox octantBox(ivec3 v, int oct, ivec3 ext) {
     return b;
 }
 
-// PC: samples t, t + dt, ... t + (n-1) dt stay in the ball while (n-1) dt max|d_g| <= r; slack: 0 or the ball's.
+// PC: the samples in the ball of radius r; slack: 0 or the ball's.
 float pcLeapSamples(int r, GridRay ray, float slack) {
-    float speed = max(max(abs(ray.d.x), abs(ray.d.y)), abs(ray.d.z));
-    precise float q = (float(r) / speed - slack) / params.dt;
-    return max(1.0, 1.0 + floor(q));
+    return pcLeapSamples(r, max(max(abs(ray.d.x), abs(ray.d.y)), abs(ray.d.z)), params.dt, slack);
 }
 
 // ACD / EACD: per axis, the t at which the ray leaves the box through its far face (+inf on an axis the ray does
 // not move along).
 vec3 boxExitsT(GridRay ray, ivec3 v, int oct, ivec3 ext) {
     vec3 t = vec3(kInfinity);
-    for (int a = 0; a < 3; ++a) {
-        if (ray.d[a] == 0.0) continue;
-        int s = octantSign(oct, a);
-        float far = float(v[a] + s * (ext[a] - 1) + (s > 0 ? 1 : 0));
-        precise float ta = (far - ray.o[a]) / ray.d[a];
-        t[a] = ta;
-    }
+    for (int a = 0; a < 3; ++a)
+        if (ray.d[a] != 0.0) t[a] = boxAxisExitT(v[a], octantSign(oct, a), ext[a], ray.o[a], ray.d[a]);
     return t;
 }
 
-// ACD / EACD: the samples strictly before the box's exits, each moved closer by slack (0 or leapSlack's), at
-// least one.
+// ACD / EACD: the samples before the nearest of the box's exits, each moved closer by slack (0 or leapSlack's).
 float boxLeapSamples(vec3 exits, vec3 slack, float t) {
     precise vec3 closer = exits - slack;
-    precise float q = (min(min(closer.x, closer.y), closer.z) - t) / params.dt;
-    return max(1.0, ceil(q));
+    return boxLeapSamples(min(min(closer.x, closer.y), closer.z), t, params.dt);
 }
 
-// Trilinear sampling: a leap whose box is the voxel alone may start in a border voxel, inside which the
-// interpolated value changes; such a voxel is stepped sample by sample.
-float trilinearLeapSamples(float wanted, VoxelBox box) { return box.lo == box.hi ? 1.0 : wanted; }
+float trilinearLeapSamples(float wanted, VoxelBox box) { return trilinearLeapSamples(wanted, box.lo == box.hi); }
 
 bool inBox(ivec3 v, VoxelBox box) { return all(greaterThanEqual(v, box.lo)) && all(lessThanEqual(v, box.hi)); }
 
