@@ -9,6 +9,7 @@
 #include "datasets/phantoms.h"
 #include "render/cpu_renderer.h"
 #include "render/ray_setup.h"
+#include "support/blend_cases.h"
 #include "support/load_dataset.h"
 #include "support/prepare.h"
 #include "support/views.h"
@@ -119,6 +120,28 @@ TEST(RenderClipping, LeapingCastersEqualPrimitive) {
                     EXPECT_LT(maxAbsDifference(r.image, primitive.image), 1e-6) << casterName(caster);
                     EXPECT_LE(meanOf(r.iterations), meanOf(primitive.iterations)) << casterName(caster);
                 }
+            }
+        }
+    }
+}
+
+// The iso-surface under every clipping: its bisection stays between two samples of the clipped interval, so the
+// blocks caster, whose leaps stop at the interval's exit, finds the primitive caster's surface, and what is cut away
+// shows no surface.
+TEST(RenderClipping, IsoSurfaceBlocksEqualPrimitive) {
+    for (const test::BlendVolume& v : test::blendVolumes()) {
+        const Camera cam = Camera::fit(v.prepared.grid(), test::orbitView(37, 23, 40, 32));
+        for (bool trilinear : {false, true}) {
+            RenderSettings s = test::blendSettings(Blend::Iso, Caster::Primitive, trilinear, v.isoValue);
+            const RenderResult whole = renderCpu(v.prepared, cam, s);
+            for (const test::Clipping& c : test::clippings(v.prepared.grid())) {
+                SCOPED_TRACE(v.name + ", " + c.name + (trilinear ? ", trilinear" : ", nearest"));
+                c.applyTo(s);
+                s.caster = Caster::Primitive;
+                const RenderResult primitive = renderCpu(v.prepared, cam, s);
+                EXPECT_GT(maxAbsDifference(primitive.image, whole.image), 0.01);
+                s.caster = Caster::Blocks;
+                EXPECT_LT(maxAbsDifference(renderCpu(v.prepared, cam, s).image, primitive.image), 1e-7);
             }
         }
     }

@@ -1,9 +1,11 @@
 // Clipping on the device (shaders/ray_setup.glsl with shaders/clip_planes.h): for every clipping of
-// tests/support/views.cpp the leaping casters render the primitive caster's image, every caster matches the CPU
-// reference, and so does a volume split into bricks, whose rays start and end in different bricks.
+// tests/support/views.cpp the leaping casters render the primitive caster's image (the iso-surface's blocks caster
+// too), every caster matches the CPU reference, and so does a volume split into bricks, whose rays start and end in
+// different bricks.
 #include <gtest/gtest.h>
 
 #include "datasets/phantoms.h"
+#include "support/blend_cases.h"
 #include "render/cpu_renderer.h"
 #include "support/load_dataset.h"
 #include "support/prepare.h"
@@ -42,6 +44,26 @@ TEST(VulkanClipping, LeapingCastersEqualPrimitiveAndMatchTheCpuReference) {
     const PreparedVolume headBlock = test::prepareVolume(test::centralBlock(test::loadDataset(head), 40),
                                                          test::datasetTransferFunction(head.tf), {0, 0, true, false});
     expectClippedRendersAgree(head.file, headBlock, test::vulkanRenderer(40));
+    test::expectNoValidationErrors();
+}
+
+// The iso-surface under every clipping: the blocks caster finds the primitive caster's surface, and both match the
+// CPU reference.
+TEST(VulkanClipping, IsoSurfaceBlocksEqualPrimitive) {
+    VulkanRenderer& renderer = test::vulkanRenderer(40);
+    for (const test::BlendVolume& v : test::blendVolumes()) {
+        const Camera cam = Camera::fit(v.prepared.grid(), test::orbitView(37, 23, 48, 40));
+        RenderSettings s = test::blendSettings(Blend::Iso, Caster::Primitive, true, v.isoValue);
+        for (const test::Clipping& c : test::clippings(v.prepared.grid())) {
+            SCOPED_TRACE(v.name + ", " + c.name);
+            c.applyTo(s);
+            s.caster = Caster::Primitive;
+            const RenderResult primitive = renderer.render(v.prepared, cam, s);
+            test::expectNearCpuReference(primitive, renderCpu(v.prepared, cam, s));
+            s.caster = Caster::Blocks;
+            EXPECT_LT(maxAbsDifference(renderer.render(v.prepared, cam, s).image, primitive.image), 1e-4);
+        }
+    }
     test::expectNoValidationErrors();
 }
 
