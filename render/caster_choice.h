@@ -20,6 +20,12 @@ namespace vr {
 // whose rays are too long to probe (spacings far apart: more than 2^17 samples across).
 std::optional<RayProbe> probeRays(const PreparedVolume& prepared);
 
+// The primitive caster's mean loop iterations per pixel over `cameras`, from the CPU reference casting each view at
+// about 16 x 16 pixels over its whole frustum with the sampling of `settings` (unshaded: shading does not change where
+// a ray ends). Needs only the scalars and their classification: the probe of a volume before any field is built.
+double probePrimitiveIterations(const PreparedVolume& classified, const std::vector<Camera>& cameras,
+                                const RenderSettings& settings);
+
 // The views to render, which share one upload of the field.
 struct CasterDemand {
     unsigned octants = 0;          // ray octants the views have (viewOctants): the ACD / EACD octants uploaded
@@ -50,5 +56,13 @@ const CasterCalibration& builtInCalibration();
 CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes& fieldBytes,
                           const CasterDemand& demand,
                           const CasterCalibration& calibration = builtInCalibration());
+
+// --caster auto for a volume prepared in the same process, before any field is built (a primitive render builds
+// nothing): the primitive caster when its views (primitiveIterations per pixel from probePrimitiveIterations, priced
+// by the calibration) cost less than building EACD's field alone would, which no EACD render can win back; EACD,
+// which leaps furthest, otherwise. `voxels` prices the build at a cost per voxel measured on this project's 2-core
+// machine (caster_choice.cpp); more cores build faster, so the rule then errs toward building the field.
+CasterChoice chooseBeforeBuilding(double primitiveIterations, const CasterDemand& demand, std::size_t voxels,
+                                  const CasterCalibration& calibration = builtInCalibration());
 
 }  // namespace vr

@@ -175,5 +175,22 @@ TEST(RenderCasterChoice, SaysWhy) {
         EXPECT_NE(c.reason.find(caster), std::string::npos) << c.reason;
 }
 
+// Before any field is built: primitive while its views cost less than building EACD's field, which no EACD render
+// can win back; EACD once they cost more. The reason gives both estimates.
+TEST(RenderCasterChoice, BeforeBuildingPrimitiveWinsUntilItsViewsCostMoreThanTheField) {
+    const CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", ""};
+    CasterDemand d = ortho();
+    d.pixels = 512 * 512;
+    const std::size_t voxels = 256 * 256 * 128;  // about 1 s to segment and build at 120 ns per voxel
+    // One view of 100 iterations per pixel: 512^2 x (40 + 100 x 10) ns = 273 ms.
+    const CasterChoice one = chooseBeforeBuilding(100, d, voxels, calibration);
+    EXPECT_EQ(one.caster, Caster::Primitive);
+    for (const char* part : {"1 view(s)", "273 ms", "100.0 iterations", "1007 ms"})
+        EXPECT_NE(one.reason.find(part), std::string::npos) << one.reason;
+    d.views.assign(4, d.views.front());  // 1090 ms of primitive frames
+    EXPECT_EQ(chooseBeforeBuilding(100, d, voxels, calibration).caster, Caster::EACD);
+    EXPECT_EQ(chooseBeforeBuilding(10, d, voxels, calibration).caster, Caster::Primitive);  // mostly air
+}
+
 }  // namespace
 }  // namespace vr

@@ -153,8 +153,8 @@ TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {
     const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
     const std::string volume = q(test::datasetsDir() / e.file), tf = " --tf " + q(test::datasetsDir() / e.tf);
     const std::string view = " --size 48x40 --azimuth 30 --elevation 20";
-    const test::CliOutcome one = volrender(volume + tf + view + " -o " + q(dir / "one.exr") + " --stats " +
-                                           q(dir / "one.json"));
+    const test::CliOutcome one = volrender(volume + tf + view + " --caster eacd -o " + q(dir / "one.exr") +
+                                           " --stats " + q(dir / "one.json"));
     ASSERT_EQ(one.status, 0) << one.err;
     const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "one.json"));
     EXPECT_EQ(stats["settings"]["caster"], "eacd");
@@ -174,6 +174,27 @@ TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {
     expectRejected(q(dir / "head.vprep") + tf + " -o " + q(dir / "x.png"), "a prepared file holds its transfer function");
     expectRejected(volume + tf + " --to -1 -o " + q(dir / "x.png"), "--to");
     EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// --caster auto on a volume prepared here decides between classifying and segmenting: one small view costs less cast
+// without a field than the field would take to build, so nothing is segmented; an orbit of larger views pays for it.
+TEST(VolrenderCli, AutoDecidesBeforeBuildingAField) {
+    const fs::path dir = test::scratchDir("volrender_cli_auto_here");
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    const std::string volume = q(test::datasetsDir() / e.file) + " --tf " + q(test::datasetsDir() / e.tf);
+    for (const auto& [view, caster] : {std::pair{" --size 48x40", "primitive"},
+                                       std::pair{" --size 256x256 --views 4", "eacd"}}) {
+        SCOPED_TRACE(view);
+        const test::CliOutcome r = volrender(volume + view + " --elevation 20 -o " + q(dir / "v.png") + " --stats " +
+                                             q(dir / "v.json"));
+        ASSERT_EQ(r.status, 0) << r.err;
+        const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "v.json"));
+        EXPECT_EQ(stats["settings"]["caster"], caster);
+        EXPECT_EQ(stats["prepareSeconds"].contains("segment"), std::string(caster) == "eacd");
+        const std::string why = stats["settings"]["casterChoice"];
+        EXPECT_NE(why.find("cast without a field take an estimated"), std::string::npos) << why;
+        EXPECT_NE(r.err.find("--caster auto chose " + std::string(caster)), std::string::npos) << r.err;
+    }
 }
 
 // The shared head CT is in Hounsfield units: with CT-Bone its skull shows; a window/level ramp far above any of its
@@ -230,7 +251,7 @@ TEST(VolrenderCli, ProgressBarsOnATerminalAndNoneWithQuiet) {
     const fs::path dir = test::scratchDir("volrender_cli_quiet");
     const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
     const std::string args = q(test::datasetsDir() / e.file) + " --tf " + q(test::datasetsDir() / e.tf) +
-                             " --size 16x16 -o " + q(dir / "x.png");
+                             " --size 16x16 --caster eacd -o " + q(dir / "x.png");
     const test::CliOutcome shown = test::runOnTerminal(test::volrenderExecutable(), args);
     ASSERT_EQ(shown.status, 0) << shown.out;
     for (const char* stage : {"load ", "classify ", "segment ", "fields "})

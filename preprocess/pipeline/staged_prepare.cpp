@@ -1,5 +1,6 @@
 #include "preprocess/pipeline/staged_prepare.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "io/prepared_file.h"
@@ -106,6 +107,8 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
         classifiedWith_ = std::move(classifying);
     }
     if (options.classify.transferFunction) prepared_.meta.classification = options.classify.transferFunction->json;
+    // Regions that nothing reads are not made: no field asks for them and they are not kept.
+    if (!options.fields && !options.keepRegions) last = std::min(last, PrepStage::Classify);
     if (last >= PrepStage::Segment && segmentedWith_ != options.segmentation) {
         run(PrepStage::Segment, [&](std::vector<StageTime>& times) {
             runStage("segment", times, [&] {

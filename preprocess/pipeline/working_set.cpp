@@ -15,7 +15,9 @@ namespace vr {
 
 std::size_t preparationBytes(const GridGeometry& grid, const PrepareOptions& options) {
     const std::size_t octants = std::size_t(std::popcount(options.octants & kAllOctants));
-    const std::size_t held = sizeof(float) + sizeof(uint32_t);  // the scalars, the region labels
+    // The scalars, and the region labels unless none are made (no field and none kept: a primitive render).
+    if (!options.fields && !options.keepRegions) return grid.voxels() * sizeof(float);
+    const std::size_t held = sizeof(float) + sizeof(uint32_t);
     // Segmentation classifies each voxel as it reads it; post-classified growth keeps each voxel's footprint range,
     // its normal class (the normal's bits at T_a = 0) and whether normals mix around it.
     std::size_t segment = 0;

@@ -68,8 +68,9 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...; or a movie "
                                             "of the views: .gif (256 colours a frame) or .mp4 (H.264)");
     app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, blocks, or auto (composite: chosen from the "
-                                         "file's ray probe and the views by a cost model, see --calibration; the "
-                                         "other blends: blocks)")->capture_default_str();
+                                         "file's ray probe and the views by a cost model, see --calibration; a "
+                                         "volume prepared here: primitive when its views cost less than building "
+                                         "EACD's field, else EACD; the other blends: blocks)")->capture_default_str();
     app.add_option("--blend", f.blend, "what a ray shows: composite (front-to-back compositing of the classified "
                                        "samples), mip or minip (the largest or smallest scalar), average (the mean "
                                        "scalar), each in its transfer-function colour at its opacity, or iso (the "
@@ -227,15 +228,38 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
     return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
 }
 
+// --caster auto for a volume prepared here, once it is classified and before any field is built: the primitive
+// caster when the orbit costs less cast without a field than EACD's field would take to build (priced with the
+// constants of the device the render will open), EACD otherwise.
+vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& view, const vr::RenderSettings& s,
+                                        const vr::PreparedVolume& classified, const std::vector<vr::Camera>& cameras) {
+    const vr::CalibrationInUse calibration =
+        vr::calibrationInUse(f.calibration, vr::VulkanContext::chosenDevice(vr::VulkanOptions{f.device, false}).name);
+    vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
+    for (const vr::Camera& camera : cameras) d.addView(camera);
+    return vr::chooseBeforeBuilding(vr::probePrimitiveIterations(classified, cameras, s), d,
+                                    classified.grid().voxels(), calibration.constants);
+}
+
 // The one-command path: the volume loaded, classified, segmented and given the field of the caster only, in the
-// octants of the orbit's rays only (regions for the sampling and shading asked), in memory, each stage timed.
-vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, const vr::RenderSettings& s,
-                                 std::vector<vr::StageTime>& stages) {
+// octants of the orbit's rays only (regions for the sampling and shading asked), in memory, each stage timed. With
+// `chooseHere`, --caster auto picks the caster between classifying and segmenting (a primitive render segments
+// nothing) and says why in `choice`.
+vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr::RenderSettings& s, bool chooseHere,
+                                 std::string& choice, std::vector<vr::StageTime>& stages) {
     vr::PrepareOptions options = vr::prepareOptionsFrom(f.volume, !s.trilinear, !s.shading);
     options.fields = fieldsFor(s.caster);
     options.keepRegions = false;  // the renderers read the field, never the labels: freed once the field has them
     vr::StagedPreparation staged = vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume));
-    options.octants = orbitOctants(vr::Camera::orbit(staged.volume().grid, view, f.views));
+    const std::vector<vr::Camera> cameras = vr::Camera::orbit(staged.volume().grid, view, f.views);
+    options.octants = orbitOctants(cameras);
+    if (chooseHere) {
+        const vr::CasterChoice c =
+            autoCasterBeforeFields(f, view, s, staged.prepare(options, vr::PrepStage::Classify), cameras);
+        s.caster = c.caster;
+        choice = c.reason;
+        options.fields = fieldsFor(s.caster);
+    }
     staged.prepare(options);
     stages = staged.stageTimes();
     if (!f.quiet) {
@@ -312,13 +336,13 @@ int run(const Flags& f) {
     const bool chooseCaster = f.caster == "auto" && settings.blend == vr::Blend::Composite;
     if (settings.blend != vr::Blend::Composite && f.caster == "auto")
         choice = "the " + f.blend + " blend leaps by the blocks' scalar extrema";
-    if (prepareHere && chooseCaster) {
+    if (prepareHere && chooseCaster) {  // the device's choice is made between classifying and segmenting
         settings.caster = vr::Caster::EACD;
-        choice = "a volume prepared here has no ray probe before its fields exist: EACD, which leaps furthest";
+        choice = "the CPU reference has no calibration to weigh the casters: EACD, which leaps furthest";
     }
     std::vector<vr::StageTime> stages;  // of preparing the volume here
     std::optional<vr::PreparedVolume> preparedHere;
-    if (prepareHere) preparedHere = prepareVolume(f, view, settings, stages);
+    if (prepareHere) preparedHere = prepareVolume(f, view, settings, chooseCaster && !f.cpu, choice, stages);
     // The device is opened once a volume prepared here is done (the preparation's memory is given back by then),
     // and before a prepared file is read: auto weighs the casters with the constants measured on it.
     std::unique_ptr<vr::VulkanContext> context;

@@ -62,6 +62,32 @@ vk::raii::Instance makeInstance(const vk::raii::Context& context, bool validatio
     return vk::raii::Instance(context, vk::InstanceCreateInfo({}, &app, layers, extensions));
 }
 
+// The index of the device `requested` (-1: the first discrete GPU with a compute queue, else the first device with
+// one). Throws when there is none or it has no compute queue.
+int chooseDevice(const vk::raii::PhysicalDevices& devices, int requested) {
+    if (devices.empty()) throw std::runtime_error("no Vulkan device found");
+    int chosen = requested;
+    if (chosen >= int(devices.size()))
+        throw std::runtime_error("Vulkan device " + std::to_string(chosen) + " does not exist (" +
+                                 std::to_string(devices.size()) + " found; see --list-devices)");
+    if (chosen < 0) {
+        for (std::size_t i = 0; i < devices.size() && chosen < 0; ++i)
+            if (devices[i].getProperties().deviceType == vk::PhysicalDeviceType::eDiscreteGpu &&
+                computeQueueFamily(devices[i]) >= 0)
+                chosen = int(i);
+        for (std::size_t i = 0; i < devices.size() && chosen < 0; ++i)
+            if (computeQueueFamily(devices[i]) >= 0) chosen = int(i);
+    }
+    if (chosen < 0 || computeQueueFamily(devices[chosen]) < 0)
+        throw std::runtime_error("no Vulkan device with a compute queue");
+    return chosen;
+}
+
+VulkanDeviceInfo deviceInfo(const vk::raii::PhysicalDevice& device, int index) {
+    const auto props = device.getProperties();
+    return {index, props.deviceName.data(), typeName(props.deviceType), versionString(props.apiVersion)};
+}
+
 }  // namespace
 
 VulkanContext::VulkanContext(const VulkanOptions& options) {
@@ -80,25 +106,10 @@ VulkanContext::VulkanContext(const VulkanOptions& options) {
     }
 
     vk::raii::PhysicalDevices devices(instance_);
-    if (devices.empty()) throw std::runtime_error("no Vulkan device found");
-    int chosen = options.deviceIndex;
-    if (chosen >= int(devices.size()))
-        throw std::runtime_error("Vulkan device " + std::to_string(chosen) + " does not exist (" +
-                                 std::to_string(devices.size()) + " found; see --list-devices)");
-    if (chosen < 0) {
-        for (std::size_t i = 0; i < devices.size() && chosen < 0; ++i)
-            if (devices[i].getProperties().deviceType == vk::PhysicalDeviceType::eDiscreteGpu &&
-                computeQueueFamily(devices[i]) >= 0)
-                chosen = int(i);
-        for (std::size_t i = 0; i < devices.size() && chosen < 0; ++i)
-            if (computeQueueFamily(devices[i]) >= 0) chosen = int(i);
-    }
-    if (chosen < 0 || computeQueueFamily(devices[chosen]) < 0)
-        throw std::runtime_error("no Vulkan device with a compute queue");
+    const int chosen = chooseDevice(devices, options.deviceIndex);
     physical_ = std::move(devices[chosen]);
-    auto props = physical_.getProperties();
-    info_ = {chosen, props.deviceName.data(), typeName(props.deviceType), versionString(props.apiVersion)};
-    if (props.apiVersion < VK_API_VERSION_1_1)
+    info_ = deviceInfo(physical_, chosen);
+    if (physical_.getProperties().apiVersion < VK_API_VERSION_1_1)
         throw std::runtime_error(info_.name + " supports only Vulkan " + info_.apiVersion + " (1.1 needed)");
 
     queueFamily_ = uint32_t(computeQueueFamily(physical_));
@@ -121,11 +132,16 @@ std::vector<VulkanDeviceInfo> VulkanContext::listDevices() {
     vk::raii::Instance instance = makeInstance(context, false);
     std::vector<VulkanDeviceInfo> out;
     vk::raii::PhysicalDevices devices(instance);
-    for (std::size_t i = 0; i < devices.size(); ++i) {
-        auto props = devices[i].getProperties();
-        out.push_back({int(i), props.deviceName.data(), typeName(props.deviceType), versionString(props.apiVersion)});
-    }
+    for (std::size_t i = 0; i < devices.size(); ++i) out.push_back(deviceInfo(devices[i], int(i)));
     return out;
+}
+
+VulkanDeviceInfo VulkanContext::chosenDevice(const VulkanOptions& options) {
+    vk::raii::Context context;
+    vk::raii::Instance instance = makeInstance(context, false);
+    vk::raii::PhysicalDevices devices(instance);
+    const int chosen = chooseDevice(devices, options.deviceIndex);
+    return deviceInfo(devices[chosen], chosen);
 }
 
 std::vector<std::string> VulkanContext::validationErrors() const {
