@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "preprocess/classify/transfer_choice.h"
 
 namespace vr {
 
@@ -50,7 +51,7 @@ PeerScene loadPeerScene(const PeerSceneOptions& options) {
     PeerScene scene;
     scene.options = options;
     scene.volume = loadVolume(options.volume, options.raw);
-    scene.tf = loadTransferFunction(options.transferFunction);
+    scene.tf = namedTransferFunction(options.transferFunction);  // a preset's name or a file, as --tf takes
 
     scene.table = peerTable(scene.volume, scene.tf);
 

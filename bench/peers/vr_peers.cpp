@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
     std::vector<double> spacing;
     std::vector<std::string> peers = kPeers;
     app.add_option("volume", volume, "volume file (e.g. a .raw.gz named NAME_XxYxZ_TYPE.raw.gz)")->required();
-    app.add_option("--tf", tf, "ParaView transfer function preset (JSON)")->required();
+    app.add_option("--tf", tf, "a built-in preset's name or a ParaView transfer function preset (JSON)")->required();
     app.add_option("--spacing", spacing, "voxel size x,y,z for raw volumes")->delimiter(',')->expected(3);
     app.add_option("--views", o.views, "orbit of N views 360/N degrees apart")->capture_default_str();
     app.add_option("--elevation", o.elevationDeg, "elevation of every view, degrees")->capture_default_str();

@@ -35,6 +35,7 @@
 #include "bench/peers/peer_scene.h"
 #include "bench/peers/vtk_setup.h"
 #include "core/errors.h"
+#include "preprocess/classify/transfer_choice.h"
 
 namespace {
 
@@ -56,7 +57,7 @@ int main(int argc, char** argv) {
     int threads = 2;
     app.add_option("volume", volumePath, "volume file (any format volrender reads, e.g. NAME_XxYxZ_TYPE.raw.gz)")
         ->required();
-    app.add_option("--tf", tfPath, "ParaView transfer function preset (JSON)")->required();
+    app.add_option("--tf", tfPath, "a built-in preset's name or a ParaView transfer function preset (JSON)")->required();
     app.add_option("--spacing", spacing, "voxel size x,y,z for raw volumes")->delimiter(',')->expected(3);
     app.add_option("--size", size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--azimuth", azimuth, "camera turn about the up axis, degrees")->capture_default_str();
@@ -90,7 +91,7 @@ int main(int argc, char** argv) {
         vtkSmartPointer<vtkImageData> image = vr::vtkImageViewOf(volume, /*cornerPoints*/ false);
         const double loadS = secondsSince(clock);
 
-        const vr::SampledTransferFunction table = vr::peerTable(volume, vr::loadTransferFunction(tfPath));
+        const vr::SampledTransferFunction table = vr::peerTable(volume, vr::namedTransferFunction(tfPath));
         const double unit = volume.grid.smallestSpacing();  // our TF's opacity is per this length
         vtkSmartPointer<vtkVolumeProperty> property = vr::vtkVolumePropertyOf(table, unit, /*userSettings*/ true);
         const double tfS = secondsSince(clock);
