@@ -60,18 +60,25 @@ std::string sizeMismatch(std::size_t expected, std::size_t actual, const Vec3i& 
            std::string(scalarTypeName(type)) + " need " + std::to_string(expected) + " bytes";
 }
 
-std::vector<unsigned char> readPlain(const fs::path& path, std::size_t expected, const Vec3i& dims,
-                                     ScalarType type) {
+// A plain file is read in chunks, each widened into `out` as it arrives: no second copy of the volume's bytes, and
+// none of the fresh pages it would take (clearing them was a large part of loading a clinical-size CT).
+void readPlainWidened(const fs::path& path, std::size_t expected, const Vec3i& dims, ScalarType type, bool swap,
+                      float* out) {
     std::error_code ec;
     const std::uintmax_t actual = fs::file_size(path, ec);
     if (ec) throw fileError(path.string(), "cannot read: " + ec.message());
     if (actual != expected) throw fileError(path.string(), sizeMismatch(expected, actual, dims, type));
-    std::vector<unsigned char> bytes(expected);
     std::ifstream in(path, std::ios::binary);
-    if (!in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(expected)))
-        throw fileError(path.string(), "read failed after " + std::to_string(in.gcount()) + " of " +
-                                           std::to_string(expected) + " bytes");
-    return bytes;
+    const std::size_t voxelBytes = scalarBytes(type);
+    std::vector<unsigned char> chunk((std::size_t(16) << 20) / voxelBytes * voxelBytes);
+    for (std::size_t done = 0; done < expected;) {
+        const std::size_t n = std::min(chunk.size(), expected - done);
+        if (!in.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(n)))
+            throw fileError(path.string(), "read failed after " + std::to_string(done + std::size_t(in.gcount())) +
+                                               " of " + std::to_string(expected) + " bytes");
+        widenVoxels(type, chunk.data(), n / voxelBytes, swap, out + done / voxelBytes);
+        done += n;
+    }
 }
 
 // The decompressed size is only known by decompressing, so the buffer grows with the data actually there (a tiny
@@ -141,19 +148,23 @@ Volume loadRaw(const fs::path& path, const RawOptions& flags) {
                         "NAME_XxYxZ_TYPE.raw");
     const Vec3i dims = *options.dims;
     const ScalarType type = *options.type;
-    // The file's bytes and the float values are held together while converting.
-    checkVoxelBudget(path, dims.x, dims.y, dims.z, scalarBytes(type) + sizeof(float));
+    // A gzip file's bytes and the float values are held together while converting; a plain file's only a chunk
+    // at a time.
+    const bool gzip = lowerCase(path.extension().string()) == ".gz";
+    checkVoxelBudget(path, dims.x, dims.y, dims.z, (gzip ? scalarBytes(type) : 0) + sizeof(float));
     const std::size_t expected = voxelCount(dims) * scalarBytes(type);
-    const std::vector<unsigned char> bytes =
-        lowerCase(path.extension().string()) == ".gz" ? readGzip(path, expected, dims, type) : readPlain(path, expected, dims, type);
+    const bool swap = options.bigEndian != (std::endian::native == std::endian::big);
+    const std::vector<unsigned char> bytes = gzip ? readGzip(path, expected, dims, type) : std::vector<unsigned char>();
 
     Volume v;
     v.grid.dims = dims;
     v.grid.spacing = options.spacing.value_or(Vec3d{1, 1, 1});
     v.sourceType = type;
     v.values.resize(v.grid.voxels());
-    const bool swap = options.bigEndian != (std::endian::native == std::endian::big);
-    widenVoxels(type, bytes.data(), v.values.size(), swap, v.values.data());
+    if (gzip)
+        widenVoxels(type, bytes.data(), v.values.size(), swap, v.values.data());
+    else
+        readPlainWidened(path, expected, dims, type, swap, v.values.data());
     return v;
 }
 
