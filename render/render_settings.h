@@ -64,6 +64,8 @@ struct RenderSettings {
     // device::kMaxClipPlanes planes.
     std::vector<ClipPlane> clipPlanes;
     std::optional<CropBox> crop;
+    // Each ray's lattice starts a per-pixel fraction of a step late (shaders/jitter.h): noise instead of wood-grain.
+    bool jitter = false;
 };
 
 }  // namespace vr
