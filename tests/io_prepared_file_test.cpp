@@ -611,14 +611,14 @@ TEST_F(IoPreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
 
 TEST_F(IoPreparedFile, RejectsEarlierVersions) {
     // Version 1 stored EACD as 3 bytes per octant with no eacdCode, version 2 the classified volume (sigma, colour,
-    // normal) instead of the scalars and the table, version 3 every chunk uncompressed: refused with the way out,
-    // not misread.
-    for (uint32_t v : {1u, 2u, 3u}) {
+    // normal) instead of the scalars and the table, version 3 every chunk uncompressed, version 4 no label map:
+    // refused with the way out, not misread.
+    for (uint32_t v : {1u, 2u, 3u, 4u}) {
         std::vector<char> b = readBytes(good);
         std::memcpy(b.data() + 8, &v, 4);
         writeBytes(bad, b);
         expectRejected(bad, "prepared format version " + std::to_string(v) +
-                                ", this build reads version 4 (run volprep again)");
+                                ", this build reads version 5 (run volprep again)");
     }
     // A version 3 file as it was: the chunks raw, each with the CRC-32 of its bytes, no compression in the header.
     Parts parts = split(good);
@@ -635,7 +635,7 @@ TEST_F(IoPreparedFile, RejectsEarlierVersions) {
     const uint32_t three = 3;
     std::memcpy(parts.preamble.data() + 8, &three, 4);
     join(bad, parts);
-    expectRejected(bad, "prepared format version 3, this build reads version 4 (run volprep again)");
+    expectRejected(bad, "prepared format version 3, this build reads version 5 (run volprep again)");
     EXPECT_THROW(readPreparedHeader(bad), InputError);
 }
 
