@@ -4,6 +4,7 @@
 
 #include "datasets/phantoms.h"
 #include "render/cpu_renderer.h"
+#include "render/view_octants.h"
 #include "support/label_maps.h"
 #include "support/load_dataset.h"
 #include "support/prepare.h"
@@ -46,18 +47,18 @@ TEST(VulkanLabels, MatchTheCpuReferenceAndLeapLikePrimitive) {
     for (bool wide : {false, true})
         for (bool trilinear : {false, true}) {
             const PreparedVolume p = prepare(headCt(wide), trilinear);
-            for (const ViewParams& v : {test::orbitView(0, 0, 40, 32), test::orbitView(-130, -50, 40, 32)}) {
-                const Camera camera = Camera::fit(p.grid(), v);
-                RenderSettings s = test::renderSettings(Caster::Primitive, true, trilinear);
-                SCOPED_TRACE(std::string(wide ? "uint16" : "uint8") + (trilinear ? " trilinear" : " nearest") +
-                             " az " + std::to_string(v.azimuthDeg));
-                const RenderResult primitive = renderer().render(p, camera, s);
-                test::expectNearCpuReference(primitive, renderCpu(p, camera, s));
-                for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
-                    s.caster = c;
-                    EXPECT_LT(maxAbsDifference(renderer().render(p, camera, s).image, primitive.image), 1e-4)
-                        << casterName(c);
-                }
+            // Oblique views: along an axis, samples fall on voxel faces, where float and double may round to
+            // different voxels, and a label map's voxels differ sharply.
+            const ViewParams v = trilinear ? test::orbitView(23, 11, 40, 32) : test::orbitView(-130, -50, 40, 32);
+            const Camera camera = Camera::fit(p.grid(), v);
+            RenderSettings s = test::renderSettings(Caster::Primitive, true, trilinear);
+            SCOPED_TRACE(std::string(wide ? "uint16" : "uint8") + (trilinear ? " trilinear" : " nearest"));
+            const RenderResult primitive = renderer().render(p, camera, s);
+            test::expectNearCpuReference(primitive, renderCpu(p, camera, s));
+            for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
+                s.caster = c;
+                EXPECT_LT(maxAbsDifference(renderer().render(p, camera, s).image, primitive.image), 1e-4)
+                    << casterName(c);
             }
         }
     expectNoValidationErrors();
@@ -65,11 +66,11 @@ TEST(VulkanLabels, MatchTheCpuReferenceAndLeapLikePrimitive) {
 
 TEST(VulkanLabels, InBricksAsWhole) {
     const PreparedVolume p = prepare(headCt(false), true);
-    static VulkanRenderer bricked(test::vulkanContext(), 24, ImageLimits{.maxDimension = 20, .minBricks = {2, 2, 2}});
+    static VulkanRenderer bricked(test::vulkanContext(), 24, ImageLimits{.maxDimension = 40, .minBricks = {3, 3, 3}});
     const Camera camera = Camera::fit(p.grid(), test::orbitView(37, 23, 40, 32));
     for (Caster c : {Caster::Primitive, Caster::EACD}) {
         const RenderSettings s = test::renderSettings(c, true, true);
-        const GpuVolume split = bricked.upload(p, {{c}, kAllOctants});
+        const GpuVolume split = bricked.upload(p, {{c}, viewOctants(camera)});
         ASSERT_GT(split.bricks().bricks().size(), 1u);
         EXPECT_LT(maxAbsDifference(bricked.render(split, camera, s).image, renderer().render(p, camera, s).image),
                   1e-4)
