@@ -134,15 +134,15 @@ private:
 };
 
 // What MIP, MinIP and average show (docs/ALGORITHMS.md section 11): the value's TF colour at the TF's opacity,
-// over the background; the background alone for a ray without samples.
-Vec3d shownValue(const Sampler& sampler, const ScalarClassification& c, double value, bool sampled,
+// or opaque (a grey window), over the background; the background alone for a ray without samples.
+Vec3d shownValue(const Sampler& sampler, const ScalarClassification& c, double value, bool sampled, bool opaque,
                  const Vec3d& background, double& alpha) {
     if (!sampled) {
         alpha = 0;
         return background;
     }
     const SampleValue s = sampler.classified(value);
-    alpha = opacityFromExtinction(s.sigma, c.referenceStep);
+    alpha = opaque ? 1 : opacityFromExtinction(s.sigma, c.referenceStep);
     return s.colour * alpha + background * (1 - alpha);
 }
 
@@ -313,9 +313,11 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         double alpha = acc.alpha;
         const ScalarClassification& classification = prepared.classification;
         if (blend == Blend::MIP || blend == Blend::MinIP)
-            c = shownValue(sampler, classification, running, kCount > 0, settings.background, alpha);
+            c = shownValue(sampler, classification, running, kCount > 0, settings.opaqueValues, settings.background,
+                           alpha);
         if (blend == Blend::Average)
-            c = shownValue(sampler, classification, sum / double(kCount), kCount > 0, settings.background, alpha);
+            c = shownValue(sampler, classification, sum / double(kCount), kCount > 0, settings.opaqueValues,
+                           settings.background, alpha);
         if (blend == Blend::Iso) {
             alpha = hit ? 1 : 0;
             c = hit ? isoSurface(sampler, g, clip, iv, dt, k, iso, settings.shading, toEye, toLight) : settings.background;

@@ -282,12 +282,12 @@ vec4 initialComposite() {
     return vec4(vec3(0.0), 1.0);
 }
 
-// What MIP, MinIP and average show (docs/ALGORITHMS.md section 11): the value's TF colour at the TF's opacity, over
-// the background; the background alone for a ray without samples.
+// What MIP, MinIP and average show (docs/ALGORITHMS.md section 11): the value's TF colour at the TF's opacity, or
+// opaque (a grey window), over the background; the background alone for a ray without samples.
 vec4 shownValue(float value, bool sampled) {
     if (!sampled) return vec4(params.background.rgb, 0.0);
     vec4 c = classify(value);
-    float alpha = spanOpacity(c.a * params.opacityLength);
+    float alpha = params.opaqueValues != 0 ? 1.0 : spanOpacity(c.a * params.opacityLength);
     return vec4(c.rgb * alpha + params.background.rgb * (1.0 - alpha), alpha);
 }
 

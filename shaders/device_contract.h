@@ -121,6 +121,7 @@ struct CasterParams {
     int clipPlaneCount;
     int jitter;  // 1: each ray's lattice starts late by its pixel's fraction of a step (jitter.h)
     int labelLastEntry;  // the label table's last entry (label_lookup.h labelEntry)
+    int opaqueValues;    // 1: MIP, MinIP and average show their value's colour opaque (RenderSettings::opaqueValues)
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -176,6 +177,7 @@ static_assert(offsetof(CasterParams, clipPlanes) == 320);
 static_assert(offsetof(CasterParams, clipPlaneCount) == 416);
 static_assert(offsetof(CasterParams, jitter) == 420);
 static_assert(offsetof(CasterParams, labelLastEntry) == 424);
+static_assert(offsetof(CasterParams, opaqueValues) == 428);
 static_assert(sizeof(CasterParams) == 432);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);

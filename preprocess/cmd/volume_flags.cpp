@@ -18,7 +18,8 @@ CLI::Option_group* addTransferFlags(CLI::App& app, TransferChoice& choice) {
     auto* window = group->add_option_function<double>(
         "--window", [&choice](double w) { choice.window = w; },
         "width of a linear opacity ramp, in the volume's units (HU for a CT): opacity 0 at level - window/2 to 1 at "
-        "level + window/2; grey, or coloured by --tf");
+        "level + window/2; grey, or coloured by --tf. volrender --blend mip, minip and average show it opaque: a "
+        "grey window");
     auto* level = group->add_option_function<double>(
         "--level", [&choice](double l) { choice.level = l; }, "the value at the middle of --window's ramp");
     window->needs(level);

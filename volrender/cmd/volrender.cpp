@@ -74,8 +74,9 @@ void addFlags(CLI::App& app, Flags& f) {
                                          "EACD's field, else EACD; the other blends: blocks)")->capture_default_str();
     app.add_option("--blend", f.blend, "what a ray shows: composite (front-to-back compositing of the classified "
                                        "samples), mip or minip (the largest or smallest scalar), average (the mean "
-                                       "scalar), each in its transfer-function colour at its opacity, or iso (the "
-                                       "first crossing of --iso, shaded in its colour)")->capture_default_str();
+                                       "scalar), each in its transfer-function colour at its opacity (opaque with "
+                                       "--window/--level: a grey window), or iso (the first crossing of --iso, shaded "
+                                       "in its colour)")->capture_default_str();
     app.add_option("--iso", f.iso, "the iso-surface's scalar value (--blend iso)");
     app.add_option("--calibration", f.calibration,
                    "the auto caster's cost constants, as auto_caster_bench --write-calibration measures them on a "
@@ -187,6 +188,7 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     s.shading = !f.noShading;
     s.trilinear = !f.nearest;
     s.jitter = f.jitter;
+    s.opaqueValues = f.volume.transfer.window.has_value();  // a grey window for MIP, MinIP and average
     vr::applyClipFlags(f.clip, s);
     s.background = vr::finiteVector(f.background, "--background");
     if (!f.light.empty()) {

@@ -152,6 +152,7 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
     p.clipPlaneCount = int(clip.planes.size());
     p.jitter = s.jitter ? 1 : 0;
     p.labelLastEntry = volume.labelLastEntry();
+    p.opaqueValues = s.opaqueValues ? 1 : 0;
     return p;
 }
 
