@@ -7,27 +7,15 @@
 #include <vector>
 
 #include "grid.h"
+#include "scalar_classification.h"
 #include "vec3.h"
 #include "volume.h"
 
 namespace vr {
 
-// What each label 0 .. size()-1 shows, classified for a reference step: its extinction and its colour.
-struct LabelClasses {
-    std::vector<float> sigma;                  // extinction per world unit
-    std::vector<std::array<float, 3>> colour;  // linear RGB in [0, 1]
-
-    std::size_t size() const { return sigma.size(); }
-    // The entries as four floats each, r, g, b, sigma: the prepared file's chunk and the device's buffer.
-    std::vector<float> interleaved() const {
-        std::vector<float> out;
-        out.reserve(4 * size());
-        for (std::size_t i = 0; i < size(); ++i)
-            out.insert(out.end(), {colour[i][0], colour[i][1], colour[i][2], sigma[i]});
-        return out;
-    }
-    bool operator==(const LabelClasses&) const = default;
-};
+// What each label 0 .. size()-1 shows, classified for a reference step: a transfer table over the label (lo 0,
+// step 1), whose entry l holds label l's extinction and colour; a label is looked up at its entry, never between two.
+using LabelClasses = TransferTable;
 
 struct LabelMap {
     std::vector<uint16_t> label;  // per voxel, x fastest, as the scalars

@@ -820,9 +820,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
         l.resize(voxels);
         if (p.labels->type == ScalarType::UInt16) std::memcpy(l.data(), labelBytes.data(), labelBytes.size());
         else std::copy(labelBytes.begin(), labelBytes.end(), l.begin());
-        TransferTable classes;  // the same four floats an entry
-        splitTable(labelEntries, classes);
-        p.labels->classes = {std::move(classes.sigma), std::move(classes.colour)};
+        splitTable(labelEntries, p.labels->classes);  // the same four floats an entry
         if (auto problem = labelClassProblem(p.labels->classes)) throw r.fail(*problem);
     }
 
