@@ -87,7 +87,7 @@ inline RayInterval clipInterval(const GridRay& r, const RayClip& clip) {
 // this empties is empty. The casters' jitteredInterval in shaders/ray_setup.glsl.
 inline RayInterval jitteredInterval(RayInterval iv, double dt, double fraction) {
     if (iv.empty()) return iv;
-    iv.tEntry += fraction * dt;
+    iv.tEntry = device::jitteredEntry(iv.tEntry, dt, fraction);
     return iv.empty() ? RayInterval{0, 0} : iv;
 }
 

@@ -28,6 +28,12 @@ VR_FUNCTION VR_REAL jitterFraction(uint px, uint py) {
     return VR_REAL(jitterHash(px ^ jitterHash(py)) >> 8u) / VR_REAL(16777216);
 }
 
+// The start of a jittered lattice: `fraction` of a step dt after the interval's entry (the exit stays).
+VR_FUNCTION VR_REAL jitteredEntry(VR_REAL tEntry, VR_REAL dt, VR_REAL fraction) {
+    VR_PRECISE VR_REAL t = tEntry + fraction * dt;
+    return t;
+}
+
 #ifdef __cplusplus
 }  // namespace vr::device
 #endif

@@ -70,7 +70,7 @@ bool intervalEmpty(RayInterval iv) { return !(iv.tEntry < iv.tExit); }
 // jitteredInterval); an interval this empties is empty.
 RayInterval jitteredInterval(RayInterval iv, ivec2 pixel) {
     if (params.jitter == 0 || intervalEmpty(iv)) return iv;
-    precise float entry = iv.tEntry + jitterFraction(uint(pixel.x), uint(pixel.y)) * params.dt;
+    float entry = jitteredEntry(iv.tEntry, params.dt, jitterFraction(uint(pixel.x), uint(pixel.y)));
     return entry < iv.tExit ? RayInterval(entry, iv.tExit) : RayInterval(0.0, 0.0);
 }
 
