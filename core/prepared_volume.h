@@ -5,6 +5,7 @@
 #include <string>
 
 #include "distance_fields.h"
+#include "label_map.h"
 #include "ray_probe.h"
 #include "regions.h"
 #include "scalar_classification.h"
@@ -21,11 +22,12 @@ struct PreparedMetadata {
     std::optional<RayProbe> rayProbe;  // what --caster auto chooses from; none where rays are too long to probe
 };
 
-// The scalars and how to classify them (the renderers classify each sample: docs/ALGORITHMS.md section 2), the
-// regions and the fields over them.
+// The scalars and how to classify them (the renderers classify each sample: docs/ALGORITHMS.md section 2), with a
+// label map where one was given, the regions and the fields over them.
 struct PreparedVolume {
     Volume scalars;  // held as float; scalars.sourceType is how the device and the prepared file hold them
     ScalarClassification classification;
+    std::optional<LabelMap> labels;  // a label map beside the scalars, classified with them
     Regions regions;
     DistanceFields fields;
     PreparedMetadata meta;

@@ -40,8 +40,10 @@ constexpr std::size_t kPreambleBytes = sizeof(kMagic) + sizeof(uint32_t) + sizeo
 constexpr uint64_t kMaxHeaderBytes = uint64_t(1) << 30;
 constexpr int kMaxDim = 1 << 16;
 constexpr std::size_t kMaxVoxels = std::size_t(1) << 36;
-// A table entry in the file: r, g, b, sigma.
+// A table entry in the file: r, g, b, sigma (a label table's too).
 constexpr int kTableComponents = 4;
+// A label map's classes: one per label 0..65535 at most.
+constexpr std::size_t kMaxLabelEntries = std::size_t(1) << 16;
 
 constexpr ScalarType kScalarTypes[] = {ScalarType::UInt8, ScalarType::Int16, ScalarType::UInt16, ScalarType::Float32};
 
@@ -52,9 +54,11 @@ struct ChunkLayout {
     std::size_t elementBytes;
 };
 
-ChunkLayout layoutOf(const std::string& name, ExtentCode eacdCode, ScalarType scalarType) {
+ChunkLayout layoutOf(const std::string& name, ExtentCode eacdCode, ScalarType scalarType, ScalarType labelType) {
     if (name == "scalars") return {std::string(scalarTypeName(scalarType)), 1, scalarBytes(scalarType)};
     if (name == "table") return {"float32", kTableComponents, 4};
+    if (name == "labelMap") return {std::string(scalarTypeName(labelType)), 1, scalarBytes(labelType)};
+    if (name == "labelTable") return {"float32", kTableComponents, 4};
     if (name == "labels") return {"uint32", 1, 4};
     if (name == "pc") return {"uint8", 1, 1};
     for (int o = 0; o < kOctants; ++o) {
@@ -143,6 +147,16 @@ std::optional<std::string> tableEntryProblem(const TransferTable& t) {
     return std::nullopt;
 }
 
+// What is wrong with a label map's classes (a renderer adds their sigma and blends their colours), if anything.
+std::optional<std::string> labelClassProblem(const LabelClasses& c) {
+    for (std::size_t i = 0; i < c.size(); ++i)
+        if (!(std::isfinite(c.sigma[i]) && c.sigma[i] >= 0) || !std::isfinite(c.colour[i][0]) ||
+            !std::isfinite(c.colour[i][1]) || !std::isfinite(c.colour[i][2]))
+            return "label " + std::to_string(i) + "'s class has a sigma that is not finite and >= 0 or a colour that "
+                   "is not finite";
+    return std::nullopt;
+}
+
 // What is wrong with the classification's numbers (the header's referenceStep, flatGradient and transferTable),
 // if anything: the writer refuses what the reader would.
 std::optional<std::string> classificationProblem(const ScalarClassification& c) {
@@ -221,6 +235,19 @@ void checkSizes(const fs::path& path, const PreparedVolume& p) {
             throw fail("ACD and EACD need all 8 octants or none");
     for (const ExtentField& octant : p.fields.eacd)
         if (octant.code() != p.fields.eacdCode()) throw fail("the EACD octants are in different codes");
+    if (const auto& labels = p.labels) {
+        const LabelClasses& c = labels->classes;
+        if (labels->label.size() != g.voxels()) throw fail("the label map must hold one label per voxel");
+        if (labels->type != ScalarType::UInt8 && labels->type != ScalarType::UInt16)
+            throw fail("the label map's type must be uint8 or uint16");
+        if (c.size() < 1 || c.size() > kMaxLabelEntries || c.colour.size() != c.size())
+            throw fail("the label map's classes hold " + std::to_string(c.size()) + " labels (must be 1 to " +
+                       std::to_string(kMaxLabelEntries) + ")");
+        if (auto problem = labelClassProblem(c)) throw fail(*problem);
+        if (labels->type == ScalarType::UInt8 &&
+            std::any_of(labels->label.begin(), labels->label.end(), [](uint16_t l) { return l > 255; }))
+            throw fail("the label map's uint8 type does not hold its labels");
+    }
 }
 // Reading: every problem becomes an InputError naming the file. pread() lets chunks be read from many threads.
 class Reader {
@@ -398,6 +425,18 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
     std::vector<ChunkSource> chunks = {{"scalars", scalars.data(), p.scalars.values.size()},
                                        {"table", entries.data(), tf.size()},
                                        source("labels", p.regions.label)};
+    // A label map's labels in its own type (8 bits where they fit) and its classes as the table's entries.
+    const ScalarType labelType = p.labels ? p.labels->type : ScalarType::UInt8;
+    std::vector<unsigned char> labelBytes;
+    std::vector<float> labelEntries;
+    if (p.labels) {
+        labelBytes.resize(p.labels->label.size() * scalarBytes(labelType));
+        if (labelType == ScalarType::UInt16) std::memcpy(labelBytes.data(), p.labels->label.data(), labelBytes.size());
+        else std::copy(p.labels->label.begin(), p.labels->label.end(), labelBytes.begin());
+        labelEntries = p.labels->classes.interleaved();
+        chunks.push_back({"labelMap", labelBytes.data(), p.labels->label.size()});
+        chunks.push_back({"labelTable", labelEntries.data(), p.labels->classes.size()});
+    }
     for (ChunkSource& c : fieldSources(p)) chunks.push_back(std::move(c));
 
     // Every block of every chunk is compressed on its own (one zstd frame stating its size), all on all threads,
@@ -412,7 +451,7 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
     std::vector<uint64_t> chunkBytes;
     std::vector<Block> blocks;
     for (std::size_t i = 0; i < chunks.size(); ++i) {
-        ChunkLayout l = layoutOf(chunks[i].name, code, scalarType);
+        ChunkLayout l = layoutOf(chunks[i].name, code, scalarType, labelType);
         chunkBytes.push_back(uint64_t(chunks[i].elements) * l.components * l.elementBytes);
         for (uint64_t b = 0; b < chunkBytes[i]; b += options.blockBytes)
             blocks.push_back({i, b, std::min<uint64_t>(options.blockBytes, chunkBytes[i] - b), nullptr});
@@ -433,7 +472,7 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
     json table = json::array();
     uint64_t offset = 0;
     for (std::size_t i = 0; i < chunks.size(); ++i) {
-        ChunkLayout l = layoutOf(chunks[i].name, code, scalarType);
+        ChunkLayout l = layoutOf(chunks[i].name, code, scalarType, labelType);
         const uint64_t chunkOffset = offset;
         json stored = json::array();
         for (const Block& b : blocks)
@@ -455,10 +494,16 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
                    {"flatGradient", p.classification.flatGradient},
                    {"transferTable", {{"lo", tf.lo}, {"step", tf.step}, {"entries", tf.size()}}},
                    {"regionCount", p.regions.count},
+
                    {"metadata", metadataJson(p.meta)},
                    {"eacdCode", extentCodeName(code)},
                    {"compression", {{"codec", "zstd"}, {"level", options.zstdLevel}, {"blockBytes", options.blockBytes}}},
                    {"chunks", table}};
+    if (p.labels)
+        header["labelMap"] = {{"type", scalarTypeName(labelType)},
+                              {"entries", p.labels->classes.size()},
+                              {"source", p.labels->source},
+                              {"colourTable", p.labels->colourTable}};
     // Paths need not be UTF-8: replace what JSON cannot hold rather than fail the write.
     std::string text = header.dump(1, ' ', false, json::error_handler_t::replace);
 
@@ -481,6 +526,8 @@ namespace {
 struct Header {
     PreparedVolume prepared;  // grid, scalar type, classification numbers, region count and metadata
     std::size_t tableEntries = 0;
+    std::optional<ScalarType> labelType;  // with a label map: its type, and its classes' count
+    std::size_t labelEntries = 0;
     ExtentCode eacdCode = kDefaultExtentCode;
     std::map<std::string, ChunkEntry> chunks;  // by name
     std::vector<std::string> order;            // the chunks' names in the order of the chunk table
@@ -575,6 +622,20 @@ Header readHeader(const Reader& r) {
 
     p.regions.dims = n;
     p.regions.count = uint32_t(countField(r, header, "regionCount", UINT32_MAX));
+    if (header.contains("labelMap")) {
+        const json labels = field<json>(r, header, "labelMap");
+        if (!labels.is_object()) throw r.fail("bad header: invalid 'labelMap'");
+        const auto type = field<std::string>(r, labels, "type");
+        if (type != "uint8" && type != "uint16")
+            throw r.fail("bad header: 'labelMap.type': '" + type + "' (expected uint8 or uint16)");
+        h.labelType = type == "uint8" ? ScalarType::UInt8 : ScalarType::UInt16;
+        h.labelEntries = countField(r, labels, "entries", kMaxLabelEntries);
+        if (h.labelEntries < 1) throw r.fail("bad header: 'labelMap.entries' must be at least 1");
+        p.labels.emplace();
+        p.labels->type = *h.labelType;
+        p.labels->source = field<std::string>(r, labels, "source");
+        p.labels->colourTable = field<std::string>(r, labels, "colourTable");
+    }
 
     json meta = field<json>(r, header, "metadata");
     p.meta.source = field<std::string>(r, meta, "source");
@@ -613,7 +674,9 @@ Header readHeader(const Reader& r) {
     std::map<std::string, ChunkEntry>& table = h.chunks;
     for (const json& chunk : field<json>(r, header, "chunks")) {
         auto name = field<std::string>(r, chunk, "name");
-        ChunkLayout l = layoutOf(name, eacdCode, p.scalars.sourceType);
+        const bool labelChunk = name == "labelMap" || name == "labelTable";
+        if (labelChunk && !h.labelType) throw r.fail("bad header: chunk '" + name + "' without a 'labelMap'");
+        ChunkLayout l = layoutOf(name, eacdCode, p.scalars.sourceType, h.labelType.value_or(ScalarType::UInt8));
         if (l.type.empty()) throw r.fail("bad header: unknown chunk '" + name + "'");
         if (table.count(name)) throw r.fail("bad header: chunk '" + name + "' appears twice");
         if (field<std::string>(r, chunk, "type") != l.type ||
@@ -622,11 +685,13 @@ Header readHeader(const Reader& r) {
         ChunkEntry e;
         e.offset = countField(r, chunk, "offset", UINT64_MAX);
         e.bytes = countField(r, chunk, "bytes", UINT64_MAX);
-        const bool isTable = name == "table";
-        uint64_t expected = uint64_t(isTable ? h.tableEntries : voxelCount(n)) * l.components * l.elementBytes;
+        const bool isTable = name == "table" || name == "labelTable";
+        const std::size_t entries = name == "table" ? h.tableEntries : h.labelEntries;
+        uint64_t expected = uint64_t(isTable ? entries : voxelCount(n)) * l.components * l.elementBytes;
         if (e.bytes != expected)
             throw r.fail("chunk '" + name + "' holds " + std::to_string(e.bytes) + " bytes but " +
-                         (isTable ? "a transfer table of " + std::to_string(h.tableEntries) + " entries"
+                         (isTable ? std::string(name == "table" ? "a transfer table" : "a label table") + " of " +
+                                        std::to_string(entries) + " entries"
                                   : "grid " + dimsText) +
                          " needs " + std::to_string(expected));
         const json blocks = field<json>(r, chunk, "blocks");
@@ -722,6 +787,14 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
     std::vector<float> entries;
     want("table", entries);
     want("labels", p.regions.label);
+    std::vector<uint8_t> labelBytes;
+    std::vector<float> labelEntries;
+    if (h.labelType) {
+        for (const char* required : {"labelMap", "labelTable"})
+            if (!has(required)) throw r.fail(std::string("has a label map but no '") + required + "' chunk");
+        want("labelMap", labelBytes);
+        want("labelTable", labelEntries);
+    }
     if (fields & (kFieldPC | kFieldACD | kFieldEACD)) p.fields.dims = n;
     if (fields & kFieldPC) {
         if (!has("pc")) throw r.fail("has no PC distance field (prepare it with volprep --fields)");
@@ -742,6 +815,14 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
     }
     splitTable(entries, p.classification.table);
     if (auto problem = tableEntryProblem(p.classification.table)) throw r.fail(*problem);
+    if (p.labels) {
+        std::vector<uint16_t>& l = p.labels->label;
+        l.resize(voxels);
+        if (p.labels->type == ScalarType::UInt16) std::memcpy(l.data(), labelBytes.data(), labelBytes.size());
+        else std::copy(labelBytes.begin(), labelBytes.end(), l.begin());
+        splitTable(labelEntries, p.labels->classes);  // the same four floats an entry
+        if (auto problem = labelClassProblem(p.labels->classes)) throw r.fail(*problem);
+    }
 
     // The labels must name regions that exist: whatever indexes per-region data by label relies on it.
     const std::vector<uint32_t>& label = p.regions.label;

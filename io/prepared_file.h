@@ -10,10 +10,11 @@
 
 namespace vr {
 
+// 5: a label map beside the scalars (the labelMap header and its two chunks), where one was given.
 // 4: every chunk compressed with zstd in independent blocks, each with the CRC-32 of its compressed bytes.
 // 3: the scalars and the tabulated transfer function instead of the classified volume (sigma, colour, normal).
 // 2: EACD chunks coded (eacdCode).
-constexpr int kPreparedFormatVersion = 4;
+constexpr int kPreparedFormatVersion = 5;
 
 // How writePrepared compresses: the zstd level (chosen by measurement, docs/PREPARED_FORMAT.md) and the bytes of a
 // chunk (uncompressed) that each independent block holds, the last block of a chunk holding the rest.
@@ -36,7 +37,7 @@ constexpr std::size_t kMaxTransferTableEntries = std::size_t(1) << 20;
 void writePrepared(const std::filesystem::path& path, const PreparedVolume& prepared,
                    const PreparedWriteOptions& options = {});
 
-// Reads the scalars, the transfer table, the labels and only the distance fields in `fields` (a FieldKind mask):
+// Reads the scalars, the transfer table, the region labels, the label map where the file has one and only the distance fields in `fields` (a FieldKind mask):
 // a render loads what its caster uses. Throws InputError for a foreign, truncated or inconsistent file.
 PreparedVolume readPrepared(const std::filesystem::path& path, unsigned fields = kFieldPC | kFieldACD | kFieldEACD);
 

@@ -23,6 +23,7 @@
 #include "render/render_checks.h"
 #include "render/span.h"
 #include "shaders/blend.h"
+#include "shaders/label_lookup.h"
 #include "shaders/transfer_lookup.h"
 
 namespace vr {
@@ -39,8 +40,8 @@ struct SampleValue {
 // shaders/transfer_lookup.h's, here in double.
 class Sampler {
 public:
-    Sampler(const Volume& scalars, const ScalarClassification& c, bool trilinear)
-        : scalars_(scalars), c_(c), trilinear_(trilinear) {}
+    Sampler(const Volume& scalars, const ScalarClassification& c, const LabelMap* labels, bool trilinear)
+        : scalars_(scalars), c_(c), labels_(labels), trilinear_(trilinear) {}
 
     // The scalar of the sample at grid position p, whose voxel is v: v's (nearest), or cell-centred trilinear
     // (voxel u's value sits at u + 0.5; clamped to the edge outside), interpolated before it is classified.
@@ -53,17 +54,20 @@ public:
     }
 
     // The unit gradient at the sample, or zero where flat: v's central difference, or the same trilinear blend of
-    // the corners' gradients as the scalar's.
+    // the corners' gradients as the scalar's. Where v's label shapes the normal (shaders/label_lookup.h), the
+    // gradient of that label's smoothed indicator instead, taken the same way (flat only where it is 0).
     Vec3d normal(const Vec3d& p, const Vec3i& v) const {
-        if (!trilinear_) return normalOf(centralGradient(scalars_, v.x, v.y, v.z));
-        const Cell c = cellOf(p);
-        std::array<Vec3d, 8> g;
-        for (int i = 0; i < 8; ++i) g[i] = centralGradient(scalars_, c.corner[i].x, c.corner[i].y, c.corner[i].z);
-        Vec3d gradient;
-        for (int a = 0; a < 3; ++a)
-            gradient[a] = device::trilinearBlend(g[0][a], g[1][a], g[2][a], g[3][a], g[4][a], g[5][a], g[6][a],
-                                                 g[7][a], c.f.x, c.f.y, c.f.z);
-        return normalOf(gradient);
+        const std::size_t i = linearIndex(scalars_.grid.dims, v.x, v.y, v.z);
+        if (labels_ && device::labelShapesNormal(device::labelSigmaOf(*labels_, i))) {
+            const int l = labels_->label[i];
+            return normalOf(gradientAt(p, v, [&](const Vec3i& u) {
+                                return device::indicatorGradient(labels_->label, scalars_.grid.dims,
+                                                                 scalars_.grid.spacing, u, l);
+                            }),
+                            0);
+        }
+        return normalOf(gradientAt(p, v, [&](const Vec3i& u) { return centralGradient(scalars_, u.x, u.y, u.z); }),
+                        c_.flatGradient);
     }
 
     const Vec3i& dims() const { return scalars_.grid.dims; }
@@ -71,6 +75,17 @@ public:
     SampleValue classified(double scalar) const {
         const device::TableSample t = device::lookUpTable(c_.table, scalar);
         return {t.sigma, {t.colour[0], t.colour[1], t.colour[2]}, {0, 0, 0}};
+    }
+    // The scalar's classification with the label of voxel v mixed in (shaders/label_lookup.h): never interpolated.
+    SampleValue classified(double scalar, const Vec3i& v) const {
+        SampleValue s = classified(scalar);
+        if (!labels_) return s;
+        const std::size_t i = linearIndex(scalars_.grid.dims, v.x, v.y, v.z);
+        const std::size_t l = device::labelClassOf(*labels_, i);
+        const double ls = labels_->classes.sigma[l];
+        for (int a = 0; a < 3; ++a) s.colour[a] = device::labelledChannel(s.sigma, s.colour[a], ls, labels_->classes.colour[l][a]);
+        s.sigma = device::labelledSigma(s.sigma, ls);
+        return s;
     }
 
 private:
@@ -91,27 +106,43 @@ private:
         return c;
     }
 
-    // The unit gradient, or zero where the gradient is no longer than the flat length.
-    Vec3d normalOf(const Vec3d& g) const {
+    // The gradient at the sample from `gradientAt(voxel)`: v's, or the trilinear blend of the corners' as the
+    // scalar is blended.
+    template <typename VoxelGradient>
+    Vec3d gradientAt(const Vec3d& p, const Vec3i& v, const VoxelGradient& voxelGradient) const {
+        if (!trilinear_) return voxelGradient(v);
+        const Cell c = cellOf(p);
+        std::array<Vec3d, 8> g;
+        for (int i = 0; i < 8; ++i) g[i] = voxelGradient(c.corner[i]);
+        Vec3d gradient;
+        for (int a = 0; a < 3; ++a)
+            gradient[a] = device::trilinearBlend(g[0][a], g[1][a], g[2][a], g[3][a], g[4][a], g[5][a], g[6][a],
+                                                 g[7][a], c.f.x, c.f.y, c.f.z);
+        return gradient;
+    }
+
+    // The unit gradient, or zero where the gradient is no longer than `flat`.
+    static Vec3d normalOf(const Vec3d& g, double flat) {
         const double len = length(g);
-        return len > c_.flatGradient ? g / len : Vec3d{0, 0, 0};
+        return len > flat ? g / len : Vec3d{0, 0, 0};
     }
 
     const Volume& scalars_;
     const ScalarClassification& c_;
+    const LabelMap* labels_;
     bool trilinear_;
 };
 
 // What MIP, MinIP and average show (docs/ALGORITHMS.md section 11): the value's TF colour at the TF's opacity,
-// over the background; the background alone for a ray without samples.
-Vec3d shownValue(const Sampler& sampler, const ScalarClassification& c, double value, bool sampled,
+// or opaque (a grey window), over the background; the background alone for a ray without samples.
+Vec3d shownValue(const Sampler& sampler, const ScalarClassification& c, double value, bool sampled, bool opaque,
                  const Vec3d& background, double& alpha) {
     if (!sampled) {
         alpha = 0;
         return background;
     }
     const SampleValue s = sampler.classified(value);
-    alpha = opacityFromExtinction(s.sigma, c.referenceStep);
+    alpha = opaque ? 1 : opacityFromExtinction(s.sigma, c.referenceStep);
     return s.colour * alpha + background * (1 - alpha);
 }
 
@@ -150,7 +181,8 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const DistanceFields& fields = prepared.fields;
     const Vec3i dims = grid.dims;
     const double dt = settings.stepVoxels * grid.smallestSpacing(), ertDepth = terminationDepth(settings.ert);
-    const Sampler sampler(prepared.scalars, prepared.classification, settings.trilinear);
+    const Sampler sampler(prepared.scalars, prepared.classification, prepared.labels ? &*prepared.labels : nullptr,
+                          settings.trilinear);
     const Blend blend = settings.blend;
     const int deviceBlend = int(blend);  // shaders/blend.h's numbering
     static_assert(int(Blend::Iso) == device::kBlendIso && int(Blend::Average) == device::kBlendAverage);
@@ -170,7 +202,9 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     auto trace = [&](int px, int py) {
         const Ray ray = camera.ray(px + 0.5, py + 0.5);
         const GridRay g = toGridRay(ray, grid);
-        const RayInterval iv = clipInterval(g, clip);
+        const RayInterval iv = settings.jitter ? jitteredInterval(clipInterval(g, clip), dt, device::jitterFraction(
+                                                                    device::uint(px), device::uint(py)))
+                                               : clipInterval(g, clip);
         const int64_t kCount = latticeCount(iv, dt);
         const int oct = rayOctant(g);
         const Vec3d toEye = -ray.direction;
@@ -229,7 +263,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                 inside = device::isoInside(scalar, iso);
             }
             running = device::foldRunning(deviceBlend, running, scalar);
-            const SampleValue s = blend == Blend::Composite ? sampler.classified(scalar) : SampleValue{};
+            const SampleValue s = blend == Blend::Composite ? sampler.classified(scalar, v) : SampleValue{};
 
             double wanted = 1;
             VoxelBox box{v, v};
@@ -279,9 +313,11 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         double alpha = acc.alpha;
         const ScalarClassification& classification = prepared.classification;
         if (blend == Blend::MIP || blend == Blend::MinIP)
-            c = shownValue(sampler, classification, running, kCount > 0, settings.background, alpha);
+            c = shownValue(sampler, classification, running, kCount > 0, settings.opaqueValues, settings.background,
+                           alpha);
         if (blend == Blend::Average)
-            c = shownValue(sampler, classification, sum / double(kCount), kCount > 0, settings.background, alpha);
+            c = shownValue(sampler, classification, sum / double(kCount), kCount > 0, settings.opaqueValues,
+                           settings.background, alpha);
         if (blend == Blend::Iso) {
             alpha = hit ? 1 : 0;
             c = hit ? isoSurface(sampler, g, clip, iv, dt, k, iso, settings.shading, toEye, toLight) : settings.background;

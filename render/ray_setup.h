@@ -15,6 +15,7 @@
 #include "core/grid.h"
 #include "shaders/clip_planes.h"
 #include "shaders/device_contract.h"
+#include "shaders/jitter.h"
 #include "shaders/ray_math.h"
 
 namespace vr {
@@ -80,6 +81,14 @@ inline RayInterval clipInterval(const GridRay& r, const RayClip& clip) {
     }
     if (iv.empty()) return {0, 0};
     return iv;
+}
+
+// Jitter: the entry moved `fraction` of a step later (shaders/jitter.h jitterFraction), the exit kept; an interval
+// this empties is empty. The casters' jitteredInterval in shaders/ray_setup.glsl.
+inline RayInterval jitteredInterval(RayInterval iv, double dt, double fraction) {
+    if (iv.empty()) return iv;
+    iv.tEntry = device::jitteredEntry(iv.tEntry, dt, fraction);
+    return iv.empty() ? RayInterval{0, 0} : iv;
 }
 
 // Lattice indices are exact in double below 2^53 (the shaders count in double) and latticeCount() corrects its

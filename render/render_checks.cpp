@@ -42,6 +42,12 @@ void checkBlend(const RenderSettings& s) {
         throw InputError("--iso: the iso-value must be a finite number");
 }
 
+void checkLabelledBlend(bool labelled, const RenderSettings& s) {
+    if (labelled && s.blend != Blend::Composite)
+        throw InputError("--labels with --blend " + std::string(blendName(s.blend)) + ": a label map shows in the "
+                         "composite blend only (mip, minip, average and iso follow the scalar alone)");
+}
+
 void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) {
     const GridGeometry& grid = prepared.grid();
     const std::size_t voxels = grid.voxels();
@@ -51,6 +57,13 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) 
     if (table.size() == 0 || table.colour.size() != table.size() || !(table.step > 0) || !std::isfinite(table.lo))
         throw InputError("prepared volume: the transfer table is empty or inconsistent");
     checkRenderSettings(grid, prepared.meta.segmentation, s);
+    if (const auto& labels = prepared.labels) {
+        const LabelClasses& c = labels->classes;
+        if (labels->label.size() != voxels || c.size() == 0 || c.sigma.size() != c.size() ||
+            c.colour.size() != c.size())
+            throw InputError("prepared volume: the label map does not match its grid or its classes");
+    }
+    checkLabelledBlend(prepared.labels.has_value(), s);
     const std::string caster(casterName(s.caster));
     auto need = [&](bool present, std::size_t size, const char* field) {
         if (!present || size != voxels)

@@ -24,6 +24,10 @@ void checkCrop(const GridGeometry& grid, const CropBox& crop);
 // any other blend) or the iso-value is not finite.
 void checkBlend(const RenderSettings& settings);
 
+// Throws InputError naming --labels and --blend where a volume with a label map (`labelled`) is rendered with a
+// blend other than composite: MIP, MinIP, average and the iso-surface follow the scalar alone.
+void checkLabelledBlend(bool labelled, const RenderSettings& settings);
+
 // The part of checkRenderInputs that needs no voxel data (step, ERT, light, clipping, blend; trilinear leaping on
 // regions made for it, shaded leaping on regions made with normals): what a render of a volume already on a device
 // checks.

@@ -64,6 +64,11 @@ struct RenderSettings {
     // device::kMaxClipPlanes planes.
     std::vector<ClipPlane> clipPlanes;
     std::optional<CropBox> crop;
+    // Each ray's lattice starts a per-pixel fraction of a step late (shaders/jitter.h): noise instead of wood-grain.
+    bool jitter = false;
+    // MIP, MinIP and average show their value's TF colour opaque, not at the TF's opacity: with the grey ramp of
+    // --window/--level, a grey window (docs/ALGORITHMS.md section 11).
+    bool opaqueValues = false;
 };
 
 }  // namespace vr

@@ -10,6 +10,7 @@
 
 #include "blend.h"
 #include "device_contract.h"
+#include "label_lookup.h"
 #include "transfer_lookup.h"
 
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
@@ -27,6 +28,8 @@ layout(constant_id = kSpecIdScalarType) const int SCALAR_TYPE = kScalarFloat32;
 // What a ray makes of its samples (blend.h): composite, or a running value of the scalar that the blocks caster
 // leaps by.
 layout(constant_id = kSpecIdBlend) const int BLEND = kBlendComposite;
+// Whether a label map is beside the scalars, and the type of its labels (label_lookup.h).
+layout(constant_id = kSpecIdLabels) const int LABELS = kNoLabels;
 
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
@@ -51,6 +54,11 @@ layout(set = 0, binding = kBindingBlockExtrema, r32f) uniform readonly image3D b
 // The transfer table: entry i classifies the scalar tableLo + i step (rgb colour, a: extinction sigma).
 layout(set = 0, binding = kBindingTransferTable, std430) readonly buffer TransferTable { vec4 transferEntry[]; };
 layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels { OutPixel outPixel[]; };
+// The label map's labels in their type (the other image is unused) and its table: entry l for label l (rgb colour,
+// a: extinction sigma).
+layout(set = 0, binding = kBindingLabelsUInt8, r8ui) uniform readonly uimage3D labelsUInt8;
+layout(set = 0, binding = kBindingLabelsUInt16, r16ui) uniform readonly uimage3D labelsUInt16;
+layout(set = 0, binding = kBindingLabelTable, std430) readonly buffer LabelTable { vec4 labelTableEntry[]; };
 
 uvec4 loadField(ivec3 texel) {
     if (CASTER == kEACD && EACD_CODE == kLog16) return imageLoad(field16, texel);
@@ -79,6 +87,45 @@ vec4 classify(float scalar) {
     vec4 a = transferEntry[i], b = transferEntry[j];
     return vec4(interpolate(a.r, b.r, w), interpolate(a.g, b.g, w), interpolate(a.b, b.b, w),
                 interpolate(a.a, b.a, w));
+}
+
+// The label of a global voxel, and its entry in the label table.
+int loadLabel(ivec3 v) {
+    ivec3 texel = brickTexel(v);
+    return int(LABELS == kLabelsUInt8 ? imageLoad(labelsUInt8, texel).r : imageLoad(labelsUInt16, texel).r);
+}
+vec4 labelClass(int label) { return labelTableEntry[labelEntry(label, params.labelLastEntry)]; }
+
+// A sample's classification with the label of its voxel v mixed in (label_lookup.h): never interpolated.
+vec4 labelled(vec4 c, ivec3 v) {
+    if (LABELS == kNoLabels) return c;
+    vec4 l = labelClass(loadLabel(v));
+    return vec4(labelledChannel(c.a, c.r, l.a, l.r), labelledChannel(c.a, c.g, l.a, l.g),
+                labelledChannel(c.a, c.b, l.a, l.b), labelledSigma(c.a, l.a));
+}
+
+// The gradient of label l's smoothed indicator at voxel v (label_lookup.h indicatorGradient, there in double).
+vec3 indicatorGradient(ivec3 v, int l) {
+    vec3 g = vec3(0.0);
+    for (int a = 0; a < 3; ++a) {
+        int lo = max(v[a] - 1, 0), hi = min(v[a] + 1, params.dims[a] - 1);
+        if (hi == lo) continue;
+        int b = (a + 1) % 3, c = (a + 2) % 3;
+        float sum = 0.0;
+        for (int ob = -1; ob <= 1; ++ob)
+            for (int oc = -1; oc <= 1; ++oc) {
+                ivec3 p = v;
+                p[b] = clamp(v[b] + ob, 0, params.dims[b] - 1);
+                p[c] = clamp(v[c] + oc, 0, params.dims[c] - 1);
+                ivec3 pl = p, ph = p;
+                pl[a] = lo;
+                ph[a] = hi;
+                float w = indicatorWeight(ob) * indicatorWeight(oc);
+                sum += w * (float(loadLabel(ph) == l) - float(loadLabel(pl) == l));
+            }
+        g[a] = sum / (float(kIndicatorWeightSum) * float(hi - lo) * params.spacing[a]);
+    }
+    return g;
 }
 
 // core/gradient.h's central difference along one axis between voxels lo <= hi of a row: 0 where they are one voxel
@@ -179,6 +226,34 @@ vec3 normalOf(vec3 g) {
     return len > params.flatGradient ? g / len : vec3(0.0);
 }
 
+// The unit normal of a composited sample at voxel v (footprint fp where trilinear): the scalars' gradient, or
+// where v's label shapes the normal (label_lookup.h) its smoothed indicator's, blended over the footprint as the
+// scalar is, flat only where it is 0.
+vec3 sampleNormal(Footprint fp, ivec3 v) {
+    if (LABELS != kNoLabels) {
+        int l = loadLabel(v);
+        if (labelShapesNormal(labelClass(l).a)) {
+            vec3 g;
+            if (!TRILINEAR) {
+                g = indicatorGradient(v, l);
+            } else {
+                ivec3 a = fp.lo, b = fp.hi;
+                vec3 g000 = indicatorGradient(ivec3(a.x, a.y, a.z), l), g100 = indicatorGradient(ivec3(b.x, a.y, a.z), l);
+                vec3 g010 = indicatorGradient(ivec3(a.x, b.y, a.z), l), g110 = indicatorGradient(ivec3(b.x, b.y, a.z), l);
+                vec3 g001 = indicatorGradient(ivec3(a.x, a.y, b.z), l), g101 = indicatorGradient(ivec3(b.x, a.y, b.z), l);
+                vec3 g011 = indicatorGradient(ivec3(a.x, b.y, b.z), l), g111 = indicatorGradient(ivec3(b.x, b.y, b.z), l);
+                vec3 f = fp.f;
+                for (int i = 0; i < 3; ++i)
+                    g[i] = trilinearBlend(g000[i], g100[i], g010[i], g110[i], g001[i], g101[i], g011[i], g111[i], f.x,
+                                          f.y, f.z);
+            }
+            float len = length(g);
+            return len > 0.0 ? g / len : vec3(0.0);
+        }
+    }
+    return normalOf(TRILINEAR ? footprintGradient(fp) : voxelGradient(v));
+}
+
 // A leap from sample k (voxel v) to the far faces of v's box of extents ext in the ray's octant (ACD, EACD, blocks):
 // the samples it wants without and with the margin of docs/ALGORITHMS.md section 8, and the box.
 struct BoxLeap {
@@ -207,12 +282,12 @@ vec4 initialComposite() {
     return vec4(vec3(0.0), 1.0);
 }
 
-// What MIP, MinIP and average show (docs/ALGORITHMS.md section 11): the value's TF colour at the TF's opacity, over
-// the background; the background alone for a ray without samples.
+// What MIP, MinIP and average show (docs/ALGORITHMS.md section 11): the value's TF colour at the TF's opacity, or
+// opaque (a grey window), over the background; the background alone for a ray without samples.
 vec4 shownValue(float value, bool sampled) {
     if (!sampled) return vec4(params.background.rgb, 0.0);
     vec4 c = classify(value);
-    float alpha = spanOpacity(c.a * params.opacityLength);
+    float alpha = params.opaqueValues != 0 ? 1.0 : spanOpacity(c.a * params.opacityLength);
     return vec4(c.rgb * alpha + params.background.rgb * (1.0 - alpha), alpha);
 }
 
@@ -251,7 +326,7 @@ void main() {
 
     vec3 direction;
     GridRay g = cameraGridRay(float(pixel.x) + 0.5, float(pixel.y) + 0.5, direction);
-    RayInterval iv = intersectGrid(g);
+    RayInterval iv = jitteredInterval(intersectGrid(g), pixel);
     uint kCount = latticeCount(iv);
     LeapSlack slack = leapSlack(g, iv);
     int oct = rayOctant(g);
@@ -333,7 +408,7 @@ void main() {
             inside = isoInside(scalar, params.isoValue);
         }
         running = foldRunning(BLEND, running, scalar);
-        vec4 s = BLEND == kBlendComposite ? classify(scalar) : vec4(0.0);  // rgb colour, a: sigma
+        vec4 s = BLEND == kBlendComposite ? labelled(classify(scalar), v) : vec4(0.0);  // rgb colour, a: sigma
         precise float sampleDepth = s.a * params.dt;
 
         // What the leap wants without and with the margin of docs/ALGORITHMS.md section 8.
@@ -369,8 +444,7 @@ void main() {
         float spanAlpha = spanOpacity(spanDepth.x);
         if (spanAlpha > 0.0) {
             vec3 shaded = s.rgb;
-            if (SHADING) shaded = shade(s.rgb, normalOf(TRILINEAR ? footprintGradient(fp) : voxelGradient(v)), toEye,
-                                        toLight);
+            if (SHADING) shaded = shade(s.rgb, sampleNormal(fp, v), toEye, toLight);
             precise float w = transmittance * spanAlpha;
             colour += shaded * w;
             transmittance -= w;

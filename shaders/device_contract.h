@@ -34,6 +34,11 @@ VR_CONSTANT int kBindingField16 = 10;       // joint8 EACD), R16 (log16 EACD), R
 VR_CONSTANT int kBindingFieldRGBA8 = 11;
 VR_CONSTANT int kBindingBlockExtrema = 12;  // storage image R32F: each block's scalar range (lo, hi side by side
                                             // along x) for the blocks caster (render/block_extrema.h)
+// A label map's labels, one storage image per format as the scalars', and its table: vec4 per label (rgb colour,
+// a: extinction sigma; core/label_map.h).
+VR_CONSTANT int kBindingLabelsUInt8 = 13;   // R8_UINT
+VR_CONSTANT int kBindingLabelsUInt16 = 14;  // R16_UINT
+VR_CONSTANT int kBindingLabelTable = 15;
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
@@ -44,12 +49,15 @@ VR_CONSTANT int kSpecIdBricked = 4;      // bool: false for a volume of one bric
 VR_CONSTANT int kSpecIdPerspective = 5;  // bool: the camera's projection
 VR_CONSTANT int kSpecIdScalarType = 6;   // one of the scalar types below: which scalar image the casters read
 VR_CONSTANT int kSpecIdBlend = 7;        // one of the blends below
+VR_CONSTANT int kSpecIdLabels = 8;       // one of the label types below: which label image the casters read
 VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4;
 // What a ray makes of its samples (render/render_settings.h Blend, in its order; shaders/blend.h).
 VR_CONSTANT int kBlendComposite = 0, kBlendMIP = 1, kBlendMinIP = 2, kBlendAverage = 3, kBlendIso = 4;
 VR_CONSTANT int kExact = 0, kLog16 = 1, kJoint8 = 2;  // how EACD extents are stored (core/extent_code.h)
 // The scalars' type (core/volume.h ScalarType, in its order).
 VR_CONSTANT int kScalarUInt8 = 0, kScalarInt16 = 1, kScalarUInt16 = 2, kScalarFloat32 = 3;
+// The label map's type: none, or its labels in 8 or 16 bits.
+VR_CONSTANT int kNoLabels = 0, kLabelsUInt8 = 1, kLabelsUInt16 = 2;
 
 // The most clipping planes a render takes (RenderSettings::clipPlanes, CasterParams::clipPlanes).
 VR_CONSTANT int kMaxClipPlanes = 6;
@@ -111,6 +119,9 @@ struct CasterParams {
     ivec4 cropHi;
     vec4 clipPlanes[kMaxClipPlanes];
     int clipPlaneCount;
+    int jitter;  // 1: each ray's lattice starts late by its pixel's fraction of a step (jitter.h)
+    int labelLastEntry;  // the label table's last entry (label_lookup.h labelEntry)
+    int opaqueValues;    // 1: MIP, MinIP and average show their value's colour opaque (RenderSettings::opaqueValues)
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -164,6 +175,9 @@ static_assert(offsetof(CasterParams, blockLevelZ) == 272);
 static_assert(offsetof(CasterParams, cropLo) == 288);
 static_assert(offsetof(CasterParams, clipPlanes) == 320);
 static_assert(offsetof(CasterParams, clipPlaneCount) == 416);
+static_assert(offsetof(CasterParams, jitter) == 420);
+static_assert(offsetof(CasterParams, labelLastEntry) == 424);
+static_assert(offsetof(CasterParams, opaqueValues) == 428);
 static_assert(sizeof(CasterParams) == 432);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);

@@ -8,6 +8,7 @@
 
 #include "caster_params.glsl"
 #include "clip_planes.h"
+#include "jitter.h"
 #include "ray_math.h"
 
 struct GridRay {
@@ -64,6 +65,14 @@ RayInterval intersectGrid(GridRay r) {
 }
 
 bool intervalEmpty(RayInterval iv) { return !(iv.tEntry < iv.tExit); }
+
+// With jitter, the entry moved pixel's fraction of a step later, the exit kept (render/ray_setup.h
+// jitteredInterval); an interval this empties is empty.
+RayInterval jitteredInterval(RayInterval iv, ivec2 pixel) {
+    if (params.jitter == 0 || intervalEmpty(iv)) return iv;
+    float entry = jitteredEntry(iv.tEntry, params.dt, jitterFraction(uint(pixel.x), uint(pixel.y)));
+    return entry < iv.tExit ? RayInterval(entry, iv.tExit) : RayInterval(0.0, 0.0);
+}
 
 // The lattice t_k = tEntry + k dt (k is exact in float below 2^24; beyond, t_k stays monotone in k).
 float latticeT(RayInterval iv, uint k) { return latticeT(iv.tEntry, params.dt, k); }

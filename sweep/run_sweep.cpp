@@ -201,22 +201,29 @@ int runSweep(const SweepOptions& o) {
     base.stepVoxels = o.stepVoxels;
     base.shading = o.shading;
     base.trilinear = o.trilinear;
+    base.jitter = o.jitter;
     const std::vector<View> views = orbit(o, p.grid());
 
-    // The reference: the primitive caster at T_o = T_a = 0 (it reads no regions or fields), once per view.
+    // The reference: the primitive caster at T_o = T_a = 0 (it reads no regions or fields), once per view, never
+    // jittered.
     std::vector<Image> references;
     std::map<double, Image> elevationZero;
     // These renders are also the primitive caster's row at every setting: it reads no regions or fields, so its
     // images and times do not depend on the thresholds (rendering it again per setting would only repeat them).
+    // With jitter, its row is its jittered renders, against the reference.
     const GpuVolume volume = renderer.upload(p, {{Caster::Primitive}, 0});  // for every view
     CasterRun primitive;
     primitive.settings = base;
+    primitive.settings.jitter = o.jitter;
+    RenderSettings reference = base;
+    reference.jitter = false;
     renderer.render(volume, views.front().camera, base);  // warm-up
     for (const View& v : views) {
-        const RenderResult r = renderer.render(volume, v.camera, base);
-        primitive.record(r, imageError(r.image, r.image), renderer.lastUploads());
+        const RenderResult r = renderer.render(volume, v.camera, reference);
         references.push_back(r.image);
         if (v.elevation == 0) elevationZero[v.azimuth] = references.back();
+        const RenderResult row = o.jitter ? renderer.render(volume, v.camera, primitive.settings) : r;
+        primitive.record(row, imageError(r.image, row.image), renderer.lastUploads());
     }
     writeImage(images / "reference.png", references.front());
     if (!o.peersDir.empty()) {

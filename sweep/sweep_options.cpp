@@ -39,11 +39,13 @@ void SweepOptions::validate() const {
 }
 
 std::string SweepOptions::datasetName() const {
-    if (!dataset.empty()) return dataset;
-    std::string name = input.filename().string();
-    for (const std::string ext : {".gz", ".raw", ".nii", ".nrrd", ".nhdr", ".mhd", ".mha", ".vti", ".vtk", ".vdb"})
-        if (name.size() > ext.size() && name.ends_with(ext)) name.resize(name.size() - ext.size());
-    return name;
+    std::string name = dataset;
+    if (name.empty()) {
+        name = input.filename().string();
+        for (const std::string ext : {".gz", ".raw", ".nii", ".nrrd", ".nhdr", ".mhd", ".mha", ".vti", ".vtk", ".vdb"})
+            if (name.size() > ext.size() && name.ends_with(ext)) name.resize(name.size() - ext.size());
+    }
+    return jitter ? name + "+jitter" : name;
 }
 
 }  // namespace vr

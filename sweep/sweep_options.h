@@ -25,6 +25,9 @@ struct SweepOptions {
     double stepVoxels = 0.5;
     bool shading = true;
     bool trilinear = true;
+    // Every caster's rays jittered (shaders/jitter.h), each image compared with the unjittered reference: the
+    // dataset's rows are named NAME+jitter, apart from an unjittered sweep's.
+    bool jitter = false;
     int device = -1;                     // Vulkan device index; -1: the default choice
     std::filesystem::path outDir;
     bool resume = false;                 // skip settings already in OUTDIR/sweep.csv
@@ -32,7 +35,7 @@ struct SweepOptions {
 
     // Throws InputError for an empty grid, negative or non-finite thresholds, no primitive caster, bad sizes.
     void validate() const;
-    // The dataset name used (dataset, else derived from input).
+    // The dataset name used (dataset, else derived from input; "+jitter" appended with jitter).
     std::string datasetName() const;
 };
 

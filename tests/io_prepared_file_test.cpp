@@ -611,14 +611,14 @@ TEST_F(IoPreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
 
 TEST_F(IoPreparedFile, RejectsEarlierVersions) {
     // Version 1 stored EACD as 3 bytes per octant with no eacdCode, version 2 the classified volume (sigma, colour,
-    // normal) instead of the scalars and the table, version 3 every chunk uncompressed: refused with the way out,
-    // not misread.
-    for (uint32_t v : {1u, 2u, 3u}) {
+    // normal) instead of the scalars and the table, version 3 every chunk uncompressed, version 4 no label map:
+    // refused with the way out, not misread.
+    for (uint32_t v : {1u, 2u, 3u, 4u}) {
         std::vector<char> b = readBytes(good);
         std::memcpy(b.data() + 8, &v, 4);
         writeBytes(bad, b);
         expectRejected(bad, "prepared format version " + std::to_string(v) +
-                                ", this build reads version 4 (run volprep again)");
+                                ", this build reads version 5 (run volprep again)");
     }
     // A version 3 file as it was: the chunks raw, each with the CRC-32 of its bytes, no compression in the header.
     Parts parts = split(good);
@@ -635,7 +635,7 @@ TEST_F(IoPreparedFile, RejectsEarlierVersions) {
     const uint32_t three = 3;
     std::memcpy(parts.preamble.data() + 8, &three, 4);
     join(bad, parts);
-    expectRejected(bad, "prepared format version 3, this build reads version 4 (run volprep again)");
+    expectRejected(bad, "prepared format version 3, this build reads version 5 (run volprep again)");
     EXPECT_THROW(readPreparedHeader(bad), InputError);
 }
 
@@ -1234,6 +1234,81 @@ TEST_F(IoPreparedFile, RefusesPartialOctants) {
     p.fields.acd[5].clear();
     EXPECT_THROW(writePrepared(bad, p), InputError);
     EXPECT_FALSE(fs::exists(bad));
+}
+
+}  // namespace
+}  // namespace vr
+
+namespace vr {
+namespace {
+
+// A label map of `type` beside the sample volume: labels from the noise (up to 700 in 16 bits), classes whose
+// numbers do not round trip through a short decimal.
+LabelMap sampleLabels(const PreparedVolume& p, ScalarType type) {
+    LabelMap m;
+    const int count = type == ScalarType::UInt8 ? 200 : 701;
+    for (std::size_t i = 0; i < p.scalars.values.size(); ++i) m.label.push_back(uint16_t((i * 37) % std::size_t(count)));
+    m.type = type;
+    for (int l = 0; l < count; ++l) {
+        m.classes.sigma.push_back(l == 0 ? 0.0f : float(l) / 7.0f);
+        m.classes.colour.push_back({float(l) / 701, 1 - float(l) / 701, 1.0f / 3});
+    }
+    m.source = "labels.nii.gz";
+    m.colourTable = "colours.txt";
+    return m;
+}
+
+TEST(IoPreparedFileLabels, RoundTripInEitherType) {
+    const fs::path dir = test::scratchDir("io_prepared_file_labels");
+    for (ScalarType type : {ScalarType::UInt8, ScalarType::UInt16}) {
+        PreparedVolume p = samplePrepared({13, 7, 5});
+        p.labels = sampleLabels(p, type);
+        const fs::path path = dir / "labelled.vprep";
+        writePrepared(path, p, {kPreparedZstdLevel, kSmallBlock});
+        const PreparedVolume r = readPrepared(path);
+        ASSERT_TRUE(r.labels);
+        EXPECT_EQ(r.labels->label, p.labels->label);
+        EXPECT_EQ(r.labels->type, type);
+        EXPECT_EQ(r.labels->classes, p.labels->classes);
+        EXPECT_EQ(r.labels->source, "labels.nii.gz");
+        EXPECT_EQ(r.labels->colourTable, "colours.txt");
+        EXPECT_EQ(r.scalars.values, p.scalars.values);
+        // A file without a label map reads back without one.
+        p.labels.reset();
+        writePrepared(path, p);
+        EXPECT_FALSE(readPrepared(path).labels);
+    }
+}
+
+TEST(IoPreparedFileLabels, RefusesInconsistentLabelMaps) {
+    const fs::path dir = test::scratchDir("io_prepared_file_labels_bad");
+    PreparedVolume p = samplePrepared({13, 7, 5});
+    p.labels = sampleLabels(p, ScalarType::UInt16);
+    p.labels->type = ScalarType::UInt8;  // labels up to 700
+    expectWriteRefused(dir / "a.vprep", p, "the label map's uint8 type does not hold its labels");
+    p.labels = sampleLabels(p, ScalarType::UInt8);
+    p.labels->label.pop_back();
+    expectWriteRefused(dir / "b.vprep", p, "the label map must hold one label per voxel");
+    p.labels = sampleLabels(p, ScalarType::UInt8);
+    p.labels->classes.sigma[3] = -1;
+    expectWriteRefused(dir / "c.vprep", p, "label 3's class has a sigma");
+
+    // A header that lost its labelMap, or whose labelMap says another number of labels, is refused.
+    p.labels = sampleLabels(p, ScalarType::UInt8);
+    const fs::path good = dir / "good.vprep", bad = dir / "bad.vprep";
+    writePrepared(good, p);
+    Parts parts = split(good);
+    parts.header.erase("labelMap");
+    join(bad, parts);
+    expectRejected(bad, "bad header: chunk 'labelMap' without a 'labelMap'");
+    parts = split(good);
+    parts.header["labelMap"]["entries"] = 199;
+    join(bad, parts);
+    expectRejected(bad, "chunk 'labelTable' holds 3200 bytes but a label table of 199 entries needs 3184");
+    parts = split(good);
+    parts.header["labelMap"]["type"] = "int16";
+    join(bad, parts);
+    expectRejected(bad, "bad header: 'labelMap.type': 'int16' (expected uint8 or uint16)");
 }
 
 }  // namespace

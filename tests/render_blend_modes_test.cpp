@@ -21,6 +21,10 @@ TEST(RenderBlendModes, AxisMipIsColumnMaximum) {
     test::report("column maximum", test::axisMipIsColumnMaximum(test::kCpuReference, {}));
 }
 
+TEST(RenderBlendModes, GreyWindowIsLinearAndOpaque) {
+    test::report("grey window", test::greyWindowIsLinear(test::kCpuReference, {}));
+}
+
 TEST(RenderBlendModes, OppositeViewsAreMirrorImages) {
     test::report("mirror images", test::oppositeViewsMirror(test::kCpuReference, {}));
 }

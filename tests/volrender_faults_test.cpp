@@ -192,7 +192,7 @@ TEST(VolrenderFaults, MissingAndDamagedPreparedFilesAreRefused) {
     add(b, "not a prepared file");
     // 1: before coded EACD (core/extent_code.h); 2: before the scalars and the transfer table replaced the classified
     // arrays; 3: before the chunks were compressed.
-    for (uint32_t version : {0u, 1u, 2u, 3u, uint32_t(kPreparedFormatVersion) + 1, 0xffffffffu}) {
+    for (uint32_t version : {0u, 1u, 2u, 3u, 4u, uint32_t(kPreparedFormatVersion) + 1, 0xffffffffu}) {
         b = good.bytes;
         std::memcpy(b.data() + 8, &version, 4);
         add(b, "version " + std::to_string(version));

@@ -35,6 +35,10 @@ TEST(VulkanBlendModes, AxisMipIsColumnMaximum) {
     reportValidated("column maximum", test::axisMipIsColumnMaximum(kVulkan, kDevice));
 }
 
+TEST(VulkanBlendModes, GreyWindowIsLinearAndOpaque) {
+    reportValidated("grey window", test::greyWindowIsLinear(kVulkan, kDevice));
+}
+
 TEST(VulkanBlendModes, OppositeViewsAreMirrorImages) {
     reportValidated("mirror images", test::oppositeViewsMirror(kVulkan, kDevice));
 }

@@ -87,7 +87,9 @@ int main(int argc, char** argv) {
         if (flags.quiet) vr::ProgressBar::silenceAll();
         const vr::RawOptions raw = vr::rawOptionsFrom(flags.volume);
         const vr::PrepareOptions options = optionsFrom(flags);  // a bad transfer function fails before the load
+        const auto labelColours = vr::checkLabelFlags(flags.volume);  // and a bad colour table
         vr::StagedPreparation staged = vr::StagedPreparation::load(flags.input, raw);
+        vr::attachLabels(flags.volume, labelColours, staged);
         staged.prepare(options);
         staged.write(flags.output);
         if (!flags.quiet) vr::printSummary(stdout, flags.output, staged.withStatistics(), staged.stageTimes());

@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "core/errors.h"
 #include "preprocess/classify/transfer_presets.h"
+#include "preprocess/load/load_labels.h"
 
 namespace vr {
 
@@ -16,7 +18,8 @@ CLI::Option_group* addTransferFlags(CLI::App& app, TransferChoice& choice) {
     auto* window = group->add_option_function<double>(
         "--window", [&choice](double w) { choice.window = w; },
         "width of a linear opacity ramp, in the volume's units (HU for a CT): opacity 0 at level - window/2 to 1 at "
-        "level + window/2; grey, or coloured by --tf");
+        "level + window/2; grey, or coloured by --tf. volrender --blend mip, minip and average show it opaque: a "
+        "grey window");
     auto* level = group->add_option_function<double>(
         "--level", [&choice](double l) { choice.level = l; }, "the value at the middle of --window's ramp");
     window->needs(level);
@@ -42,6 +45,12 @@ CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
     raw->add_flag("--big-endian", f.bigEndian, "multi-byte voxels are big-endian");
     app.add_option("--series", f.series,
                    "DICOM folder holding several series: the SeriesInstanceUID to read (the error lists them)");
+    app.add_option("--labels", f.labels,
+                   "a label map on the volume's grid (any format the volume may be in), integer labels 0..65535: "
+                   "each label shows in its own colour and opacity beside the transfer function");
+    app.add_option("--label-colors", f.labelColours,
+                   "the labels' colours: a 3D Slicer colour table ('index name r g b a' a line, 0..255; a: opacity "
+                   "per voxel step); default: label 0 clear, the others a ten-colour palette at opacity 0.8");
     return transfer;
 }
 
@@ -60,6 +69,23 @@ RawOptions rawOptionsFrom(const VolumeFlags& f) {
     raw.bigEndian = f.bigEndian;
     raw.series = f.series;
     return raw;
+}
+
+std::optional<LabelColourTable> checkLabelFlags(const VolumeFlags& f) {
+    if (!f.labelColours.empty() && f.labels.empty())
+        throw InputError("--label-colors " + f.labelColours + ": a colour table is for a label map: it needs --labels");
+    if (!f.labels.empty() && !std::filesystem::exists(f.labels))
+        throw InputError("--labels " + f.labels + ": no such file");
+    if (f.labelColours.empty()) return std::nullopt;
+    return readLabelColourTable(f.labelColours, "--label-colors");
+}
+
+void attachLabels(const VolumeFlags& f, const std::optional<LabelColourTable>& table, StagedPreparation& staged) {
+    if (f.labels.empty()) return;
+    LabelMap map = loadLabelMap(f.labels, staged.volume().grid, "--labels");
+    map.rgba = labelColours(map, table ? &*table : nullptr, "--label-colors");
+    map.colourTable = table ? table->source : std::string();
+    staged.setLabels(std::move(map));
 }
 
 PrepareOptions prepareOptionsFrom(const VolumeFlags& f, bool nearest, bool noNormals) {

@@ -7,6 +7,7 @@
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/prepared_statistics.h"
 #include "preprocess/pipeline/working_set.h"
+#include "preprocess/classify/label_colours.h"
 #include "preprocess/classify/tf_range_table.h"
 #include "preprocess/segment/segment.h"
 #include "render/caster_choice.h"
@@ -62,6 +63,11 @@ StagedPreparation StagedPreparation::load(const std::filesystem::path& input, co
     return staged;
 }
 
+void StagedPreparation::setLabels(LabelMap labels) {
+    invalidateFrom(PrepStage::Classify);
+    prepared_.labels = std::move(labels);
+}
+
 void StagedPreparation::invalidateFrom(PrepStage stage) {
     switch (stage) {  // each case falls through to the stages after it
         case PrepStage::Classify:
@@ -102,6 +108,9 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
         run(PrepStage::Classify, [&](std::vector<StageTime>& times) {
             runStage("classify", times, [&] {
                 prepared_.classification = scalarClassification(prepared_.scalars, options.classify);
+                if (prepared_.labels)
+                    prepared_.labels->classes =
+                        classifyLabels(prepared_.labels->rgba, prepared_.classification.referenceStep);
             });
         });
         classifiedWith_ = std::move(classifying);
@@ -112,7 +121,8 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
     if (last >= PrepStage::Segment && segmentedWith_ != options.segmentation) {
         run(PrepStage::Segment, [&](std::vector<StageTime>& times) {
             runStage("segment", times, [&] {
-                const ClassifiedVoxels voxels(prepared_.scalars, prepared_.classification, options.classify.normals);
+                const ClassifiedVoxels voxels(prepared_.scalars, prepared_.classification, options.classify.normals,
+                                              prepared_.labels ? &*prepared_.labels : nullptr);
                 if (!options.segmentation.trilinear) return segment(voxels, options.segmentation, spareRegions_);
                 // Post-classification (docs/ALGORITHMS.md section 9): regions over the scalars' intervals.
                 const TfRangeTable spread(sampleForVolume(prepared_.scalars, *options.classify.transferFunction));

@@ -43,6 +43,10 @@ public:
     // Throws InputError as loadVolume does.
     static StagedPreparation load(const std::filesystem::path& input, const RawOptions& raw);
 
+    // Attaches a label map on the volume's grid, its classes chosen (classified here, for the transfer function's
+    // reference step): every stage runs again with it (docs/ALGORITHMS.md section 2, label maps).
+    void setLabels(LabelMap labels);
+
     // Brings the stages up to `last` up to date with `options` and returns the result. Each field is timed on its
     // own: ACD (the 8 octant passes, also built when only EACD is asked for), PC from the ACDs, EACD on top of ACD.
     // Stages after `last` do not run, and keep their results only while these are still valid (else they are

@@ -4,10 +4,12 @@
 
 namespace vr {
 
-ClassifiedVoxels::ClassifiedVoxels(const Volume& scalars, const ScalarClassification& classification, bool normals)
+ClassifiedVoxels::ClassifiedVoxels(const Volume& scalars, const ScalarClassification& classification, bool normals,
+                                   const LabelMap* labels)
     : grid_(&scalars.grid),
       scalars_(&scalars),
       table_(&classification.table),
+      labels_(labels),
       referenceStep_(classification.referenceStep),
       flatGradient_(classification.flatGradient),
       normals_(normals) {
@@ -16,6 +18,10 @@ ClassifiedVoxels::ClassifiedVoxels(const Volume& scalars, const ScalarClassifica
         throw InputError("segmentation: the scalars are empty or do not match their dimensions");
     if (table.size() == 0 || table.colour.size() != table.size() || !(table.step > 0))
         throw InputError("segmentation: the transfer table is empty or inconsistent");
+    if (labels && (labels->label.size() != scalars.values.size() || labels->classes.size() == 0 ||
+                   labels->classes.sigma.size() != labels->classes.size() ||
+                   labels->classes.colour.size() != labels->classes.size()))
+        throw InputError("segmentation: the label map does not match the scalars or its classes are not classified");
 }
 
 ClassifiedVoxels::ClassifiedVoxels(const ClassifiedVolume& stored)
@@ -30,8 +36,10 @@ std::array<float, 3> ClassifiedVoxels::normal(std::size_t i) const {
     if (stored_) return stored_->normal[i];
     const Vec3i& d = grid_->dims;
     const std::size_t nx = std::size_t(d.x), ny = std::size_t(d.y);
-    const Vec3d g = centralGradient(*scalars_, int(i % nx), int(i / nx % ny), int(i / (nx * ny)));
-    return unitNormal(g, flatGradient_);
+    const Vec3i v{int(i % nx), int(i / nx % ny), int(i / (nx * ny))};
+    if (labels_ && device::labelShapesNormal(device::labelSigmaOf(*labels_, i)))
+        return unitNormal(device::indicatorGradient(labels_->label, d, grid_->spacing, v, labels_->label[i]), 0);
+    return unitNormal(centralGradient(*scalars_, v.x, v.y, v.z), flatGradient_);
 }
 
 }  // namespace vr

@@ -8,8 +8,10 @@
 
 #include "core/classified_volume.h"
 #include "core/gradient.h"
+#include "core/label_map.h"
 #include "core/scalar_classification.h"
 #include "core/volume.h"
+#include "shaders/label_lookup.h"
 #include "shaders/transfer_lookup.h"
 
 namespace vr {
@@ -21,9 +23,11 @@ struct VoxelOptics {
 
 class ClassifiedVoxels {
 public:
-    // Voxels of `scalars` classified by `classification` as they are asked for; normals only when `normals`. Both
-    // must outlive this object. Throws InputError where the table or the scalars are inconsistent.
-    ClassifiedVoxels(const Volume& scalars, const ScalarClassification& classification, bool normals);
+    // Voxels of `scalars` classified by `classification` (and `labels`, where given, mixed in as
+    // shaders/label_lookup.h mixes them) as they are asked for; normals only when `normals`. All must outlive this
+    // object. Throws InputError where the table, the scalars or the labels are inconsistent.
+    ClassifiedVoxels(const Volume& scalars, const ScalarClassification& classification, bool normals,
+                     const LabelMap* labels = nullptr);
     // The voxels of a classified volume, which must outlive this object. Throws InputError where its arrays do not
     // match its dimensions.
     ClassifiedVoxels(const ClassifiedVolume& stored);  // NOLINT: a classified volume is classified voxels
@@ -32,12 +36,21 @@ public:
     bool hasNormals() const { return normals_; }
     double opacity(float sigma) const { return opacityFromExtinction(sigma, referenceStep_); }
 
-    // What classify() stores for voxel i, bit for bit.
+    // What classify() stores for voxel i, bit for bit; with labels, the voxel's label mixed in.
     VoxelOptics optics(std::size_t i) const {
         if (stored_) return {stored_->sigma[i], stored_->colour[i]};
         const device::TableSample s = device::lookUpTable(*table_, scalars_->values[i]);
-        return {float(s.sigma), {float(s.colour[0]), float(s.colour[1]), float(s.colour[2])}};
+        if (!labels_) return {float(s.sigma), {float(s.colour[0]), float(s.colour[1]), float(s.colour[2])}};
+        const std::size_t l = device::labelClassOf(*labels_, i);
+        const double ls = labels_->classes.sigma[l];
+        const std::array<float, 3>& lc = labels_->classes.colour[l];
+        VoxelOptics o{float(device::labelledSigma(s.sigma, ls)), {}};
+        for (int c = 0; c < 3; ++c) o.colour[c] = float(device::labelledChannel(s.sigma, s.colour[c], ls, lc[c]));
+        return o;
     }
+    // The voxel's label (0 without a label map): regions never hold two.
+    uint16_t label(std::size_t i) const { return labels_ ? labels_->label[i] : 0; }
+    bool labelled() const { return labels_ != nullptr; }
     float sigma(std::size_t i) const { return stored_ ? stored_->sigma[i] : optics(i).sigma; }
     // The unit normal, or (0,0,0) where the gradient is flat; only where hasNormals().
     std::array<float, 3> normal(std::size_t i) const;
@@ -47,6 +60,7 @@ private:
     const ClassifiedVolume* stored_ = nullptr;
     const Volume* scalars_ = nullptr;
     const TransferTable* table_ = nullptr;
+    const LabelMap* labels_ = nullptr;
     double referenceStep_ = 1, flatGradient_ = 0;
     bool normals_ = false;
 };

@@ -21,11 +21,16 @@ constexpr uint32_t kBorder = kUnset - 1;  // a border voxel before its label: jo
 // (normals in use); kUnset elsewhere.
 void markBorderVoxels(const Vec3i& dims, const std::vector<EntryRange>& footprints,
                       const ClassificationSpread& spread, double threshold, const RegionKeyer& keyer,
-                      std::vector<uint32_t>& label) {
+                      const ClassifiedVoxels& voxels, std::vector<uint32_t>& label) {
     const NormalClasses normals(keyer, label.size());
+    // Label maps: a voxel beside another label is a border voxel too, as its footprint reads that label's scalars
+    // and its gradient that label's indicator.
     const std::vector<uint8_t> mixed =
-        normals.used() ? mixedNeighbourhoods(dims, [&](std::size_t a, std::size_t b) { return normals.alike(a, b); })
-                       : std::vector<uint8_t>(footprints.size());
+        normals.used() || voxels.labelled()
+            ? mixedNeighbourhoods(dims, [&](std::size_t a, std::size_t b) {
+                  return normals.alike(a, b) && voxels.label(a) == voxels.label(b);
+              })
+            : std::vector<uint8_t>(footprints.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, label.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         EntryRange last{1, 0};  // an empty range: never a footprint's
         bool lastAlike = false;
@@ -56,7 +61,7 @@ void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const Segmentatio
     regions.dims = d;
     regions.label.resize(n);
     std::vector<uint32_t>& label = regions.label;
-    markBorderVoxels(d, footprints, spread, threshold, keyer, label);
+    markBorderVoxels(d, footprints, spread, threshold, keyer, voxels, label);
 
     const std::size_t nx = std::size_t(d.x), slice = nx * std::size_t(d.y);
     std::vector<uint32_t> pending;  // joined, neighbours not yet considered
@@ -70,8 +75,9 @@ void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const Segmentatio
         if (border) continue;
         EntryRange range = footprints[seed];
         // The range only widens as voxels join, so a voxel refused once would be refused again: each voxel is
-        // asked at most once per neighbour that joins a region. Normals need no test: a voxel that is not a border
-        // voxel has the normal key of all its neighbours, so the whole region has the seed's.
+        // asked at most once per neighbour that joins a region. Normals and labels need no test: a voxel that is
+        // not a border voxel has the normal key and the label of all its neighbours, so the whole region has the
+        // seed's.
         const auto consider = [&](std::size_t u) {
             if (label[u] != kUnset) return;
             const EntryRange f = footprints[u];

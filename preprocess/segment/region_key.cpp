@@ -67,7 +67,7 @@ RegionKeyer::RegionKeyer(const ClassifiedVoxels& voxels, const SegmentationParam
             !useNormals_    ? 0
             : exactNormals_ ? 96
                             : std::bit_width(std::max<uint64_t>(1, uint64_t(6) * cellsPerEdge_ * cellsPerEdge_));
-        packs_ = 4 * binBits_ + normalBits <= 64;
+        packs_ = 4 * binBits_ + normalBits <= 64 && !voxels.labelled();
     }
 }
 
@@ -93,8 +93,9 @@ void RegionKeyer::normal(std::size_t i, RegionKey& key) const {
 
 RegionKey RegionKeyer::operator()(std::size_t i) const {
     RegionKey key;
+    key.label = voxels_.label(i);
     const VoxelOptics o = voxels_.optics(i);
-    if (!(o.sigma > 0)) return key;  // transparent: nothing else matters
+    if (!(o.sigma > 0)) return key;  // transparent: nothing else matters but the label
     opacityAndColour(o, key);
     if (useNormals_) normal(i, key);
     return key;
@@ -127,6 +128,7 @@ void RegionKeyer::keysInto(std::size_t first, std::size_t count, Key* out) const
     for (std::size_t j = 0; j < count; ++j) {
         const std::size_t i = first + j;
         RegionKey key;
+        key.label = voxels_.label(i);
         const VoxelOptics o = voxels_.optics(i);
         if (o.sigma > 0) {
             const std::array<uint32_t, 4> in{bits(o.sigma), bits(o.colour[0]), bits(o.colour[1]), bits(o.colour[2])};

@@ -17,12 +17,15 @@ namespace vr {
 //  - normals both flat, or both in one cube-map cell of angular diameter <= T_a (normals ignored when
 //    params.useNormals is false or the volume has none).
 // A threshold of 0 (or one so small that its bins would not fit 32 bits) compares the stored floats bit for bit.
+// With a label map, two voxels with equal keys also have one label, transparent or not: a leap never crosses a
+// label's boundary.
 struct RegionKey {
     uint32_t opacity = 0;  // 0 = transparent
     std::array<uint32_t, 3> colour{};
     std::array<uint32_t, 3> normal{};
+    uint32_t label = 0;
     bool operator==(const RegionKey& o) const {  // field by field: cheaper than the defaulted memcmp here
-        return opacity == o.opacity && colour[0] == o.colour[0] && colour[1] == o.colour[1] &&
+        return opacity == o.opacity && label == o.label && colour[0] == o.colour[0] && colour[1] == o.colour[1] &&
                colour[2] == o.colour[2] && normal[0] == o.normal[0] && normal[1] == o.normal[1] &&
                normal[2] == o.normal[2];
     }
@@ -60,7 +63,7 @@ public:
     void keys(std::size_t first, std::size_t count, RegionKey* out) const;
     // Whether every key packs into a PackedKey without loss: opacity and colour binned (T_o > 0) and normals
     // ignored or binned into cells (T_a > 0), with bins few enough to fit 64 bits (compared bit for bit, the
-    // stored floats take 32 bits each).
+    // stored floats take 32 bits each), and no label map.
     bool packs() const { return packs_; }
     // keys() packed; only where packs().
     void keys(std::size_t first, std::size_t count, PackedKey* out) const;

@@ -29,7 +29,7 @@ struct Flags {
     vr::TransferChoice transfer;
     int views = 8, device = -1, downsample = 1;
     double step = 0.5;
-    bool noShading = false, nearest = false, resume = false, reportOnly = false;
+    bool noShading = false, nearest = false, jitter = false, resume = false, reportOnly = false;
 };
 
 void addFlags(CLI::App& app, Flags& f) {
@@ -54,6 +54,8 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_flag("--no-shading", f.noShading, "emission-absorption only (normals and T_a are then ignored)");
     app.add_flag("--nearest", f.nearest,
                  "nearest sampling, regions made for it (default: trilinear, the scalar interpolated then classified)");
+    app.add_flag("--jitter", f.jitter, "jitter every caster's rays (volrender --jitter), each image's error still "
+                                       "against the unjittered primitive reference; rows named NAME+jitter");
     app.add_option("--device", f.device, "Vulkan device index (default: first discrete GPU, else the first)");
     app.add_option("-o,--out", f.outDir, "output folder: sweep.csv, report.md, plots/, strips/, images/");
     app.add_flag("--resume", f.resume, "skip the settings whose rows are already in OUTDIR/sweep.csv");
@@ -82,6 +84,7 @@ vr::SweepOptions options(const Flags& f) {
     o.stepVoxels = f.step;
     o.shading = !f.noShading;
     o.trilinear = !f.nearest;
+    o.jitter = f.jitter;
     o.device = f.device;
     o.outDir = f.outDir;
     o.resume = f.resume;

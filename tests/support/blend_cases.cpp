@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "datasets/phantoms.h"
+#include "preprocess/classify/transfer_choice.h"
 #include "render/ray_setup.h"
 #include "shaders/blend.h"
 #include "shaders/transfer_lookup.h"
@@ -281,6 +282,46 @@ CaseCount oppositeViewsMirror(const RenderFn& render, const BlendCaseOptions& op
                     }
                 EXPECT_LE(worst, options.equal) << blendText(blend) << " axis " << axis << (trilinear ? " trilinear" : " nearest");
             }
+    return n;
+}
+
+CaseCount greyWindowIsLinear(const RenderFn& render, const BlendCaseOptions& options) {
+    CaseCount n;
+    const Volume volume = enginePhantom({31, 27, 23});
+    const double window = 400, level = 180, lo = level - window / 2;  // air 0, metal 200 and 255 inside it
+    const PreparedVolume p =
+        prepareVolume(volume, windowLevelTransferFunction(window, level, nullptr), {0, 0, false, false}, 0);
+    const Vec3i dims = volume.grid.dims;
+    for (Blend blend : {Blend::MIP, Blend::MinIP})
+        for (bool opaque : {true, false}) {
+            const Camera camera = columnCamera(dims, 2, false);
+            RenderSettings s = blendSettings(blend, Caster::Blocks, false, 0);
+            s.opaqueValues = opaque;
+            const RenderResult r = render(p, camera, s);
+            ++n.renders;
+            double worst = 0;
+            for (int py = 0; py < camera.height; ++py)
+                for (int px = 0; px < camera.width; ++px) {
+                    Vec3i column = floorVoxel(camera.ray(px + 0.5, py + 0.5).origin);
+                    double value = blend == Blend::MIP ? -1e30 : 1e30;
+                    for (int i = 0; i < dims.z; ++i) {
+                        column.z = i;
+                        const double v = volume.at(column.x, column.y, column.z);
+                        value = blend == Blend::MIP ? std::max(value, v) : std::min(value, v);
+                    }
+                    // Opaque: the window's grey, linear in the value. Else the ramp's opacity weighs the same grey,
+                    // over a black background: its square.
+                    const double grey = std::clamp((value - lo) / window, 0.0, 1.0);
+                    const double shown = opaque ? grey : grey * opacityFromExtinction(
+                                                                    device::lookUpTable(p.classification.table, value).sigma,
+                                                                    p.classification.referenceStep);
+                    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(r.image.pixel(px, py)[c] - shown));
+                    if (opaque) worst = std::max(worst, std::abs(r.image.pixel(px, py)[3] - 1.0));
+                    ++n.rays;
+                    ++n.hits;
+                }
+            EXPECT_LE(worst, std::max(options.equal, 1e-6)) << blendName(blend) << (opaque ? " opaque" : " TF opacity");
+        }
     return n;
 }
 

@@ -54,4 +54,8 @@ CaseCount axisMipIsColumnMaximum(const RenderFn& render, const BlendCaseOptions&
 // MIP and MinIP along each axis from either side, the second camera's right the first's left: mirror images.
 CaseCount oppositeViewsMirror(const RenderFn& render, const BlendCaseOptions& options);
 
+// MIP and MinIP through the grey ramp of --window/--level along z: with opaqueValues the window's grey, linear in
+// the value and opaque; without, that grey at the ramp's opacity (its square over black).
+CaseCount greyWindowIsLinear(const RenderFn& render, const BlendCaseOptions& options);
+
 }  // namespace vr::test

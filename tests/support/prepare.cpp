@@ -1,6 +1,7 @@
 #include "support/prepare.h"
 
 #include "preprocess/classify/classify.h"
+#include "preprocess/classify/label_colours.h"
 #include "preprocess/classify/tf_range_table.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/segment/segment.h"
@@ -8,7 +9,7 @@
 namespace vr::test {
 
 PreparedVolume prepareVolume(const Volume& volume, const TransferFunction& tf, const SegmentationParams& segmentation,
-                             unsigned fields) {
+                             unsigned fields, std::optional<LabelMap> labels) {
     ClassifyParams cp;
     cp.transferFunction = tf;
     cp.normals = segmentation.useNormals;
@@ -17,8 +18,13 @@ PreparedVolume prepareVolume(const Volume& volume, const TransferFunction& tf, c
     p.classification = scalarClassification(volume, cp);
     p.meta.source = volume.source;
     p.meta.segmentation = segmentation;
+    if (labels) {
+        labels->classes = classifyLabels(labels->rgba, p.classification.referenceStep);
+        p.labels = std::move(labels);
+    }
     const TfRangeTable spread(sampleForVolume(volume, tf));  // trilinear regions as volprep makes them
-    p.regions = segment(ClassifiedVoxels(p.scalars, p.classification, cp.normals), segmentation,
+    p.regions = segment(ClassifiedVoxels(p.scalars, p.classification, cp.normals, p.labels ? &*p.labels : nullptr),
+                        segmentation,
                         ClassifiedScalars{p.scalars.values, spread});
     p.fields = buildFields(p.regions, fields);
     return p;

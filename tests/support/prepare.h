@@ -1,6 +1,8 @@
 // A volume prepared for rendering in tests: classified, segmented and given its distance fields, the stages run
 // directly (no statistics, no ray probe: the pipeline's own prepare() adds those, and its test compares with it).
 #pragma once
+#include <optional>
+
 #include "core/prepared_volume.h"
 #include "core/volume.h"
 #include "preprocess/classify/transfer_function.h"
@@ -9,9 +11,9 @@ namespace vr::test {
 
 inline constexpr unsigned kAllFields = kFieldPC | kFieldACD | kFieldEACD;
 
-// Classifies `volume` with `tf` (normals when segmentation.useNormals), segments it with `segmentation` and builds
-// `fields`; meta.source and meta.segmentation say so.
+// Classifies `volume` with `tf` (normals when segmentation.useNormals) and `labels` where given (their colours
+// classified), segments it with `segmentation` and builds `fields`; meta.source and meta.segmentation say so.
 PreparedVolume prepareVolume(const Volume& volume, const TransferFunction& tf, const SegmentationParams& segmentation,
-                             unsigned fields = kAllFields);
+                             unsigned fields = kAllFields, std::optional<LabelMap> labels = std::nullopt);
 
 }  // namespace vr::test

@@ -54,6 +54,7 @@ struct Flags {
     double step = 0.5, ert = 0.99;
     std::vector<double> light, background{0, 0, 0};
     bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false, quiet = false;
+    bool jitter = false;
     std::string stats, heatmap, calibration, blend = "composite";
     std::optional<double> iso;
     int views = 1, device = -1;
@@ -73,8 +74,9 @@ void addFlags(CLI::App& app, Flags& f) {
                                          "EACD's field, else EACD; the other blends: blocks)")->capture_default_str();
     app.add_option("--blend", f.blend, "what a ray shows: composite (front-to-back compositing of the classified "
                                        "samples), mip or minip (the largest or smallest scalar), average (the mean "
-                                       "scalar), each in its transfer-function colour at its opacity, or iso (the "
-                                       "first crossing of --iso, shaded in its colour)")->capture_default_str();
+                                       "scalar), each in its transfer-function colour at its opacity (opaque with "
+                                       "--window/--level: a grey window), or iso (the first crossing of --iso, shaded "
+                                       "in its colour)")->capture_default_str();
     app.add_option("--iso", f.iso, "the iso-surface's scalar value (--blend iso)");
     app.add_option("--calibration", f.calibration,
                    "the auto caster's cost constants, as auto_caster_bench --write-calibration measures them on a "
@@ -92,6 +94,8 @@ void addFlags(CLI::App& app, Flags& f) {
     auto* trilinear = app.add_flag("--trilinear", f.trilinear,
                                    "trilinear sampling, the scalar interpolated then classified; the default");
     app.add_flag("--nearest", f.nearest, "nearest-voxel sampling instead of trilinear")->excludes(trilinear);
+    app.add_flag("--jitter", f.jitter, "start each ray's samples a per-pixel fraction of a step late: fine noise "
+                                       "instead of the wood-grain rings of a lattice shared by every ray");
     app.add_option("--background", f.background, "background colour r,g,b")->delimiter(',')->expected(3);
     app.add_option("--stats", f.stats, "write timings, iterations per ray and uploaded bytes as JSON");
     app.add_option("--heatmap", f.heatmap, "write the iterations per pixel as a colour-mapped PNG (or a movie, as -o)");
@@ -153,6 +157,9 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
         if (!f.volume.transfer.empty() || raw)
             throw vr::fileError(f.input, "a prepared file holds its transfer function and grid: --tf, --window, "
                                          "--level and the raw flags are for a volume to prepare");
+        if (!f.volume.labels.empty() || !f.volume.labelColours.empty())
+            throw vr::fileError(f.input, "a prepared file holds its label map, if any: --labels and --label-colors "
+                                         "are for a volume to prepare (volprep --labels puts them in the file)");
     } else {
         if (f.volume.transfer.empty())
             throw vr::fileError(f.input, "not a prepared file: a volume to prepare here needs --tf PRESET or "
@@ -180,6 +187,8 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     s.ert = f.ert;
     s.shading = !f.noShading;
     s.trilinear = !f.nearest;
+    s.jitter = f.jitter;
+    s.opaqueValues = f.volume.transfer.window.has_value();  // a grey window for MIP, MinIP and average
     vr::applyClipFlags(f.clip, s);
     s.background = vr::finiteVector(f.background, "--background");
     if (!f.light.empty()) {
@@ -187,6 +196,8 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
         if (vr::length(*s.lightDirection) == 0) throw vr::InputError("--light: the direction must not be zero");
     }
     applyBlend(f, s);
+    vr::checkLabelledBlend(!f.volume.labels.empty(), s);
+    if (!prepared) vr::checkLabelFlags(f.volume);  // before the volume is read
     return prepared;
 }
 
@@ -250,7 +261,9 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     vr::PrepareOptions options = vr::prepareOptionsFrom(f.volume, !s.trilinear, !s.shading);
     options.fields = fieldsFor(s.caster);
     options.keepRegions = false;  // the renderers read the field, never the labels: freed once the field has them
+    const auto labelColours = vr::checkLabelFlags(f.volume);
     vr::StagedPreparation staged = vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume));
+    vr::attachLabels(f.volume, labelColours, staged);
     const std::vector<vr::Camera> cameras = vr::Camera::orbit(staged.volume().grid, view, f.views);
     options.octants = orbitOctants(cameras);
     if (chooseHere) {
@@ -390,7 +403,7 @@ int run(const Flags& f) {
         nlohmann::json settingsStats{
             {"caster", vr::casterName(settings.caster)}, {"casterAsked", f.caster}, {"casterChoice", choice},
             {"size", f.size}, {"step", f.step}, {"ert", f.ert}, {"shading", settings.shading},
-            {"trilinear", settings.trilinear}, {"light", f.light}, {"background", f.background}, {"views", f.views},
+            {"trilinear", settings.trilinear}, {"jitter", settings.jitter}, {"light", f.light}, {"background", f.background}, {"views", f.views},
             {"fps", movieFps(f)}, {"blend", f.blend}, {"iso", f.iso ? nlohmann::json(*f.iso) : nlohmann::json()}};
         settingsStats.update(vr::cameraStatistics(f.camera));
         settingsStats.update(vr::clipStatistics(f.clip));

@@ -126,6 +126,26 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
             scalarsFit = false;
     };
     wholes.push_back({&scalars_, "scalars", 1, scalarFormat(scalarType_), scalarRow});
+    if (const std::optional<LabelMap>& labels = prepared.labels) {
+        // The table is as small as the transfer table's (a label's entry each): checked against the same limit.
+        const std::vector<float> classes = labels->classes.interleaved();
+        const vk::DeviceSize classBytes = vk::DeviceSize(classes.size()) * sizeof(float);
+        if (classBytes > bufferRange)
+            throw InputError("the label table of " + std::to_string(labels->classes.size()) + " labels exceeds the "
+                             "storage buffer limit of the Vulkan device " + ctx.info().name + "; render with --cpu");
+        labelTable_ = std::make_unique<DeviceBuffer>(ctx, pool, classes.data(), classBytes,
+                                                     vk::BufferUsageFlagBits::eStorageBuffer);
+        uploads_.push_back({"label table", std::size_t(classBytes), 0});
+        labelType_ = labels->type;
+        labelLastEntry_ = labels->lastEntry();
+        const std::vector<uint16_t>& l = labels->label;
+        const bool wide = labelType_ == ScalarType::UInt16;
+        wholes.push_back({&labels_, "label map", 1, wide ? vk::Format::eR16Uint : vk::Format::eR8Uint,
+                          [&l, wide](int, std::size_t first, int count, uint8_t* to) {
+                              if (wide) std::memcpy(to, l.data() + first, std::size_t(count) * sizeof(uint16_t));
+                              else for (int i = 0; i < count; ++i) to[i] = uint8_t(l[first + std::size_t(i)]);
+                          }});
+    }
 
     const DistanceFields& f = prepared.fields;
     const bool octantFields = std::any_of(contents.casters.begin(), contents.casters.end(),

@@ -16,7 +16,7 @@
 namespace vr {
 
 struct UploadedResource {
-    std::string name;  // "scalars", "table", "pc", "acd", "eacd", "blocks"
+    std::string name;  // "scalars", "table", "label map", "label table", "pc", "acd", "eacd", "blocks"
     std::size_t bytes = 0;
     int brick = 0;     // index into GpuVolume::bricks(); the table, which every brick reads, counts as brick 0's
 };
@@ -64,7 +64,8 @@ struct TablePlacement {
 class GpuVolume {
 public:
     // Uploads the scalars in their own type (scalarFormat), the transfer table (a storage buffer of vec4 per entry:
-    // rgb colour, sigma) and each caster's field: PC (R8_UINT), ACD (R8_UINT), EACD (RGBA8_UINT exact, R16_UINT
+    // rgb colour, sigma), a label map's labels in their type and its table (as the transfer table) and each
+    // caster's field: PC (R8_UINT), ACD (R8_UINT), EACD (RGBA8_UINT exact, R16_UINT
     // log16, R8_UINT joint8); ACD and EACD hold the octants of the mask stacked along z, slab i holding the i-th
     // octant of the mask. Each image is split into the bricks of one plan that fits every image.
     // Throws InputError when the prepared volume lacks a field asked for, its scalars do not fit their type, or
@@ -77,6 +78,13 @@ public:
     const BrickGrid& bricks() const { return bricks_; }
     ScalarType scalarType() const { return scalarType_; }
     const VolumeImage& scalars(int brick) const { return *scalars_[brick]; }
+    // The label map's labels (R8_UINT or R16_UINT as its type) and its table (vec4 per label: rgb colour, sigma);
+    // null without a label map.
+    bool labelled() const { return labelTable_ != nullptr; }
+    ScalarType labelType() const { return labelType_; }
+    const VolumeImage* labels(int brick) const { return labels_.empty() ? nullptr : labels_[brick].get(); }
+    const DeviceBuffer* labelTable() const { return labelTable_.get(); }
+    int labelLastEntry() const { return labelLastEntry_; }
     const DeviceBuffer& table() const { return *table_; }
     const TablePlacement& tablePlacement() const { return placement_; }
     // Null for primitive, blocks or a caster not uploaded.
@@ -109,6 +117,10 @@ private:
     BrickGrid bricks_;
     Bricked scalars_;
     std::unique_ptr<DeviceBuffer> table_;
+    Bricked labels_;
+    std::unique_ptr<DeviceBuffer> labelTable_;
+    ScalarType labelType_ = ScalarType::UInt8;
+    int labelLastEntry_ = 0;
     std::array<Bricked, 4> fields_;  // by Caster, but blocks
     std::unique_ptr<VolumeImage> blockExtrema_;
     std::array<int, device::kBlockLevels> blockLevelZ_{};

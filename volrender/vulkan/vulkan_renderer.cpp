@@ -28,6 +28,10 @@ constexpr uint32_t kFieldBindings[3] = {device::kBindingField8, device::kBinding
 constexpr ScalarType kScalarTypes[4] = {ScalarType::UInt8, ScalarType::UInt16, ScalarType::Int16, ScalarType::Float32};
 constexpr uint32_t kScalarBindings[4] = {device::kBindingScalarsUInt8, device::kBindingScalarsUInt16,
                                          device::kBindingScalarsInt16, device::kBindingScalarsFloat};
+// The label images' formats, one binding each, in the order of device::kLabelsUInt8 and kLabelsUInt16.
+constexpr vk::Format kLabelFormats[2] = {vk::Format::eR8Uint, vk::Format::eR16Uint};
+constexpr uint32_t kLabelBindings[2] = {device::kBindingLabelsUInt8, device::kBindingLabelsUInt16};
+
 // The uploaded decode table is the shader's array of kExtentTableEntries uvec4.
 static_assert(kExtentTableEntries == device::kExtentTableEntries && sizeof(ExtentTableEntry) == 16);
 
@@ -71,6 +75,12 @@ int deviceExtentCode(ExtentCode code) {
         case ExtentCode::Joint8: return device::kJoint8;
     }
     throw std::logic_error("deviceExtentCode: an extent code the device does not know");
+}
+
+// The value of the labels' specialization constant for an uploaded volume.
+int deviceLabels(const GpuVolume& volume) {
+    if (!volume.labelled()) return device::kNoLabels;
+    return volume.labelType() == ScalarType::UInt16 ? device::kLabelsUInt16 : device::kLabelsUInt8;
 }
 
 device::vec4 toDevice(const Vec3d& v) { return {float(v.x), float(v.y), float(v.z), 0}; }
@@ -140,6 +150,9 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
         p.clipPlanes[i] = {float(plane.normal.x), float(plane.normal.y), float(plane.normal.z), float(plane.offset)};
     }
     p.clipPlaneCount = int(clip.planes.size());
+    p.jitter = s.jitter ? 1 : 0;
+    p.labelLastEntry = volume.labelLastEntry();
+    p.opaqueValues = s.opaqueValues ? 1 : 0;
     return p;
 }
 
@@ -159,10 +172,12 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
         {device::kBindingOutPixels, T::eStorageBuffer, 1, compute},
         {device::kBindingRayStates, T::eStorageBuffer, 1, compute},
         {device::kBindingExtentTable, T::eUniformBuffer, 1, compute},
-        {device::kBindingTransferTable, T::eStorageBuffer, 1, compute}};
+        {device::kBindingTransferTable, T::eStorageBuffer, 1, compute},
+        {device::kBindingLabelTable, T::eStorageBuffer, 1, compute}};
     for (uint32_t binding : kScalarBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     for (uint32_t binding : kFieldBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     bindings.emplace_back(device::kBindingBlockExtrema, T::eStorageImage, 1, compute);
+    for (uint32_t binding : kLabelBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     vk::PushConstantRange push(compute, 0, sizeof(device::TilePush));
     vk::DescriptorSetLayout layout = *setLayout_;
@@ -184,21 +199,27 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
                                                          formatBytes(kFieldFormats[i]));
     unusedBlockExtrema_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kBlockExtremaFormat, zeros,
                                                         formatBytes(kBlockExtremaFormat));
+    for (int i = 0; i < 2; ++i)
+        unusedLabels_[i] = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kLabelFormats[i], zeros,
+                                                         formatBytes(kLabelFormats[i]));
+    const float noLabel[4] = {};
+    unusedLabelTable_ = std::make_unique<DeviceBuffer>(ctx, pool_, noLabel, sizeof(noLabel),
+                                                       vk::BufferUsageFlagBits::eStorageBuffer);
 }
 
 const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, Blend blend, bool trilinear, bool shading,
                                                    ExtentCode eacdCode, bool bricked, bool perspective,
-                                                   ScalarType scalarType) {
+                                                   ScalarType scalarType, int labels) {
     // Only the EACD caster reads the code: the others share one pipeline whatever the volume's code. Only composite
     // and the iso-surface shade.
     const bool shaded = shading && (blend == Blend::Composite || blend == Blend::Iso);
     const auto key = std::make_tuple(caster, blend, trilinear, shaded,
                                      caster == Caster::EACD ? eacdCode : ExtentCode::Exact, bricked, perspective,
-                                     scalarType);
+                                     scalarType, labels);
     auto it = pipelines_.find(key);
     if (it != pipelines_.end()) return it->second;
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
-    const std::array<std::pair<int, uint32_t>, 8> constants{{
+    const std::array<std::pair<int, uint32_t>, 9> constants{{
         {device::kSpecIdCaster, uint32_t(deviceCaster(caster))},
         {device::kSpecIdBlend, uint32_t(deviceBlend(blend))},
         {device::kSpecIdTrilinear, trilinear ? 1u : 0u},
@@ -206,7 +227,8 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, Blend blend, b
         {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(std::get<4>(key)))},
         {device::kSpecIdBricked, bricked ? 1u : 0u},
         {device::kSpecIdPerspective, perspective ? 1u : 0u},
-        {device::kSpecIdScalarType, uint32_t(deviceScalarType(scalarType))}}};
+        {device::kSpecIdScalarType, uint32_t(deviceScalarType(scalarType))},
+        {device::kSpecIdLabels, uint32_t(labels)}}};
     std::array<uint32_t, constants.size()> values;
     std::array<vk::SpecializationMapEntry, constants.size()> entries;
     for (std::size_t i = 0; i < constants.size(); ++i) {
@@ -241,6 +263,7 @@ GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolume
 
 RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings) {
     checkRenderSettings(volume.grid(), volume.segmentation(), settings);
+    checkLabelledBlend(volume.labelled(), settings);
     requireDeviceLattice(volume.grid(), settings.stepVoxels);
     volume.requireHolds(settings, viewOctants(camera));
     // The iso-surface is refined between two samples, which may lie in different bricks: one brick's images do not
@@ -251,7 +274,7 @@ RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camer
                          "with --cpu)");
     uploads_.clear();  // what this render reads of the volume
     for (const UploadedResource& u : volume.uploads())
-        if (u.name == "scalars" || u.name == "table" ||
+        if (u.name == "scalars" || u.name == "table" || u.name == "label map" || u.name == "label table" ||
             (settings.caster != Caster::Primitive && u.name == casterName(settings.caster)))
             uploads_.push_back(u);
     return deviceErrors([&] { return renderOnDevice(volume, camera, settings); });
@@ -275,7 +298,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const vk::raii::Pipeline& pipe = pipeline(settings.caster, settings.blend, settings.trilinear, settings.shading,
                                               volume.eacdCode(),
                                               volume.bricks().bricks().size() > 1,
-                                              camera.projection == Projection::Perspective, volume.scalarType());
+                                              camera.projection == Projection::Perspective, volume.scalarType(),
+                                              deviceLabels(volume));
 
     using B = vk::BufferUsageFlagBits;
     HostBuffer params(ctx_, sizeof(device::CasterParams), B::eUniformBuffer);
@@ -292,8 +316,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const uint32_t brickCount = uint32_t(bricks.size());
     std::array<vk::DescriptorPoolSize, 3> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 8 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3 * brickCount)};
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 10 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 4 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
         vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, brickCount, sizes));
@@ -307,12 +331,17 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                                  {*rayState.buffer(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo transferEntries(*volume.table().buffer(), 0, VK_WHOLE_SIZE);
+    const vk::DescriptorBufferInfo labelEntries(
+        *(volume.labelTable() ? volume.labelTable() : unusedLabelTable_.get())->buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorImageInfo blockRanges =
         imageInfo(volume.blockExtrema() ? *volume.blockExtrema() : *unusedBlockExtrema_);
     for (uint32_t b = 0; b < brickCount; ++b) {
         const vk::DescriptorSet set = *sets[b];
         const VolumeImage* field = volume.field(settings.caster, int(b));
-        vk::DescriptorImageInfo scalars[4], fields[3];
+        vk::DescriptorImageInfo scalars[4], fields[3], labels[2];
+        const VolumeImage* labelImage = volume.labels(int(b));
+        for (int i = 0; i < 2; ++i)
+            labels[i] = imageInfo(labelImage && labelImage->format() == kLabelFormats[i] ? *labelImage : *unusedLabels_[i]);
         for (int i = 0; i < 4; ++i)
             scalars[i] = imageInfo(kScalarTypes[i] == volume.scalarType() ? volume.scalars(int(b)) : *unusedScalars_[i]);
         for (int i = 0; i < 3; ++i)
@@ -323,10 +352,12 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             {set, device::kBindingOutPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
             {set, device::kBindingRayStates, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
             {set, device::kBindingExtentTable, 0, 1, T::eUniformBuffer, nullptr, &extentEntries},
-            {set, device::kBindingTransferTable, 0, 1, T::eStorageBuffer, nullptr, &transferEntries}};
+            {set, device::kBindingTransferTable, 0, 1, T::eStorageBuffer, nullptr, &transferEntries},
+            {set, device::kBindingLabelTable, 0, 1, T::eStorageBuffer, nullptr, &labelEntries}};
         for (int i = 0; i < 4; ++i) writes.emplace_back(set, kScalarBindings[i], 0, 1, T::eStorageImage, &scalars[i]);
         for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
         writes.emplace_back(set, device::kBindingBlockExtrema, 0, 1, T::eStorageImage, &blockRanges);
+        for (int i = 0; i < 2; ++i) writes.emplace_back(set, kLabelBindings[i], 0, 1, T::eStorageImage, &labels[i]);
         device.updateDescriptorSets(writes, {});
     }
 

@@ -43,8 +43,9 @@ public:
 private:
     RenderResult renderOnDevice(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
     // bricked: the volume is split into bricks, whose dispatches carry each ray's state to the next.
+    // labels: the device's label type (device::kNoLabels without a label map).
     const vk::raii::Pipeline& pipeline(Caster caster, Blend blend, bool trilinear, bool shading, ExtentCode eacdCode,
-                                       bool bricked, bool perspective, ScalarType scalarType);
+                                       bool bricked, bool perspective, ScalarType scalarType, int labels);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
     auto deviceErrors(Work&& work) -> decltype(work());
@@ -59,10 +60,13 @@ private:
     vk::raii::QueryPool queries_{nullptr};
     double timestampPeriodNs_ = 0;  // 0: the queue has no timestamps
     uint64_t timestampMask_ = 0;
-    std::map<std::tuple<Caster, Blend, bool, bool, ExtentCode, bool, bool, ScalarType>, vk::raii::Pipeline> pipelines_;
+    std::map<std::tuple<Caster, Blend, bool, bool, ExtentCode, bool, bool, ScalarType, int>, vk::raii::Pipeline>
+        pipelines_;
     // Bound where a variant reads nothing (the scalar bindings of the other types, the field for primitive, the
-    // field bindings of the other formats, the block extrema for every caster but blocks): never read.
-    std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3], unusedBlockExtrema_;
+    // field bindings of the other formats, the block extrema for every caster but blocks, the label bindings of a
+    // volume without labels or of the other label type): never read.
+    std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3], unusedBlockExtrema_, unusedLabels_[2];
+    std::unique_ptr<DeviceBuffer> unusedLabelTable_;  // bound without a label map
     std::vector<UploadedResource> uploads_;
 };
 
