@@ -10,6 +10,7 @@
 
 #include "blend.h"
 #include "device_contract.h"
+#include "stereo_reprojection.h"
 #include "transfer_lookup.h"
 
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
@@ -27,6 +28,8 @@ layout(constant_id = kSpecIdScalarType) const int SCALAR_TYPE = kScalarFloat32;
 // What a ray makes of its samples (blend.h): composite, or a running value of the scalar that the blocks caster
 // leaps by.
 layout(constant_id = kSpecIdBlend) const int BLEND = kBlendComposite;
+// Cast the pixels of a list (a stereo pair's re-casts), in chunks of a tile's invocations, instead of a tile.
+layout(constant_id = kSpecIdPixelList) const bool PIXEL_LIST = false;
 
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
@@ -51,6 +54,7 @@ layout(set = 0, binding = kBindingBlockExtrema, r32f) uniform readonly image3D b
 // The transfer table: entry i classifies the scalar tableLo + i step (rgb colour, a: extinction sigma).
 layout(set = 0, binding = kBindingTransferTable, std430) readonly buffer TransferTable { vec4 transferEntry[]; };
 layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels { OutPixel outPixel[]; };
+layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; uint listPixel[]; };
 
 uvec4 loadField(ivec3 texel) {
     if (CASTER == kEACD && EACD_CODE == kLog16) return imageLoad(field16, texel);
@@ -221,8 +225,8 @@ float scalarAt(vec3 p) { return TRILINEAR ? footprintScalar(footprintAt(p)) : lo
 
 // The iso-surface between samples k - 1 and k, on opposite sides of the iso-value: the interval halved
 // kIsoBisections times by the side of the interpolated scalar at its middle, the hit at the middle of the last one
-// (renderCpu's isoSurface). Its TF colour, shaded with the normal there.
-vec3 isoSurface(GridRay g, RayInterval iv, uint k, vec3 toEye, vec3 toLight) {
+// (renderCpu's isoSurface). Its TF colour, shaded with the normal there; tHit: where it lies along the ray.
+vec3 isoSurface(GridRay g, RayInterval iv, uint k, vec3 toEye, vec3 toLight, out float tHit) {
     float before = latticeT(iv, k - 1u), beyond = latticeT(iv, k);
     bool insideBeyond = isoInside(scalarAt(rayAt(g, beyond)), params.isoValue);
     for (int i = 0; i < kIsoBisections; ++i) {
@@ -231,6 +235,7 @@ vec3 isoSurface(GridRay g, RayInterval iv, uint k, vec3 toEye, vec3 toLight) {
         else before = middle;
     }
     precise float t = (before + beyond) * 0.5;
+    tHit = t;
     vec3 p = rayAt(g, t);
     vec3 colour = classify(params.isoValue).rgb;
     if (!SHADING) return colour;
@@ -248,6 +253,11 @@ void main() {
     if (any(greaterThanEqual(local, tile.tileSize))) return;
     ivec2 pixel = tile.tileOrigin + local;
     uint outIndex = uint(local.y * tile.tileSize.x + local.x);
+    if (PIXEL_LIST) {  // this dispatch's chunk of the list starts at entry tileOrigin.x
+        uint entry = uint(tile.tileOrigin.x) + outIndex;
+        if (entry >= listCount) return;
+        pixel = unpackListPixel(listPixel[entry]);
+    }
 
     vec3 direction;
     GridRay g = cameraGridRay(float(pixel.x) + 0.5, float(pixel.y) + 0.5, direction);
@@ -263,7 +273,8 @@ void main() {
 
     bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
-    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u)
+    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u,
+                                              vec2(kInfinity))
                                    : loadRayState(outIndex);
     vec3 colour = state.composite.rgb;
     float transmittance = state.composite.a;  // 1 - alpha, for the colour's weights
@@ -276,6 +287,7 @@ void main() {
     uint iterations = state.iterations;
     bool failed = (state.flags & kFailed) != 0u;
     uint k = state.k;
+    vec2 interval = state.interval;  // composite: where its opacity rose (stereo_reprojection.h)
     // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
     bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, iv, k))));
@@ -373,7 +385,12 @@ void main() {
                                         toLight);
             precise float w = transmittance * spanAlpha;
             colour += shaded * w;
+            int levelBefore = opacityLevel(1.0 - transmittance);
             transmittance -= w;
+            if (opacityLevel(1.0 - transmittance) > levelBefore) {
+                if (levelBefore == 0) interval.x = latticeT(iv, k);
+                interval.y = latticeT(iv, k + n);
+            }
             depth = addPair(depth, spanDepth);
         }
     }
@@ -392,15 +409,20 @@ void main() {
     vec4 carried = BLEND == kBlendComposite ? vec4(colour, transmittance)
                    : BLEND == kBlendAverage ? vec4(sum, 0.0, 0.0)
                                             : vec4(running, 0.0, 0.0, 0.0);
-    if (!lastDispatch) storeRayState(outIndex, RayState(carried, depth, k, iterations, flags));
+    if (!lastDispatch) storeRayState(outIndex, RayState(carried, depth, k, iterations, flags, interval));
 
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.
     float alpha = spanOpacity(depth.x + depth.y);
     vec4 pixelColour = vec4(colour + params.background.rgb * (1.0 - alpha), alpha);
     if (BLEND == kBlendMIP || BLEND == kBlendMinIP) pixelColour = shownValue(running, kCount > 0u);
     if (BLEND == kBlendAverage) pixelColour = shownValue((sum.x + sum.y) / float(kCount), kCount > 0u);
-    if (BLEND == kBlendIso)
-        pixelColour = hit ? vec4(isoSurface(g, iv, k, toEye, toLight), 1.0) : vec4(params.background.rgb, 0.0);
+    // The other blends depend on every sample of the ray (MIP, MinIP, average) or on the surface's hit (iso).
+    if (BLEND != kBlendComposite && BLEND != kBlendIso && kCount > 0u) interval = vec2(iv.tEntry, iv.tExit);
+    if (BLEND == kBlendIso) {
+        float tHit = kInfinity;
+        pixelColour = hit ? vec4(isoSurface(g, iv, k, toEye, toLight, tHit), 1.0) : vec4(params.background.rgb, 0.0);
+        interval = vec2(tHit);
+    }
     outPixel[outIndex].colour = floatBitsToUint(pixelColour);
-    outPixel[outIndex].counts = uvec4(k, iterations | (flags & (kFailed | kCutShort)), 0u, 0u);
+    outPixel[outIndex].counts = uvec4(k, iterations | (flags & (kFailed | kCutShort)), floatBitsToUint(interval));
 }

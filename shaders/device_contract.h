@@ -34,6 +34,8 @@ VR_CONSTANT int kBindingField16 = 10;       // joint8 EACD), R16 (log16 EACD), R
 VR_CONSTANT int kBindingFieldRGBA8 = 11;
 VR_CONSTANT int kBindingBlockExtrema = 12;  // storage image R32F: each block's scalar range (lo, hi side by side
                                             // along x) for the blocks caster (render/block_extrema.h)
+VR_CONSTANT int kBindingPixelList = 13;     // storage buffer: uint count, then the pixels to cast (x | y << 16),
+                                            // read by the list variant (stereo re-casts: stereo_reprojection.h)
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
@@ -44,6 +46,7 @@ VR_CONSTANT int kSpecIdBricked = 4;      // bool: false for a volume of one bric
 VR_CONSTANT int kSpecIdPerspective = 5;  // bool: the camera's projection
 VR_CONSTANT int kSpecIdScalarType = 6;   // one of the scalar types below: which scalar image the casters read
 VR_CONSTANT int kSpecIdBlend = 7;        // one of the blends below
+VR_CONSTANT int kSpecIdPixelList = 8;    // bool: cast the pixels of the list (kBindingPixelList), not a tile's
 VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4;
 // What a ray makes of its samples (render/render_settings.h Blend, in its order; shaders/blend.h).
 VR_CONSTANT int kBlendComposite = 0, kBlendMIP = 1, kBlendMinIP = 2, kBlendAverage = 3, kBlendIso = 4;
@@ -111,6 +114,7 @@ struct CasterParams {
     ivec4 cropHi;
     vec4 clipPlanes[kMaxClipPlanes];
     int clipPlaneCount;
+    float frustumShift;  // Camera::shift: an off-axis (stereo) eye's horizontal window offset, 0 otherwise
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -135,6 +139,7 @@ struct RayState {
     uint k;          // the next lattice sample: also the samples the spans so far represent
     uint iterations;
     uint flags;      // kFailed, kCutShort, kIsoInside, kIsoHit
+    vec2 interval;   // composite: the depth interval gathered so far (OutPixel::counts zw)
 };
 
 // A pixel's result (std430): the colour's four floats' bits, then the samples and the iteration count with its
@@ -142,7 +147,8 @@ struct RayState {
 // 32-bit words a seventh of a leaping caster's time.
 struct OutPixel {
     uvec4 colour;
-    uvec4 counts;  // x: samples, y: iterations | flags
+    uvec4 counts;  // x: samples, y: iterations | flags, zw: the float bits of the pixel's contributing depth
+                   // interval [t_near, t_far] along its ray (+inf, +inf: nothing; shaders/stereo_reprojection.h)
 };
 
 #ifdef __cplusplus
@@ -164,11 +170,13 @@ static_assert(offsetof(CasterParams, blockLevelZ) == 272);
 static_assert(offsetof(CasterParams, cropLo) == 288);
 static_assert(offsetof(CasterParams, clipPlanes) == 320);
 static_assert(offsetof(CasterParams, clipPlaneCount) == 416);
+static_assert(offsetof(CasterParams, frustumShift) == 420);
 static_assert(sizeof(CasterParams) == 432);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);
 static_assert(sizeof(TilePush) == 96);
 static_assert(offsetof(RayState, k) == 24);
+static_assert(offsetof(RayState, interval) == 40);
 static_assert(sizeof(RayState) == 48);  // std430 rounds the array stride up to the vec4's 16
 static_assert(sizeof(OutPixel) == 32);
 }  // namespace vr::device
