@@ -72,7 +72,9 @@ void main() {
         Reprojected b = reprojected(x + 1, p.y, v * v);
         if (a.x <= c && c < b.x) {  // the piece between neighbours a and b covers c
             float depth = min(a.depth, b.depth);
-            bool continuous = continuousPiece(a.kind, b.kind, a.x, b.x, params.maxSpread);
+            vec4 step = abs(a.colour - b.colour);
+            bool continuous = continuousPiece(a.kind, b.kind, a.x, b.x, params.maxSpread,
+                                              max(max(step.r, step.g), max(step.b, step.a)), params.maxStep);
             if (!found || depth < bestDepth || (depth == bestDepth && !continuous)) {
                 float w = (c - a.x) / (b.x - a.x);
                 bestContinuous = continuous;

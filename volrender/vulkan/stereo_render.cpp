@@ -20,6 +20,7 @@ device::StereoParams reprojection(const StereoPair& pair, const GridGeometry& gr
     p.leftShift = float(left.shift);
     p.maxSpread = float(kMaxSpreadPixels);
     p.opaqueAlpha = float(kOpaqueAlpha);
+    p.maxStep = float(kMaxColourStep);
     // The disparities lie between the volume's nearest point's and infinity's; eyes inside the volume search the row.
     const double nearest = nearestDepth(pair, grid);
     const double lowest = nearest > 0 ? std::max(disparityAt(pair, nearest), -double(left.width)) : -left.width;
