@@ -1,4 +1,4 @@
-// Stereo pairs (docs/ALGORITHMS.md "Stereo pairs by reprojection"): two parallel perspective eyes, the separation
+// Stereo pairs (docs/ALGORITHMS.md section 12): two parallel perspective eyes, the separation
 // apart along the view's right axis, whose off-axis frusta share their window at the focus distance (zero parallax
 // there), and the disparity that moves a point from the left image to the right.
 #pragma once

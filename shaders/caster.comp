@@ -250,12 +250,16 @@ void main() {
     uvec2 l = gl_LocalInvocationID.xy;
     uvec2 inGroup = uvec2((l.x & 3u) | ((l.y & 1u) << 2), (l.y & ~1u) | (l.x >> 2));
     ivec2 local = ivec2(gl_WorkGroupID.xy * uint(kWorkgroupSize) + inGroup);
-    if (any(greaterThanEqual(local, tile.tileSize))) return;
+    if (!PIXEL_LIST && any(greaterThanEqual(local, tile.tileSize))) return;
     ivec2 pixel = tile.tileOrigin + local;
     uint outIndex = uint(local.y * tile.tileSize.x + local.x);
-    if (PIXEL_LIST) {  // this dispatch's chunk of the list starts at entry tileOrigin.x
+    if (PIXEL_LIST) {
+        // This dispatch's chunk of the list starts at entry tileOrigin.x; each workgroup takes 64 consecutive
+        // entries, so that a SIMD batch takes neighbouring pixels of a row (the list is in row order).
+        outIndex = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * uint(kWorkgroupSize * kWorkgroupSize) +
+                   gl_LocalInvocationIndex;
         uint entry = uint(tile.tileOrigin.x) + outIndex;
-        if (entry >= listCount) return;
+        if (outIndex >= uint(tile.tileSize.x * tile.tileSize.y) || entry >= listCount) return;
         pixel = unpackListPixel(listPixel[entry]);
     }
 

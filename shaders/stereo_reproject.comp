@@ -1,6 +1,7 @@
-// The right eye of a stereo pair from the left eye's pixels (docs/ALGORITHMS.md "Stereo pairs by reprojection";
-// the rules: stereo_reprojection.h). One invocation per right pixel: the parallel form of the scanline pass. The
-// pixel gathers, from the left pixels of its row whose disparity could bring them to it, every piece that covers
+// The right eye of a stereo pair from the left eye's pixels (docs/ALGORITHMS.md section 12; the rules:
+// stereo_reprojection.h). One invocation per right pixel, a workgroup per stretch of a row: the parallel form of the
+// scanline pass. The workgroup reprojects the left pixels of its window once, into shared memory; each pixel then
+// gathers, from the left pixels of its row whose disparity could bring them to it, every piece that covers
 // its centre: a pair of neighbours reprojected on both sides of it (a continuous piece, or a gap), and the span of
 // a wide pixel's disparities. The nearest cover wins (overlaps keep the nearest); a continuous winner gives its
 // interpolated colour, anything else (a gap, a wide pixel, nothing at all) puts the pixel on the re-cast list.
@@ -46,51 +47,82 @@ Reprojected reprojected(int x, int y, float vSquared) {
     return r;
 }
 
+// The left pixels of a workgroup's window, reprojected once and shared by its invocations, kSharedPixels at a time.
+const int kSharedPixels = 512;
+shared vec4 sharedColour[kSharedPixels];
+shared vec4 sharedPlace[kSharedPixels];  // x, xNear, xFar, depth
+
+Reprojected sharedPixel(int i) {
+    vec4 place = sharedPlace[i];
+    Reprojected r;
+    r.colour = sharedColour[i];
+    r.x = place.x;
+    r.xNear = place.y;
+    r.xFar = place.z;
+    r.depth = place.w;
+    r.kind = pixelKind(isinf(r.depth), 0.0, r.xFar - r.xNear, params.maxSpread);
+    return r;
+}
+
 void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (p.x >= params.imageSize.x || p.y >= params.imageSize.y) return;
     int width = params.imageSize.x;
-    float c = float(p.x) + 0.5;
-    float v = (1.0 - 2.0 * (float(p.y) + 0.5) / float(params.imageSize.y)) * params.halfHeight;
-    int first = clamp(p.x - params.window.y, 0, width - 1), last = clamp(p.x - params.window.x, 0, width - 1);
+    int y = int(gl_WorkGroupID.y);
+    int x = int(gl_GlobalInvocationID.x);
+    int groupFirst = int(gl_WorkGroupID.x) * kReprojectGroup;
+    float c = float(x) + 0.5;
+    float v = (1.0 - 2.0 * (float(y) + 0.5) / float(params.imageSize.y)) * params.halfHeight;
+    // This pixel's left pixels, first .. last, and their right neighbours; the workgroup's, lo .. hi.
+    int first = clamp(x - params.window.y, 0, width - 1), last = clamp(x - params.window.x, 0, width - 1);
+    int end = min(last + 1, width - 1);
+    int lo = clamp(groupFirst - params.window.y, 0, width - 1);
+    int hi = clamp(groupFirst + kReprojectGroup - params.window.x, 0, width - 1);
 
     float bestDepth = kInfinity;
     bool found = false, bestContinuous = false;
     vec4 bestColour = vec4(0.0);
     float bestAlpha = 0.0;
     int nonEmpty = 0;  // covers nearer than infinity
-    Reprojected a = reprojected(first, p.y, v * v);
-    for (int x = first; x <= last; ++x) {
-        // A wide pixel covers the right pixels its interval's disparities span, from its near end.
-        if (a.kind == kPixelWide && a.xNear - 0.5 <= c && c < a.xFar + 0.5) {
-            if (!found || a.depth <= bestDepth) bestContinuous = false;
-            bestDepth = found ? min(bestDepth, a.depth) : a.depth;
-            found = true;
-            ++nonEmpty;
+    Reprojected a;
+    for (int chunk = lo; chunk <= hi; chunk += kSharedPixels) {
+        barrier();
+        for (int i = int(gl_LocalInvocationID.x); i < kSharedPixels && chunk + i <= hi; i += kReprojectGroup) {
+            Reprojected r = reprojected(chunk + i, y, v * v);
+            sharedColour[i] = r.colour;
+            sharedPlace[i] = vec4(r.x, r.xNear, r.xFar, r.depth);
         }
-        if (x + 1 >= width) break;
-        Reprojected b = reprojected(x + 1, p.y, v * v);
-        if (a.x <= c && c < b.x) {  // the piece between neighbours a and b covers c
-            float depth = min(a.depth, b.depth);
-            vec4 step = abs(a.colour - b.colour);
-            bool continuous = continuousPiece(a.kind, b.kind, a.x, b.x, params.maxSpread,
-                                              max(max(step.r, step.g), max(step.b, step.a)), params.maxStep);
-            if (!found || depth < bestDepth || (depth == bestDepth && !continuous)) {
-                float w = (c - a.x) / (b.x - a.x);
-                bestContinuous = continuous;
-                bestColour = mix(a.colour, b.colour, w);
-                bestAlpha = min(a.colour.a, b.colour.a);
-                bestDepth = depth;
+        barrier();
+        if (x >= width) continue;
+        for (int j = max(first, chunk); j <= min(end, chunk + kSharedPixels - 1); ++j) {
+            Reprojected b = sharedPixel(j - chunk);
+            // A wide pixel covers the right pixels its interval's disparities span, from its near end.
+            if (j <= last && b.kind == kPixelWide && b.xNear - 0.5 <= c && c < b.xFar + 0.5) {
+                if (!found || b.depth <= bestDepth) bestContinuous = false;
+                bestDepth = found ? min(bestDepth, b.depth) : b.depth;
+                found = true;
+                ++nonEmpty;
             }
-            found = true;
-            if (!isinf(depth)) ++nonEmpty;
+            if (j > first && a.x <= c && c < b.x) {  // the piece between neighbours a and b covers c
+                float depth = min(a.depth, b.depth);
+                vec4 step = abs(a.colour - b.colour);
+                bool continuous = continuousPiece(a.kind, b.kind, a.x, b.x, params.maxSpread,
+                                                  max(max(step.r, step.g), max(step.b, step.a)), params.maxStep);
+                if (!found || depth < bestDepth || (depth == bestDepth && !continuous)) {
+                    bestContinuous = continuous;
+                    bestColour = mix(a.colour, b.colour, (c - a.x) / (b.x - a.x));
+                    bestAlpha = min(a.colour.a, b.colour.a);
+                    bestDepth = depth;
+                }
+                found = true;
+                if (!isinf(depth)) ++nonEmpty;
+            }
+            a = b;
         }
-        a = b;
     }
+    if (x >= width) return;
     int others = nonEmpty - (isinf(bestDepth) ? 0 : 1);
     bool reuse = found && reuseCover(bestContinuous, bestAlpha, params.opaqueAlpha, others);
-    uint index = uint(p.y * width + p.x);
+    uint index = uint(y * width + x);
     rightPixel[index].colour = floatBitsToUint(reuse ? bestColour : vec4(0.0));
     rightPixel[index].counts = uvec4(0u);
-    if (!reuse) recastPixel[atomicAdd(recastCount, 1u)] = packListPixel(p.x, p.y);
+    if (!reuse) recastPixel[atomicAdd(recastCount, 1u)] = packListPixel(x, y);
 }

@@ -1,4 +1,4 @@
-// Stereo by reprojection (docs/ALGORITHMS.md "Stereo pairs by reprojection"), its rules stated once: the casters
+// Stereo by reprojection (docs/ALGORITHMS.md section 12), its rules stated once: the casters
 // (caster.comp) record each pixel's contributing depth interval, the reprojection shader (stereo_reproject.comp)
 // moves the left eye's pixels into the right eye and decides which it can vouch for; the C++ side reads the same
 // rules (render/stereo_camera.h, the tests). Reals are double in C++ and float in GLSL (shared_language.h).

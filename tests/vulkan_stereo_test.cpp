@@ -1,4 +1,4 @@
-// Stereo pairs on the Vulkan casters (docs/ALGORITHMS.md "Stereo pairs by reprojection"): the right eye reprojected
+// Stereo pairs on the Vulkan casters (docs/ALGORITHMS.md section 12): the right eye reprojected
 // from the left and cast again where the reprojection cannot vouch for a pixel, against both eyes cast in full. A
 // structure the left eye cannot see must be re-cast, not smeared; every re-cast pixel is the full render's; every
 // caster and blend, and a volume split into bricks, give the pair they give without reuse.

@@ -1,5 +1,5 @@
 // VulkanRenderer::renderStereo: a pair's right eye reprojected from its left, and cast again only where the
-// reprojection cannot vouch for a pixel (docs/ALGORITHMS.md "Stereo pairs by reprojection").
+// reprojection cannot vouch for a pixel (docs/ALGORITHMS.md section 12).
 #include <algorithm>
 #include <cmath>
 #include <cstring>

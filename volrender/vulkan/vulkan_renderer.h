@@ -49,7 +49,7 @@ public:
     // Uploads just what this caster and view need, then renders (one-off renders; an orbit uploads once).
     RenderResult render(const PreparedVolume& prepared, const Camera& camera, const RenderSettings& settings);
 
-    // Renders both eyes of a pair (docs/ALGORITHMS.md "Stereo pairs by reprojection"). With reuse the left eye is
+    // Renders both eyes of a pair (docs/ALGORITHMS.md section 12). With reuse the left eye is
     // cast in full, keeping each pixel's depth interval on the device; the right eye is its reprojection, and only
     // the pixels the reprojection cannot vouch for are cast again, from a compacted list. Without reuse both eyes
     // are cast in full. Throws as render() does.
