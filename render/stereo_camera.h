@@ -12,9 +12,9 @@ namespace vr {
 // The reuse rules' thresholds (shaders/stereo_reprojection.h): a pixel whose interval spans at most
 // kMaxSpreadPixels of disparity is reprojected from one depth, and a reused piece at least kOpaqueAlpha opaque hides
 // what lies behind it.
-constexpr double kMaxSpreadPixels = 0.5;
+constexpr double kMaxSpreadPixels = 1;
 constexpr double kOpaqueAlpha = 0.98;
-constexpr double kMaxColourStep = 0.02;
+constexpr double kMaxColourStep = 0.05;
 
 struct StereoPair {
     Camera left, right;

@@ -23,7 +23,7 @@ VR_CONSTANT int kReprojectGroup = 64;      // invocations per workgroup, along a
 // from the span where alpha first reaches a level to the end of the last span that raised it to a new one. What lies
 // outside it adds less than one level to alpha before the interval (and one after); a ray that never reaches a level
 // carries no interval (+inf, +inf), like a ray that misses the volume.
-VR_CONSTANT int kOpacityLevels = 64;
+VR_CONSTANT int kOpacityLevels = 16;
 VR_FUNCTION int opacityLevel(VR_REAL alpha) { return int(alpha * VR_REAL(kOpacityLevels)); }
 
 // A list entry: a pixel's x and y in 16 bits each (images are at most 16384 wide).

@@ -16,6 +16,7 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
     m.separation = pairAbout(cameras.front()).separation;
     std::vector<double> pair, oneEye, fullPair, reproject;
     std::vector<ImageError> errors;
+    double recastIterations = 0, fullIterations = 0;
     for (const Camera& camera : cameras) {
         const StereoPair eyes = pairAbout(camera);
         const StereoRender reused = renderer.renderStereo(volume, eyes, settings, true);
@@ -26,6 +27,10 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
         reproject.push_back(reused.reprojectMilliseconds);
         m.recastFraction += reused.recastFraction / double(cameras.size());
         errors.push_back(imageError(full.right.image, reused.right.image));
+        for (std::size_t i = 0; i < full.right.iterations.size(); ++i) {
+            recastIterations += reused.right.iterations[i];
+            fullIterations += full.right.iterations[i];
+        }
         m.leftEyesEqual = m.leftEyesEqual && reused.left.image.rgba == full.left.image.rgba;
         if (m.reusedRight.empty()) {
             m.reusedRight.push_back(reused.right.image);
@@ -37,6 +42,7 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
     m.fullPairMs = median(fullPair);
     m.reprojectMs = median(reproject);
     m.error = summarize(errors);
+    m.recastWork = fullIterations > 0 ? recastIterations / fullIterations : 0;
     return m;
 }
 
