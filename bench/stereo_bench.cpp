@@ -10,10 +10,9 @@
 #include <vector>
 
 #include "bench/bench_checks.h"
-#include "preprocess/classify/transfer_function.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "render/view_octants.h"
-#include "support/datasets.h"
+#include "support/load_dataset.h"
 #include "sweep/stereo_measure.h"
 
 namespace {
@@ -61,17 +60,13 @@ int main(int argc, char** argv) {
         for (const std::string& name : datasets) {
             const test::DatasetEntry e = test::rawDataset(name);
             PrepareOptions options;
-            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
+            options.classify.transferFunction = test::datasetTransferFunction(e.tf);
             options.segmentation = {to, ta, true, true};
             RenderSettings s;
             s.caster = parseCaster(caster);
             s.stepVoxels = step;
             s.trilinear = true;
-            RawOptions raw;
-            raw.dims = e.dims;
-            raw.type = e.type;
-            raw.spacing = e.spacing;
-            const PreparedVolume p = prepare(loadVolume(test::datasetsDir() / e.file, raw), options);
+            const PreparedVolume p = prepare(test::loadDataset(e), options);
             std::vector<Camera> cameras;
             for (int i = 0; i < views; ++i) {
                 ViewParams v;

@@ -9,10 +9,12 @@
 
 namespace vr {
 
-// The reuse rules' thresholds (shaders/stereo_reprojection.h): a pixel whose interval spans at most
-// kMaxSpreadPixels of disparity is reprojected from one depth, and a reused piece at least kOpaqueAlpha opaque hides
-// what lies behind it.
-constexpr double kMaxSpreadPixels = 1;
+// The reuse rules' thresholds (shaders/stereo_reprojection.h, measured by bench/stereo_bench.cpp): a pixel whose
+// interval spans at most kMaxSpreadPixels of disparity is reprojected from one depth; neighbours that land more than
+// 1 + kMaxGapPixels apart open a gap, and ones whose colours differ by more than kMaxColourStep are detail; a reused
+// piece at least kOpaqueAlpha opaque hides what lies behind it.
+constexpr double kMaxSpreadPixels = 3;
+constexpr double kMaxGapPixels = 1;
 constexpr double kOpaqueAlpha = 0.98;
 constexpr double kMaxColourStep = 0.05;
 

@@ -255,7 +255,7 @@ void main() {
     uint outIndex = uint(local.y * tile.tileSize.x + local.x);
     if (PIXEL_LIST) {
         // This dispatch's chunk of the list starts at entry tileOrigin.x; each workgroup takes 64 consecutive
-        // entries, so that a SIMD batch takes neighbouring pixels of a row (the list is in row order).
+        // entries, so that a SIMD batch takes neighbouring pixels (the list is in the order of 8 x 8 blocks).
         outIndex = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * uint(kWorkgroupSize * kWorkgroupSize) +
                    gl_LocalInvocationIndex;
         uint entry = uint(tile.tileOrigin.x) + outIndex;

@@ -104,7 +104,7 @@ void main() {
             if (j > first && a.x <= c && c < b.x) {  // the piece between neighbours a and b covers c
                 float depth = min(a.depth, b.depth);
                 vec4 step = abs(a.colour - b.colour);
-                bool continuous = continuousPiece(a.kind, b.kind, a.x, b.x, params.maxSpread,
+                bool continuous = continuousPiece(a.kind, b.kind, a.x, b.x, params.maxGap,
                                                   max(max(step.r, step.g), max(step.b, step.a)), params.maxStep);
                 if (!found || depth < bestDepth || (depth == bestDepth && !continuous)) {
                     bestContinuous = continuous;

@@ -39,6 +39,7 @@ struct StereoParams {
     float maxSpread;       // pixels: the widest disparity range over a pixel's interval that one depth stands for
     float opaqueAlpha;     // a reused piece at least this opaque hides what lies behind it
     float maxStep;         // the largest colour difference between the two ends of a piece that it interpolates
+    float maxGap;          // pixels: neighbours reprojected farther apart than 1 + maxGap open a gap
     ivec2 window;          // right pixel x gathers the left pixels x - window.y .. x - window.x (the disparities'
                            // bounds, widened by the neighbours a piece spans)
 };
@@ -59,13 +60,13 @@ VR_FUNCTION int pixelKind(bool empty, VR_REAL nearDisparity, VR_REAL farDisparit
 }
 
 // Two neighbouring left pixels reprojected to xa <= xb are one continuous piece of what they show, whose colour the
-// right pixels between them interpolate, when neither is wide, they landed at most 1 + maxSpread pixels apart
+// right pixels between them interpolate, when neither is wide, they landed at most 1 + maxGap pixels apart
 // (farther apart they open a gap: what the left eye could not see) and their colours differ by at most maxStep in
 // each channel (a steeper step is detail the interpolation would blur, or that the right eye's own samples place
 // elsewhere: an edge, the sampling lattice's rings on a surface). Anything else is re-cast.
-VR_FUNCTION bool continuousPiece(int kindA, int kindB, VR_REAL xa, VR_REAL xb, VR_REAL maxSpread, VR_REAL colourStep,
+VR_FUNCTION bool continuousPiece(int kindA, int kindB, VR_REAL xa, VR_REAL xb, VR_REAL maxGap, VR_REAL colourStep,
                                  VR_REAL maxStep) {
-    return kindA != kPixelWide && kindB != kPixelWide && xb - xa <= VR_REAL(1) + maxSpread && colourStep <= maxStep;
+    return kindA != kPixelWide && kindB != kPixelWide && xb - xa <= VR_REAL(1) + maxGap && colourStep <= maxStep;
 }
 
 // A right pixel keeps the reprojection when the nearest of what covers it is a continuous piece that either is

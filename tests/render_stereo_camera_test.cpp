@@ -92,7 +92,8 @@ TEST(RenderStereoCamera, BadSeparationsAndFocusDistancesAreRefused) {
             EXPECT_NE(std::string(e.what()).find(flag), std::string::npos) << e.what();
         }
     };
-    for (double s : {0.0, -0.0, -3.0, double(NAN), double(INFINITY)}) refused(s, std::nullopt, Projection::Perspective, "--stereo");
+    for (double s : {0.0, -0.0, -3.0, double(NAN), double(INFINITY)})
+        refused(s, std::nullopt, Projection::Perspective, "--stereo");
     for (double f : {0.0, -1.0, double(NAN)}) refused(1, f, Projection::Perspective, "--focus");
     refused(11, 10, Projection::Perspective, "--stereo");
     refused(1, std::nullopt, Projection::Orthographic, "--projection persp");

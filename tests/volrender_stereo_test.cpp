@@ -20,19 +20,14 @@ using test::shellQuote;
 
 // Two blocks at different depths: the pair's eyes see them shifted by different disparities.
 const fs::path& preparedBlocks() {
-    static const fs::path path = [] {
-        const GridGeometry grid{{16, 12, 16}, {1, 1, 1}, {0, 0, 0}};
-        const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
-            if (v.x >= 2 && v.x < 7 && v.y >= 2 && v.y < 9 && v.z >= 11 && v.z < 14)
-                return test::VoxelClass{0.8, {1, 0.2, 0.1}};
-            if (v.x >= 8 && v.x < 14 && v.y >= 3 && v.y < 10 && v.z >= 1 && v.z < 4)
-                return test::VoxelClass{0.8, {0.1, 0.4, 1}};
-            return test::VoxelClass{0.0, {0, 0, 0}};
-        });
-        const fs::path out = test::scratchDir("volrender_stereo_prepared") / "blocks.vprep";
-        writePrepared(out, p);
-        return out;
-    }();
+    const GridGeometry grid{{16, 12, 16}, {1, 1, 1}, {0, 0, 0}};
+    static const fs::path path = test::writtenSynthetic("volrender_stereo_prepared", grid, 1.0, [](const Vec3i& v) {
+        if (v.x >= 2 && v.x < 7 && v.y >= 2 && v.y < 9 && v.z >= 11 && v.z < 14)
+            return test::VoxelClass{0.8, {1, 0.2, 0.1}};
+        if (v.x >= 8 && v.x < 14 && v.y >= 3 && v.y < 10 && v.z >= 1 && v.z < 4)
+            return test::VoxelClass{0.8, {0.1, 0.4, 1}};
+        return test::VoxelClass{0.0, {0, 0, 0}};
+    });
     return path;
 }
 

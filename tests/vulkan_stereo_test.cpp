@@ -19,7 +19,8 @@ constexpr Vec3d kWallColour{1, 0, 0}, kHiddenColour{0, 1, 0};
 // An opaque red wall in front of the left half of the volume and, behind it, a green block near its edge: the left
 // eye (to the left) sees the wall where the block lies, the right eye sees past the wall's edge onto the block.
 const PreparedVolume& occludedBlock() {
-    static const PreparedVolume p = test::syntheticPrepared({{32, 16, 32}, {1, 1, 1}, {0, 0, 0}}, 1.0, [](const Vec3i& v) {
+    const GridGeometry grid{{32, 16, 32}, {1, 1, 1}, {0, 0, 0}};
+    static const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
         if (v.z >= 24 && v.z < 28 && v.x < 16) return test::VoxelClass{1.0, kWallColour};
         if (v.z >= 2 && v.z < 8 && v.x >= 10 && v.x < 16 && v.y >= 4 && v.y < 12)
             return test::VoxelClass{1.0, kHiddenColour};
@@ -121,14 +122,15 @@ TEST(VulkanStereo, EveryBlendGivesThePairWithoutReuse) {
     VulkanRenderer& renderer = test::vulkanRenderer(16);
     const GpuVolume volume = renderer.upload(v.prepared, {{Caster::Primitive, Caster::Blocks}, kAllOctants});
     const Camera centre = Camera::fit(v.prepared.grid(), test::orbitView(30, 20, 40, 32, Projection::Perspective));
-    const StereoPair pair = stereoPair(centre, v.prepared.grid(), 0.05 * length(v.prepared.grid().extent()), std::nullopt);
+    const double separation = 0.05 * length(v.prepared.grid().extent());
+    const StereoPair pair = stereoPair(centre, v.prepared.grid(), separation, std::nullopt);
     for (Blend blend : {Blend::Composite, Blend::MIP, Blend::MinIP, Blend::Average, Blend::Iso})
         for (Caster caster : {Caster::Primitive, Caster::Blocks}) {
             if (blend == Blend::Composite && caster == Caster::Blocks) continue;
             const RenderSettings s = test::blendSettings(blend, caster, true, v.isoValue);
+            const std::string what = std::string(blendName(blend)) + " " + std::string(casterName(caster));
             const double share = expectPairsAgree(renderer.renderStereo(volume, pair, s, true),
-                                                   renderer.renderStereo(volume, pair, s, false), 0.02,
-                                                   std::string(blendName(blend)) + " " + std::string(casterName(caster)));
+                                                  renderer.renderStereo(volume, pair, s, false), 0.02, what);
             EXPECT_GT(share, 0);
         }
     test::expectNoValidationErrors();
@@ -144,7 +146,8 @@ TEST(VulkanStereo, BrickedVolumeGivesTheWholeVolumesPair) {
         const GpuVolume split = bricked.upload(occludedBlock(), {{caster}, kAllOctants});
         ASSERT_GT(split.bricks().bricks().size(), 1u);
         const StereoRender a = bricked.renderStereo(split, pair, s, true);
-        const StereoRender b = whole.renderStereo(whole.upload(occludedBlock(), {{caster}, kAllOctants}), pair, s, true);
+        const GpuVolume one = whole.upload(occludedBlock(), {{caster}, kAllOctants});
+        const StereoRender b = whole.renderStereo(one, pair, s, true);
         EXPECT_EQ(a.recast, b.recast) << casterName(caster);
         EXPECT_LE(maxAbsDifference(a.right.image, b.right.image), 1e-5) << casterName(caster);
         expectPairsAgree(a, bricked.renderStereo(split, pair, s, false), 0.01, "bricked");

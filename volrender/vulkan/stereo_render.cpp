@@ -21,12 +21,19 @@ device::StereoParams reprojection(const StereoPair& pair, const GridGeometry& gr
     p.maxSpread = float(kMaxSpreadPixels);
     p.opaqueAlpha = float(kOpaqueAlpha);
     p.maxStep = float(kMaxColourStep);
+    p.maxGap = float(kMaxGapPixels);
     // The disparities lie between the volume's nearest point's and infinity's; eyes inside the volume search the row.
     const double nearest = nearestDepth(pair, grid);
     const double lowest = nearest > 0 ? std::max(disparityAt(pair, nearest), -double(left.width)) : -left.width;
     const double highest = std::min(disparityAt(pair, INFINITY), double(left.width));
     p.window = {int(std::floor(lowest)) - 2, int(std::ceil(highest)) + 2};
     return p;
+}
+
+// A packed pixel's place in the order of 8 x 8 blocks (shaders/stereo_reprojection.h packListPixel).
+uint64_t blockOrder(uint32_t pixel) {
+    const uint64_t x = pixel & 0xffffu, y = pixel >> 16;
+    return (y >> 3) << 48 | (x >> 3) << 32 | (y & 7) << 16 | (x & 7);
 }
 
 }  // namespace
@@ -55,8 +62,9 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         list[0] = 0;
         out.reprojectMilliseconds = reprojector_->reproject(pool_, reprojection(pair, volume.grid()), left, right,
                                                               recast);
-        // In row order: neighbouring rays run side by side (the device appended them in any order).
-        std::sort(list + 1, list + 1 + list[0]);
+        // Blocks of 8 x 8 pixels in row order, each block's pixels in row order: a workgroup's rays stay as close
+        // together as a tile's (the device appended them in any order).
+        std::sort(list + 1, list + 1 + list[0], [](uint32_t a, uint32_t b) { return blockOrder(a) < blockOrder(b); });
         const PixelList recastPixels{recast, std::vector<uint32_t>(list + 1, list + 1 + list[0])};
         out.right = renderOnDevice(volume, pair.right, settings, &recastPixels);
         out.right.deviceMilliseconds += out.reprojectMilliseconds;
