@@ -8,8 +8,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
+#include "ray_math.h"
 #include "stereo_reprojection.h"
-#include "numerics.glsl"
 
 layout(local_size_x = kReprojectGroup) in;
 
@@ -30,9 +30,8 @@ struct Reprojected {
 Reprojected reprojected(int x, int y, float vSquared) {
     OutPixel o = leftPixel[y * params.imageSize.x + x];
     vec2 t = uintBitsToFloat(o.counts.zw);
-    float aspect = float(params.imageSize.x) / float(params.imageSize.y);
     float centre = float(x) + 0.5;
-    float u = (2.0 * centre / float(params.imageSize.x) - 1.0) * params.halfHeight * aspect + params.leftShift;
+    float u = imagePlaneU(centre, params.imageSize.x, params.imageSize.y, params.halfHeight) + params.leftShift;
     float cosine = inversesqrt(1.0 + u * u + vSquared);  // of the ray's angle to the view direction
     bool empty = isinf(t.x);
     float dNear = stereoDisparity(params.disparityScale, params.focusInverse, t.x * cosine);
@@ -70,7 +69,7 @@ void main() {
     int x = int(gl_GlobalInvocationID.x);
     int groupFirst = int(gl_WorkGroupID.x) * kReprojectGroup;
     float c = float(x) + 0.5;
-    float v = (1.0 - 2.0 * (float(y) + 0.5) / float(params.imageSize.y)) * params.halfHeight;
+    float v = imagePlaneV(float(y) + 0.5, params.imageSize.y, params.halfHeight);
     // This pixel's left pixels, first .. last, and their right neighbours; the workgroup's, lo .. hi.
     int first = clamp(x - params.window.y, 0, width - 1), last = clamp(x - params.window.x, 0, width - 1);
     int end = min(last + 1, width - 1);
