@@ -145,7 +145,8 @@ std::vector<Camera> Camera::orbit(const GridGeometry& grid, const ViewParams& vi
 }
 
 Ray Camera::ray(double px, double py) const {
-    const double u = device::imagePlaneU(px, width, height, halfHeight), v = device::imagePlaneV(py, height, halfHeight);
+    const double u = device::imagePlaneU(px, width, height, halfHeight) + shift;
+    const double v = device::imagePlaneV(py, height, halfHeight);
     if (projection == Projection::Orthographic) return {eye + right * u + up * v, forward};
     return {eye, normalize(forward + right * u + up * v)};
 }

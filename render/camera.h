@@ -31,6 +31,8 @@ struct Camera {
     Vec3d eye;                 // perspective: the eye; orthographic: centre of the image plane
     Vec3d forward, right, up;  // orthonormal
     double halfHeight = 1;     // orthographic: half the image height in world units; perspective: tan(fov/2)
+    double shift = 0;          // perspective: the image window's horizontal offset in units of the image plane at
+                               // distance 1 (an off-axis stereo eye, render/stereo_camera.h); 0: centred
 
     static Camera fit(const GridGeometry& grid, const ViewParams& view);
     // The views of an orbit: view i turned 360 i / views degrees about the view-up from `view`.

@@ -11,6 +11,7 @@
 #include "blend.h"
 #include "device_contract.h"
 #include "label_lookup.h"
+#include "stereo_reprojection.h"
 #include "transfer_lookup.h"
 
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
@@ -30,6 +31,8 @@ layout(constant_id = kSpecIdScalarType) const int SCALAR_TYPE = kScalarFloat32;
 layout(constant_id = kSpecIdBlend) const int BLEND = kBlendComposite;
 // Whether a label map is beside the scalars, and the type of its labels (label_lookup.h).
 layout(constant_id = kSpecIdLabels) const int LABELS = kNoLabels;
+// Cast the pixels of a list (a stereo pair's re-casts), in chunks of a tile's invocations, instead of a tile.
+layout(constant_id = kSpecIdPixelList) const bool PIXEL_LIST = false;
 
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
@@ -59,6 +62,7 @@ layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels 
 layout(set = 0, binding = kBindingLabelsUInt8, r8ui) uniform readonly uimage3D labelsUInt8;
 layout(set = 0, binding = kBindingLabelsUInt16, r16ui) uniform readonly uimage3D labelsUInt16;
 layout(set = 0, binding = kBindingLabelTable, std430) readonly buffer LabelTable { vec4 labelTableEntry[]; };
+layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; uint listPixel[]; };
 
 uvec4 loadField(ivec3 texel) {
     if (CASTER == kEACD && EACD_CODE == kLog16) return imageLoad(field16, texel);
@@ -296,8 +300,8 @@ float scalarAt(vec3 p) { return TRILINEAR ? footprintScalar(footprintAt(p)) : lo
 
 // The iso-surface between samples k - 1 and k, on opposite sides of the iso-value: the interval halved
 // kIsoBisections times by the side of the interpolated scalar at its middle, the hit at the middle of the last one
-// (renderCpu's isoSurface). Its TF colour, shaded with the normal there.
-vec3 isoSurface(GridRay g, RayInterval iv, uint k, vec3 toEye, vec3 toLight) {
+// (renderCpu's isoSurface). Its TF colour, shaded with the normal there; tHit: where it lies along the ray.
+vec3 isoSurface(GridRay g, RayInterval iv, uint k, vec3 toEye, vec3 toLight, out float tHit) {
     float before = latticeT(iv, k - 1u), beyond = latticeT(iv, k);
     bool insideBeyond = isoInside(scalarAt(rayAt(g, beyond)), params.isoValue);
     for (int i = 0; i < kIsoBisections; ++i) {
@@ -306,6 +310,7 @@ vec3 isoSurface(GridRay g, RayInterval iv, uint k, vec3 toEye, vec3 toLight) {
         else before = middle;
     }
     precise float t = (before + beyond) * 0.5;
+    tHit = t;
     vec3 p = rayAt(g, t);
     vec3 colour = classify(params.isoValue).rgb;
     if (!SHADING) return colour;
@@ -320,9 +325,18 @@ void main() {
     uvec2 l = gl_LocalInvocationID.xy;
     uvec2 inGroup = uvec2((l.x & 3u) | ((l.y & 1u) << 2), (l.y & ~1u) | (l.x >> 2));
     ivec2 local = ivec2(gl_WorkGroupID.xy * uint(kWorkgroupSize) + inGroup);
-    if (any(greaterThanEqual(local, tile.tileSize))) return;
+    if (!PIXEL_LIST && any(greaterThanEqual(local, tile.tileSize))) return;
     ivec2 pixel = tile.tileOrigin + local;
     uint outIndex = uint(local.y * tile.tileSize.x + local.x);
+    if (PIXEL_LIST) {
+        // This dispatch's chunk of the list starts at entry tileOrigin.x; each workgroup takes 64 consecutive
+        // entries, so that a SIMD batch takes neighbouring pixels (the list is in the order of 8 x 8 blocks).
+        outIndex = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * uint(kWorkgroupSize * kWorkgroupSize) +
+                   gl_LocalInvocationIndex;
+        uint entry = uint(tile.tileOrigin.x) + outIndex;
+        if (outIndex >= uint(tile.tileSize.x * tile.tileSize.y) || entry >= listCount) return;
+        pixel = unpackListPixel(listPixel[entry]);
+    }
 
     vec3 direction;
     GridRay g = cameraGridRay(float(pixel.x) + 0.5, float(pixel.y) + 0.5, direction);
@@ -338,7 +352,8 @@ void main() {
 
     bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
-    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u)
+    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u,
+                                              vec2(kInfinity))
                                    : loadRayState(outIndex);
     vec3 colour = state.composite.rgb;
     float transmittance = state.composite.a;  // 1 - alpha, for the colour's weights
@@ -351,6 +366,7 @@ void main() {
     uint iterations = state.iterations;
     bool failed = (state.flags & kFailed) != 0u;
     uint k = state.k;
+    vec2 interval = state.interval;  // composite: where its opacity rose (stereo_reprojection.h)
     // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
     bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, iv, k))));
@@ -447,7 +463,12 @@ void main() {
             if (SHADING) shaded = shade(s.rgb, sampleNormal(fp, v), toEye, toLight);
             precise float w = transmittance * spanAlpha;
             colour += shaded * w;
+            int levelBefore = opacityLevel(1.0 - transmittance);
             transmittance -= w;
+            if (opacityLevel(1.0 - transmittance) > levelBefore) {
+                if (levelBefore == 0) interval.x = latticeT(iv, k);
+                interval.y = latticeT(iv, k + n);
+            }
             depth = addPair(depth, spanDepth);
         }
     }
@@ -466,15 +487,20 @@ void main() {
     vec4 carried = BLEND == kBlendComposite ? vec4(colour, transmittance)
                    : BLEND == kBlendAverage ? vec4(sum, 0.0, 0.0)
                                             : vec4(running, 0.0, 0.0, 0.0);
-    if (!lastDispatch) storeRayState(outIndex, RayState(carried, depth, k, iterations, flags));
+    if (!lastDispatch) storeRayState(outIndex, RayState(carried, depth, k, iterations, flags, interval));
 
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.
     float alpha = spanOpacity(depth.x + depth.y);
     vec4 pixelColour = vec4(colour + params.background.rgb * (1.0 - alpha), alpha);
     if (BLEND == kBlendMIP || BLEND == kBlendMinIP) pixelColour = shownValue(running, kCount > 0u);
     if (BLEND == kBlendAverage) pixelColour = shownValue((sum.x + sum.y) / float(kCount), kCount > 0u);
-    if (BLEND == kBlendIso)
-        pixelColour = hit ? vec4(isoSurface(g, iv, k, toEye, toLight), 1.0) : vec4(params.background.rgb, 0.0);
+    // The other blends depend on every sample of the ray (MIP, MinIP, average) or on the surface's hit (iso).
+    if (BLEND != kBlendComposite && BLEND != kBlendIso && kCount > 0u) interval = vec2(iv.tEntry, iv.tExit);
+    if (BLEND == kBlendIso) {
+        float tHit = kInfinity;
+        pixelColour = hit ? vec4(isoSurface(g, iv, k, toEye, toLight, tHit), 1.0) : vec4(params.background.rgb, 0.0);
+        interval = vec2(tHit);
+    }
     outPixel[outIndex].colour = floatBitsToUint(pixelColour);
-    outPixel[outIndex].counts = uvec4(k, iterations | (flags & (kFailed | kCutShort)), 0u, 0u);
+    outPixel[outIndex].counts = uvec4(k, iterations | (flags & (kFailed | kCutShort)), floatBitsToUint(interval));
 }

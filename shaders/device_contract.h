@@ -39,6 +39,8 @@ VR_CONSTANT int kBindingBlockExtrema = 12;  // storage image R32F: each block's 
 VR_CONSTANT int kBindingLabelsUInt8 = 13;   // R8_UINT
 VR_CONSTANT int kBindingLabelsUInt16 = 14;  // R16_UINT
 VR_CONSTANT int kBindingLabelTable = 15;
+VR_CONSTANT int kBindingPixelList = 16;     // storage buffer: uint count, then the pixels to cast (x | y << 16),
+                                            // read by the list variant (stereo re-casts: stereo_reprojection.h)
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
@@ -50,6 +52,7 @@ VR_CONSTANT int kSpecIdPerspective = 5;  // bool: the camera's projection
 VR_CONSTANT int kSpecIdScalarType = 6;   // one of the scalar types below: which scalar image the casters read
 VR_CONSTANT int kSpecIdBlend = 7;        // one of the blends below
 VR_CONSTANT int kSpecIdLabels = 8;       // one of the label types below: which label image the casters read
+VR_CONSTANT int kSpecIdPixelList = 9;    // bool: cast the pixels of the list (kBindingPixelList), not a tile's
 VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4;
 // What a ray makes of its samples (render/render_settings.h Blend, in its order; shaders/blend.h).
 VR_CONSTANT int kBlendComposite = 0, kBlendMIP = 1, kBlendMinIP = 2, kBlendAverage = 3, kBlendIso = 4;
@@ -122,6 +125,7 @@ struct CasterParams {
     int jitter;  // 1: each ray's lattice starts late by its pixel's fraction of a step (jitter.h)
     int labelLastEntry;  // the label table's last entry (label_lookup.h labelEntry)
     int opaqueValues;    // 1: MIP, MinIP and average show their value's colour opaque (RenderSettings::opaqueValues)
+    float frustumShift;  // Camera::shift: an off-axis (stereo) eye's horizontal window offset, 0 otherwise
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -146,6 +150,7 @@ struct RayState {
     uint k;          // the next lattice sample: also the samples the spans so far represent
     uint iterations;
     uint flags;      // kFailed, kCutShort, kIsoInside, kIsoHit
+    vec2 interval;   // composite: the depth interval gathered so far (OutPixel::counts zw)
 };
 
 // A pixel's result (std430): the colour's four floats' bits, then the samples and the iteration count with its
@@ -153,7 +158,8 @@ struct RayState {
 // 32-bit words a seventh of a leaping caster's time.
 struct OutPixel {
     uvec4 colour;
-    uvec4 counts;  // x: samples, y: iterations | flags
+    uvec4 counts;  // x: samples, y: iterations | flags, zw: the float bits of the pixel's contributing depth
+                   // interval [t_near, t_far] along its ray (+inf, +inf: nothing; shaders/stereo_reprojection.h)
 };
 
 #ifdef __cplusplus
@@ -178,11 +184,13 @@ static_assert(offsetof(CasterParams, clipPlaneCount) == 416);
 static_assert(offsetof(CasterParams, jitter) == 420);
 static_assert(offsetof(CasterParams, labelLastEntry) == 424);
 static_assert(offsetof(CasterParams, opaqueValues) == 428);
-static_assert(sizeof(CasterParams) == 432);
+static_assert(offsetof(CasterParams, frustumShift) == 432);
+static_assert(sizeof(CasterParams) == 448);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);
 static_assert(sizeof(TilePush) == 96);
 static_assert(offsetof(RayState, k) == 24);
+static_assert(offsetof(RayState, interval) == 40);
 static_assert(sizeof(RayState) == 48);  // std430 rounds the array stride up to the vec4's 16
 static_assert(sizeof(OutPixel) == 32);
 }  // namespace vr::device

@@ -21,7 +21,7 @@ struct RayInterval {
 
 // Camera::ray() for the pixel centre (px, py), then toGridRay().
 GridRay cameraGridRay(float px, float py, out vec3 worldDirection) {
-    float u = imagePlaneU(px, params.imageSize.x, params.imageSize.y, params.halfHeight);
+    precise float u = imagePlaneU(px, params.imageSize.x, params.imageSize.y, params.halfHeight) + params.frustumShift;
     float v = imagePlaneV(py, params.imageSize.y, params.halfHeight);
     precise vec3 origin, direction;
     if (!PERSPECTIVE) {  // the including shader's specialization constant (caster.comp)

@@ -34,16 +34,19 @@ void writeFront(std::ofstream& out, const std::vector<SweepRow>& rows, const std
 
 }  // namespace
 
-void plotErrorAgainstTime(const std::vector<SweepRow>& rows, const std::string& title, const fs::path& png) {
+void plotErrorAgainstTime(const std::vector<SweepRow>& rows, const std::string& title, const fs::path& png,
+                          const std::vector<SweepRow>& beside) {
     const fs::path data = fs::path(png).replace_extension(".dat");
     const fs::path script = fs::path(png).replace_extension(".gp");
-    const std::vector<std::string> casters = castersOf(rows);
+    std::vector<SweepRow> points = rows;
+    points.insert(points.end(), beside.begin(), beside.end());
+    const std::vector<std::string> casters = castersOf(points);
     {
         // Blocks: one per caster (ratio, PSNR, perceptual %, label), then the two fronts.
         std::ofstream out(data);
         for (const std::string& c : casters) {
             out << "# " << c << '\n';
-            for (const SweepRow& r : rows)
+            for (const SweepRow& r : points)
                 if (r.caster == c)
                     out << r.ratioToPrimitive << ' ' << plottedPsnr(r) << ' ' << r.error.mean.percentPerceptual
                         << ' ' << thresholdText(r.opacityThreshold) << '/' << thresholdText(r.angleThreshold)

@@ -13,9 +13,10 @@ bool gnuplotAvailable();
 
 // Two panels: mean PSNR and the mean percentage of pixels with CIEDE2000 > 2.3 against the render time relative
 // to the primitive caster (log scale), one point style per caster, each labelled "T_o/T_a", the Pareto front
-// joined. Writes `png` and beside it the gnuplot script and data (NAME.gp, NAME.dat). Throws std::runtime_error
+// joined. `beside`: more points in styles of their own (a stereo pair: its time relative to one eye's), outside the
+// front. Writes `png` and beside it the gnuplot script and data (NAME.gp, NAME.dat). Throws std::runtime_error
 // when gnuplot fails.
 void plotErrorAgainstTime(const std::vector<SweepRow>& rows, const std::string& title,
-                          const std::filesystem::path& png);
+                          const std::filesystem::path& png, const std::vector<SweepRow>& beside = {});
 
 }  // namespace vr

@@ -15,6 +15,7 @@
 #include "sweep/metrics/ssim.h"
 #include "sweep/run_sweep.h"
 #include "sweep/selection.h"
+#include "sweep/stereo_row.h"
 
 namespace vr {
 namespace fs = std::filesystem;
@@ -228,6 +229,52 @@ void timeTable(std::ostream& md, const std::vector<SweepRow>& all) {
     md << "\n";
 }
 
+// The targets of a stereo pair (docs/BENCH.md "Stereo pairs"): the pair within 1.4 x one eye's time (on the CTs),
+// and the reused right eye at PSNR >= 40 dB with < 3 % of pixels at CIEDE2000 > 2.3 against its full render.
+constexpr double kStereoPairTarget = 1.4, kStereoPsnrTarget = 40, kStereoPerceptualTarget = 3;
+
+void stereoTableHead(std::ostream& md, bool withDataset) {
+    md << "| " << (withDataset ? "dataset | " : "") << "caster | one eye ms | pair ms | pair / one eye | both eyes "
+          "in full ms | reprojection ms | right eye re-cast | PSNR mean (worst) | SSIM worst | % off>1/255 mean | "
+          "% dE00>2.3 mean (worst) | time target | quality target |\n|"
+       << (withDataset ? "---|" : "") << "---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n";
+}
+
+void stereoTableRow(std::ostream& md, const StereoRow& r, bool withDataset) {
+    const double ratio = r.oneEyeMs > 0 ? r.pairMs / r.oneEyeMs : 0;
+    const bool quality = r.error.mean.psnr >= kStereoPsnrTarget &&
+                         r.error.mean.percentPerceptual < kStereoPerceptualTarget;
+    md << "| " << (withDataset ? r.dataset + " | " : "") << r.caster << " | " << fmt("%.1f", r.oneEyeMs) << " | "
+       << fmt("%.1f", r.pairMs) << " | " << fmt("%.2fx", ratio) << " | " << fmt("%.1f", r.fullPairMs) << " | "
+       << fmt("%.1f", r.reprojectMs) << " | " << fmt("%.1f %%", r.recastPercent) << " | " << db(r.error.mean.psnr)
+       << " (" << db(r.error.worst.psnr) << ") | " << fmt("%.4f", r.error.worst.ssim) << " | "
+       << fmt("%.2f", r.error.mean.percentOff8Bit) << " | " << fmt("%.2f", r.error.mean.percentPerceptual) << " ("
+       << fmt("%.2f", r.error.worst.percentPerceptual) << ") | " << (ratio <= kStereoPairTarget ? "met" : "missed")
+       << " | " << (quality ? "met" : "missed") << " |\n";
+}
+
+// The dataset's stereo row: the pair against one eye, the reused right eye against its full render.
+void stereoSection(std::ostream& md, const StereoRow& r) {
+    md << "\nStereo pairs (perspective views of the same orbit, the eyes 1/" << fmt("%.0f", 1 / r.separationPerFocus)
+       << " of the focus distance apart; the right eye reprojected from the left and cast again where the "
+          "reprojection cannot vouch for a pixel, against both eyes cast in full; medians over the views; the "
+          "plot's stereo point is the pair's time over one eye's):\n\n";
+    stereoTableHead(md, false);
+    stereoTableRow(md, r, false);
+}
+
+// Every dataset's stereo row in one table.
+void stereoSummary(std::ostream& md, const std::vector<StereoRow>& rows) {
+    if (rows.empty()) return;
+    md << "## Stereo pairs at a glance\n\nPer dataset, an orbit of pairs whose right eye is the left's reprojection "
+          "(docs/ALGORITHMS.md section 12). Targets: the pair within "
+       << kStereoPairTarget << "x one eye's device time (on the CTs); PSNR >= " << kStereoPsnrTarget << " dB and < "
+       << kStereoPerceptualTarget << " % of pixels with CIEDE2000 > 2.3 (means over the views).\n\n";
+    stereoTableHead(md, true);
+    for (const StereoRow& r : rows) stereoTableRow(md, r, true);
+    md << "\n";
+}
+
 // Every dataset with peers in one table: our EACD against the fastest VTK renderer.
 void peersSummary(std::ostream& md, const std::vector<PeerSummary>& all) {
     if (all.empty()) return;
@@ -278,6 +325,7 @@ std::vector<StripColumn> stripColumns(const fs::path& images, const std::vector<
 
 fs::path writeReport(const fs::path& outDir) {
     const std::vector<SweepRow> all = readSweepCsv(outDir / "sweep.csv");
+    const std::vector<StereoRow> stereo = readStereoCsv(outDir / "stereo.csv");
     if (all.empty()) throw fileError((outDir / "sweep.csv").string(), "no sweep results to report");
     const bool gnuplot = gnuplotAvailable();
     if (!gnuplot) std::fprintf(stderr, "volsweep: gnuplot not found (install gnuplot-nox): the plots are skipped\n");
@@ -312,9 +360,15 @@ fs::path writeReport(const fs::path& outDir) {
         settingsTable(md, rows);
         bestSettings(md, rows);
         paretoList(md, rows);
+        std::vector<SweepRow> stereoPoints;
+        for (const StereoRow& r : stereo)
+            if (r.dataset == dataset) {
+                stereoSection(md, r);
+                stereoPoints.push_back(r.plotted());
+            }
         const fs::path plot = outDir / "plots" / (dataset + ".png");
         if (gnuplot) {
-            plotErrorAgainstTime(rows, dataset + ": error against render time (labels T_o/T_a)", plot);
+            plotErrorAgainstTime(rows, dataset + ": error against render time (labels T_o/T_a)", plot, stereoPoints);
             md << "\n![error against render time](plots/" << dataset << ".png)\n";
         } else {
             md << "\n(Plot skipped: gnuplot is not installed; `bash scripts/install-deps.sh gnuplot-nox`.)\n";
@@ -332,6 +386,7 @@ fs::path writeReport(const fs::path& outDir) {
         md << "\n";
     }
     peersSummary(md, peerSummaries);
+    stereoSummary(md, stereo);
     timeTable(md, all);
     const fs::path report = outDir / "report.md";
     writeFileAtomically(report, [&](std::ostream& out) { out << md.str(); });

@@ -12,6 +12,7 @@
 #include "sweep/downsample.h"
 #include "sweep/order_statistics.h"
 #include "sweep/peer_comparison.h"
+#include "sweep/stereo_row.h"
 #include "sweep/sweep_row.h"
 #include "render/camera.h"
 #include "render/view_octants.h"
@@ -176,6 +177,31 @@ const PreparedVolume& classifyOnce(StagedPreparation& staged, const PrepareOptio
     return p;
 }
 
+// The dataset's stereo row (docs/BENCH.md "Stereo pairs"), unless stereo.csv has it: pairs about the orbit's views
+// in perspective, with the primitive caster at thresholds 0 (the upload of the reference); view 0's reused right eye
+// and its error map are written.
+void measureStereoRow(const SweepOptions& o, const std::string& dataset, VulkanRenderer& renderer,
+                      const GpuVolume& volume, const std::vector<View>& views, const RenderSettings& settings,
+                      const fs::path& images) {
+    const fs::path csv = o.outDir / "stereo.csv";
+    for (const StereoRow& r : readStereoCsv(csv))
+        if (r.dataset == dataset) return;
+    std::vector<Camera> cameras;
+    for (const View& v : views) {
+        ViewParams p;
+        p.projection = Projection::Perspective;
+        p.azimuthDeg = v.azimuth;
+        p.elevationDeg = v.elevation;
+        p.width = o.width;
+        p.height = o.height;
+        cameras.push_back(Camera::fit(volume.grid(), p));
+    }
+    const StereoMeasurement m = measureStereo(renderer, volume, cameras, settings);
+    appendStereoCsv(csv, StereoRow::of(dataset, settings.caster, o.width, o.height, int(views.size()), m));
+    writeImage(images / "stereo_right.png", m.reusedRight.front());
+    writeImage(images / "stereo_right_error.png", errorMap(m.fullRight.front(), m.reusedRight.front()));
+}
+
 }  // namespace
 
 int runSweep(const SweepOptions& o) {
@@ -231,6 +257,7 @@ int runSweep(const SweepOptions& o) {
         writeFileAtomically(o.outDir / ("peers_" + dataset + ".json"),
                             [&](std::ostream& s) { s << peers.dump(2) << '\n'; });
     }
+    measureStereoRow(o, dataset, renderer, volume, views, base, images);
     if (settings.empty()) return 0;
 
     ProgressBar bar("sweep " + dataset, settings.size() * (o.casters.size() - 1) * views.size());

@@ -1,6 +1,7 @@
 // One row of sweep.csv: one dataset, one (T_o, T_a) setting and one caster, with its costs and error figures.
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,5 +45,25 @@ void appendSweepCsv(const std::filesystem::path& path, const std::vector<SweepRo
 
 // A threshold as written in keys and labels (shortest exact-enough form, e.g. 0.005).
 std::string thresholdText(double t);
+
+// What the CSVs of the sweep share: a number as written (%.6g, "inf"), read back (InputError naming `where`), and
+// the error figures' columns (mean then worst of RMSE, PSNR, max abs, SSIM, % off > 1/255, % CIEDE2000 > 2.3).
+std::string csvNumber(double v);
+double parseCsvNumber(const std::string& text, const std::string& where);
+const std::vector<std::string>& errorColumns();
+std::vector<double> errorFigures(const ErrorSummary& e);
+ErrorSummary parseErrorFigures(const std::function<double()>& next);
+// The cells of every line of a CSV after its header (none when the file does not exist), each with the line's
+// description for errors ("FILE line N"); throws InputError naming the file for a foreign header, `kind` the CSV's
+// name (sweep.csv), and for a line without `columns` cells.
+struct CsvLine {
+    std::vector<std::string> cells;
+    std::string where;
+};
+std::vector<CsvLine> readCsvLines(const std::filesystem::path& path, const std::string& header, const char* kind,
+                                  std::size_t columns);
+// Appends lines, writing the header first when the file is new; flushed so an interrupted sweep keeps them.
+void appendCsvLines(const std::filesystem::path& path, const std::string& header,
+                    const std::vector<std::string>& lines);
 
 }  // namespace vr

@@ -11,6 +11,7 @@
 #include "sweep/error_plot.h"
 #include "sweep/report.h"
 #include "sweep/run_sweep.h"
+#include "sweep/stereo_row.h"
 #include "sweep/sweep_row.h"
 
 namespace vr {
@@ -83,6 +84,27 @@ TEST(SweepSmoke, HeadMrTwoByTwoGrid) {
     const std::string line = text.substr(target, text.find('\n', target) - target);
     EXPECT_NE(line.find("fewer iterations per ray than the primitive caster"), std::string::npos) << line;
     EXPECT_NE(line.find("primitive samples"), std::string::npos) << line;
+
+    // The dataset's stereo row: the pair against one eye, the reused right eye against its full render, in the
+    // dataset's section and the table at a glance.
+    const std::vector<StereoRow> stereo = readStereoCsv(out / "stereo.csv");
+    ASSERT_EQ(stereo.size(), 1u);
+    const StereoRow& pair = stereo.front();
+    EXPECT_EQ(pair.dataset, o.datasetName());
+    EXPECT_EQ(pair.views, 2);
+    EXPECT_GT(pair.oneEyeMs, 0);
+    EXPECT_GT(pair.pairMs, pair.reprojectMs);
+    EXPECT_GT(pair.recastPercent, 0);
+    EXPECT_LE(pair.recastPercent, 100);
+    EXPECT_GT(pair.error.worst.ssim, 0.9);
+    EXPECT_TRUE(fs::exists(imagesDir(out, o.datasetName()) / "stereo_right.png"));
+    EXPECT_NE(text.find("## Stereo pairs at a glance"), std::string::npos);
+    EXPECT_NE(text.find("| " + o.datasetName() + " | primitive |"), std::string::npos);
+    if (gnuplotAvailable()) {
+        std::ifstream data(out / "plots" / (o.datasetName() + ".dat"));
+        const std::string points((std::istreambuf_iterator<char>(data)), std::istreambuf_iterator<char>());
+        EXPECT_NE(points.find("# stereo pair"), std::string::npos);
+    }
 }
 
 TEST(SweepSmoke, ResumeSkipsFinishedSettingsAndReRunsAreRefused) {
@@ -98,6 +120,7 @@ TEST(SweepSmoke, ResumeSkipsFinishedSettingsAndReRunsAreRefused) {
     o.angleThresholds = {0, 3};
     EXPECT_EQ(runSweep(o), 1);
     EXPECT_EQ(readSweepCsv(out / "sweep.csv").size(), 4u);
+    EXPECT_EQ(readStereoCsv(out / "stereo.csv").size(), 1u);  // measured once per dataset
     o.resume = false;
     EXPECT_THROW(runSweep(o), InputError);
 }

@@ -23,16 +23,11 @@ using test::shellQuote;
 
 // A small prepared volume (no normals: renders use --no-shading): a block of opacity 0.3 in transparent air.
 const fs::path& preparedBlock() {
-    static const fs::path path = [] {
-        const GridGeometry grid{{12, 10, 8}, {1, 1, 2}, {0, 0, 0}};
-        const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
-            const bool inside = v.x > 2 && v.x < 9 && v.y > 1 && v.y < 8 && v.z > 1 && v.z < 6;
-            return test::VoxelClass{inside ? 0.3 : 0.0, {0.9, 0.5, 0.2}};
-        });
-        const fs::path out = test::scratchDir("volrender_faults_prepared") / "block.vprep";
-        writePrepared(out, p);
-        return out;
-    }();
+    const GridGeometry grid{{12, 10, 8}, {1, 1, 2}, {0, 0, 0}};
+    static const fs::path path = test::writtenSynthetic("volrender_faults_prepared", grid, 1.0, [](const Vec3i& v) {
+        const bool inside = v.x > 2 && v.x < 9 && v.y > 1 && v.y < 8 && v.z > 1 && v.z < 6;
+        return test::VoxelClass{inside ? 0.3 : 0.0, {0.9, 0.5, 0.2}};
+    });
     return path;
 }
 

@@ -16,20 +16,15 @@ using test::shellQuote;
 
 // Three blocks of different colours placed off the axes, so that every view of an orbit differs from the next.
 const fs::path& preparedBlocks() {
-    static const fs::path path = [] {
-        const GridGeometry grid{{16, 12, 10}, {1, 1, 1.5}, {0, 0, 0}};
-        const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
-            if (v.x >= 2 && v.x < 6 && v.y >= 2 && v.y < 5 && v.z >= 2 && v.z < 8) return test::VoxelClass{0.6, {1, 0.1, 0.1}};
-            if (v.x >= 10 && v.x < 14 && v.y >= 6 && v.y < 10 && v.z >= 1 && v.z < 4)
-                return test::VoxelClass{0.6, {0.1, 1, 0.2}};
-            if (v.x >= 4 && v.x < 12 && v.y >= 8 && v.y < 11 && v.z >= 6 && v.z < 9)
-                return test::VoxelClass{0.6, {0.2, 0.3, 1}};
-            return test::VoxelClass{0.0, {0, 0, 0}};
-        });
-        const fs::path out = test::scratchDir("volrender_movies_prepared") / "blocks.vprep";
-        writePrepared(out, p);
-        return out;
-    }();
+    const GridGeometry grid{{16, 12, 10}, {1, 1, 1.5}, {0, 0, 0}};
+    static const fs::path path = test::writtenSynthetic("volrender_movies_prepared", grid, 1.0, [](const Vec3i& v) {
+        if (v.x >= 2 && v.x < 6 && v.y >= 2 && v.y < 5 && v.z >= 2 && v.z < 8) return test::VoxelClass{0.6, {1, 0.1, 0.1}};
+        if (v.x >= 10 && v.x < 14 && v.y >= 6 && v.y < 10 && v.z >= 1 && v.z < 4)
+            return test::VoxelClass{0.6, {0.1, 1, 0.2}};
+        if (v.x >= 4 && v.x < 12 && v.y >= 8 && v.y < 11 && v.z >= 6 && v.z < 9)
+            return test::VoxelClass{0.6, {0.2, 0.3, 1}};
+        return test::VoxelClass{0.0, {0, 0, 0}};
+    });
     return path;
 }
 

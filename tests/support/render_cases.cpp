@@ -12,10 +12,12 @@
 #include <stdexcept>
 
 #include "core/classified_volume.h"
+#include "io/prepared_file.h"
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/segment/segment.h"
 #include "render/cpu_renderer.h"
+#include "support/datasets.h"
 
 namespace vr::test {
 
@@ -147,6 +149,13 @@ PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
     p.regions = segment(ClassifiedVoxels(p.scalars, p.classification, false), p.meta.segmentation);
     p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
     return p;
+}
+
+std::filesystem::path writtenSynthetic(const std::string& name, const GridGeometry& grid, double referenceStep,
+                                       const std::function<VoxelClass(const Vec3i&)>& voxel) {
+    const std::filesystem::path out = scratchDir(name) / (name + ".vprep");
+    writePrepared(out, syntheticPrepared(grid, referenceStep, voxel));
+    return out;
 }
 
 void expectNearCpuReference(const RenderResult& device, const RenderResult& cpu) {

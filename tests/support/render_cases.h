@@ -4,6 +4,7 @@
 // and the Vulkan casters face exactly the same inputs.
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <string>
 
@@ -31,6 +32,11 @@ struct VoxelClass {
 // with PC, ACD and EACD. Throws std::invalid_argument for more than 65536 classes.
 PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
                                  const std::function<VoxelClass(const Vec3i&)>& voxel);
+
+// syntheticPrepared written as a prepared file into a fresh scratch folder `name` (test::scratchDir): the input the
+// command-line tests give the tools.
+std::filesystem::path writtenSynthetic(const std::string& name, const GridGeometry& grid, double referenceStep,
+                                       const std::function<VoxelClass(const Vec3i&)>& voxel);
 
 // How many inputs (renders) a case family tried, for the report.
 struct CaseCount {

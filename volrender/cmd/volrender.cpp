@@ -24,7 +24,8 @@
 #include "volrender/cmd/heatmap.h"
 #include "render/caster_choice.h"
 #include "volrender/cmd/render_stats.h"
-#include "volrender/cmd/view_output.h"
+#include "volrender/cmd/stereo_flags.h"
+#include "volrender/cmd/stereo_output.h"
 #include "render/cpu_renderer.h"
 #include "render/render_checks.h"
 #include "render/view_octants.h"
@@ -40,8 +41,8 @@ constexpr vr::ToolText kText{
     "same image at thresholds 0; auto (the default) picks the cheapest for the views. Each sample is interpolated "
     "from the scalars (trilinear by default), classified through the transfer table and shaded from the scalars' "
     "gradient. --blend mip, minip, average or iso shows the largest, smallest or mean scalar, or the iso-surface of "
-    "--iso VALUE, instead, leaping over blocks that cannot change it (--caster blocks). Runs on a Vulkan device (or "
-    "--cpu).",
+    "--iso VALUE, instead, leaping over blocks that cannot change it (--caster blocks). --stereo renders a pair "
+    "whose right eye reuses the left eye's pixels. Runs on a Vulkan device (or --cpu).",
     "Exit status: 0 done, 1 bad input or device failure, 2 bad command line."};
 
 namespace fs = std::filesystem;
@@ -51,6 +52,7 @@ struct Flags {
     vr::VolumeFlags volume;  // for a volume prepared here
     vr::CameraFlags camera;
     vr::ClipFlags clip;
+    vr::StereoFlags stereo;
     double step = 0.5, ert = 0.99;
     std::vector<double> light, background{0, 0, 0};
     bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false, quiet = false;
@@ -86,6 +88,7 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_option("--size", f.size, "image size WIDTHxHEIGHT (1..16384 each)")->capture_default_str();
     vr::addCameraFlags(app, f.camera);
     vr::addClipFlags(app, f.clip);
+    vr::addStereoFlags(app, f.stereo);
     app.add_option("--step", f.step, "sampling step in voxels of the smallest spacing")->capture_default_str();
     app.add_option("--ert", f.ert, "early ray termination opacity, (0, 1]")->capture_default_str();
     app.add_option("--light", f.light, "direction toward a directional light x,y,z (default: headlight)")
@@ -122,10 +125,17 @@ void checkWritable(const std::string& path, const char* flag) {
     if (fs::is_directory(out)) throw vr::fileError(path, std::string("cannot write ") + flag + ": it is a folder");
 }
 
+// A stereo pair's layout; none for a single view.
+std::optional<vr::StereoLayout> layoutOf(const Flags& f) {
+    if (!f.stereo.separation) return std::nullopt;
+    return vr::stereoLayout(f.stereo);
+}
+
 // The outputs' formats, and --fps only where a movie is written.
 void checkMovieFlags(const Flags& f, const vr::ViewParams& view) {
-    vr::checkViewOutput(f.output, "-o", view.width, view.height);
-    if (!f.heatmap.empty()) vr::checkViewOutput(f.heatmap, "--heatmap", view.width, view.height);
+    const auto [width, height] = vr::frameSize(view.width, view.height, layoutOf(f));
+    vr::checkViewOutput(f.output, "-o", width, height);
+    if (!f.heatmap.empty()) vr::checkViewOutput(f.heatmap, "--heatmap", width, height);
     if (!f.fps) return;
     if (!vr::movieFormat(f.output) && !vr::movieFormat(f.heatmap))
         throw vr::InputError("--fps " + std::to_string(*f.fps) + ": a frame rate is for a movie (-o or --heatmap "
@@ -177,6 +187,7 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     if (!(f.ert > 0 && f.ert <= 1)) throw vr::InputError("--ert " + std::to_string(f.ert) + ": must be in (0, 1]");
     if (f.views < 1 || f.views > 3600) throw vr::InputError("--views must be in 1..3600");
     view = vr::viewParams(f.camera, int(w), int(h));
+    vr::checkStereoFlags(f.stereo, view.projection, f.cpu);
     checkMovieFlags(f, view);
     checkWritable(f.output, "the image");
     if (!f.heatmap.empty()) checkWritable(f.heatmap, "--heatmap");
@@ -219,6 +230,19 @@ unsigned fieldsFor(vr::Caster c) {
     return 0;
 }
 
+// The cameras of the views, both eyes of each pair with --stereo: the ones the casters see (their rays' octants).
+std::vector<vr::Camera> eyeCameras(const Flags& f, const vr::GridGeometry& grid, const vr::ViewParams& view) {
+    const std::vector<vr::Camera> cameras = vr::Camera::orbit(grid, view, f.views);
+    if (!f.stereo.separation) return cameras;
+    std::vector<vr::Camera> eyes;
+    for (const vr::Camera& camera : cameras) {
+        const vr::StereoPair pair = vr::stereoPair(camera, grid, *f.stereo.separation, f.stereo.focus);
+        eyes.push_back(pair.left);
+        eyes.push_back(pair.right);
+    }
+    return eyes;
+}
+
 // The octants of every ray of the cameras.
 unsigned orbitOctants(const std::vector<vr::Camera>& cameras) {
     unsigned octants = 0;
@@ -235,7 +259,7 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
         return {vr::Caster::Primitive, "the regions were made for nearest sampling only (volprep --nearest): "
                                        "trilinear sampling cannot leap through them (render with --nearest to leap)"};
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
-    for (const vr::Camera& camera : vr::Camera::orbit(header.grid, view, f.views)) d.addView(camera);
+    for (const vr::Camera& camera : eyeCameras(f, header.grid, view)) d.addView(camera);
     return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
 }
 
@@ -264,7 +288,7 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     const auto labelColours = vr::checkLabelFlags(f.volume);
     vr::StagedPreparation staged = vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume));
     vr::attachLabels(f.volume, labelColours, staged);
-    const std::vector<vr::Camera> cameras = vr::Camera::orbit(staged.volume().grid, view, f.views);
+    const std::vector<vr::Camera> cameras = eyeCameras(f, staged.volume().grid, view);
     options.octants = orbitOctants(cameras);
     if (chooseHere) {
         const vr::CasterChoice c =
@@ -285,42 +309,72 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
 
 int movieFps(const Flags& f) { return f.fps.value_or(25); }
 
+// One view's images: one, or a stereo pair's left and right eye.
 struct RenderedView {
-    vr::RenderResult result;
+    std::vector<vr::RenderResult> results;
     std::vector<vr::UploadedResource> uploads;  // on the device for it (none for the CPU reference)
+    nlohmann::json stereo;                      // a pair's reuse: the fraction re-cast, the reprojection's time
 };
+
+// A view's statistics: its one image's, or each eye's of a pair (and the pair's device time).
+nlohmann::json frameStatistics(const RenderedView& view) {
+    if (view.results.size() == 1) return vr::viewStatistics(view.results.front(), view.uploads);
+    nlohmann::json s = view.stereo;
+    s["left"] = vr::viewStatistics(view.results[0], view.uploads);
+    s["right"] = vr::viewStatistics(view.results[1], view.uploads);
+    s["deviceMs"] = view.results[0].deviceMilliseconds + view.results[1].deviceMilliseconds;
+    s["wallMs"] = view.results[0].wallMilliseconds + view.results[1].wallMilliseconds;
+    s["iterationsPerRay"] = {{"mean", (s["left"]["iterationsPerRay"]["mean"].get<double>() +
+                                       s["right"]["iterationsPerRay"]["mean"].get<double>()) / 2}};
+    return s;
+}
+
+// A pair's eyes' device times and the right eye's pixels cast again, for the report of a view.
+std::string stereoNote(const RenderedView& view) {
+    if (view.results.size() < 2) return "";
+    char text[160];
+    std::snprintf(text, sizeof text, " (left %.2f ms, right %.2f ms device, %.1f %% of the right eye cast)",
+                  view.results[0].deviceMilliseconds, view.results[1].deviceMilliseconds,
+                  100 * view.stereo.value("recastFraction", 1.0));
+    return text;
+}
 
 // Renders the views into their outputs in order: each an image file (a line each), or a frame of a movie (a
 // progress bar over the frames, then one line). Returns each view's statistics.
-nlohmann::json renderViews(const Flags& f, const std::vector<vr::Camera>& cameras, vr::Caster caster,
-                           const std::function<RenderedView(const vr::Camera&)>& render) {
-    const int width = cameras.front().width, height = cameras.front().height;
+nlohmann::json renderViews(const Flags& f, int count, int width, int height, vr::Caster caster,
+                           const std::function<RenderedView(int)>& render) {
     const vr::MovieSpec spec{width, height, f.views, movieFps(f)};
-    vr::ViewOutput images(f.output, spec);
-    std::optional<vr::ViewOutput> heatmaps;
-    if (!f.heatmap.empty()) heatmaps.emplace(f.heatmap, spec);
+    vr::FrameOutput images(f.output, spec, layoutOf(f));
+    std::optional<vr::FrameOutput> heatmaps;
+    if (!f.heatmap.empty()) heatmaps.emplace(f.heatmap, spec, layoutOf(f));
     std::optional<vr::ProgressBar> frames;
     if (images.isMovie()) frames.emplace("frames", f.views);
     nlohmann::json viewStats = nlohmann::json::array();
     double deviceMs = 0, wallMs = 0, iterations = 0;  // summed over the views
-    for (int i = 0; i < f.views; ++i) {
-        const RenderedView view = render(cameras[i]);
-        images.add(i, view.result.image);
-        if (heatmaps) heatmaps->add(i, vr::iterationHeatmap(view.result.iterations, width, height));
-        nlohmann::json s = vr::viewStatistics(view.result, view.uploads);
+    for (int i = 0; i < count; ++i) {
+        const RenderedView view = render(i);
+        std::vector<vr::Image> pictures, heat;
+        for (const vr::RenderResult& result : view.results) {
+            pictures.push_back(result.image);
+            if (heatmaps) heat.push_back(vr::iterationHeatmap(result.iterations, width, height));
+        }
+        images.add(i, pictures);
+        if (heatmaps) heatmaps->add(i, heat);
+        nlohmann::json s = frameStatistics(view);
         s["image"] = images.name(i);
         if (images.isMovie()) s["frame"] = i;
         s["orbit"] = 360.0 * i / f.views;  // degrees about the view-up
         viewStats.push_back(s);
-        deviceMs += view.result.deviceMilliseconds;
-        wallMs += view.result.wallMilliseconds;
+        deviceMs += s["deviceMs"].get<double>();
+        wallMs += s["wallMs"].get<double>();
         iterations += s["iterationsPerRay"]["mean"].get<double>();
         if (frames)
             frames->advance();
         else if (!f.quiet)
-            std::printf("%s: %s caster, %.2f ms device, %.2f ms wall, %.1f iterations per ray\n", images.name(i).c_str(),
-                        vr::casterName(caster).data(), view.result.deviceMilliseconds, view.result.wallMilliseconds,
-                        s["iterationsPerRay"]["mean"].get<double>());
+            std::printf("%s: %s caster, %.2f ms device, %.2f ms wall, %.1f iterations per ray%s\n",
+                        images.name(i).c_str(), vr::casterName(caster).data(), s["deviceMs"].get<double>(),
+                        s["wallMs"].get<double>(), s["iterationsPerRay"]["mean"].get<double>(),
+                        stereoNote(view).c_str());
     }
     images.finish();
     if (heatmaps) heatmaps->finish();
@@ -379,7 +433,7 @@ int run(const Flags& f) {
         prepareHere ? std::move(*preparedHere) : vr::readPrepared(f.input, fieldsFor(settings.caster));
 
     const std::vector<vr::Camera> cameras = vr::Camera::orbit(prepared.grid(), view, f.views);
-    const unsigned octants = orbitOctants(cameras);  // the orbit shares one upload
+    const unsigned octants = orbitOctants(eyeCameras(f, prepared.grid(), view));  // the orbit shares one upload
     std::optional<vr::GpuVolume> uploaded;
     nlohmann::json uploadStats;
     if (renderer) {
@@ -391,10 +445,22 @@ int run(const Flags& f) {
             std::printf("upload: %.2f ms, %.1f MB in %zu brick(s)\n", uploadStats["milliseconds"].get<double>(),
                         double(uploaded->uploadedBytes()) / 1e6, uploaded->bricks().bricks().size());
     }
-    const nlohmann::json viewStats = renderViews(f, cameras, settings.caster, [&](const vr::Camera& camera) {
-        if (!renderer) return RenderedView{vr::renderCpu(prepared, camera, settings), {}};
-        vr::RenderResult result = renderer->render(*uploaded, camera, settings);
-        return RenderedView{std::move(result), renderer->lastUploads()};
+    const bool reuse = vr::stereoReuse(f.stereo, f.cpu);
+    const nlohmann::json viewStats = renderViews(f, f.views, view.width, view.height, settings.caster, [&](int i) {
+        const vr::Camera& camera = cameras[i];
+        if (!f.stereo.separation) {
+            if (!renderer) return RenderedView{{vr::renderCpu(prepared, camera, settings)}, {}, {}};
+            vr::RenderResult result = renderer->render(*uploaded, camera, settings);
+            return RenderedView{{std::move(result)}, renderer->lastUploads(), {}};
+        }
+        const vr::StereoPair pair = vr::stereoPair(camera, prepared.grid(), *f.stereo.separation, f.stereo.focus);
+        if (!renderer)
+            return RenderedView{{vr::renderCpu(prepared, pair.left, settings), vr::renderCpu(prepared, pair.right, settings)},
+                                {}, {{"recastFraction", 1.0}, {"reprojectMs", 0.0}, {"focus", pair.focus}}};
+        vr::StereoRender stereo = renderer->renderStereo(*uploaded, pair, settings, reuse);
+        return RenderedView{{std::move(stereo.left), std::move(stereo.right)}, renderer->lastUploads(),
+                            {{"recastFraction", stereo.recastFraction}, {"reprojectMs", stereo.reprojectMilliseconds},
+                             {"focus", pair.focus}}};
     });
     if (context)  // only with VR_VALIDATION=1: what the validation layer reported
         for (const std::string& message : context->validationErrors())
@@ -407,6 +473,7 @@ int run(const Flags& f) {
             {"fps", movieFps(f)}, {"blend", f.blend}, {"iso", f.iso ? nlohmann::json(*f.iso) : nlohmann::json()}};
         settingsStats.update(vr::cameraStatistics(f.camera));
         settingsStats.update(vr::clipStatistics(f.clip));
+        settingsStats.update(vr::stereoStatistics(f.stereo, f.cpu));
         nlohmann::json stats{
             {"prepared", f.input},
             {"renderer", context ? context->info().name : std::string("cpu reference")},

@@ -17,6 +17,8 @@
 #include "render/view_octants.h"
 #include "shaders/device_contract.h"
 #include "shaders/embedded_shaders.h"
+#include "shaders/stereo_reprojection.h"
+#include "volrender/vulkan/stereo_reprojector.h"
 
 namespace vr {
 namespace {
@@ -153,6 +155,7 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
     p.jitter = s.jitter ? 1 : 0;
     p.labelLastEntry = volume.labelLastEntry();
     p.opaqueValues = s.opaqueValues ? 1 : 0;
+    p.frustumShift = float(camera.shift);
     return p;
 }
 
@@ -173,7 +176,8 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
         {device::kBindingRayStates, T::eStorageBuffer, 1, compute},
         {device::kBindingExtentTable, T::eUniformBuffer, 1, compute},
         {device::kBindingTransferTable, T::eStorageBuffer, 1, compute},
-        {device::kBindingLabelTable, T::eStorageBuffer, 1, compute}};
+        {device::kBindingLabelTable, T::eStorageBuffer, 1, compute},
+        {device::kBindingPixelList, T::eStorageBuffer, 1, compute}};
     for (uint32_t binding : kScalarBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     for (uint32_t binding : kFieldBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     bindings.emplace_back(device::kBindingBlockExtrema, T::eStorageImage, 1, compute);
@@ -183,12 +187,7 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     vk::DescriptorSetLayout layout = *setLayout_;
     pipelineLayout_ = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, layout, push));
     shader_ = vk::raii::ShaderModule(device, vk::ShaderModuleCreateInfo({}, caster_spv));
-    queries_ = vk::raii::QueryPool(device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
-    const uint32_t validBits = ctx.physicalDevice().getQueueFamilyProperties()[ctx.queueFamily()].timestampValidBits;
-    if (validBits > 0) {
-        timestampPeriodNs_ = ctx.physicalDevice().getProperties().limits.timestampPeriod;
-        timestampMask_ = validBits >= 64 ? ~uint64_t(0) : (uint64_t(1) << validBits) - 1;
-    }
+    timer_ = std::make_unique<DeviceTimer>(ctx);
     const uint8_t zeros[8] = {};
     for (int i = 0; i < 4; ++i) {
         const vk::Format format = scalarFormat(kScalarTypes[i]);
@@ -209,17 +208,17 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
 
 const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, Blend blend, bool trilinear, bool shading,
                                                    ExtentCode eacdCode, bool bricked, bool perspective,
-                                                   ScalarType scalarType, int labels) {
+                                                   ScalarType scalarType, int labels, bool pixelList) {
     // Only the EACD caster reads the code: the others share one pipeline whatever the volume's code. Only composite
     // and the iso-surface shade.
     const bool shaded = shading && (blend == Blend::Composite || blend == Blend::Iso);
     const auto key = std::make_tuple(caster, blend, trilinear, shaded,
                                      caster == Caster::EACD ? eacdCode : ExtentCode::Exact, bricked, perspective,
-                                     scalarType, labels);
+                                     scalarType, labels, pixelList);
     auto it = pipelines_.find(key);
     if (it != pipelines_.end()) return it->second;
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
-    const std::array<std::pair<int, uint32_t>, 9> constants{{
+    const std::array<std::pair<int, uint32_t>, 10> constants{{
         {device::kSpecIdCaster, uint32_t(deviceCaster(caster))},
         {device::kSpecIdBlend, uint32_t(deviceBlend(blend))},
         {device::kSpecIdTrilinear, trilinear ? 1u : 0u},
@@ -228,7 +227,8 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, Blend blend, b
         {device::kSpecIdBricked, bricked ? 1u : 0u},
         {device::kSpecIdPerspective, perspective ? 1u : 0u},
         {device::kSpecIdScalarType, uint32_t(deviceScalarType(scalarType))},
-        {device::kSpecIdLabels, uint32_t(labels)}}};
+        {device::kSpecIdLabels, uint32_t(labels)},
+        {device::kSpecIdPixelList, pixelList ? 1u : 0u}}};
     std::array<uint32_t, constants.size()> values;
     std::array<vk::SpecializationMapEntry, constants.size()> entries;
     for (std::size_t i = 0; i < constants.size(); ++i) {
@@ -242,26 +242,18 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, Blend blend, b
     return pipelines_.emplace(key, std::move(p)).first->second;
 }
 
-template <typename Work>
-auto VulkanRenderer::deviceErrors(Work&& work) -> decltype(work()) {
-    try {
-        return work();
-    } catch (const vk::OutOfDeviceMemoryError&) {
-        throw std::runtime_error("the Vulkan device " + ctx_.info().name +
-                                 " ran out of memory (try a smaller volume, --caster primitive or an orthographic view)");
-    } catch (const vk::OutOfHostMemoryError&) {
-        throw std::runtime_error("the Vulkan driver ran out of host memory");
-    } catch (const vk::DeviceLostError&) {
-        throw std::runtime_error("the Vulkan device " + ctx_.info().name +
-                                 " was lost (a driver crash or a watchdog reset; try a smaller --size)");
-    }
-}
-
 GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolumeContents& contents) {
     return deviceErrors([&] { return GpuVolume(ctx_, pool_, prepared, contents, limits_); });
 }
 
+VulkanRenderer::~VulkanRenderer() = default;
+
 RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings) {
+    checkRender(volume, camera, settings);
+    return deviceErrors([&] { return renderOnDevice(volume, camera, settings); });
+}
+
+void VulkanRenderer::checkRender(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings) {
     checkRenderSettings(volume.grid(), volume.segmentation(), settings);
     checkLabelledBlend(volume.labelled(), settings);
     requireDeviceLattice(volume.grid(), settings.stepVoxels);
@@ -277,7 +269,6 @@ RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camer
         if (u.name == "scalars" || u.name == "table" || u.name == "label map" || u.name == "label table" ||
             (settings.caster != Caster::Primitive && u.name == casterName(settings.caster)))
             uploads_.push_back(u);
-    return deviceErrors([&] { return renderOnDevice(volume, camera, settings); });
 }
 
 RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera& camera,
@@ -292,14 +283,14 @@ RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera
 }
 
 RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camera& camera,
-                                            const RenderSettings& settings) {
+                                            const RenderSettings& settings, const PixelList* list, void* keep) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
     const vk::raii::Pipeline& pipe = pipeline(settings.caster, settings.blend, settings.trilinear, settings.shading,
                                               volume.eacdCode(),
                                               volume.bricks().bricks().size() > 1,
                                               camera.projection == Projection::Perspective, volume.scalarType(),
-                                              deviceLabels(volume));
+                                              deviceLabels(volume), list != nullptr);
 
     using B = vk::BufferUsageFlagBits;
     HostBuffer params(ctx_, sizeof(device::CasterParams), B::eUniformBuffer);
@@ -310,6 +301,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
     HostBuffer out(ctx_, tilePixels * sizeof(device::OutPixel), B::eStorageBuffer);
     DeviceBuffer rayState(ctx_, tilePixels * sizeof(device::RayState), B::eStorageBuffer);
+    HostBuffer noList(ctx_, 2 * sizeof(uint32_t), B::eStorageBuffer);  // bound, never read, without a list
 
     // One descriptor set per brick: its images, the rest shared.
     const std::vector<Brick>& bricks = volume.bricks().bricks();
@@ -317,7 +309,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     std::array<vk::DescriptorPoolSize, 3> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 10 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 4 * brickCount)};
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 5 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
         vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, brickCount, sizes));
@@ -326,9 +318,10 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     auto imageInfo = [&](const VolumeImage& image) {
         return vk::DescriptorImageInfo(nullptr, *image.view(), kVolumeLayout);
     };
-    const vk::DescriptorBufferInfo buffers[3] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
+    const vk::DescriptorBufferInfo buffers[4] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*out.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*rayState.buffer(), 0, VK_WHOLE_SIZE}};
+                                                 {*rayState.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*(list ? list->buffer : noList).buffer(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo transferEntries(*volume.table().buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo labelEntries(
@@ -353,7 +346,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             {set, device::kBindingRayStates, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
             {set, device::kBindingExtentTable, 0, 1, T::eUniformBuffer, nullptr, &extentEntries},
             {set, device::kBindingTransferTable, 0, 1, T::eStorageBuffer, nullptr, &transferEntries},
-            {set, device::kBindingLabelTable, 0, 1, T::eStorageBuffer, nullptr, &labelEntries}};
+            {set, device::kBindingLabelTable, 0, 1, T::eStorageBuffer, nullptr, &labelEntries},
+            {set, device::kBindingPixelList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]}};
         for (int i = 0; i < 4; ++i) writes.emplace_back(set, kScalarBindings[i], 0, 1, T::eStorageImage, &scalars[i]);
         for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
         writes.emplace_back(set, device::kBindingBlockExtrema, 0, 1, T::eStorageImage, &blockRanges);
@@ -374,73 +368,80 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
 
     RenderResult result = RenderResult::blank(camera.width, camera.height);
 
-    for (int y0 = 0; y0 < camera.height; y0 += tileSize_) {
-        for (int x0 = 0; x0 < camera.width; x0 += tileSize_) {
-            device::TilePush tile{};
-            tile.tileOrigin = {x0, y0};
-            tile.tileSize = {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)};
-            submitAndWait(ctx_, pool_, [&](const vk::raii::CommandBuffer& cmd) {
-                using S = vk::PipelineStageFlagBits;
-                using A = vk::AccessFlagBits;
-                cmd.resetQueryPool(*queries_, 0, 2);
-                cmd.writeTimestamp(S::eTopOfPipe, *queries_, 0);
-                cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipe);
-                tile.firstDispatch = 1;
-                for (std::size_t pass = 0; pass < passes.size(); ++pass) {
-                    const auto& [signs, order] = passes[pass];
-                    for (std::size_t i = 0; i < order.size(); ++i) {
-                        const Brick& b = bricks[order[i]];
-                        tile.brickLo = toDevice(b.lo), tile.brickHi = toDevice(b.hi);
-                        tile.imageLo = toDevice(b.imageLo), tile.imageDims = toDevice(b.imageDims);
-                        tile.lastDispatch = pass + 1 == passes.size() && i + 1 == order.size();
-                        tile.passAxes = int(splitAxes), tile.passSigns = int(signs);
-                        cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout_, 0,
-                                               *sets[order[i]], {});
-                        cmd.pushConstants<device::TilePush>(*pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0,
-                                                            tile);
-                        constexpr int group = device::kWorkgroupSize;
-                        cmd.dispatch((tile.tileSize.x + group - 1) / group, (tile.tileSize.y + group - 1) / group, 1);
-                        // The next brick reads the ray states this one wrote.
-                        vk::MemoryBarrier carried(A::eShaderWrite, A::eShaderRead | A::eShaderWrite);
-                        cmd.pipelineBarrier(S::eComputeShader, S::eComputeShader, {}, carried, {}, {});
-                        tile.firstDispatch = 0;
-                    }
+    // The tiles of the image, or the list's chunks of a tile's pixels each (its first entry in tileOrigin.x).
+    std::vector<device::TilePush> tiles;
+    if (list) {
+        const int count = int(list->pixels.size());
+        for (int first = 0; first < count; first += int(tilePixels)) {
+            const int rows = (std::min(int(tilePixels), count - first) + tileSize_ - 1) / tileSize_;
+            tiles.push_back({{first, 0}, {tileSize_, rows}});
+        }
+    } else {
+        for (int y0 = 0; y0 < camera.height; y0 += tileSize_)
+            for (int x0 = 0; x0 < camera.width; x0 += tileSize_)
+                tiles.push_back({{x0, y0},
+                                 {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)}});
+    }
+    for (device::TilePush tile : tiles) {
+        submitAndWait(ctx_, pool_, [&](const vk::raii::CommandBuffer& cmd) {
+            using S = vk::PipelineStageFlagBits;
+            using A = vk::AccessFlagBits;
+            timer_->start(cmd);
+            cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipe);
+            tile.firstDispatch = 1;
+            for (std::size_t pass = 0; pass < passes.size(); ++pass) {
+                const auto& [signs, order] = passes[pass];
+                for (std::size_t i = 0; i < order.size(); ++i) {
+                    const Brick& b = bricks[order[i]];
+                    tile.brickLo = toDevice(b.lo), tile.brickHi = toDevice(b.hi);
+                    tile.imageLo = toDevice(b.imageLo), tile.imageDims = toDevice(b.imageDims);
+                    tile.lastDispatch = pass + 1 == passes.size() && i + 1 == order.size();
+                    tile.passAxes = int(splitAxes), tile.passSigns = int(signs);
+                    cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout_, 0,
+                                           *sets[order[i]], {});
+                    cmd.pushConstants<device::TilePush>(*pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0,
+                                                        tile);
+                    constexpr int group = device::kWorkgroupSize;
+                    cmd.dispatch((tile.tileSize.x + group - 1) / group, (tile.tileSize.y + group - 1) / group, 1);
+                    // The next brick reads the ray states this one wrote.
+                    vk::MemoryBarrier carried(A::eShaderWrite, A::eShaderRead | A::eShaderWrite);
+                    cmd.pipelineBarrier(S::eComputeShader, S::eComputeShader, {}, carried, {}, {});
+                    tile.firstDispatch = 0;
                 }
-                cmd.writeTimestamp(S::eBottomOfPipe, *queries_, 1);
-                vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
-                cmd.pipelineBarrier(S::eComputeShader, S::eHost, {}, toHost, {}, {});
-            });
-            if (timestampPeriodNs_ > 0) {
-                auto [status, stamps] = queries_.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
-                                                                      vk::QueryResultFlagBits::e64 |
-                                                                          vk::QueryResultFlagBits::eWait);
-                (void)status;
-                result.deviceMilliseconds +=
-                    double((stamps[1] - stamps[0]) & timestampMask_) * timestampPeriodNs_ * 1e-6;
             }
-            const auto* pixelsOut = static_cast<const device::OutPixel*>(out.data());
-            for (int ly = 0; ly < tile.tileSize.y; ++ly) {
-                for (int lx = 0; lx < tile.tileSize.x; ++lx) {
-                    const std::size_t local = std::size_t(ly) * tile.tileSize.x + lx;
-                    const int px = x0 + lx, py = y0 + ly;
-                    const std::size_t index = std::size_t(py) * camera.width + px;
-                    const device::OutPixel& o = pixelsOut[local];
-                    const uint32_t iterations = o.counts.y;  // with the shader's flags
-                    if (iterations & device::kCutShort)
-                        throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) + " caster: " +
-                                                 ctx_.info().name + " ended the shader's loops before the ray at pixel (" +
-                                                 std::to_string(px) + ", " + std::to_string(py) +
-                                                 ") was done (llvmpipe allows 65535 loop iterations per shader "
-                                                 "invocation); render with the CPU reference or a hardware device");
-                    if (iterations & device::kFailed)
-                        throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) +
-                                                 " caster: the ray at pixel (" + std::to_string(px) + ", " +
-                                                 std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
-                                                 "pass (a bug)");
-                    std::memcpy(result.image.pixel(px, py), &o.colour, 4 * sizeof(float));
-                    result.iterations[index] = iterations;
-                    result.samples[index] = o.counts.x;
+            timer_->stop(cmd);
+            vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
+            cmd.pipelineBarrier(S::eComputeShader, S::eHost, {}, toHost, {}, {});
+        });
+        result.deviceMilliseconds += timer_->milliseconds();
+        const auto* pixelsOut = static_cast<const device::OutPixel*>(out.data());
+        for (int ly = 0; ly < tile.tileSize.y; ++ly) {
+            for (int lx = 0; lx < tile.tileSize.x; ++lx) {
+                const std::size_t local = std::size_t(ly) * tile.tileSize.x + lx;
+                int px = tile.tileOrigin.x + lx, py = tile.tileOrigin.y + ly;
+                if (list) {
+                    const std::size_t entry = std::size_t(tile.tileOrigin.x) + local;
+                    if (entry >= list->pixels.size()) break;
+                    px = int(list->pixels[entry] & 0xffffu), py = int(list->pixels[entry] >> 16);
                 }
+                const std::size_t index = std::size_t(py) * camera.width + px;
+                const device::OutPixel& o = pixelsOut[local];
+                const uint32_t iterations = o.counts.y;  // with the shader's flags
+                if (iterations & device::kCutShort)
+                    throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) + " caster: " +
+                                             ctx_.info().name + " ended the shader's loops before the ray at pixel (" +
+                                             std::to_string(px) + ", " + std::to_string(py) +
+                                             ") was done (llvmpipe allows 65535 loop iterations per shader "
+                                             "invocation); render with the CPU reference or a hardware device");
+                if (iterations & device::kFailed)
+                    throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) +
+                                             " caster: the ray at pixel (" + std::to_string(px) + ", " +
+                                             std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
+                                             "pass (a bug)");
+                std::memcpy(result.image.pixel(px, py), &o.colour, 4 * sizeof(float));
+                if (keep) std::memcpy(static_cast<device::OutPixel*>(keep) + index, &o, sizeof o);
+                result.iterations[index] = iterations;
+                result.samples[index] = o.counts.x;
             }
         }
     }

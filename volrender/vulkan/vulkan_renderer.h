@@ -1,6 +1,7 @@
 // The Vulkan compute casters: same inputs and outputs as renderCpu, one dispatch per image tile and brick.
 #pragma once
 #include <map>
+#include <stdexcept>
 #include <memory>
 #include <tuple>
 #include <vector>
@@ -8,10 +9,22 @@
 #include "core/prepared_volume.h"
 #include "render/camera.h"
 #include "render/render_result.h"
+#include "render/stereo_camera.h"
+#include "volrender/vulkan/device_timer.h"
 #include "volrender/vulkan/gpu_volume.h"
 #include "volrender/vulkan/vulkan_context.h"
 
 namespace vr {
+
+class StereoReprojector;
+
+// A stereo pair's two images and what the right eye's reuse of the left's did.
+struct StereoRender {
+    RenderResult left, right;       // each eye's deviceMilliseconds: its own (the right's: reprojection + re-casts)
+    std::vector<uint8_t> recast;    // per right pixel: 1 where it was ray-cast (every pixel without reuse)
+    double recastFraction = 1;      // of the right eye's pixels
+    double reprojectMilliseconds = 0;  // device time of the reprojection alone (part of the right eye's)
+};
 
 class VulkanRenderer {
 public:
@@ -36,16 +49,36 @@ public:
     // Uploads just what this caster and view need, then renders (one-off renders; an orbit uploads once).
     RenderResult render(const PreparedVolume& prepared, const Camera& camera, const RenderSettings& settings);
 
+    // Renders both eyes of a pair (docs/ALGORITHMS.md section 12). With reuse the left eye is
+    // cast in full, keeping each pixel's depth interval on the device; the right eye is its reprojection, and only
+    // the pixels the reprojection cannot vouch for are cast again, from a compacted list. Without reuse both eyes
+    // are cast in full. Throws as render() does.
+    StereoRender renderStereo(const GpuVolume& volume, const StereoPair& pair, const RenderSettings& settings,
+                              bool reuse);
+
+    ~VulkanRenderer();
+
     // The resources the last render read (of the volume uploaded for it or given to it), per brick: the scalars,
     // the transfer table, the caster's field.
     const std::vector<UploadedResource>& lastUploads() const { return uploads_; }
 
 private:
-    RenderResult renderOnDevice(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
+    // The checks of render(); notes what the render reads in lastUploads().
+    void checkRender(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
+    // What the casters cast: every pixel, tile by tile, or (list) the pixels of a list on the device, whose host copy
+    // `pixels` (packed, shaders/stereo_reprojection.h) says where each result goes; the pixels not in it stay blank.
+    struct PixelList {
+        const HostBuffer& buffer;
+        std::vector<uint32_t> pixels;
+    };
+    // keep: every pixel's OutPixel, row by row, for the reprojection (a whole image of them).
+    RenderResult renderOnDevice(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings,
+                                const PixelList* list = nullptr, void* keep = nullptr);
     // bricked: the volume is split into bricks, whose dispatches carry each ray's state to the next.
     // labels: the device's label type (device::kNoLabels without a label map).
     const vk::raii::Pipeline& pipeline(Caster caster, Blend blend, bool trilinear, bool shading, ExtentCode eacdCode,
-                                       bool bricked, bool perspective, ScalarType scalarType, int labels);
+                                       bool bricked, bool perspective, ScalarType scalarType, int labels,
+                                       bool pixelList);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
     auto deviceErrors(Work&& work) -> decltype(work());
@@ -57,10 +90,8 @@ private:
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout pipelineLayout_{nullptr};
     vk::raii::ShaderModule shader_{nullptr};
-    vk::raii::QueryPool queries_{nullptr};
-    double timestampPeriodNs_ = 0;  // 0: the queue has no timestamps
-    uint64_t timestampMask_ = 0;
-    std::map<std::tuple<Caster, Blend, bool, bool, ExtentCode, bool, bool, ScalarType, int>, vk::raii::Pipeline>
+    std::unique_ptr<DeviceTimer> timer_;
+    std::map<std::tuple<Caster, Blend, bool, bool, ExtentCode, bool, bool, ScalarType, int, bool>, vk::raii::Pipeline>
         pipelines_;
     // Bound where a variant reads nothing (the scalar bindings of the other types, the field for primitive, the
     // field bindings of the other formats, the block extrema for every caster but blocks, the label bindings of a
@@ -68,6 +99,22 @@ private:
     std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3], unusedBlockExtrema_, unusedLabels_[2];
     std::unique_ptr<DeviceBuffer> unusedLabelTable_;  // bound without a label map
     std::vector<UploadedResource> uploads_;
+    std::unique_ptr<StereoReprojector> reprojector_;  // made by the first pair with reuse
 };
+
+template <typename Work>
+auto VulkanRenderer::deviceErrors(Work&& work) -> decltype(work()) {
+    try {
+        return work();
+    } catch (const vk::OutOfDeviceMemoryError&) {
+        throw std::runtime_error("the Vulkan device " + ctx_.info().name +
+                                 " ran out of memory (try a smaller volume, --caster primitive or an orthographic view)");
+    } catch (const vk::OutOfHostMemoryError&) {
+        throw std::runtime_error("the Vulkan driver ran out of host memory");
+    } catch (const vk::DeviceLostError&) {
+        throw std::runtime_error("the Vulkan device " + ctx_.info().name +
+                                 " was lost (a driver crash or a watchdog reset; try a smaller --size)");
+    }
+}
 
 }  // namespace vr

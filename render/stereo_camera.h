@@ -1,0 +1,44 @@
+// Stereo pairs (docs/ALGORITHMS.md section 12): two parallel perspective eyes, the separation
+// apart along the view's right axis, whose off-axis frusta share their window at the focus distance (zero parallax
+// there), and the disparity that moves a point from the left image to the right.
+#pragma once
+#include <optional>
+
+#include "core/grid.h"
+#include "render/camera.h"
+
+namespace vr {
+
+// The reuse rules' thresholds (shaders/stereo_reprojection.h, measured by bench/stereo_bench.cpp): a pixel whose
+// interval spans at most kMaxSpreadPixels of disparity is reprojected from one depth; neighbours that land more than
+// 1 + kMaxGapPixels apart open a gap, and ones whose colours differ by more than kMaxColourStep are detail; a reused
+// piece at least kOpaqueAlpha opaque hides what lies behind it.
+constexpr double kMaxSpreadPixels = 3;
+constexpr double kMaxGapPixels = 1;
+constexpr double kOpaqueAlpha = 0.98;
+constexpr double kMaxColourStep = 0.05;
+
+struct StereoPair {
+    Camera left, right;
+    double separation = 0, focus = 0;  // world units
+};
+
+// The checks that need no volume: a separation and a focus distance above zero, a perspective view. InputError naming
+// --stereo, --focus or --projection.
+void checkStereo(double separation, std::optional<double> focus, Projection projection);
+
+// The pair about `centre` (a perspective camera): the eyes at centre.eye -/+ right separation / 2, each window shifted
+// so that the frusta meet at `focus` (default: the depth of the volume centre along the view direction). InputError
+// naming --stereo when the separation exceeds the focus distance, --focus when the default lies behind the eye.
+StereoPair stereoPair(const Camera& centre, const GridGeometry& grid, double separation, std::optional<double> focus);
+
+// Pixels of disparity (x in the right image minus x in the left) per unit of focusInverse - 1 / depth.
+double disparityScale(const StereoPair& pair);
+
+// The disparity of a point at `depth` along the view direction (+inf: a point at infinity).
+double disparityAt(const StereoPair& pair, double depth);
+
+// The nearest depth along the view direction of the volume's bounding sphere (<= 0 when the eyes are inside it).
+double nearestDepth(const StereoPair& pair, const GridGeometry& grid);
+
+}  // namespace vr

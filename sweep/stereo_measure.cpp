@@ -1,0 +1,49 @@
+#include "sweep/stereo_measure.h"
+
+#include "sweep/order_statistics.h"
+
+namespace vr {
+
+StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volume, const std::vector<Camera>& cameras,
+                                const RenderSettings& settings) {
+    auto pairAbout = [&](const Camera& camera) {
+        const double focus = dot(volume.grid().centre() - camera.eye, camera.forward);
+        return stereoPair(camera, volume.grid(), kSeparationPerFocus * focus, focus);
+    };
+    renderer.renderStereo(volume, pairAbout(cameras.front()), settings, true);  // warm-up: pipelines compiled
+    renderer.renderStereo(volume, pairAbout(cameras.front()), settings, false);
+    StereoMeasurement m;
+    m.separation = pairAbout(cameras.front()).separation;
+    std::vector<double> pair, oneEye, fullPair, reproject;
+    std::vector<ImageError> errors;
+    double recastIterations = 0, fullIterations = 0;
+    for (const Camera& camera : cameras) {
+        const StereoPair eyes = pairAbout(camera);
+        const StereoRender reused = renderer.renderStereo(volume, eyes, settings, true);
+        const StereoRender full = renderer.renderStereo(volume, eyes, settings, false);
+        pair.push_back(reused.left.deviceMilliseconds + reused.right.deviceMilliseconds);
+        oneEye.push_back(full.left.deviceMilliseconds);
+        fullPair.push_back(full.left.deviceMilliseconds + full.right.deviceMilliseconds);
+        reproject.push_back(reused.reprojectMilliseconds);
+        m.recastFraction += reused.recastFraction / double(cameras.size());
+        errors.push_back(imageError(full.right.image, reused.right.image));
+        for (std::size_t i = 0; i < full.right.iterations.size(); ++i) {
+            recastIterations += reused.right.iterations[i];
+            fullIterations += full.right.iterations[i];
+        }
+        m.leftEyesEqual = m.leftEyesEqual && reused.left.image.rgba == full.left.image.rgba;
+        if (m.reusedRight.empty()) {
+            m.reusedRight.push_back(reused.right.image);
+            m.fullRight.push_back(full.right.image);
+        }
+    }
+    m.pairMs = median(pair);
+    m.oneEyeMs = median(oneEye);
+    m.fullPairMs = median(fullPair);
+    m.reprojectMs = median(reproject);
+    m.error = summarize(errors);
+    m.recastWork = fullIterations > 0 ? recastIterations / fullIterations : 0;
+    return m;
+}
+
+}  // namespace vr

@@ -1,0 +1,159 @@
+// Stereo pairs on the Vulkan casters (docs/ALGORITHMS.md section 12): the right eye reprojected
+// from the left and cast again where the reprojection cannot vouch for a pixel, against both eyes cast in full. A
+// structure the left eye cannot see must be re-cast, not smeared; every re-cast pixel is the full render's; every
+// caster and blend, and a volume split into bricks, give the pair they give without reuse.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "support/blend_cases.h"
+#include "support/views.h"
+#include "support/vulkan.h"
+
+namespace vr {
+namespace {
+
+constexpr Vec3d kWallColour{1, 0, 0}, kHiddenColour{0, 1, 0};
+
+// An opaque red wall in front of the left half of the volume and, behind it, a green block near its edge: the left
+// eye (to the left) sees the wall where the block lies, the right eye sees past the wall's edge onto the block.
+const PreparedVolume& occludedBlock() {
+    const GridGeometry grid{{32, 16, 32}, {1, 1, 1}, {0, 0, 0}};
+    static const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
+        if (v.z >= 24 && v.z < 28 && v.x < 16) return test::VoxelClass{1.0, kWallColour};
+        if (v.z >= 2 && v.z < 8 && v.x >= 10 && v.x < 16 && v.y >= 4 && v.y < 12)
+            return test::VoxelClass{1.0, kHiddenColour};
+        return test::VoxelClass{0.0, {0, 0, 0}};
+    });
+    return p;
+}
+
+constexpr double kSeparation = 24;
+
+StereoPair occludedPair(int width, int height) {
+    const PreparedVolume& p = occludedBlock();
+    const Camera centre = Camera::fit(p.grid(), test::orbitView(0, 0, width, height, Projection::Perspective));
+    return stereoPair(centre, p.grid(), kSeparation, std::nullopt);
+}
+
+bool showsHidden(const Image& image, int x, int y) {
+    const float* c = image.pixel(x, y);
+    return c[1] > 0.5f && c[0] < 0.5f;
+}
+
+int hiddenPixels(const Image& image) {
+    int n = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) n += showsHidden(image, x, y);
+    return n;
+}
+
+// The reuse's pair against the full one: the same left eye; each re-cast right pixel the full render's; the reused
+// ones within `reusedMean` of it on average. Returns the share of the right eye re-cast.
+double expectPairsAgree(const StereoRender& reused, const StereoRender& full, double reusedMean,
+                        const std::string& what) {
+    EXPECT_LE(maxAbsDifference(reused.left.image, full.left.image), 1e-6) << what;
+    const Image& a = reused.right.image;
+    const Image& b = full.right.image;
+    double reusedError = 0;
+    std::size_t reusedCount = 0, recast = 0;
+    for (std::size_t i = 0; i < reused.recast.size(); ++i) {
+        double d = 0;
+        for (int c = 0; c < 4; ++c) d = std::max(d, double(std::abs(a.rgba[4 * i + c] - b.rgba[4 * i + c])));
+        if (reused.recast[i]) {
+            EXPECT_LE(d, 1e-6) << what << ": re-cast pixel " << i;
+            EXPECT_EQ(reused.right.samples[i], full.right.samples[i]) << what << ": re-cast pixel " << i;
+            ++recast;
+        } else {
+            reusedError += d;
+            ++reusedCount;
+            EXPECT_EQ(reused.right.iterations[i], 0u) << what;
+        }
+    }
+    if (reusedCount > 0) EXPECT_LE(reusedError / double(reusedCount), reusedMean) << what;
+    EXPECT_DOUBLE_EQ(reused.recastFraction, double(recast) / double(reused.recast.size())) << what;
+    return reused.recastFraction;
+}
+
+TEST(VulkanStereo, StructureOnlyTheRightEyeSeesIsRecast) {
+    const StereoPair pair = occludedPair(64, 48);
+    VulkanRenderer& renderer = test::vulkanRenderer(16);
+    const GpuVolume volume = renderer.upload(occludedBlock(), {{Caster::Primitive, Caster::EACD}, kAllOctants});
+    for (Caster caster : {Caster::Primitive, Caster::EACD}) {
+        const RenderSettings s = test::renderSettings(caster, false, false);
+        const StereoRender full = renderer.renderStereo(volume, pair, s, false);
+        const StereoRender reused = renderer.renderStereo(volume, pair, s, true);
+        // The scene does what it is for: the block is hidden from the left eye, in sight of the right.
+        ASSERT_EQ(hiddenPixels(full.left.image), 0);
+        ASSERT_GE(hiddenPixels(full.right.image), 6);
+        const Image& right = full.right.image;
+        for (int y = 0; y < right.height; ++y)
+            for (int x = 0; x < right.width; ++x)
+                if (showsHidden(right, x, y)) {
+                    EXPECT_TRUE(reused.recast[std::size_t(y) * right.width + x]) << "(" << x << ", " << y << ")";
+                    EXPECT_TRUE(showsHidden(reused.right.image, x, y)) << "(" << x << ", " << y << ")";
+                }
+        const double share = expectPairsAgree(reused, full, 0.01, std::string(casterName(caster)));
+        EXPECT_GT(share, 0);
+        EXPECT_LT(share, 0.5);  // the wall's and the air's pixels are reused
+        EXPECT_GE(reused.right.deviceMilliseconds, reused.reprojectMilliseconds);
+    }
+    test::expectNoValidationErrors();
+}
+
+TEST(VulkanStereo, EveryCasterGivesThePairWithoutReuse) {
+    const StereoPair pair = occludedPair(40, 32);
+    VulkanRenderer& renderer = test::vulkanRenderer(16);
+    const GpuVolume volume = renderer.upload(occludedBlock(), {{Caster::Primitive, Caster::PC, Caster::ACD,
+                                                                Caster::EACD}, kAllOctants});
+    for (Caster caster : test::kCasters) {
+        const RenderSettings s = test::renderSettings(caster, false, false);
+        expectPairsAgree(renderer.renderStereo(volume, pair, s, true), renderer.renderStereo(volume, pair, s, false),
+                         0.01, std::string(casterName(caster)));
+    }
+    test::expectNoValidationErrors();
+}
+
+// MIP, MinIP and average depend on every sample of a ray: only rays that miss the volume are reused. The
+// iso-surface carries its hit.
+TEST(VulkanStereo, EveryBlendGivesThePairWithoutReuse) {
+    const test::BlendVolume& v = test::blendVolumes().front();
+    VulkanRenderer& renderer = test::vulkanRenderer(16);
+    const GpuVolume volume = renderer.upload(v.prepared, {{Caster::Primitive, Caster::Blocks}, kAllOctants});
+    const Camera centre = Camera::fit(v.prepared.grid(), test::orbitView(30, 20, 40, 32, Projection::Perspective));
+    const double separation = 0.05 * length(v.prepared.grid().extent());
+    const StereoPair pair = stereoPair(centre, v.prepared.grid(), separation, std::nullopt);
+    for (Blend blend : {Blend::Composite, Blend::MIP, Blend::MinIP, Blend::Average, Blend::Iso})
+        for (Caster caster : {Caster::Primitive, Caster::Blocks}) {
+            if (blend == Blend::Composite && caster == Caster::Blocks) continue;
+            const RenderSettings s = test::blendSettings(blend, caster, true, v.isoValue);
+            const std::string what = std::string(blendName(blend)) + " " + std::string(casterName(caster));
+            const double share = expectPairsAgree(renderer.renderStereo(volume, pair, s, true),
+                                                  renderer.renderStereo(volume, pair, s, false), 0.02, what);
+            EXPECT_GT(share, 0);
+        }
+    test::expectNoValidationErrors();
+}
+
+// Bricks carry each ray's depth interval from dispatch to dispatch, and the re-cast list runs through every brick.
+TEST(VulkanStereo, BrickedVolumeGivesTheWholeVolumesPair) {
+    VulkanRenderer bricked(test::vulkanContext(), 16, ImageLimits{.maxDimension = 24, .minBricks = {2, 2, 2}});
+    VulkanRenderer& whole = test::vulkanRenderer(16);
+    const StereoPair pair = occludedPair(48, 32);
+    for (Caster caster : {Caster::Primitive, Caster::PC}) {
+        const RenderSettings s = test::renderSettings(caster, false, false);
+        const GpuVolume split = bricked.upload(occludedBlock(), {{caster}, kAllOctants});
+        ASSERT_GT(split.bricks().bricks().size(), 1u);
+        const StereoRender a = bricked.renderStereo(split, pair, s, true);
+        const GpuVolume one = whole.upload(occludedBlock(), {{caster}, kAllOctants});
+        const StereoRender b = whole.renderStereo(one, pair, s, true);
+        EXPECT_EQ(a.recast, b.recast) << casterName(caster);
+        EXPECT_LE(maxAbsDifference(a.right.image, b.right.image), 1e-5) << casterName(caster);
+        expectPairsAgree(a, bricked.renderStereo(split, pair, s, false), 0.01, "bricked");
+    }
+    test::expectNoValidationErrors();
+}
+
+}  // namespace
+}  // namespace vr

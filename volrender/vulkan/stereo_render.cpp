@@ -1,0 +1,81 @@
+// VulkanRenderer::renderStereo: a pair's right eye reprojected from its left, and cast again only where the
+// reprojection cannot vouch for a pixel (docs/ALGORITHMS.md section 12).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "volrender/vulkan/stereo_reprojector.h"
+#include "volrender/vulkan/vulkan_renderer.h"
+
+namespace vr {
+namespace {
+
+device::StereoParams reprojection(const StereoPair& pair, const GridGeometry& grid) {
+    const Camera& left = pair.left;
+    device::StereoParams p{};
+    p.imageSize = {left.width, left.height};
+    p.disparityScale = float(disparityScale(pair));
+    p.focusInverse = float(1 / pair.focus);
+    p.halfHeight = float(left.halfHeight);
+    p.leftShift = float(left.shift);
+    p.maxSpread = float(kMaxSpreadPixels);
+    p.opaqueAlpha = float(kOpaqueAlpha);
+    p.maxStep = float(kMaxColourStep);
+    p.maxGap = float(kMaxGapPixels);
+    // The disparities lie between the volume's nearest point's and infinity's; eyes inside the volume search the row.
+    const double nearest = nearestDepth(pair, grid);
+    const double lowest = nearest > 0 ? std::max(disparityAt(pair, nearest), -double(left.width)) : -left.width;
+    const double highest = std::min(disparityAt(pair, INFINITY), double(left.width));
+    p.window = {int(std::floor(lowest)) - 2, int(std::ceil(highest)) + 2};
+    return p;
+}
+
+// A packed pixel's place in the order of 8 x 8 blocks (shaders/stereo_reprojection.h packListPixel).
+uint64_t blockOrder(uint32_t pixel) {
+    const uint64_t x = pixel & 0xffffu, y = pixel >> 16;
+    return (y >> 3) << 48 | (x >> 3) << 32 | (y & 7) << 16 | (x & 7);
+}
+
+}  // namespace
+
+StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoPair& pair,
+                                          const RenderSettings& settings, bool reuse) {
+    StereoRender out;
+    const int width = pair.left.width, height = pair.left.height;
+    const std::size_t pixels = std::size_t(width) * height;
+    if (!reuse) {
+        out.left = render(volume, pair.left, settings);
+        out.right = render(volume, pair.right, settings);
+        out.recast.assign(pixels, 1);
+        return out;
+    }
+    checkRender(volume, pair.left, settings);
+    checkRender(volume, pair.right, settings);
+    return deviceErrors([&] {
+        using B = vk::BufferUsageFlagBits;
+        HostBuffer left(ctx_, pixels * sizeof(device::OutPixel), B::eStorageBuffer);
+        HostBuffer right(ctx_, pixels * sizeof(device::OutPixel), B::eStorageBuffer);
+        HostBuffer recast(ctx_, (pixels + 1) * sizeof(uint32_t), B::eStorageBuffer);
+        out.left = renderOnDevice(volume, pair.left, settings, nullptr, left.data());
+        if (!reprojector_) reprojector_ = std::make_unique<StereoReprojector>(ctx_);
+        auto* list = static_cast<uint32_t*>(recast.data());
+        list[0] = 0;
+        out.reprojectMilliseconds = reprojector_->reproject(pool_, reprojection(pair, volume.grid()), left, right,
+                                                              recast);
+        // Blocks of 8 x 8 pixels in row order, each block's pixels in row order: a workgroup's rays stay as close
+        // together as a tile's (the device appended them in any order).
+        std::sort(list + 1, list + 1 + list[0], [](uint32_t a, uint32_t b) { return blockOrder(a) < blockOrder(b); });
+        const PixelList recastPixels{recast, std::vector<uint32_t>(list + 1, list + 1 + list[0])};
+        out.right = renderOnDevice(volume, pair.right, settings, &recastPixels);
+        out.right.deviceMilliseconds += out.reprojectMilliseconds;
+        out.recast.assign(pixels, 0);
+        for (uint32_t p : recastPixels.pixels) out.recast[std::size_t(p >> 16) * width + (p & 0xffffu)] = 1;
+        const auto* reprojected = static_cast<const device::OutPixel*>(right.data());
+        for (std::size_t i = 0; i < pixels; ++i)
+            if (!out.recast[i]) std::memcpy(&out.right.image.rgba[4 * i], &reprojected[i].colour, 4 * sizeof(float));
+        out.recastFraction = double(recastPixels.pixels.size()) / double(pixels);
+        return out;
+    });
+}
+
+}  // namespace vr

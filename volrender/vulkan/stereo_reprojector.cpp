@@ -1,0 +1,61 @@
+#include "volrender/vulkan/stereo_reprojector.h"
+
+#include <cstring>
+
+#include "shaders/embedded_shaders.h"
+
+namespace vr {
+
+StereoReprojector::StereoReprojector(const VulkanContext& ctx) : ctx_(ctx), timer_(ctx) {
+    using T = vk::DescriptorType;
+    const auto compute = vk::ShaderStageFlagBits::eCompute;
+    const std::array<vk::DescriptorSetLayoutBinding, 4> bindings{{
+        {device::kBindingStereoParams, T::eUniformBuffer, 1, compute},
+        {device::kBindingLeftPixels, T::eStorageBuffer, 1, compute},
+        {device::kBindingRightPixels, T::eStorageBuffer, 1, compute},
+        {device::kBindingRecastList, T::eStorageBuffer, 1, compute}}};
+    setLayout_ = vk::raii::DescriptorSetLayout(ctx.device(), vk::DescriptorSetLayoutCreateInfo({}, bindings));
+    const vk::DescriptorSetLayout setLayout = *setLayout_;
+    layout_ = vk::raii::PipelineLayout(ctx.device(), vk::PipelineLayoutCreateInfo({}, setLayout));
+    shader_ = vk::raii::ShaderModule(ctx.device(), vk::ShaderModuleCreateInfo({}, stereo_reproject_spv));
+    vk::PipelineShaderStageCreateInfo stage({}, compute, *shader_, "main");
+    pipeline_ = vk::raii::Pipeline(ctx.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *layout_));
+}
+
+double StereoReprojector::reproject(const vk::raii::CommandPool& pool, const device::StereoParams& params,
+                                    const HostBuffer& left, const HostBuffer& right, const HostBuffer& recast) {
+    HostBuffer uniform(ctx_, sizeof params, vk::BufferUsageFlagBits::eUniformBuffer);
+    std::memcpy(uniform.data(), &params, sizeof params);
+    const std::array<vk::DescriptorPoolSize, 2> sizes{vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1),
+                                                      vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3)};
+    vk::raii::DescriptorPool descriptorPool(
+        ctx_.device(), vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, sizes));
+    const vk::DescriptorSetLayout setLayout = *setLayout_;
+    vk::raii::DescriptorSets sets(ctx_.device(), vk::DescriptorSetAllocateInfo(*descriptorPool, setLayout));
+    const vk::DescriptorBufferInfo buffers[4] = {{*uniform.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*left.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*right.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*recast.buffer(), 0, VK_WHOLE_SIZE}};
+    using T = vk::DescriptorType;
+    const vk::DescriptorSet set = *sets[0];
+    const std::array<vk::WriteDescriptorSet, 4> writes{{
+        {set, device::kBindingStereoParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
+        {set, device::kBindingLeftPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
+        {set, device::kBindingRightPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
+        {set, device::kBindingRecastList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]}}};
+    ctx_.device().updateDescriptorSets(writes, {});
+    submitAndWait(ctx_, pool, [&](const vk::raii::CommandBuffer& cmd) {
+        using S = vk::PipelineStageFlagBits;
+        timer_.start(cmd);
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_);
+        cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout_, 0, set, {});
+        cmd.dispatch(uint32_t((params.imageSize.x + device::kReprojectGroup - 1) / device::kReprojectGroup),
+                     uint32_t(params.imageSize.y), 1);
+        timer_.stop(cmd);
+        vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
+        cmd.pipelineBarrier(S::eComputeShader, S::eHost, {}, toHost, {}, {});
+    });
+    return timer_.milliseconds();
+}
+
+}  // namespace vr

@@ -1,0 +1,28 @@
+// The reprojection of a stereo pair's left eye into its right eye on the device (shaders/stereo_reproject.comp).
+#pragma once
+#include "shaders/stereo_reprojection.h"
+#include "volrender/vulkan/device_timer.h"
+#include "volrender/vulkan/gpu_buffer.h"
+
+namespace vr {
+
+class StereoReprojector {
+public:
+    explicit StereoReprojector(const VulkanContext& ctx);
+
+    // Reads the left eye's pixels (device::OutPixel each, row by row), writes the reprojected right eye (the same)
+    // and appends the right pixels it cannot vouch for to `recast` (its count, then the packed pixels; the count
+    // must start at 0). Returns the device milliseconds it took (0 where the queue has no timestamps).
+    double reproject(const vk::raii::CommandPool& pool, const device::StereoParams& params, const HostBuffer& left,
+                     const HostBuffer& right, const HostBuffer& recast);
+
+private:
+    const VulkanContext& ctx_;
+    DeviceTimer timer_;
+    vk::raii::DescriptorSetLayout setLayout_{nullptr};
+    vk::raii::PipelineLayout layout_{nullptr};
+    vk::raii::ShaderModule shader_{nullptr};
+    vk::raii::Pipeline pipeline_{nullptr};
+};
+
+}  // namespace vr
