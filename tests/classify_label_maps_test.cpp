@@ -87,7 +87,7 @@ TEST_F(ClassifyLabelMaps, RefusesValuesThatAreNoLabels) {
 }
 
 TEST_F(ClassifyLabelMaps, TakesSlicerColourTables) {
-    const fs::path path = writeTable("# Slicer colour table\n0 background 0 0 0 0\n1 tissue 230 180 150 60\n\n"
+    const fs::path path = writeTable("# Slicer colour table\n0 background 0 0 0 0\n1 skin 230 180 150 60\n\n"
                                      "2 bone 255 250 240 255\n7 unused 1 2 3 4\n");
     const LabelColourTable table = readLabelColourTable(path, "--label-colors");
     const auto rgba = labelColours(labels, &table, "--label-colors");
@@ -115,7 +115,7 @@ TEST_F(ClassifyLabelMaps, RefusesBadTablesAndMissingLabels) {
     EXPECT_NE(messageOf("1 a 0 0 0 10\n1 b 0 0 0 10\n").find("label 1 is given twice"), std::string::npos);
     EXPECT_NE(messageOf("70000 a 0 0 0 10\n").find("outside 0..65535"), std::string::npos);
     EXPECT_NE(messageOf("# nothing\n").find("holds no label"), std::string::npos);
-    const fs::path path = writeTable("0 background 0 0 0 0\n1 tissue 230 180 150 60\n");
+    const fs::path path = writeTable("0 background 0 0 0 0\n1 skin 230 180 150 60\n");
     const LabelColourTable table = readLabelColourTable(path, "--label-colors");
     const std::string missing = errorOf([&] { labelColours(labels, &table, "--label-colors"); });
     EXPECT_NE(missing.find("--label-colors " + path.string()), std::string::npos) << missing;

@@ -37,7 +37,7 @@ const Head& head() {
         test::writeNiftiWithVtk(h.labels, std::vector<float>(labels.label.begin(), labels.label.end()), v.grid,
                                 ScalarType::UInt8);
         h.colours = h.dir / "head_colours.txt";
-        std::ofstream(h.colours) << "# index name r g b a\n0 background 0 0 0 0\n1 tissue 230 160 140 40\n"
+        std::ofstream(h.colours) << "# index name r g b a\n0 background 0 0 0 0\n1 skin 230 160 140 40\n"
                                     "2 bone 250 245 230 255\n";
         h.flags = " --tf " + q(test::datasetsDir() / e.tf) + " --spacing 3.2,3.2,1.5 --to 0 --ta 0 --size 40x40 --elevation 20";
         return h;
@@ -107,7 +107,7 @@ TEST(VolrenderLabels, BadLabelInputIsRefusedWithNothingWritten) {
     refused(q(h.volume) + h.flags + " --cpu --labels " + q(fractional), {"--labels", "voxel 0 holds 0.5"});
     // Labels the table lacks.
     const fs::path partial = h.dir / "partial.txt";
-    std::ofstream(partial) << "0 background 0 0 0 0\n1 tissue 230 160 140 40\n";
+    std::ofstream(partial) << "0 background 0 0 0 0\n1 skin 230 160 140 40\n";
     refused(q(h.volume) + h.flags + " --cpu --labels " + q(h.labels) + " --label-colors " + q(partial),
             {"--label-colors", "lacks: 2"});
     // Conflicting flags name both.
