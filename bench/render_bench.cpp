@@ -1,7 +1,7 @@
-// Render benchmark (prints a Markdown table): per dataset, threshold setting and caster, the time of the one upload
-// the orbit shares, the median device time over the orbit after one warm-up frame, the mean iterations per ray,
-// both as ratios to the primitive caster, and the PSNR of the images against the primitive caster's at
-// thresholds 0.
+// Render benchmark (prints a Markdown table): per dataset, threshold setting, caster and gradient source, the time
+// of the one upload the orbit shares, the median device time over the orbit after one warm-up frame, the mean
+// iterations per ray, both as ratios to the primitive caster, and the PSNR of the images against the primitive
+// caster's at thresholds 0 (with the first gradient source).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
     double to = 0.02, ta = 10, step = 0.5;
     bool nearest = false, noShading = false;
     int tile = VulkanRenderer::kAutoTile;
+    std::vector<std::string> gradientSources{"on-the-fly"};
     std::string dir = VR_DATASETS_DIR;
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->capture_default_str();
     app.add_option("--size", size, "image width = height")->capture_default_str();
@@ -72,6 +73,8 @@ int main(int argc, char** argv) {
     app.add_option("--device", device, "Vulkan device index");
     app.add_option("--tile", tile, "pixels per side of one submit (0: the renderer's choice for the device)")
         ->capture_default_str();
+    app.add_option("--gradients", gradientSources, "what shading takes its normals from, each in turn: on-the-fly, "
+                   "stored")->capture_default_str();
     app.add_option("--data", dir, "datasets folder")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
@@ -81,9 +84,9 @@ int main(int argc, char** argv) {
         std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, %s, %s, ERT 0.99, tiles of %d px.\n\n",
                     ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear",
                     noShading ? "unshaded" : "Phong headlight", renderer.tileSize());
-        std::printf("| dataset | T_o, T_a | caster | upload ms (MB) | median device ms | x primitive (time) | "
+        std::printf("| dataset | T_o, T_a | caster | gradients | upload ms (MB) | median device ms | x primitive (time) | "
                     "iterations/ray | x primitive (iterations) | PSNR vs primitive T=0, worst view (dB) |\n");
-        std::printf("|---|---|---|---|---|---|---|---|---|\n");
+        std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : datasets) {
             const ManifestRow row = manifestRow(dir, name);
             PrepareOptions options;
@@ -95,12 +98,14 @@ int main(int argc, char** argv) {
                 options.classify.normals = !noShading;
                 const PreparedVolume& p = staged.prepare(options);
                 double primitiveMs = 0, primitiveIterations = 0;
-                for (Caster c : {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD}) {
+                for (Caster c : {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD})
+                for (const std::string& source : gradientSources) {
                     RenderSettings s;
                     s.caster = c;
                     s.stepVoxels = step;
                     s.trilinear = !nearest;
                     s.shading = !noShading;
+                    s.gradients = parseGradients(source);
                     std::vector<double> ms, psnrs;
                     double iterations = 0;
                     std::vector<Camera> cameras;
@@ -114,7 +119,8 @@ int main(int argc, char** argv) {
                         octants |= viewOctants(cameras.back());
                     }
                     const auto start = std::chrono::steady_clock::now();
-                    const GpuVolume volume = renderer.upload(p, {{c}, octants});
+                    const GpuVolume volume =
+                        renderer.upload(p, {{c}, octants, s.shading && s.gradients == Gradients::Stored});
                     const double uploadMs =
                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                     for (int v = -1; v < views; ++v) {  // v = -1: the warm-up frame
@@ -127,9 +133,11 @@ int main(int argc, char** argv) {
                         psnrs.push_back(difference(reference[v], r.image).psnr());
                     }
                     const double t = median(ms);
-                    if (c == Caster::Primitive) primitiveMs = t, primitiveIterations = iterations;
-                    std::printf("| %s | %g, %g | %s | %.1f (%.1f) | %.1f | %.2f | %.1f | %.2f | %.1f |\n",
-                                row.file.c_str(), settingTo, settingTa, std::string(casterName(c)).c_str(), uploadMs,
+                    if (c == Caster::Primitive && source == gradientSources.front())
+                        primitiveMs = t, primitiveIterations = iterations;
+                    std::printf("| %s | %g, %g | %s | %s | %.1f (%.1f) | %.1f | %.2f | %.1f | %.2f | %.1f |\n",
+                                row.file.c_str(), settingTo, settingTa, std::string(casterName(c)).c_str(),
+                                source.c_str(), uploadMs,
                                 double(volume.uploadedBytes()) / 1e6, t, primitiveMs / t, iterations,
                                 primitiveIterations / iterations, *std::min_element(psnrs.begin(), psnrs.end()));
                     std::fflush(stdout);

@@ -22,6 +22,7 @@
 #include "render/ray_setup.h"
 #include "render/render_checks.h"
 #include "render/span.h"
+#include "render/stored_gradients.h"
 #include "shaders/blend.h"
 #include "shaders/label_lookup.h"
 #include "shaders/transfer_lookup.h"
@@ -40,8 +41,10 @@ struct SampleValue {
 // shaders/transfer_lookup.h's, here in double.
 class Sampler {
 public:
-    Sampler(const Volume& scalars, const ScalarClassification& c, const LabelMap* labels, bool trilinear)
-        : scalars_(scalars), c_(c), labels_(labels), trilinear_(trilinear) {}
+    // stored: shade by the gradients it stores (render/stored_gradients.h); empty: by the scalars' differences.
+    Sampler(const Volume& scalars, const ScalarClassification& c, const LabelMap* labels, bool trilinear,
+            std::optional<GradientPacker> stored)
+        : scalars_(scalars), c_(c), labels_(labels), trilinear_(trilinear), stored_(stored) {}
 
     // The scalar of the sample at grid position p, whose voxel is v: v's (nearest), or cell-centred trilinear
     // (voxel u's value sits at u + 0.5; clamped to the edge outside), interpolated before it is classified.
@@ -66,7 +69,11 @@ public:
                             }),
                             0);
         }
-        return normalOf(gradientAt(p, v, [&](const Vec3i& u) { return centralGradient(scalars_, u.x, u.y, u.z); }),
+        return normalOf(gradientAt(p, v,
+                                   [&](const Vec3i& u) {
+                                       return stored_ ? stored_->stored(scalars_, u)
+                                                      : centralGradient(scalars_, u.x, u.y, u.z);
+                                   }),
                         c_.flatGradient);
     }
 
@@ -131,6 +138,7 @@ private:
     const ScalarClassification& c_;
     const LabelMap* labels_;
     bool trilinear_;
+    std::optional<GradientPacker> stored_;
 };
 
 // What MIP, MinIP and average show (docs/ALGORITHMS.md section 11): the value's TF colour at the TF's opacity,
@@ -182,7 +190,10 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const Vec3i dims = grid.dims;
     const double dt = settings.stepVoxels * grid.smallestSpacing(), ertDepth = terminationDepth(settings.ert);
     const Sampler sampler(prepared.scalars, prepared.classification, prepared.labels ? &*prepared.labels : nullptr,
-                          settings.trilinear);
+                          settings.trilinear,
+                          settings.gradients == Gradients::Stored
+                              ? std::optional(GradientPacker(prepared.scalars, prepared.classification.table))
+                              : std::nullopt);
     const Blend blend = settings.blend;
     const int deviceBlend = int(blend);  // shaders/blend.h's numbering
     static_assert(int(Blend::Iso) == device::kBlendIso && int(Blend::Average) == device::kBlendAverage);

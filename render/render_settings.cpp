@@ -11,6 +11,7 @@ constexpr EnumName<Caster> kCasterNames[] = {
 constexpr EnumName<Blend> kBlendNames[] = {{Blend::Composite, "composite"}, {Blend::MIP, "mip"},
                                            {Blend::MinIP, "minip"},         {Blend::Average, "average"},
                                            {Blend::Iso, "iso"}};
+constexpr EnumName<Gradients> kGradientNames[] = {{Gradients::OnTheFly, "on-the-fly"}, {Gradients::Stored, "stored"}};
 
 }  // namespace
 
@@ -21,5 +22,9 @@ Caster parseCaster(std::string_view name) { return valueNamed(kCasterNames, name
 std::string_view blendName(Blend b) { return nameOf(kBlendNames, b); }
 
 Blend parseBlend(std::string_view name) { return valueNamed(kBlendNames, name, "--blend mode"); }
+
+std::string_view gradientsName(Gradients g) { return nameOf(kGradientNames, g); }
+
+Gradients parseGradients(std::string_view name) { return valueNamed(kGradientNames, name, "--gradients source"); }
 
 }  // namespace vr

@@ -15,11 +15,16 @@ enum class Projection { Orthographic, Perspective };
 // What a ray makes of its samples (docs/ALGORITHMS.md section 11): front-to-back compositing of the classified
 // samples; the largest, smallest or mean scalar; the first crossing of an iso-value.
 enum class Blend { Composite, MIP, MinIP, Average, Iso };
+// What shading takes its normals from: central differences of the scalars at every shaded sample, or each voxel's
+// gradient stored in 32 bits (render/stored_gradients.h).
+enum class Gradients { OnTheFly, Stored };
 
 std::string_view casterName(Caster c);    // "primitive", "pc", "acd", "eacd", "blocks"
 Caster parseCaster(std::string_view name); // throws InputError
 std::string_view blendName(Blend b);      // "composite", "mip", "minip", "average", "iso"
 Blend parseBlend(std::string_view name);  // throws InputError naming --blend
+std::string_view gradientsName(Gradients g);       // "on-the-fly", "stored"
+Gradients parseGradients(std::string_view name);  // throws InputError naming --gradients
 // Whether the caster leaps through the regions of one classification (PC, ACD, EACD).
 inline bool leapsThroughRegions(Caster c) { return c == Caster::PC || c == Caster::ACD || c == Caster::EACD; }
 
@@ -57,6 +62,7 @@ struct RenderSettings {
     double ert = 0.99;         // early ray termination: stop when alpha >= ert
     bool shading = true;       // Phong with one directional light; false: emission-absorption only
     bool trilinear = false;    // trilinear sampling (needs a volume prepared with --trilinear for leaping casters)
+    Gradients gradients = Gradients::OnTheFly;
     std::optional<Vec3d> lightDirection;  // world direction towards the light; empty: headlight
     Vec3d background{0, 0, 0};
     long long maxIterationsPerRay = 1 << 24;  // a bug must not hang a render

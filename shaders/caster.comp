@@ -10,6 +10,7 @@
 
 #include "blend.h"
 #include "device_contract.h"
+#include "gradient_code.h"
 #include "label_lookup.h"
 #include "stereo_reprojection.h"
 #include "transfer_lookup.h"
@@ -33,6 +34,8 @@ layout(constant_id = kSpecIdBlend) const int BLEND = kBlendComposite;
 layout(constant_id = kSpecIdLabels) const int LABELS = kNoLabels;
 // Cast the pixels of a list (a stereo pair's re-casts), in chunks of a tile's invocations, instead of a tile.
 layout(constant_id = kSpecIdPixelList) const bool PIXEL_LIST = false;
+// Shade by each voxel's stored gradient (gradient_code.h) instead of central differences of the scalars.
+layout(constant_id = kSpecIdStoredGradients) const bool STORED_GRADIENTS = false;
 
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
@@ -63,6 +66,7 @@ layout(set = 0, binding = kBindingLabelsUInt8, r8ui) uniform readonly uimage3D l
 layout(set = 0, binding = kBindingLabelsUInt16, r16ui) uniform readonly uimage3D labelsUInt16;
 layout(set = 0, binding = kBindingLabelTable, std430) readonly buffer LabelTable { vec4 labelTableEntry[]; };
 layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; uint listPixel[]; };
+layout(set = 0, binding = kBindingGradients, r32ui) uniform readonly uimage3D gradients;
 
 uvec4 loadField(ivec3 texel) {
     if (CASTER == kEACD && EACD_CODE == kLog16) return imageLoad(field16, texel);
@@ -138,8 +142,14 @@ float centralDifference(float sLo, float sHi, int lo, int hi, float spacing) {
     return hi > lo ? (sHi - sLo) / (float(hi - lo) * spacing) : 0.0;
 }
 
+// Voxel v's stored gradient.
+vec3 storedGradient(ivec3 v) {
+    return unpackGradient(imageLoad(gradients, brickTexel(v)).r, params.gradientExponentBase);
+}
+
 // The scalar gradient at voxel v: central differences, one-sided at the volume's border (core/gradient.h).
 vec3 voxelGradient(ivec3 v) {
+    if (STORED_GRADIENTS) return storedGradient(v);
     vec3 g;
     for (int a = 0; a < 3; ++a) {
         ivec3 lo = v, hi = v;
@@ -201,10 +211,24 @@ vec2 rowDifferences(ivec3 row, int a, int c0, int c1, float s0, float s1) {
     return vec2(centralDifference(sBefore, sHi0, before[a], hi0, h), centralDifference(sLo1, sAfter, lo1, after[a], h));
 }
 
+// Gradients at a footprint's eight corners (x fastest) blended as its scalar is, component by component.
+vec3 blendCorners(vec3 g000, vec3 g100, vec3 g010, vec3 g110, vec3 g001, vec3 g101, vec3 g011, vec3 g111, vec3 f) {
+    vec3 g;
+    for (int i = 0; i < 3; ++i)
+        g[i] = trilinearBlend(g000[i], g100[i], g010[i], g110[i], g001[i], g101[i], g011[i], g111[i], f.x, f.y, f.z);
+    return g;
+}
+
 // The gradient of a trilinear sample: each component the corners' central differences blended as the scalar is
 // (24 loads beyond the corners': a row's outer neighbours per axis).
 vec3 footprintGradient(Footprint fp) {
     ivec3 a = fp.lo, b = fp.hi;
+    vec3 f = fp.f;
+    if (STORED_GRADIENTS)
+        return blendCorners(storedGradient(ivec3(a.x, a.y, a.z)), storedGradient(ivec3(b.x, a.y, a.z)),
+                            storedGradient(ivec3(a.x, b.y, a.z)), storedGradient(ivec3(b.x, b.y, a.z)),
+                            storedGradient(ivec3(a.x, a.y, b.z)), storedGradient(ivec3(b.x, a.y, b.z)),
+                            storedGradient(ivec3(a.x, b.y, b.z)), storedGradient(ivec3(b.x, b.y, b.z)), f);
     // Rows along x at (Y, Z): (g0YZ, g1YZ); along y at (X, Z): (gX0Z, gX1Z); along z at (X, Y): (gXY0, gXY1).
     vec2 x00 = rowDifferences(ivec3(a.x, a.y, a.z), 0, a.x, b.x, fp.s000, fp.s100);
     vec2 x10 = rowDifferences(ivec3(a.x, b.y, a.z), 0, a.x, b.x, fp.s010, fp.s110);
@@ -218,7 +242,6 @@ vec3 footprintGradient(Footprint fp) {
     vec2 z10 = rowDifferences(ivec3(b.x, a.y, a.z), 2, a.z, b.z, fp.s100, fp.s101);
     vec2 z01 = rowDifferences(ivec3(a.x, b.y, a.z), 2, a.z, b.z, fp.s010, fp.s011);
     vec2 z11 = rowDifferences(ivec3(b.x, b.y, a.z), 2, a.z, b.z, fp.s110, fp.s111);
-    vec3 f = fp.f;
     return vec3(trilinearBlend(x00.x, x00.y, x10.x, x10.y, x01.x, x01.y, x11.x, x11.y, f.x, f.y, f.z),
                 trilinearBlend(y00.x, y10.x, y00.y, y10.y, y01.x, y11.x, y01.y, y11.y, f.x, f.y, f.z),
                 trilinearBlend(z00.x, z10.x, z01.x, z11.x, z00.y, z10.y, z01.y, z11.y, f.x, f.y, f.z));
@@ -242,14 +265,11 @@ vec3 sampleNormal(Footprint fp, ivec3 v) {
                 g = indicatorGradient(v, l);
             } else {
                 ivec3 a = fp.lo, b = fp.hi;
-                vec3 g000 = indicatorGradient(ivec3(a.x, a.y, a.z), l), g100 = indicatorGradient(ivec3(b.x, a.y, a.z), l);
-                vec3 g010 = indicatorGradient(ivec3(a.x, b.y, a.z), l), g110 = indicatorGradient(ivec3(b.x, b.y, a.z), l);
-                vec3 g001 = indicatorGradient(ivec3(a.x, a.y, b.z), l), g101 = indicatorGradient(ivec3(b.x, a.y, b.z), l);
-                vec3 g011 = indicatorGradient(ivec3(a.x, b.y, b.z), l), g111 = indicatorGradient(ivec3(b.x, b.y, b.z), l);
-                vec3 f = fp.f;
-                for (int i = 0; i < 3; ++i)
-                    g[i] = trilinearBlend(g000[i], g100[i], g010[i], g110[i], g001[i], g101[i], g011[i], g111[i], f.x,
-                                          f.y, f.z);
+                g = blendCorners(indicatorGradient(ivec3(a.x, a.y, a.z), l), indicatorGradient(ivec3(b.x, a.y, a.z), l),
+                                 indicatorGradient(ivec3(a.x, b.y, a.z), l), indicatorGradient(ivec3(b.x, b.y, a.z), l),
+                                 indicatorGradient(ivec3(a.x, a.y, b.z), l), indicatorGradient(ivec3(b.x, a.y, b.z), l),
+                                 indicatorGradient(ivec3(a.x, b.y, b.z), l), indicatorGradient(ivec3(b.x, b.y, b.z), l),
+                                 fp.f);
             }
             float len = length(g);
             return len > 0.0 ? g / len : vec3(0.0);

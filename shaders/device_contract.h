@@ -41,6 +41,7 @@ VR_CONSTANT int kBindingLabelsUInt16 = 14;  // R16_UINT
 VR_CONSTANT int kBindingLabelTable = 15;
 VR_CONSTANT int kBindingPixelList = 16;     // storage buffer: uint count, then the pixels to cast (x | y << 16),
                                             // read by the list variant (stereo re-casts: stereo_reprojection.h)
+VR_CONSTANT int kBindingGradients = 17;     // R32_UINT: each voxel's stored gradient (gradient_code.h)
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
@@ -53,6 +54,7 @@ VR_CONSTANT int kSpecIdScalarType = 6;   // one of the scalar types below: which
 VR_CONSTANT int kSpecIdBlend = 7;        // one of the blends below
 VR_CONSTANT int kSpecIdLabels = 8;       // one of the label types below: which label image the casters read
 VR_CONSTANT int kSpecIdPixelList = 9;    // bool: cast the pixels of the list (kBindingPixelList), not a tile's
+VR_CONSTANT int kSpecIdStoredGradients = 10;  // bool: shade by the stored gradients (kBindingGradients)
 VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4;
 // What a ray makes of its samples (render/render_settings.h Blend, in its order; shaders/blend.h).
 VR_CONSTANT int kBlendComposite = 0, kBlendMIP = 1, kBlendMinIP = 2, kBlendAverage = 3, kBlendIso = 4;
@@ -126,6 +128,7 @@ struct CasterParams {
     int labelLastEntry;  // the label table's last entry (label_lookup.h labelEntry)
     int opaqueValues;    // 1: MIP, MinIP and average show their value's colour opaque (RenderSettings::opaqueValues)
     float frustumShift;  // Camera::shift: an off-axis (stereo) eye's horizontal window offset, 0 otherwise
+    int gradientExponentBase;  // the stored gradients' base exponent (gradient_code.h)
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -185,6 +188,7 @@ static_assert(offsetof(CasterParams, jitter) == 420);
 static_assert(offsetof(CasterParams, labelLastEntry) == 424);
 static_assert(offsetof(CasterParams, opaqueValues) == 428);
 static_assert(offsetof(CasterParams, frustumShift) == 432);
+static_assert(offsetof(CasterParams, gradientExponentBase) == 436);
 static_assert(sizeof(CasterParams) == 448);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);

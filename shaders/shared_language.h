@@ -2,7 +2,7 @@
 // index, a three-vector, an in-out parameter and a rounding that must not be fused, in each language. Reals are
 // double in C++ (the CPU reference) and float in GLSL (the casters need no double: docs/ALGORITHMS.md section 8);
 // the shared code spells no literals, which the two languages write differently, and C++ finds GLSL's built-ins
-// (min, max, floor, ceil, abs, pow, dot) under the same names.
+// (min, max, floor, ceil, abs, pow, ldexp, dot) under the same names.
 #ifndef VR_SHARED_LANGUAGE_H
 #define VR_SHARED_LANGUAGE_H
 
@@ -27,6 +27,7 @@ namespace vr::device {
 using std::abs;
 using std::ceil;
 using std::floor;
+using std::ldexp;
 using std::max;
 using std::min;
 using std::pow;

@@ -130,6 +130,21 @@ TEST(VolrenderFaults, BlendFlagsThatDoNotFitAreRefused) {
     }
 }
 
+TEST(VolrenderFaults, GradientSourcesThatDoNotFitAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_gradients");
+    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8";
+    for (const char* where : {" --cpu", ""}) {
+        expectRefused(in + where + " --gradients sobel", {"--gradients", "'sobel'", "on-the-fly or stored"});
+        expectRefused(in + where + " --gradients stored --no-shading",
+                      std::vector<std::string>{"--gradients stored", "--no-shading"});
+    }
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+    for (const char* where : {" --cpu", ""}) {  // fitting, they render
+        const test::CliOutcome r = volrender(in + where + " --gradients stored");
+        EXPECT_EQ(r.status, 0) << where << ": " << r.err;
+    }
+}
+
 TEST(VolrenderFaults, UnwritableOutputsAreRefused) {
     const fs::path dir = test::scratchDir("volrender_faults_output");
     std::ofstream(dir / "plain.txt") << "a file, not a folder";

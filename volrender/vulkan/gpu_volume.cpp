@@ -11,6 +11,7 @@
 #include "core/errors.h"
 #include "render/block_extrema.h"
 #include "render/render_checks.h"
+#include "render/stored_gradients.h"
 
 namespace vr {
 namespace {
@@ -55,7 +56,8 @@ const std::vector<CasterImageFormat>& casterImageFormats() {
         {scalarFormat(ScalarType::Int16), "R16_SINT", "int16 scalars"},
         {scalarFormat(ScalarType::UInt16), "R16_UINT", "uint16 scalars and log16 EACD"},
         {scalarFormat(ScalarType::Float32), "R32_SFLOAT", "float32 scalars and the blocks caster's scalar ranges"},
-        {eacdFormat(ExtentCode::Exact), "R8G8B8A8_UINT", "exact EACD"}};
+        {eacdFormat(ExtentCode::Exact), "R8G8B8A8_UINT", "exact EACD"},
+        {kGradientFormat, "R32_UINT", "stored gradients"}};
     return formats;
 }
 
@@ -144,6 +146,23 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
                           [&l, wide](int, std::size_t first, int count, uint8_t* to) {
                               if (wide) std::memcpy(to, l.data() + first, std::size_t(count) * sizeof(uint16_t));
                               else for (int i = 0; i < count; ++i) to[i] = uint8_t(l[first + std::size_t(i)]);
+                          }});
+    }
+
+    std::optional<GradientPacker> packer;
+    if (contents.gradients) {
+        packer.emplace(prepared.scalars, table);
+        gradientBase_ = packer->base();
+        const Volume& scalars = prepared.scalars;
+        const GradientPacker& codes = *packer;
+        wholes.push_back({&gradients_, "gradients", 1, kGradientFormat,
+                          [&scalars, &codes](int, std::size_t first, int count, uint8_t* to) {
+                              std::uint32_t row[256];  // texels may be unaligned: packed here, then copied
+                              for (int done = 0; done < count; done += 256) {
+                                  const int n = std::min(256, count - done);
+                                  codes.packRow(scalars, first + std::size_t(done), n, row);
+                                  std::memcpy(to + 4 * std::size_t(done), row, 4 * std::size_t(n));
+                              }
                           }});
     }
 
@@ -239,6 +258,8 @@ std::size_t GpuVolume::uploadedBytes() const {
 
 void GpuVolume::requireHolds(const RenderSettings& s, unsigned viewOctants) const {
     const std::string caster(casterName(s.caster));
+    if (s.gradients == Gradients::Stored && gradients_.empty())
+        throw std::invalid_argument("the uploaded volume holds no stored gradients to shade by");
     if (s.caster == Caster::Blocks && !blockExtrema_)
         throw std::invalid_argument("the uploaded volume holds no block extrema for the blocks caster");
     if (leapsThroughRegions(s.caster) && fields_[int(s.caster)].empty())

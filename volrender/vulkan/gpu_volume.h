@@ -16,18 +16,21 @@
 namespace vr {
 
 struct UploadedResource {
-    std::string name;  // "scalars", "table", "label map", "label table", "pc", "acd", "eacd", "blocks"
+    std::string name;  // "scalars", "table", "label map", "label table", "gradients", "pc", "acd", "eacd", "blocks"
     std::size_t bytes = 0;
     int brick = 0;     // index into GpuVolume::bricks(); the table, which every brick reads, counts as brick 0's
 };
 
 // What one upload holds besides the scalars and the transfer table, which every render reads: the fields of these
 // casters (none for primitive; the block extrema for blocks) and the ACD / EACD octants of the mask (viewOctants of every camera it will render).
-// Shading needs nothing more: the casters take the gradient from the scalars.
+// Shading by central differences needs nothing more; shading by stored gradients needs them uploaded.
 struct GpuVolumeContents {
     std::vector<Caster> casters;
     unsigned octants = 0;
+    bool gradients = false;  // each voxel's stored gradient (render/stored_gradients.h), R32_UINT
 };
+
+constexpr vk::Format kGradientFormat = vk::Format::eR32Uint;
 
 // The block extrema's format: R32F, a block's lo and hi side by side along x (render/block_extrema.h's texels, two
 // floats each), a format every caster device reads already (float scalars), where RG32F would be one more.
@@ -87,6 +90,9 @@ public:
     int labelLastEntry() const { return labelLastEntry_; }
     const DeviceBuffer& table() const { return *table_; }
     const TablePlacement& tablePlacement() const { return placement_; }
+    // Each voxel's stored gradient, null when not uploaded; the codes' base exponent.
+    const VolumeImage* gradients(int brick) const { return gradients_.empty() ? nullptr : gradients_[brick].get(); }
+    int gradientExponentBase() const { return gradientBase_; }
     // Null for primitive, blocks or a caster not uploaded.
     const VolumeImage* field(Caster caster, int brick) const;
     // Each block's scalar range, one image for every brick (in whole-volume blocks); null when not uploaded.
@@ -121,6 +127,8 @@ private:
     std::unique_ptr<DeviceBuffer> labelTable_;
     ScalarType labelType_ = ScalarType::UInt8;
     int labelLastEntry_ = 0;
+    Bricked gradients_;
+    int gradientBase_ = 0;
     std::array<Bricked, 4> fields_;  // by Caster, but blocks
     std::unique_ptr<VolumeImage> blockExtrema_;
     std::array<int, device::kBlockLevels> blockLevelZ_{};

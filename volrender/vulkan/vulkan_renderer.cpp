@@ -156,6 +156,7 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
     p.labelLastEntry = volume.labelLastEntry();
     p.opaqueValues = s.opaqueValues ? 1 : 0;
     p.frustumShift = float(camera.shift);
+    p.gradientExponentBase = volume.gradientExponentBase();
     return p;
 }
 
@@ -181,6 +182,7 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     for (uint32_t binding : kScalarBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     for (uint32_t binding : kFieldBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     bindings.emplace_back(device::kBindingBlockExtrema, T::eStorageImage, 1, compute);
+    bindings.emplace_back(device::kBindingGradients, T::eStorageImage, 1, compute);
     for (uint32_t binding : kLabelBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     vk::PushConstantRange push(compute, 0, sizeof(device::TilePush));
@@ -201,34 +203,34 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     for (int i = 0; i < 2; ++i)
         unusedLabels_[i] = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kLabelFormats[i], zeros,
                                                          formatBytes(kLabelFormats[i]));
+    unusedGradients_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kGradientFormat, zeros,
+                                                     formatBytes(kGradientFormat));
     const float noLabel[4] = {};
     unusedLabelTable_ = std::make_unique<DeviceBuffer>(ctx, pool_, noLabel, sizeof(noLabel),
                                                        vk::BufferUsageFlagBits::eStorageBuffer);
 }
 
-const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, Blend blend, bool trilinear, bool shading,
-                                                   ExtentCode eacdCode, bool bricked, bool perspective,
-                                                   ScalarType scalarType, int labels, bool pixelList) {
+const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
     // Only the EACD caster reads the code: the others share one pipeline whatever the volume's code. Only composite
-    // and the iso-surface shade.
-    const bool shaded = shading && (blend == Blend::Composite || blend == Blend::Iso);
-    const auto key = std::make_tuple(caster, blend, trilinear, shaded,
-                                     caster == Caster::EACD ? eacdCode : ExtentCode::Exact, bricked, perspective,
-                                     scalarType, labels, pixelList);
-    auto it = pipelines_.find(key);
+    // and the iso-surface shade, and only a shaded variant reads gradients.
+    v.shading = v.shading && (v.blend == Blend::Composite || v.blend == Blend::Iso);
+    if (v.caster != Caster::EACD) v.eacdCode = ExtentCode::Exact;
+    v.storedGradients = v.storedGradients && v.shading;
+    auto it = pipelines_.find(v);
     if (it != pipelines_.end()) return it->second;
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
-    const std::array<std::pair<int, uint32_t>, 10> constants{{
-        {device::kSpecIdCaster, uint32_t(deviceCaster(caster))},
-        {device::kSpecIdBlend, uint32_t(deviceBlend(blend))},
-        {device::kSpecIdTrilinear, trilinear ? 1u : 0u},
-        {device::kSpecIdShading, shaded ? 1u : 0u},
-        {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(std::get<4>(key)))},
-        {device::kSpecIdBricked, bricked ? 1u : 0u},
-        {device::kSpecIdPerspective, perspective ? 1u : 0u},
-        {device::kSpecIdScalarType, uint32_t(deviceScalarType(scalarType))},
-        {device::kSpecIdLabels, uint32_t(labels)},
-        {device::kSpecIdPixelList, pixelList ? 1u : 0u}}};
+    const std::array<std::pair<int, uint32_t>, 11> constants{{
+        {device::kSpecIdCaster, uint32_t(deviceCaster(v.caster))},
+        {device::kSpecIdBlend, uint32_t(deviceBlend(v.blend))},
+        {device::kSpecIdTrilinear, v.trilinear ? 1u : 0u},
+        {device::kSpecIdShading, v.shading ? 1u : 0u},
+        {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(v.eacdCode))},
+        {device::kSpecIdBricked, v.bricked ? 1u : 0u},
+        {device::kSpecIdPerspective, v.perspective ? 1u : 0u},
+        {device::kSpecIdScalarType, uint32_t(deviceScalarType(v.scalarType))},
+        {device::kSpecIdLabels, uint32_t(v.labels)},
+        {device::kSpecIdPixelList, v.pixelList ? 1u : 0u},
+        {device::kSpecIdStoredGradients, v.storedGradients ? 1u : 0u}}};
     std::array<uint32_t, constants.size()> values;
     std::array<vk::SpecializationMapEntry, constants.size()> entries;
     for (std::size_t i = 0; i < constants.size(); ++i) {
@@ -239,7 +241,7 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Caster caster, Blend blend, b
     vk::SpecializationInfo spec(entries, vk::ArrayProxyNoTemporaries<const uint32_t>(values));
     vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *shader_, "main", &spec);
     vk::raii::Pipeline p(ctx_.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *pipelineLayout_));
-    return pipelines_.emplace(key, std::move(p)).first->second;
+    return pipelines_.emplace(v, std::move(p)).first->second;
 }
 
 GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolumeContents& contents) {
@@ -267,6 +269,7 @@ void VulkanRenderer::checkRender(const GpuVolume& volume, const Camera& camera, 
     uploads_.clear();  // what this render reads of the volume
     for (const UploadedResource& u : volume.uploads())
         if (u.name == "scalars" || u.name == "table" || u.name == "label map" || u.name == "label table" ||
+            (settings.gradients == Gradients::Stored && settings.shading && u.name == "gradients") ||
             (settings.caster != Caster::Primitive && u.name == casterName(settings.caster)))
             uploads_.push_back(u);
 }
@@ -275,7 +278,8 @@ RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera
                                     const RenderSettings& settings) {
     checkRenderInputs(prepared, settings);
     const auto start = std::chrono::steady_clock::now();
-    const GpuVolume volume = upload(prepared, {{settings.caster}, viewOctants(camera)});
+    const bool gradients = settings.gradients == Gradients::Stored && settings.shading;
+    const GpuVolume volume = upload(prepared, {{settings.caster}, viewOctants(camera), gradients});
     RenderResult result = render(volume, camera, settings);
     result.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -286,11 +290,10 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                             const RenderSettings& settings, const PixelList* list, void* keep) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
-    const vk::raii::Pipeline& pipe = pipeline(settings.caster, settings.blend, settings.trilinear, settings.shading,
-                                              volume.eacdCode(),
-                                              volume.bricks().bricks().size() > 1,
-                                              camera.projection == Projection::Perspective, volume.scalarType(),
-                                              deviceLabels(volume), list != nullptr);
+    const vk::raii::Pipeline& pipe =
+        pipeline({settings.caster, settings.blend, settings.trilinear, settings.shading, volume.eacdCode(),
+                  volume.bricks().bricks().size() > 1, camera.projection == Projection::Perspective,
+                  volume.scalarType(), deviceLabels(volume), list != nullptr, settings.gradients == Gradients::Stored});
 
     using B = vk::BufferUsageFlagBits;
     HostBuffer params(ctx_, sizeof(device::CasterParams), B::eUniformBuffer);
@@ -308,7 +311,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const uint32_t brickCount = uint32_t(bricks.size());
     std::array<vk::DescriptorPoolSize, 3> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 10 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 11 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 5 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
@@ -332,6 +335,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
         const vk::DescriptorSet set = *sets[b];
         const VolumeImage* field = volume.field(settings.caster, int(b));
         vk::DescriptorImageInfo scalars[4], fields[3], labels[2];
+        const VolumeImage* gradientImage = volume.gradients(int(b));
+        const vk::DescriptorImageInfo gradients = imageInfo(gradientImage ? *gradientImage : *unusedGradients_);
         const VolumeImage* labelImage = volume.labels(int(b));
         for (int i = 0; i < 2; ++i)
             labels[i] = imageInfo(labelImage && labelImage->format() == kLabelFormats[i] ? *labelImage : *unusedLabels_[i]);
@@ -351,6 +356,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
         for (int i = 0; i < 4; ++i) writes.emplace_back(set, kScalarBindings[i], 0, 1, T::eStorageImage, &scalars[i]);
         for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
         writes.emplace_back(set, device::kBindingBlockExtrema, 0, 1, T::eStorageImage, &blockRanges);
+        writes.emplace_back(set, device::kBindingGradients, 0, 1, T::eStorageImage, &gradients);
         for (int i = 0; i < 2; ++i) writes.emplace_back(set, kLabelBindings[i], 0, 1, T::eStorageImage, &labels[i]);
         device.updateDescriptorSets(writes, {});
     }

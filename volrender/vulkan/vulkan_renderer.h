@@ -74,11 +74,21 @@ private:
     // keep: every pixel's OutPixel, row by row, for the reprojection (a whole image of them).
     RenderResult renderOnDevice(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings,
                                 const PixelList* list = nullptr, void* keep = nullptr);
-    // bricked: the volume is split into bricks, whose dispatches carry each ray's state to the next.
-    // labels: the device's label type (device::kNoLabels without a label map).
-    const vk::raii::Pipeline& pipeline(Caster caster, Blend blend, bool trilinear, bool shading, ExtentCode eacdCode,
-                                       bool bricked, bool perspective, ScalarType scalarType, int labels,
-                                       bool pixelList);
+    // What picks a pipeline: one value per specialization constant of shaders/caster.comp.
+    struct Variant {
+        Caster caster;
+        Blend blend;
+        bool trilinear, shading;
+        ExtentCode eacdCode;  // read by EACD only: the others' variants hold Exact
+        bool bricked;         // the volume is split into bricks, whose dispatches carry each ray's state on
+        bool perspective;
+        ScalarType scalarType;
+        int labels;           // the device's label type (device::kNoLabels without a label map)
+        bool pixelList;
+        bool storedGradients;  // read by shaded variants only: the others' hold false
+        auto operator<=>(const Variant&) const = default;
+    };
+    const vk::raii::Pipeline& pipeline(Variant variant);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
     auto deviceErrors(Work&& work) -> decltype(work());
@@ -91,12 +101,12 @@ private:
     vk::raii::PipelineLayout pipelineLayout_{nullptr};
     vk::raii::ShaderModule shader_{nullptr};
     std::unique_ptr<DeviceTimer> timer_;
-    std::map<std::tuple<Caster, Blend, bool, bool, ExtentCode, bool, bool, ScalarType, int, bool>, vk::raii::Pipeline>
-        pipelines_;
+    std::map<Variant, vk::raii::Pipeline> pipelines_;
     // Bound where a variant reads nothing (the scalar bindings of the other types, the field for primitive, the
     // field bindings of the other formats, the block extrema for every caster but blocks, the label bindings of a
-    // volume without labels or of the other label type): never read.
-    std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3], unusedBlockExtrema_, unusedLabels_[2];
+    // volume without labels or of the other label type, the gradients where none are stored): never read.
+    std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3], unusedBlockExtrema_, unusedLabels_[2],
+        unusedGradients_;
     std::unique_ptr<DeviceBuffer> unusedLabelTable_;  // bound without a label map
     std::vector<UploadedResource> uploads_;
     std::unique_ptr<StereoReprojector> reprojector_;  // made by the first pair with reuse
