@@ -1,7 +1,8 @@
 // Blend benchmark (prints a Markdown table): per shared CT, the median device time over an orbit of MIP with the
 // primitive and the blocks caster (the figure to set beside VTK's MIP: `vr_peers --blend mip`, docs/BENCH.md), and
-// of the iso-surface with both casters against the composite primitive caster, with iterations per ray. The blocks
-// caster must render its primitive caster's image (checked).
+// of the iso-surface with both casters against the composite primitive caster, with iterations per ray; and the
+// composite frame clipped to half the volume, by a crop box and by a plane, against the whole (clipping should cost
+// about its share of the frame: half or less). The blocks caster must render its primitive caster's image (checked).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -83,7 +84,8 @@ int main(int argc, char** argv) {
                     ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear");
         std::printf("| dataset | iso-value | MIP primitive ms | MIP blocks ms | MIP speed-up | MIP iterations "
                     "(prim / blocks) | composite primitive ms | iso primitive ms | iso blocks ms | composite / iso "
-                    "blocks | iso iterations (prim / blocks) |\n|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---|\n");
+                    "blocks | iso iterations (prim / blocks) | half crop / whole | half plane / whole |\n"
+                    "|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---|---:|---:|\n");
         for (const std::string& name : datasets) {
             const test::DatasetEntry e = test::rawDataset(name);
             PrepareOptions options;
@@ -107,6 +109,14 @@ int main(int argc, char** argv) {
             s.trilinear = !nearest;
             s.isoValue = isoValueOf(p);
             const Orbit composite = renderOrbit(renderer, volume, cameras, s);
+            // Half the volume kept: the voxels of x below the middle, then the world half-space beyond the centre.
+            const Vec3i dims = p.grid().dims;
+            s.crop = CropBox{{0, 0, 0}, {dims.x / 2 - 1, dims.y - 1, dims.z - 1}};
+            const Orbit cropped = renderOrbit(renderer, volume, cameras, s);
+            s.crop.reset();
+            s.clipPlanes = {ClipPlane{{1, 0, 0}, p.grid().centre().x}};
+            const Orbit planeClipped = renderOrbit(renderer, volume, cameras, s);
+            s.clipPlanes.clear();
             s.shading = false;
             s.blend = Blend::MIP;
             const Orbit mip = renderOrbit(renderer, volume, cameras, s);
@@ -123,11 +133,13 @@ int main(int argc, char** argv) {
                           name.c_str());
             checks.expect(mipBlocks.iterationsPerRay < mip.iterationsPerRay, "%s: MIP blocks iterates less",
                           name.c_str());
-            std::printf("| %s | %g | %.1f | %.1f | %.2fx | %.1f / %.1f | %.1f | %.1f | %.1f | %.2fx | %.1f / %.1f |\n",
+            std::printf("| %s | %g | %.1f | %.1f | %.2fx | %.1f / %.1f | %.1f | %.1f | %.1f | %.2fx | %.1f / %.1f | "
+                        "%.2f | %.2f |\n",
                         name.c_str(), s.isoValue, mip.medianMs, mipBlocks.medianMs, mip.medianMs / mipBlocks.medianMs,
                         mip.iterationsPerRay, mipBlocks.iterationsPerRay, composite.medianMs, iso.medianMs,
                         isoBlocks.medianMs, composite.medianMs / isoBlocks.medianMs, iso.iterationsPerRay,
-                        isoBlocks.iterationsPerRay);
+                        isoBlocks.iterationsPerRay, cropped.medianMs / composite.medianMs,
+                        planeClipped.medianMs / composite.medianMs);
             std::fflush(stdout);
         }
     } catch (const std::exception& e) {
