@@ -13,7 +13,7 @@ namespace vr {
 // or that nobody has written to for 10 minutes, never another file.
 void writeFileAtomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
-// For writers that need a file name (e.g. OpenImageIO): fills the temporary path, then renames it.
+// For writers that need a file name (e.g. OpenEXR's): fills the temporary path, then renames it.
 void writePathAtomically(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& temporary)>& write);
 

@@ -1,16 +1,15 @@
-// Image files through OpenImageIO. 8-bit files hold the picture as seen (RGB over the background, sRGB-encoded,
-// clamped); .exr holds the linear float RGBA the renderer produced.
+// Image files by extension: 8-bit PNG holds the picture as seen (RGB over the background, sRGB-encoded, clamped);
+// .exr holds the linear float RGBA the renderer produced.
 #include "render/image.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "io/atomic_file.h"
 #include "core/errors.h"
+#include "render/exr_file.h"
+#include "render/png_file.h"
 
 namespace vr {
 namespace fs = std::filesystem;
@@ -24,11 +23,21 @@ static double srgbDecode(double encoded) {
     return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
 }
 
-static bool isFloatFormat(const fs::path& path) {
+namespace {
+enum class ImageFormat { Png, Exr, Other };
+
+ImageFormat formatOf(const fs::path& path) {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
+    return ext == ".png" ? ImageFormat::Png : ext == ".exr" ? ImageFormat::Exr : ImageFormat::Other;
 }
+
+InputError unknownFormat(const fs::path& path) {
+    return fileError(path.string(), "not an image format written or read here (.png, .exr)");
+}
+}  // namespace
+
+bool isImageFormat(const fs::path& path) { return formatOf(path) != ImageFormat::Other; }
 
 std::vector<unsigned char> srgbBytes(const Image& image) {
     std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
@@ -41,42 +50,24 @@ std::vector<unsigned char> srgbBytes(const Image& image) {
 void writeImage(const fs::path& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0 || image.rgba.size() != std::size_t(image.width) * image.height * 4)
         throw fileError(path.string(), "cannot write an empty or malformed image");
-    writePathAtomically(path, [&](const fs::path& tmp) {
-        auto out = OIIO::ImageOutput::create(tmp.string());
-        if (!out) throw fileError(path.string(), "cannot write: " + OIIO::geterror());
-        bool ok;
-        if (isFloatFormat(path)) {
-            OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
-            ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
-        } else {
-            OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-            spec.attribute("oiio:ColorSpace", "sRGB");
-            ok = out->open(tmp.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, srgbBytes(image).data());
-        }
-        ok = out->close() && ok;
-        if (!ok) throw fileError(path.string(), "cannot write: " + out->geterror());
-    });
+    switch (formatOf(path)) {
+        case ImageFormat::Png: return writePng(path, image.width, image.height, srgbBytes(image));
+        case ImageFormat::Exr: return writeExr(path, image);
+        case ImageFormat::Other: throw unknownFormat(path);
+    }
 }
 
 Image readImage(const fs::path& path) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw fileError(path.string(), "cannot read image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    const int nc = spec.nchannels;
-    std::vector<float> raw(std::size_t(spec.width) * spec.height * nc);
-    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data()))
-        throw fileError(path.string(), "cannot read image: " + in->geterror());
-    // 8-bit files are sRGB-encoded (as written above); float files are linear.
-    const bool encoded = spec.format.basetype == OIIO::TypeDesc::UINT8;
-    auto colour = [&](float v) { return encoded ? float(srgbDecode(v)) : v; };
-
-    Image image(spec.width, spec.height);
-    for (std::size_t p = 0; p < std::size_t(spec.width) * spec.height; ++p) {
-        const float* src = &raw[p * nc];
-        float* dst = &image.rgba[p * 4];
-        for (int c = 0; c < 3; ++c) dst[c] = colour(src[nc >= 3 ? c : 0]);
-        dst[3] = nc == 2 ? src[1] : (nc >= 4 ? src[3] : 1.f);
+    switch (formatOf(path)) {
+        case ImageFormat::Exr: return readExr(path);
+        case ImageFormat::Other: throw unknownFormat(path);
+        case ImageFormat::Png: break;
     }
+    // PNG files are sRGB-encoded (as written above); alpha is straight.
+    const PngPixels png = readPng(path);
+    Image image(png.width, png.height);
+    for (std::size_t i = 0; i < image.rgba.size(); ++i)
+        image.rgba[i] = i % 4 == 3 ? png.rgba[i] / 255.f : float(srgbDecode(png.rgba[i] / 255.0));
     return image;
 }
 

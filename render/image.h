@@ -1,4 +1,4 @@
-// A float RGBA image (linear, premultiplied over the background) and its writer through OpenImageIO.
+// A float RGBA image (linear, premultiplied over the background) and its image files (PNG, OpenEXR).
 #pragma once
 #include <array>
 #include <filesystem>
@@ -20,8 +20,10 @@ struct Image {
 // image files and movie frames hold.
 std::vector<unsigned char> srgbBytes(const Image& image);
 
-// Format by extension: .png (8-bit, sRGB-encoded), .exr (linear float RGBA), others as OIIO allows.
-// Written atomically; throws InputError naming the path.
+// The image file formats, by extension in any case: .png (8-bit, sRGB-encoded RGB), .exr (linear float RGBA).
+bool isImageFormat(const std::filesystem::path& path);
+
+// Format by extension (isImageFormat); any other is refused. Written atomically; throws InputError naming the path.
 void writeImage(const std::filesystem::path& path, const Image& image);
 Image readImage(const std::filesystem::path& path);
 

@@ -94,7 +94,7 @@ TEST(IoAtomicFile, KilledWriterLeavesThePreviousOutputAndTheNextWriteCleansUp) {
     EXPECT_EQ(namesIn(dir), expected);
 }
 
-// The same for writers that need a path (OpenImageIO): the leftover of a killed one goes on the next write.
+// The same for writers that need a path (OpenEXR's): the leftover of a killed one goes on the next write.
 TEST(IoAtomicFile, PathWritersCleanUpToo) {
     const fs::path dir = test::scratchDir("atomic_file_path");
     for (const auto& entry : fs::directory_iterator(dir)) fs::remove_all(entry.path());

@@ -1,15 +1,16 @@
-// Image files: .exr keeps linear float RGBA exactly, .png holds the clamped sRGB picture; writes are atomic.
+// Image files: .exr keeps linear float RGBA exactly, .png holds the clamped sRGB picture; writes are atomic;
+// unreadable files are refused by name.
 #include <gtest/gtest.h>
-
-#include <OpenImageIO/imageio.h>
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 
 #include "core/errors.h"
 #include "support/datasets.h"
 #include "render/image.h"
+#include "render/png_file.h"
 
 namespace vr {
 namespace {
@@ -55,26 +56,21 @@ TEST(RenderImage, PngIsClampedSrgbOverTheBackground) {
     const Image img = gradientImage(40, 30);
     writeImage(dir / "a.png", img);
 
-    // The bytes: 3 channels, sRGB-encoded (linear 0.5 -> 188, linear 0.2159 -> 128), clamped.
-    auto in = OIIO::ImageInput::open((dir / "a.png").string());
-    ASSERT_TRUE(in);
-    EXPECT_EQ(in->spec().nchannels, 3);
-    EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT8);
-    std::vector<unsigned char> bytes(40 * 30 * 3);
-    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, bytes.data()));
+    // The bytes: sRGB-encoded (linear 0.5 -> 188, linear 0.2159 -> 128), clamped, opaque.
+    const PngPixels png = readPng(dir / "a.png");
+    ASSERT_EQ(png.width, 40);
+    ASSERT_EQ(png.height, 30);
+    const std::vector<unsigned char> bytes = rgbOf(png);
+    EXPECT_EQ(bytes, srgbBytes(img));
     EXPECT_EQ(bytes[0], 0);          // -0.5 clamped
     EXPECT_EQ(bytes[3 + 1], 255);    // 3.0 clamped
     EXPECT_EQ(bytes[39 * 3], 255);   // x = 1
+    EXPECT_EQ(png.rgba[4 * 7 + 3], 255);
     Image probe(1, 1);
     probe.pixel(0, 0)[0] = 0.5f;
     probe.pixel(0, 0)[1] = 0.2159f;
     writeImage(dir / "probe.png", probe);
-    auto pin = OIIO::ImageInput::open((dir / "probe.png").string());
-    unsigned char rgb[3];
-    ASSERT_TRUE(pin->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, rgb));
-    EXPECT_EQ(rgb[0], 188);
-    EXPECT_EQ(rgb[1], 128);
-    EXPECT_EQ(rgb[2], 0);
+    EXPECT_EQ(rgbOf(readPng(dir / "probe.png")), (std::vector<unsigned char>{188, 128, 0}));
 
     // Reading decodes back to linear within the 8-bit quantisation; alpha reads as opaque.
     const Image back = readImage(dir / "a.png");
@@ -97,7 +93,7 @@ TEST(RenderImage, FailedWritesLeaveTheOldFileAndNoTemporary) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("missing/a.png"), std::string::npos) << e.what();
     }
-    // A format OpenImageIO cannot write, over an existing file: the file stays as it was.
+    // A format not written here, over an existing file: the file stays as it was.
     const fs::path existing = dir / "keep.notaformat";
     std::ofstream(existing) << "old contents";
     EXPECT_THROW(writeImage(existing, img), InputError);
@@ -112,6 +108,64 @@ TEST(RenderImage, FailedWritesLeaveTheOldFileAndNoTemporary) {
     EXPECT_EQ(filesIn(dir), 2u);
     // Reading something that is not there.
     EXPECT_THROW(readImage(dir / "nothing.exr"), InputError);
+}
+
+// The PNG bytes go through a write and a read unchanged, at any size (rows of odd length included).
+TEST(RenderImage, PngRoundTripKeepsTheBytes) {
+    const fs::path dir = test::scratchDir("cpu_image_png_round_trip");
+    for (const auto& [w, h] : {std::pair{1, 1}, std::pair{7, 3}, std::pair{300, 2}}) {
+        std::vector<unsigned char> rgb(std::size_t(w) * h * 3);
+        for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = (unsigned char)(i * 37 + i / 5);
+        writePng(dir / "b.png", w, h, rgb);
+        const PngPixels back = readPng(dir / "b.png");
+        EXPECT_EQ(back.width, w);
+        EXPECT_EQ(back.height, h);
+        EXPECT_EQ(rgbOf(back), rgb) << w << "x" << h;
+    }
+    EXPECT_EQ(filesIn(dir), 1u);
+}
+
+// An unwritable place, and files that are not PNGs or are cut short: InputError naming the file, nothing written.
+TEST(RenderImage, BadPngFilesAreRefusedByName) {
+    const fs::path dir = test::scratchDir("cpu_image_png_bad");
+    const std::vector<unsigned char> rgb(4 * 4 * 3, 200);
+    auto expectRefused = [](const std::function<void()>& act, const std::string& name, const std::string& why) {
+        try {
+            act();
+            ADD_FAILURE() << "no error for " << name;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+        }
+    };
+    // A folder where the file should be, and a folder that does not exist.
+    fs::create_directories(dir / "taken.png");
+    expectRefused([&] { writePng(dir / "taken.png", 4, 4, rgb); }, "taken.png", "");
+    expectRefused([&] { writePng(dir / "missing" / "a.png", 4, 4, rgb); }, "missing/a.png", "");
+    expectRefused([&] { writePng(dir / "short.png", 4, 4, std::vector<unsigned char>(5)); }, "short.png", "malformed");
+    EXPECT_FALSE(fs::exists(dir / "short.png"));
+
+    writePng(dir / "good.png", 4, 4, rgb);
+    const std::string good = contents(dir / "good.png");
+    // Cut in its header, and cut in its pixels.
+    std::ofstream(dir / "cut.png", std::ios::binary) << good.substr(0, good.size() / 2);
+    expectRefused([&] { readPng(dir / "cut.png"); }, "cut.png", "PNG");
+    expectRefused([&] { readImage(dir / "cut.png"); }, "cut.png", "PNG");
+    std::ofstream(dir / "tail.png", std::ios::binary) << good.substr(0, good.size() - 20);
+    expectRefused([&] { readPng(dir / "tail.png"); }, "tail.png", "corrupt PNG");
+    std::string garbled = good;
+    for (std::size_t i = 40; i < garbled.size() - 12; ++i) garbled[i] = char(garbled[i] ^ 0x5a);  // past the header
+    std::ofstream(dir / "garbled.png", std::ios::binary) << garbled;
+    expectRefused([&] { readPng(dir / "garbled.png"); }, "garbled.png", "PNG");
+    std::ofstream(dir / "text.png") << "not a picture";
+    expectRefused([&] { readPng(dir / "text.png"); }, "text.png", "not a readable PNG");
+    expectRefused([&] { readPng(dir / "absent.png"); }, "absent.png", "cannot open");
+    expectRefused([&] { readImage(dir / "picture.jpg"); }, "picture.jpg", ".png, .exr");
+    // The same for a cut EXR.
+    writeImage(dir / "good.exr", gradientImage(16, 16));
+    const std::string exr = contents(dir / "good.exr");
+    std::ofstream(dir / "cut.exr", std::ios::binary) << exr.substr(0, exr.size() / 2);
+    expectRefused([&] { readImage(dir / "cut.exr"); }, "cut.exr", "EXR");
 }
 
 TEST(RenderImage, MaxAbsDifference) {

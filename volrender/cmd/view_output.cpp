@@ -1,7 +1,5 @@
 #include "volrender/cmd/view_output.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cstdio>
 
 #include "core/errors.h"
@@ -14,9 +12,9 @@ void checkViewOutput(const std::string& path, const char* flag, int width, int h
     if (movie == MovieFormat::Mp4 && (width % 2 || height % 2))
         throw InputError(std::string(flag) + " " + path + ": an MP4 (H.264 in 4:2:0) needs an even width and height, "
                          "not --size " + std::to_string(width) + "x" + std::to_string(height));
-    if (!movie && !OIIO::ImageOutput::create(path))
-        throw InputError(std::string(flag) + " " + path + ": neither an image format OpenImageIO writes (.png, .exr, "
-                         "...) nor a movie (.gif, .mp4)");
+    if (!movie && !isImageFormat(path))
+        throw InputError(std::string(flag) + " " + path +
+                         ": neither an image format (.png, .exr) nor a movie (.gif, .mp4)");
 }
 
 ViewOutput::ViewOutput(std::string path, const MovieSpec& movie) : path_(std::move(path)), views_(movie.frames) {

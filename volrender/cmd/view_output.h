@@ -8,8 +8,8 @@
 
 namespace vr {
 
-// Refuses, before anything is rendered, a path that is neither a movie nor an image format OpenImageIO writes, and
-// a movie its codec cannot hold (an MP4 needs an even width and height). InputError naming `flag` and the path.
+// Refuses, before anything is rendered, a path that is neither a movie nor an image format (isImageFormat), and a
+// movie its codec cannot hold (an MP4 needs an even width and height). InputError naming `flag` and the path.
 void checkViewOutput(const std::string& path, const char* flag, int width, int height);
 
 class ViewOutput {

@@ -68,7 +68,7 @@ void addFlags(CLI::App& app, Flags& f) {
                    "prepared volume written by volprep, or a volume to prepare here (raw, NRRD, MetaImage, NIfTI, "
                    "VTI/VTK, VDB or a DICOM folder, as volprep reads them; needs --tf or --window/--level)");
     vr::addVolumeFlags(app, f.volume);
-    app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB), .exr (float RGBA), ...; or a movie "
+    app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB) or .exr (float RGBA); or a movie "
                                             "of the views: .gif (256 colours a frame) or .mp4 (H.264)");
     app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, blocks, or auto (composite: chosen from the "
                                          "file's ray probe and the views by a cost model, see --calibration; a "
