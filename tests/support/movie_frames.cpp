@@ -1,10 +1,10 @@
 #include "support/movie_frames.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
+
+#include "render/png_file.h"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -15,41 +15,12 @@ extern "C" {
 namespace vr::test {
 namespace fs = std::filesystem;
 
-namespace {
-
-// The RGB bytes of the current subimage of `in`, its alpha (GIF frames have one) dropped.
-std::vector<unsigned char> rgbOf(OIIO::ImageInput& in) {
-    const OIIO::ImageSpec& spec = in.spec();
-    std::vector<unsigned char> all(std::size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in.read_image(in.current_subimage(), 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, all.data()))
-        throw std::runtime_error("cannot read " + in.geterror());
-    std::vector<unsigned char> rgb(std::size_t(spec.width) * spec.height * 3);
-    for (std::size_t p = 0; p < rgb.size() / 3; ++p)
-        for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = all[p * spec.nchannels + std::min(c, spec.nchannels - 1)];
-    return rgb;
-}
-
-}  // namespace
-
-Frames readGifFrames(const fs::path& path) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw std::runtime_error("cannot open " + path.string() + ": " + OIIO::geterror());
-    Frames frames;
-    frames.width = in->spec().width;
-    frames.height = in->spec().height;
-    const OIIO::ParamValue* rate = in->spec().find_attribute("FramesPerSecond", OIIO::TypeRational);
-    if (rate) frames.fps = double(rate->get<int>(0)) / rate->get<int>(1);
-    for (int s = 0; in->seek_subimage(s, 0); ++s) frames.rgb.push_back(rgbOf(*in));
-    return frames;
-}
-
 Frames readImageBytes(const fs::path& path) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw std::runtime_error("cannot open " + path.string() + ": " + OIIO::geterror());
-    return {in->spec().width, in->spec().height, 0, {rgbOf(*in)}};
+    const PngPixels png = readPng(path);
+    return {png.width, png.height, 0, {rgbOf(png)}};
 }
 
-Frames readMp4Frames(const fs::path& path) {
+Frames readMovieFrames(const fs::path& path) {
     AVFormatContext* format = nullptr;
     if (avformat_open_input(&format, path.c_str(), nullptr, nullptr) < 0)
         throw std::runtime_error("cannot open " + path.string());

@@ -1,5 +1,5 @@
-// Movies read back for tests: every frame of a GIF (OpenImageIO, giflib) or an MP4 (FFmpeg's libavformat and
-// libavcodec) as 8-bit sRGB RGB, and 8-bit images to compare them with.
+// Movies read back for tests: every frame of a GIF or an MP4 (FFmpeg's libavformat and libavcodec) as 8-bit sRGB
+// RGB, and PNG images to compare them with.
 #pragma once
 #include <filesystem>
 #include <vector>
@@ -12,9 +12,8 @@ struct Frames {
     std::vector<std::vector<unsigned char>> rgb;  // a frame each, 3 bytes a pixel from the top row
 };
 
-Frames readGifFrames(const std::filesystem::path& path);
-Frames readMp4Frames(const std::filesystem::path& path);
-// An 8-bit image file (e.g. a PNG volrender wrote) as one frame.
+Frames readMovieFrames(const std::filesystem::path& path);
+// A PNG (e.g. one volrender wrote) as one frame.
 Frames readImageBytes(const std::filesystem::path& path);
 
 // |a - b| over the bytes of two frames of one size, in 8-bit levels: the mean, the largest, and the share of the

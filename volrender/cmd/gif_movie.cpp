@@ -1,45 +1,35 @@
-// The animated GIF: one subimage a frame, each with the palette of 256 colours that OpenImageIO's GIF writer
-// chooses for it.
-#include <OpenImageIO/imageio.h>
+// The animated GIF: libavcodec's GIF encoder, each frame with its own palette of at most 256 colours (median cut),
+// muxed by libavformat's GIF muxer, which loops the movie forever.
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
 
-#include "volrender/cmd/movie_writer.h"
+#include "volrender/cmd/gif_palette.h"
+#include "volrender/cmd/video_movie.h"
 
 namespace vr {
 namespace {
 
-class GifMovie final : public MovieWriter {
+class GifMovie final : public VideoMovie {
 public:
-    GifMovie(const std::filesystem::path& path, const MovieSpec& spec) : MovieWriter(path, spec, "GIF") {
-        out_ = OIIO::ImageOutput::create(temporary().string());
-        if (!out_) fail("no GIF writer in this OpenImageIO: " + OIIO::geterror());
-        OIIO::ImageSpec frame(spec.width, spec.height, 3, OIIO::TypeDesc::UINT8);
-        frame.attribute("oiio:ColorSpace", "sRGB");
-        const int rate[2] = {spec.fps, 1};
-        frame.attribute("FramesPerSecond", OIIO::TypeRational, rate);
-        frames_.assign(std::size_t(spec.frames), frame);
-    }
-    ~GifMovie() override {
-        if (open_) out_->close();  // unfinished: the temporary is removed with the base
-    }
+    GifMovie(const std::filesystem::path& path, const MovieSpec& spec)
+        : VideoMovie(path, spec, "GIF", "gif", "gif", [](AVCodecContext& codec) { codec.pix_fmt = AV_PIX_FMT_PAL8; }) {}
 
 private:
-    // The writer is told every frame up front, then given them one by one (AppendSubimage).
-    void write(const std::vector<unsigned char>& rgb, int index) override {
-        const std::string name = temporary().string();
-        const bool opened = index == 0 ? out_->open(name, int(frames_.size()), frames_.data())
-                                       : out_->open(name, frames_[std::size_t(index)], OIIO::ImageOutput::AppendSubimage);
-        open_ = open_ || opened;
-        if (!opened || !out_->write_image(OIIO::TypeDesc::UINT8, rgb.data())) fail(out_->geterror());
+    void fill(const std::vector<unsigned char>& rgb, AVFrame& frame) override {
+        const PalettedFrame paletted = medianCut(rgb);
+        // The palette's 256 entries are 0xAARRGGBB words; all opaque, so that the encoder sees no transparent colour.
+        auto* palette = reinterpret_cast<std::uint32_t*>(frame.data[1]);
+        std::fill(palette, palette + 256, 0xff000000u);
+        for (std::size_t i = 0; i < paletted.palette.size(); ++i) {
+            const auto& [r, g, b] = paletted.palette[i];
+            palette[i] = 0xff000000u | std::uint32_t(r) << 16 | std::uint32_t(g) << 8 | b;
+        }
+        const int w = spec().width;
+        for (int y = 0; y < spec().height; ++y)
+            std::memcpy(frame.data[0] + std::ptrdiff_t(y) * frame.linesize[0], &paletted.indices[std::size_t(y) * w],
+                        std::size_t(w));
     }
-
-    void close() override {
-        open_ = false;
-        if (!out_->close()) fail(out_->geterror());
-    }
-
-    std::unique_ptr<OIIO::ImageOutput> out_;
-    std::vector<OIIO::ImageSpec> frames_;
-    bool open_ = false;
 };
 
 }  // namespace

@@ -1,5 +1,5 @@
-// Movies of an orbit's views: an animated GIF (through OpenImageIO) or an H.264 MP4 (through FFmpeg's libavcodec
-// and libavformat), frame by frame as they are rendered, under a temporary name until the last frame is in.
+// Movies of an orbit's views: an animated GIF or an H.264 MP4 (both through FFmpeg's libavcodec and libavformat),
+// frame by frame as they are rendered, under a temporary name until the last frame is in.
 #pragma once
 #include <filesystem>
 #include <memory>
