@@ -1,54 +1,58 @@
 #include "sweep/image_strip.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
+#include <cstring>
 
 #include "core/errors.h"
+#include "render/png_file.h"
+#include "sweep/strip_font.h"
 
 namespace vr {
 namespace fs = std::filesystem;
 
 namespace {
 constexpr int kGap = 8, kLabelHeight = 40, kMinPitch = 150, kFontSize = 13;
+constexpr unsigned char kBackground = 38;  // grey 0.15
 
-OIIO::ImageBuf readTile(const fs::path& path) {
-    OIIO::ImageBuf tile(path.string());
-    if (!tile.read(0, 0, true, OIIO::TypeDesc::UINT8))
-        throw fileError(path.string(), "cannot read the image for the strip: " + tile.geterror());
-    return tile;
+struct Picture {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;  // 3 bytes a pixel from the top row
+};
+
+Picture readTile(const fs::path& path) {
+    const PngPixels png = readPng(path);
+    return {png.width, png.height, rgbOf(png)};
+}
+
+// Copies `tile` with its top left corner at (x, y); what falls outside `strip` is cut off.
+void paste(Picture& strip, int x, int y, const Picture& tile) {
+    const int w = std::min(tile.width, strip.width - x);
+    for (int row = 0; row < tile.height && y + row < strip.height; ++row)
+        if (w > 0)
+            std::memcpy(&strip.rgb[(std::size_t(y + row) * strip.width + x) * 3],
+                        &tile.rgb[std::size_t(row) * tile.width * 3], std::size_t(w) * 3);
 }
 }  // namespace
 
 void writeImageStrip(const std::vector<StripColumn>& columns, const fs::path& output) {
     if (columns.empty()) throw InputError(output.string() + ": no columns for the image strip");
-    const OIIO::ImageBuf first = readTile(columns.front().image);
-    const int w = first.spec().width, h = first.spec().height;
+    const Picture first = readTile(columns.front().image);
+    const int w = first.width, h = first.height;
     const int cols = int(columns.size());
     const int pitch = std::max(w, kMinPitch) + kGap;  // room for the labels beside small images
-    OIIO::ImageSpec spec(kGap + cols * pitch, kLabelHeight + 2 * h + 3 * kGap, 3, OIIO::TypeDesc::UINT8);
-    OIIO::ImageBuf strip(spec);
-    const float grey[3] = {0.15f, 0.15f, 0.15f};
-    OIIO::ImageBufAlgo::fill(strip, grey);
+    Picture strip{kGap + cols * pitch, kLabelHeight + 2 * h + 3 * kGap, {}};
+    strip.rgb.assign(std::size_t(strip.width) * strip.height * 3, kBackground);
+    const Picture black{w, h, std::vector<unsigned char>(std::size_t(w) * h * 3, 0)};
+    const StripFont font(kFontSize);  // without the font the report names the columns
     for (int c = 0; c < cols; ++c) {
         const int x = kGap + c * pitch;
-        const OIIO::ImageBuf image = readTile(columns[c].image);
-        OIIO::ImageBufAlgo::paste(strip, x, kLabelHeight + kGap, 0, 0, image);
-        if (!columns[c].errorMap.empty())
-            OIIO::ImageBufAlgo::paste(strip, x, kLabelHeight + 2 * kGap + h, 0, 0, readTile(columns[c].errorMap));
-        else
-            OIIO::ImageBufAlgo::fill(strip, std::vector<float>{0, 0, 0},
-                                     OIIO::ROI(x, x + w, kLabelHeight + 2 * kGap + h, kLabelHeight + 2 * kGap + 2 * h));
-        // Labels need a TrueType font OIIO can find; without one the report names the columns.
-        const float white[3] = {1, 1, 1};
-        if (!OIIO::ImageBufAlgo::render_text(strip, x, kLabelHeight / 2 - 4, columns[c].label, kFontSize,
-                                             "DejaVuSans", white) ||
-            !OIIO::ImageBufAlgo::render_text(strip, x, kLabelHeight - 4, columns[c].subLabel, kFontSize,
-                                             "DejaVuSans", white))
-            strip.geterror();  // reading the error clears it
+        paste(strip, x, kLabelHeight + kGap, readTile(columns[c].image));
+        const int errorRow = kLabelHeight + 2 * kGap + h;
+        paste(strip, x, errorRow, columns[c].errorMap.empty() ? black : readTile(columns[c].errorMap));
+        font.draw(strip.rgb, strip.width, strip.height, x, kLabelHeight / 2 - 4, columns[c].label);
+        font.draw(strip.rgb, strip.width, strip.height, x, kLabelHeight - 4, columns[c].subLabel);
     }
-    if (!strip.write(output.string())) throw fileError(output.string(), "cannot write: " + strip.geterror());
+    writePng(output, strip.width, strip.height, strip.rgb);
 }
 
 }  // namespace vr

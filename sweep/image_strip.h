@@ -12,8 +12,8 @@ struct StripColumn {
     std::filesystem::path errorMap;    // PNG; empty: a black tile (the reference)
 };
 
-// Pastes the columns side by side with OpenImageIO (ImageBufAlgo::paste), images on the top row, error maps
-// below. Throws InputError naming a tile that cannot be read or the output that cannot be written.
+// Pastes the columns side by side, images on the top row, error maps below, labels above (StripFont), and writes
+// the strip as a PNG. Throws InputError naming a tile that cannot be read or the output that cannot be written.
 void writeImageStrip(const std::vector<StripColumn>& columns, const std::filesystem::path& output);
 
 }  // namespace vr
