@@ -6,6 +6,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 
+#include <cstdint>
 #include <exception>
 #include <string>
 
@@ -44,7 +45,12 @@ Image readExr(const fs::path& path) {
     try {
         Imf::InputFile in(path.c_str());
         const Imath::Box2i window = in.header().dataWindow();
-        Image image(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+        const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1,
+                           height = std::int64_t(window.max.y) - window.min.y + 1;
+        if (width <= 0 || height <= 0 || width * height > kMaxImageFilePixels)
+            throw fileError(path.string(), "an EXR of " + std::to_string(width) + "x" + std::to_string(height) +
+                                               " pixels is empty or more than an image file may hold here");
+        Image image{int(width), int(height)};
         const Imf::ChannelList& channels = in.header().channels();
         const bool grey = !channels.findChannel("R") && channels.findChannel("Y");
         Imf::FrameBuffer frame;
@@ -63,6 +69,8 @@ Image readExr(const fs::path& path) {
             for (std::size_t p = 0; p < image.rgba.size(); p += 4)
                 image.rgba[p + 1] = image.rgba[p + 2] = image.rgba[p];
         return image;
+    } catch (const InputError&) {
+        throw;
     } catch (const std::exception& e) {
         throw fileError(path.string(), std::string("cannot read EXR: ") + e.what());
     }

@@ -1,6 +1,7 @@
 // A float RGBA image (linear, premultiplied over the background) and its image files (PNG, OpenEXR).
 #pragma once
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -15,6 +16,9 @@ struct Image {
     float* pixel(int x, int y) { return &rgba[(std::size_t(y) * width + x) * 4]; }
     const float* pixel(int x, int y) const { return &rgba[(std::size_t(y) * width + x) * 4]; }
 };
+
+// Image files claiming more pixels (16384 x 16384) are refused as malformed before their pixels are allocated.
+constexpr std::int64_t kMaxImageFilePixels = std::int64_t(16384) * 16384;
 
 // The picture as seen, 3 bytes a pixel from the top row: RGB over the background, sRGB-encoded, clamped. What 8-bit
 // image files and movie frames hold.

@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "io/atomic_file.h"
+#include "render/image.h"
 
 namespace vr {
 namespace fs = std::filesystem;
@@ -53,6 +54,9 @@ PngPixels readPng(const fs::path& path) {
     const std::unique_ptr<png_image, PngImageFree> release(&image);
     if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size()))
         throw fileError(path.string(), std::string("not a readable PNG: ") + image.message);
+    if (std::int64_t(image.width) * image.height > kMaxImageFilePixels)
+        throw fileError(path.string(), "a PNG of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                           " pixels is more than an image file may hold here");
     image.format = PNG_FORMAT_RGBA;
     PngPixels pixels{int(image.width), int(image.height), std::vector<unsigned char>(PNG_IMAGE_SIZE(image))};
     if (!png_image_finish_read(&image, nullptr, pixels.rgba.data(), 0, nullptr))

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <functional>
 #include <limits>
 
 #include "core/errors.h"
+#include "io/crc32.h"
 #include "support/datasets.h"
 #include "render/image.h"
 #include "render/png_file.h"
@@ -157,6 +159,16 @@ TEST(RenderImage, BadPngFilesAreRefusedByName) {
     for (std::size_t i = 40; i < garbled.size() - 12; ++i) garbled[i] = char(garbled[i] ^ 0x5a);  // past the header
     std::ofstream(dir / "garbled.png", std::ios::binary) << garbled;
     expectRefused([&] { readPng(dir / "garbled.png"); }, "garbled.png", "PNG");
+    // A valid header claiming 20000 x 20000 pixels: refused before they are allocated.
+    std::string huge = good;
+    for (int i = 0; i < 2; ++i) {
+        const std::uint32_t side = 20000;
+        for (int b = 0; b < 4; ++b) huge[16 + 4 * i + b] = char(side >> (24 - 8 * b));
+    }
+    const std::uint32_t crc = crc32Of(huge.data() + 12, 17);  // IHDR's type and data
+    for (int b = 0; b < 4; ++b) huge[29 + b] = char(crc >> (24 - 8 * b));
+    std::ofstream(dir / "huge.png", std::ios::binary) << huge;
+    expectRefused([&] { readPng(dir / "huge.png"); }, "huge.png", "20000x20000");
     std::ofstream(dir / "text.png") << "not a picture";
     expectRefused([&] { readPng(dir / "text.png"); }, "text.png", "not a readable PNG");
     expectRefused([&] { readPng(dir / "absent.png"); }, "absent.png", "cannot open");
