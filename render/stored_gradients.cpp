@@ -29,7 +29,7 @@ GradientPacker::GradientPacker(int base) : base_(base) {
 
 std::uint32_t GradientPacker::pack(const Vec3d& g) const {
     const double longest = std::max({std::abs(g.x), std::abs(g.y), std::abs(g.z)});
-    if (!(longest > 0)) return 0;
+    if (!(longest > 0) || !std::isfinite(g.x + g.y + g.z)) return 0;  // no direction to store
     const int e = int(std::lower_bound(longest_.begin(), longest_.end() - 1, longest) - longest_.begin());
     const double inverse = inverseUnit_[e];
     constexpr double kMax = device::kGradientMantissaMax;

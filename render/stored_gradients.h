@@ -25,7 +25,7 @@ public:
 
     int base() const { return base_; }
     // The code of g: the least exponent that holds its longest component, each component rounded to the nearest
-    // unit. A component finer than the last exponent's unit rounds to 0; g = 0 is code 0.
+    // unit. A component finer than the last exponent's unit rounds to 0; g = 0 (or not finite) is code 0.
     std::uint32_t pack(const Vec3d& g) const;
     // The codes of `count` voxels along x from linear index `first`, written to `to`.
     void packRow(const Volume& scalars, std::size_t first, int count, std::uint32_t* to) const;
