@@ -37,11 +37,11 @@ struct PreparedVolume {
 
 // Bytes of each distance field, all octants together: what a caster's field costs to store and to upload.
 struct FieldBytes {
-    std::uint64_t pc = 0, acd = 0, eacd = 0;
+    std::uint64_t pc = 0, acd = 0, eacd = 0, hier = 0;
 };
 
 inline FieldBytes fieldBytesOf(const DistanceFields& f) {
-    FieldBytes b{f.pc.size(), 0, 0};
+    FieldBytes b{f.pc.size(), 0, 0, f.hier.bytes()};
     for (int o = 0; o < kOctants; ++o) {
         b.acd += f.acd[o].size();
         b.eacd += f.eacd[o].bytes();

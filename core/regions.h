@@ -29,6 +29,8 @@ public:
     virtual uint16_t entryAbove(float f) const = 0;
     // Every entry first .. last transparent, or opacity and each colour channel spreading by at most `threshold`.
     virtual bool alikeEntries(uint16_t first, uint16_t last, double threshold) const = 0;
+    // Every entry first .. last transparent (opacity 0).
+    virtual bool clearEntries(uint16_t first, uint16_t last) const = 0;
     bool alike(float lo, float hi, double threshold) const {
         return alikeEntries(entryBelow(lo), entryAbove(hi), threshold);
     }

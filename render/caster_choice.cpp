@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace vr {
@@ -37,6 +38,14 @@ const CasterCalibration kBuiltIn{38, {11, 15, 17, 20}, 0.44, 0.05, "llvmpipe (LL
 // The smallest, so that a borderline case builds the field.
 constexpr double kFieldBuildNsPerVoxel = 120;
 
+// The hier field (block ranges, block regions, the EACD over blocks of 4) per voxel on the same machine
+// (bench/hier_bench, the octants of a 4-view orbit): 5.4 ns on the teapot, 8.2 on the cranium CT, 9.3 on the head CT,
+// 11.9 on a 512x512x1024 CT made from the cranium. The largest, so that a borderline case does not build it.
+constexpr double kHierBuildNsPerVoxel = 12;
+// EACD's iterations per ray over hier's (bench/hier_bench: 512 x 512, trilinear, shaded, T_o 0.01, T_a 3, 4-view
+// orbits): 0.75 on the teapot, 0.81 on the cranium CT, 0.82 on the head CT, 0.86 on the clinical-size CT.
+constexpr double kEACDPerHierIterations = 0.8;
+
 // The probe's counts of caster c; null where the volume had no field for it.
 const ProbeCounts* countsOf(const RayProbe& probe, Caster c) {
     auto present = [](const std::optional<ProbeCounts>& counts) { return counts ? &*counts : nullptr; };
@@ -46,6 +55,7 @@ const ProbeCounts* countsOf(const RayProbe& probe, Caster c) {
         case Caster::ACD: return present(probe.acd);
         case Caster::EACD: return present(probe.eacd);
         case Caster::Blocks: return nullptr;  // a composite render never leaps by blocks
+        case Caster::Hier: return nullptr;    // built at render time, never probed by volprep
     }
     return nullptr;
 }
@@ -57,6 +67,7 @@ double fieldBytesOf(const FieldBytes& bytes, Caster c) {
         case Caster::ACD: return double(bytes.acd);
         case Caster::EACD: return double(bytes.eacd);
         case Caster::Blocks: return 0;
+        case Caster::Hier: return double(bytes.hier);
     }
     return 0;
 }
@@ -136,18 +147,41 @@ CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes
     return {best->caster, reason};
 }
 
-CasterChoice chooseBeforeBuilding(double primitiveIterations, const CasterDemand& d, std::size_t voxels,
+namespace {
+
+// Milliseconds of the views at `iterations` per pixel, each iteration `iterationNs`.
+double viewsMs(const CasterDemand& d, double iterations, double iterationNs, const CasterCalibration& calibration) {
+    return double(d.views.size()) * double(d.pixels) * (calibration.rayNs + iterations * iterationNs) * 1e-6;
+}
+
+}  // namespace
+
+bool hierMayPay(double primitiveIterations, const CasterDemand& d, std::size_t voxels,
+                const CasterCalibration& calibration) {
+    return viewsMs(d, primitiveIterations, calibration.iterationNs[0], calibration) >
+           double(voxels) * kHierBuildNsPerVoxel * 1e-6;
+}
+
+CasterChoice chooseBeforeBuilding(const ProbedIterations& it, const CasterDemand& d, std::size_t voxels,
                                   const CasterCalibration& calibration) {
-    const double views = double(d.views.size());
-    const double primitiveMs = views * double(d.pixels) *
-                               (calibration.rayNs + primitiveIterations * calibration.iterationNs[0]) * 1e-6;
+    const double leapNs = calibration.iterationNs[std::size_t(Caster::EACD)];
+    const double primitiveMs = viewsMs(d, it.primitive, calibration.iterationNs[0], calibration);
     const double buildMs = double(voxels) * kFieldBuildNsPerVoxel * 1e-6;
-    char reason[256];
-    std::snprintf(reason, sizeof reason,
-                  "%.0f view(s) cast without a field take an estimated %.0f ms (%.1f iterations per pixel); EACD's "
-                  "field alone would take %.0f ms to build",
-                  views, primitiveMs, primitiveIterations, buildMs);
-    return {primitiveMs <= buildMs ? Caster::Primitive : Caster::EACD, reason};
+    const double eacdMs = buildMs + (it.hier ? viewsMs(d, *it.hier * kEACDPerHierIterations, leapNs, calibration) : 0);
+    const double hierMs = it.hier ? viewsMs(d, *it.hier, leapNs, calibration) : primitiveMs;
+    char reason[320];
+    int at = std::snprintf(reason, sizeof reason,
+                           "%zu view(s) cast without a field take an estimated %.0f ms (%.1f iterations per pixel); ",
+                           d.views.size(), primitiveMs, it.primitive);
+    if (it.hier)
+        at += std::snprintf(reason + at, sizeof reason - std::size_t(at),
+                            "with the hier field, built, %.0f ms (%.1f iterations per pixel); ", hierMs, *it.hier);
+    std::snprintf(reason + at, sizeof reason - std::size_t(at), "EACD's field alone would take %.0f ms to build",
+                  buildMs);
+    const Caster best = primitiveMs <= std::min(hierMs, eacdMs) ? Caster::Primitive
+                        : hierMs <= eacdMs                      ? Caster::Hier
+                                                                : Caster::EACD;
+    return {best, reason};
 }
 
 }  // namespace vr

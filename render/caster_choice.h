@@ -20,11 +20,12 @@ namespace vr {
 // whose rays are too long to probe (spacings far apart: more than 2^17 samples across).
 std::optional<RayProbe> probeRays(const PreparedVolume& prepared);
 
-// The primitive caster's mean loop iterations per pixel over `cameras`, from the CPU reference casting each view at
-// about 16 x 16 pixels over its whole frustum with the sampling of `settings` (unshaded: shading does not change where
-// a ray ends). Needs only the scalars and their classification: the probe of a volume before any field is built.
-double probePrimitiveIterations(const PreparedVolume& classified, const std::vector<Camera>& cameras,
-                                const RenderSettings& settings);
+// The mean loop iterations per pixel over `cameras` of the caster of `settings`, from the CPU reference casting each
+// view at about 16 x 16 pixels over its whole frustum with the sampling of `settings` (unshaded: shading does not
+// change where a ray ends). The primitive caster needs only the scalars and their classification, hier its field:
+// the probe of a volume before any field over voxel regions is built.
+double probeIterations(const PreparedVolume& prepared, const std::vector<Camera>& cameras,
+                       const RenderSettings& settings);
 
 // The views to render, which share one upload of the field.
 struct CasterDemand {
@@ -57,12 +58,26 @@ CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes
                           const CasterDemand& demand,
                           const CasterCalibration& calibration = builtInCalibration());
 
-// --caster auto for a volume prepared in the same process, before any field is built (a primitive render builds
-// nothing): the primitive caster when its views (primitiveIterations per pixel from probePrimitiveIterations, priced
-// by the calibration) cost less than building EACD's field alone would, which no EACD render can win back; EACD,
-// which leaps furthest, otherwise. `voxels` prices the build at a cost per voxel measured on this project's 2-core
-// machine (caster_choice.cpp); more cores build faster, so the rule then errs toward building the field.
-CasterChoice chooseBeforeBuilding(double primitiveIterations, const CasterDemand& demand, std::size_t voxels,
+// What --caster auto knows of a volume prepared in the same process before a field over voxel regions is built: the
+// mean iterations per pixel of the views (probeIterations) with the primitive caster, which needs no field, and with
+// the hier caster where its field was built (hierMayPay).
+struct ProbedIterations {
+    double primitive = 0;
+    std::optional<double> hier;
+};
+
+// Whether the hier field, built at a cost per voxel measured on this project's 2-core machine (caster_choice.cpp),
+// can pay for itself: the views cast without a field (primitiveIterations per pixel) cost more than its build.
+bool hierMayPay(double primitiveIterations, const CasterDemand& demand, std::size_t voxels,
+                const CasterCalibration& calibration = builtInCalibration());
+
+// --caster auto for a volume prepared in the same process, before any field over voxel regions is built: the
+// cheapest of the primitive caster (its views), hier (its views: its field is built already) and EACD (segmentation
+// and its field, priced per voxel as measured on this project's 2-core machine, plus its views at hier's iterations
+// times the ratio of EACD's to hier's measured on the shared CTs; without a hier probe its views are not priced,
+// so that EACD is taken only where no render of it could lose). Hier iterations are priced as EACD's (the same
+// work: a field fetch, a decode, a box exit). More cores build faster, so the rule then errs toward building.
+CasterChoice chooseBeforeBuilding(const ProbedIterations& iterations, const CasterDemand& demand, std::size_t voxels,
                                   const CasterCalibration& calibration = builtInCalibration());
 
 }  // namespace vr

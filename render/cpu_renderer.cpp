@@ -203,7 +203,9 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     // ACD and EACD may hold only the octants some views need (volrender's one-command path).
     const unsigned heldOctants = settings.caster == Caster::ACD    ? fields.acdOctants()
                                  : settings.caster == Caster::EACD ? fields.eacdOctants()
+                                 : settings.caster == Caster::Hier ? fields.hier.octants()
                                                                    : kAllOctants;
+    static_assert(kHomogeneousBlockBit == device::kHomogeneousBlock);
     const std::optional<Vec3d> light =
         settings.lightDirection ? std::optional<Vec3d>(normalize(*settings.lightDirection)) : std::nullopt;
 
@@ -296,6 +298,19 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     if (!(heldOctants >> oct & 1u)) break;
                     const auto& x = fields.eacd[oct][i];
                     const Vec3i ext{std::max<int>(1, x[0]), std::max<int>(1, x[1]), std::max<int>(1, x[2])};
+                    box = octantBox(v, oct, ext);
+                    wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t, dt);
+                    break;
+                }
+                case Caster::Hier: {
+                    if (!(heldOctants >> oct & 1u)) break;
+                    // A mixed block is stepped sample by sample; a homogeneous one leaps to its box's far faces.
+                    const uint16_t code = fields.hier.code(oct, v);
+                    if (!(code & kHomogeneousBlockBit)) break;
+                    const Extents blocks = decodeExtents(ExtentCode::Log16, code);
+                    Vec3i ext;
+                    for (int a = 0; a < 3; ++a)
+                        ext[a] = device::blockBoxExtent(v[a], octantSign(oct, a), fields.hier.blockShift, blocks[a]);
                     box = octantBox(v, oct, ext);
                     wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t, dt);
                     break;

@@ -171,18 +171,17 @@ std::optional<RayProbe> probeRays(const PreparedVolume& p) {
     return probe;
 }
 
-double probePrimitiveIterations(const PreparedVolume& classified, const std::vector<Camera>& cameras,
-                                const RenderSettings& settings) {
+double probeIterations(const PreparedVolume& prepared, const std::vector<Camera>& cameras,
+                       const RenderSettings& settings) {
     constexpr int kSide = 16;
     RenderSettings probe = settings;
-    probe.caster = Caster::Primitive;
     probe.shading = false;
     double sum = 0;
     for (Camera camera : cameras) {  // the same frustum at fewer pixels
         const int longer = std::max(camera.width, camera.height);
         camera.width = std::max(1, camera.width * kSide / longer);
         camera.height = std::max(1, camera.height * kSide / longer);
-        const RenderResult r = renderCpu(classified, camera, probe);
+        const RenderResult r = renderCpu(prepared, camera, probe);
         sum += std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0) / double(r.iterations.size());
     }
     return cameras.empty() ? 0 : sum / double(cameras.size());

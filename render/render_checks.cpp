@@ -77,6 +77,15 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) 
     if (s.caster == Caster::EACD)
         for (const auto& f : prepared.fields.eacd)
             need(prepared.fields.hasEACD(), f.empty() ? voxels : f.size(), "EACD");
+    if (s.caster == Caster::Hier) {  // over blocks: each held octant covers every block
+        const BlockEACD& h = prepared.fields.hier;
+        const int edge = 1 << h.blockShift;
+        const bool covers = h.blockShift >= 0 && h.blockShift < 8 &&
+                            h.blocks == Vec3i{(grid.dims.x + edge - 1) / edge, (grid.dims.y + edge - 1) / edge,
+                                              (grid.dims.z + edge - 1) / edge};
+        for (const auto& f : h.octant)
+            need(!h.empty() && covers, f.empty() || f.size() == voxelCount(h.blocks) ? voxels : 0, "hier");
+    }
 }
 
 static std::string planeText(const ClipPlane& p) {

@@ -7,7 +7,7 @@ namespace {
 
 constexpr EnumName<Caster> kCasterNames[] = {
     {Caster::Primitive, "primitive"}, {Caster::PC, "pc"}, {Caster::ACD, "acd"}, {Caster::EACD, "eacd"},
-    {Caster::Blocks, "blocks"}};
+    {Caster::Blocks, "blocks"}, {Caster::Hier, "hier"}};
 constexpr EnumName<Blend> kBlendNames[] = {{Blend::Composite, "composite"}, {Blend::MIP, "mip"},
                                            {Blend::MinIP, "minip"},         {Blend::Average, "average"},
                                            {Blend::Iso, "iso"}};

@@ -9,8 +9,9 @@
 namespace vr {
 
 // Blocks leaps by the per-block scalar extrema (render/block_extrema.h): the leap of the blends other than composite,
-// whose results follow the scalar, not the classification the regions of PC, ACD and EACD are made of.
-enum class Caster { Primitive, PC, ACD, EACD, Blocks };
+// whose results follow the scalar, not the classification the regions of PC, ACD and EACD are made of. Hier leaps
+// by the hierarchical EACD, an EACD over blocks of voxels (core/distance_fields.h BlockEACD).
+enum class Caster { Primitive, PC, ACD, EACD, Blocks, Hier };
 enum class Projection { Orthographic, Perspective };
 // What a ray makes of its samples (docs/ALGORITHMS.md section 11): front-to-back compositing of the classified
 // samples; the largest, smallest or mean scalar; the first crossing of an iso-value.
@@ -19,14 +20,16 @@ enum class Blend { Composite, MIP, MinIP, Average, Iso };
 // gradient stored in 32 bits (render/stored_gradients.h).
 enum class Gradients { OnTheFly, Stored };
 
-std::string_view casterName(Caster c);    // "primitive", "pc", "acd", "eacd", "blocks"
+std::string_view casterName(Caster c);    // "primitive", "pc", "acd", "eacd", "blocks", "hier"
 Caster parseCaster(std::string_view name); // throws InputError
 std::string_view blendName(Blend b);      // "composite", "mip", "minip", "average", "iso"
 Blend parseBlend(std::string_view name);  // throws InputError naming --blend
 std::string_view gradientsName(Gradients g);       // "on-the-fly", "stored"
 Gradients parseGradients(std::string_view name);  // throws InputError naming --gradients
-// Whether the caster leaps through the regions of one classification (PC, ACD, EACD).
-inline bool leapsThroughRegions(Caster c) { return c == Caster::PC || c == Caster::ACD || c == Caster::EACD; }
+// Whether the caster leaps through the regions of one classification (PC, ACD, EACD; hier's regions of blocks).
+inline bool leapsThroughRegions(Caster c) {
+    return c == Caster::PC || c == Caster::ACD || c == Caster::EACD || c == Caster::Hier;
+}
 
 struct ViewParams {
     Projection projection = Projection::Orthographic;

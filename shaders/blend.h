@@ -2,7 +2,8 @@
 // reads this file in double, the casters in float (shared_language.h). A ray folds each sample's scalar into a
 // running value (the largest, the smallest, the sum) or, for the iso-surface, into the side of the iso-value it lies
 // on; the blocks caster leaps over a block of the volume whenever the block's scalar range (its voxels and their
-// trilinear footprints: render/block_extrema.h) shows that none of its samples can change the ray's result.
+// trilinear footprints: render/block_extrema.h) shows that none of its samples can change the ray's result. The
+// block boxes are the hier caster's too (composite, docs/ALGORITHMS.md section 10).
 #ifndef VR_BLEND_H
 #define VR_BLEND_H
 
@@ -61,6 +62,12 @@ VR_FUNCTION uint probeSample(int i, uint kCount) { return uint(i + 1) * kCount /
 VR_FUNCTION int blockExtent(int v, int sign, int size) {
     int first = v & ~(size - 1);
     return sign > 0 ? first + size - v : v - first + 1;
+}
+
+// The hier caster (docs/ALGORITHMS.md section 10): the box extent along one axis from voxel v to the far face of a
+// box of `blocks` blocks of 2^shift voxels, the first of them v's own, in the direction `sign`.
+VR_FUNCTION int blockBoxExtent(int v, int sign, int shift, int blocks) {
+    return blockExtent(v, sign, 1 << shift) + ((blocks - 1) << shift);
 }
 
 #ifdef __cplusplus

@@ -36,4 +36,13 @@ ivec3 fieldTexel(ivec3 v, int slot) {
     return ivec3(t.xy, slot * tile.imageDims.z + t.z);
 }
 
+// Texel of the hier field's block of 2^shift voxels that holds global voxel v, in slab `slot` of this brick's image
+// of the blocks its images' voxels touch (volrender/vulkan/gpu_volume.cpp: brickBlocks), octants stacked along z.
+ivec3 blockTexel(ivec3 v, int slot, int shift) {
+    ivec3 lo = tile.imageLo.xyz >> shift;
+    int depth = ((tile.imageLo.z + tile.imageDims.z - 1) >> shift) - lo.z + 1;
+    ivec3 t = (v >> shift) - lo;
+    return ivec3(t.xy, slot * depth + t.z);
+}
+
 #endif

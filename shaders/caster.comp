@@ -278,8 +278,8 @@ vec3 sampleNormal(Footprint fp, ivec3 v) {
     return normalOf(TRILINEAR ? footprintGradient(fp) : voxelGradient(v));
 }
 
-// A leap from sample k (voxel v) to the far faces of v's box of extents ext in the ray's octant (ACD, EACD, blocks):
-// the samples it wants without and with the margin of docs/ALGORITHMS.md section 8, and the box.
+// A leap from sample k (voxel v) to the far faces of v's box of extents ext in the ray's octant (ACD, EACD, blocks,
+// hier): the samples it wants without and with the margin of docs/ALGORITHMS.md section 8, and the box.
 struct BoxLeap {
     float wanted, wantedWithMargin;
     VoxelBox box;
@@ -370,7 +370,7 @@ void main() {
     vec3 toEye = -direction;
     vec3 toLight = params.light.w != 0.0 ? params.light.xyz : toEye;
 
-    bool missingOctant = (CASTER == kACD || CASTER == kEACD) && slot < 0 && kCount > 0u;
+    bool missingOctant = (CASTER == kACD || CASTER == kEACD || CASTER == kHier) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
     RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u,
                                               vec2(kInfinity))
@@ -466,6 +466,21 @@ void main() {
             wanted = b.wanted;
             wantedWithMargin = b.wantedWithMargin;
             box = b.box;
+        } else if (CASTER == kHier) {
+            // The code of v's block in the ray's octant; a mixed block steps one sample, a homogeneous one leaps to
+            // the far faces of its box of blocks.
+            int shift = params.hierBlockShift;
+            uint code = imageLoad(field16, blockTexel(v, slot, shift)).r;
+            if ((code & kHomogeneousBlock) != 0u) {
+                ivec3 blocks = decodeExtents(uvec4(code));
+                ivec3 ext = ivec3(blockBoxExtent(v.x, octantSign(oct, 0), shift, blocks.x),
+                                  blockBoxExtent(v.y, octantSign(oct, 1), shift, blocks.y),
+                                  blockBoxExtent(v.z, octantSign(oct, 2), shift, blocks.z));
+                BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
+                wanted = b.wanted;
+                wantedWithMargin = b.wantedWithMargin;
+                box = b.box;
+            }
         }
         // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count; the
         // blocks caster's samples here are one each.

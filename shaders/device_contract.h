@@ -55,7 +55,10 @@ VR_CONSTANT int kSpecIdBlend = 7;        // one of the blends below
 VR_CONSTANT int kSpecIdLabels = 8;       // one of the label types below: which label image the casters read
 VR_CONSTANT int kSpecIdPixelList = 9;    // bool: cast the pixels of the list (kBindingPixelList), not a tile's
 VR_CONSTANT int kSpecIdStoredGradients = 10;  // bool: shade by the stored gradients (kBindingGradients)
-VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4;
+VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4, kHier = 5;
+// The hierarchical EACD's block codes (core/distance_fields.h BlockEACD): log16 extents in blocks, this bit set where
+// the block is homogeneous (0: a mixed block, stepped sample by sample).
+VR_CONSTANT uint kHomogeneousBlock = 0x8000u;
 // What a ray makes of its samples (render/render_settings.h Blend, in its order; shaders/blend.h).
 VR_CONSTANT int kBlendComposite = 0, kBlendMIP = 1, kBlendMinIP = 2, kBlendAverage = 3, kBlendIso = 4;
 VR_CONSTANT int kExact = 0, kLog16 = 1, kJoint8 = 2;  // how EACD extents are stored (core/extent_code.h)
@@ -129,6 +132,7 @@ struct CasterParams {
     int opaqueValues;    // 1: MIP, MinIP and average show their value's colour opaque (RenderSettings::opaqueValues)
     float frustumShift;  // Camera::shift: an off-axis (stereo) eye's horizontal window offset, 0 otherwise
     int gradientExponentBase;  // the stored gradients' base exponent (gradient_code.h)
+    int hierBlockShift;        // the hier caster: its blocks' edge is 1 << hierBlockShift voxels
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -189,6 +193,7 @@ static_assert(offsetof(CasterParams, labelLastEntry) == 424);
 static_assert(offsetof(CasterParams, opaqueValues) == 428);
 static_assert(offsetof(CasterParams, frustumShift) == 432);
 static_assert(offsetof(CasterParams, gradientExponentBase) == 436);
+static_assert(offsetof(CasterParams, hierBlockShift) == 440);
 static_assert(sizeof(CasterParams) == 448);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);

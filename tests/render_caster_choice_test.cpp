@@ -183,13 +183,35 @@ TEST(RenderCasterChoice, BeforeBuildingPrimitiveWinsUntilItsViewsCostMoreThanThe
     d.pixels = 512 * 512;
     const std::size_t voxels = 256 * 256 * 128;  // about 1 s to segment and build at 120 ns per voxel
     // One view of 100 iterations per pixel: 512^2 x (40 + 100 x 10) ns = 273 ms.
-    const CasterChoice one = chooseBeforeBuilding(100, d, voxels, calibration);
+    const CasterChoice one = chooseBeforeBuilding({100, {}}, d, voxels, calibration);
     EXPECT_EQ(one.caster, Caster::Primitive);
     for (const char* part : {"1 view(s)", "273 ms", "100.0 iterations", "1007 ms"})
         EXPECT_NE(one.reason.find(part), std::string::npos) << one.reason;
     d.views.assign(4, d.views.front());  // 1090 ms of primitive frames
-    EXPECT_EQ(chooseBeforeBuilding(100, d, voxels, calibration).caster, Caster::EACD);
-    EXPECT_EQ(chooseBeforeBuilding(10, d, voxels, calibration).caster, Caster::Primitive);  // mostly air
+    EXPECT_EQ(chooseBeforeBuilding({100, {}}, d, voxels, calibration).caster, Caster::EACD);
+    EXPECT_EQ(chooseBeforeBuilding({10, {}}, d, voxels, calibration).caster, Caster::Primitive);  // mostly air
+}
+
+// With the hier field probed: hier wherever its views cost less than the primitive caster's and than EACD's build
+// and views; EACD over a long orbit, whose views at fewer iterations win its build back.
+TEST(RenderCasterChoice, BeforeBuildingHierWinsUnlessAnOrbitIsLong) {
+    const CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", ""};
+    CasterDemand d = ortho();
+    d.pixels = 512 * 512;
+    const std::size_t voxels = 256 * 256 * 128;
+    // The hier field may pay once the views cost more than its build (12 ns per voxel: 101 ms).
+    EXPECT_TRUE(hierMayPay(100, d, voxels, calibration));
+    EXPECT_FALSE(hierMayPay(2, d, voxels, calibration));
+    // One view: 512^2 x (40 + 10 x 20) ns = 63 ms with hier, 273 ms without a field.
+    const CasterChoice one = chooseBeforeBuilding({100, 10.0}, d, voxels, calibration);
+    EXPECT_EQ(one.caster, Caster::Hier);
+    for (const char* part : {"273 ms", "hier field, built, 63 ms (10.0 iterations", "1007 ms"})
+        EXPECT_NE(one.reason.find(part), std::string::npos) << one.reason;
+    // Hier leaping no better than primitive stepping: primitive.
+    EXPECT_EQ(chooseBeforeBuilding({10, 10.0}, d, voxels, calibration).caster, Caster::Primitive);
+    // 200 views: EACD's build is won back by its fewer iterations.
+    d.views.assign(200, d.views.front());
+    EXPECT_EQ(chooseBeforeBuilding({100, 10.0}, d, voxels, calibration).caster, Caster::EACD);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // The first correctness test of every caster (docs/ALGORITHMS.md section 5): with T_o = T_a = 0, nearest and
-// trilinear sampling and view-independent shading (headlight), PC, ACD and EACD render the primitive caster's
+// trilinear sampling and view-independent shading (headlight), PC, ACD, EACD and hier render the primitive caster's
 // image, on every real dataset and on phantoms, at axis-aligned, diagonal and perspective views; and they need
 // fewer fetches.
 #include <gtest/gtest.h>
@@ -37,8 +37,11 @@ double meanOf(const std::vector<uint32_t>& v) {
     return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size());
 }
 
+// Mean iterations per ray, indexed by Caster.
+using MeanIterations = std::array<double, int(Caster::Hier) + 1>;
+
 // Renders every caster and compares with the primitive one; returns the mean iterations per caster.
-std::array<double, 4> expectCastersEqual(const PreparedVolume& p, const ViewParams& v, RenderSettings settings,
+MeanIterations expectCastersEqual(const PreparedVolume& p, const ViewParams& v, RenderSettings settings,
                                          const std::string& what) {
     const Camera camera = Camera::fit(p.grid(), v);
     const std::string where = what + " view az " + std::to_string(v.azimuthDeg) + " el " +
@@ -46,9 +49,9 @@ std::array<double, 4> expectCastersEqual(const PreparedVolume& p, const ViewPara
                               (v.projection == Projection::Perspective ? " perspective" : " ortho");
     settings.caster = Caster::Primitive;
     const RenderResult primitive = renderCpu(p, camera, settings);
-    std::array<double, 4> mean{meanOf(primitive.iterations), 0, 0, 0};
+    MeanIterations mean{meanOf(primitive.iterations)};
     const uint64_t primitiveSamples = std::accumulate(primitive.samples.begin(), primitive.samples.end(), uint64_t(0));
-    for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
+    for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD, Caster::Hier}) {
         settings.caster = c;
         const RenderResult r = renderCpu(p, camera, settings);
         EXPECT_LT(maxAbsDifference(primitive.image, r.image), kTolerance) << casterName(c) << " on " << where;
@@ -68,17 +71,19 @@ std::array<double, 4> expectCastersEqual(const PreparedVolume& p, const ViewPara
 }
 
 // Mean fetches per ray over all views: ACD and EACD take no more than PC, EACD no more than ACD (with a
-// little slack: paths differ once the leaps differ).
-void expectFewerIterations(const std::array<double, 4>& mean, const std::string& what) {
+// little slack: paths differ once the leaps differ); hier no more than primitive.
+void expectFewerIterations(const MeanIterations& mean, const std::string& what) {
     std::cout << what << ": mean iterations per ray primitive " << mean[0] << ", pc " << mean[1] << ", acd "
-              << mean[2] << ", eacd " << mean[3] << "\n";
+              << mean[2] << ", eacd " << mean[3] << ", hier " << mean[int(Caster::Hier)] << "\n";
     EXPECT_LE(mean[1], mean[0]) << what;
     EXPECT_LE(mean[2], 1.05 * mean[1]) << what;
     EXPECT_LE(mean[3], 1.02 * mean[2]) << what;
+    EXPECT_LE(mean[int(Caster::Hier)], mean[0]) << what;
 }
 
-std::array<double, 4> sum(const std::array<double, 4>& a, const std::array<double, 4>& b) {
-    return {a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3]};
+MeanIterations sum(MeanIterations a, const MeanIterations& b) {
+    for (std::size_t i = 0; i < a.size(); ++i) a[i] += b[i];
+    return a;
 }
 
 using test::datasetTransferFunction;
@@ -97,7 +102,7 @@ TEST(RenderCastersEqual, EveryRealDataset) {
     for (const auto& row : rows) {
         const Volume volume = centralBlock(test::loadDataset(row), 96);
         const PreparedVolume p = prepare(volume, datasetTransferFunction(row.tf), true);
-        std::array<double, 4> total{};
+        MeanIterations total{};
         for (const ViewParams& v : views(48)) total = sum(total, expectCastersEqual(p, v, settings, row.file));
         expectFewerIterations(total, row.file);
     }
@@ -134,7 +139,7 @@ TEST(RenderCastersEqual, PhantomsWithShadingStepsAndErt) {
     for (const Phantom& ph : phantoms()) {
         const PreparedVolume shaded = prepare(ph.volume, datasetTransferFunction(ph.tf), true);
         const PreparedVolume unshaded = prepare(ph.volume, datasetTransferFunction(ph.tf), false);
-        std::array<double, 4> total{};
+        MeanIterations total{};
         // dt smaller than, not dividing, and larger than a voxel; without early termination too.
         for (double step : {0.37, 1.0, 2.5})
             for (const ViewParams& v : views(40)) {

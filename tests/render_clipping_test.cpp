@@ -114,7 +114,7 @@ TEST(RenderClipping, LeapingCastersEqualPrimitive) {
                 s.caster = Caster::Primitive;
                 const RenderResult primitive = renderCpu(p, cam, s);
                 EXPECT_GT(maxAbsDifference(primitive.image, whole.image), 0.01);
-                for (Caster caster : {Caster::PC, Caster::ACD, Caster::EACD}) {
+                for (Caster caster : {Caster::PC, Caster::ACD, Caster::EACD, Caster::Hier}) {
                     s.caster = caster;
                     const RenderResult r = renderCpu(p, cam, s);
                     EXPECT_LT(maxAbsDifference(r.image, primitive.image), 1e-6) << casterName(caster);

@@ -55,7 +55,7 @@ TEST(RenderJitter, LeapingCastersEqualJitteredPrimitive) {
         const RenderResult primitive = renderCpu(p, camera, s);
         EXPECT_GT(maxAbsDifference(plain.image, primitive.image), 1e-3) << "jitter changed nothing";
         EXPECT_EQ(maxAbsDifference(renderCpu(p, camera, s).image, primitive.image), 0) << "not the same every run";
-        for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
+        for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD, Caster::Hier}) {
             s.caster = c;
             EXPECT_LT(maxAbsDifference(renderCpu(p, camera, s).image, primitive.image), 1e-6)
                 << casterName(c) << (trilinear ? " trilinear" : " nearest");

@@ -38,7 +38,7 @@ Labelled headCt() {
 }
 
 PreparedVolume prepare(const Labelled& l, bool trilinear, double to = 0, double ta = 0) {
-    return test::prepareVolume(l.volume, l.tf, {to, ta, true, trilinear}, test::kAllFields, l.labels);
+    return test::prepareVolume(l.volume, l.tf, {to, ta, true, trilinear}, kRegionFields, l.labels);
 }
 
 TEST(RenderLabels, LeapingCastersEqualPrimitiveAtThresholdsZero) {
@@ -89,7 +89,7 @@ TEST(RenderLabels, ALabelShowsItsOwnColourAndOpacity) {
             for (int x = 6; x < 14; ++x) labels.label[linearIndex(v.grid.dims, x, y, z)] = 1;
     labels.rgba = {{0, 0, 0, 0}, {255, 0, 0, 255}};
     for (bool trilinear : {false, true}) {
-        const PreparedVolume p = test::prepareVolume(v, clear, {0, 0, true, trilinear}, test::kAllFields, labels);
+        const PreparedVolume p = test::prepareVolume(v, clear, {0, 0, true, trilinear}, kRegionFields, labels);
         const Camera camera = Camera::fit(p.grid(), test::orbitView(0, 0, 21, 21));
         RenderSettings s = test::renderSettings(Caster::Primitive, false, trilinear);
         s.background = {0, 0, 1};

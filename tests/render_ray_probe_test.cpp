@@ -109,7 +109,7 @@ TEST(RenderRayProbe, PrimitiveProbeOfFewPixelsMatchesWholeViews) {
             const std::vector<Camera> cameras = Camera::orbit(head().grid(), view, 3);
             double measured = 0;
             for (const Camera& camera : cameras) measured += mean(renderCpu(head(), camera, s).iterations) / 3;
-            EXPECT_NEAR(probePrimitiveIterations(head(), cameras, s), measured, 0.15 * measured)
+            EXPECT_NEAR(probeIterations(head(), cameras, s), measured, 0.15 * measured)
                 << "azimuth " << view.azimuthDeg << (trilinear ? ", trilinear" : ", nearest");
         }
     }

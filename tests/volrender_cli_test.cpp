@@ -92,7 +92,7 @@ TEST(VolrenderCli, HelpAndDeviceList) {
     for (const char* flag :
          {"--caster", "--calibration", "--size", "--stats", "--heatmap", "--views", "--cpu", "--trilinear", "--nearest",
           "--tf", "--window", "--level", "--list-presets", "--up", "--center", "--zoom", "--fps", ".mp4", "--clip",
-          "--crop", "--blend", "--iso"})
+          "--crop", "--blend", "--iso", "hier"})
         EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
     const test::CliOutcome list = volrender("--list-devices");
     EXPECT_EQ(list.status, 0);
@@ -176,14 +176,46 @@ TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
+// The hier caster in one command builds its field from the scalars without segmenting any voxel, uploads a field
+// of blocks, and renders what it renders from a prepared file of the same volume (its field built at load); at
+// thresholds 0 the primitive caster's image.
+TEST(VolrenderCli, HierRendersWithoutSegmentingHereAndFromAPreparedFile) {
+    const fs::path dir = test::scratchDir("volrender_cli_hier");
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    const std::string volume = q(test::datasetsDir() / e.file), tf = " --tf " + q(test::datasetsDir() / e.tf);
+    const std::string view = " --size 48x40 --azimuth 30 --elevation 20";
+    const test::CliOutcome one = volrender(volume + tf + view + " --caster hier -o " + q(dir / "one.exr") +
+                                           " --stats " + q(dir / "one.json"));
+    ASSERT_EQ(one.status, 0) << one.err;
+    const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "one.json"));
+    EXPECT_EQ(stats["settings"]["caster"], "hier");
+    EXPECT_GE(stats["prepareSeconds"]["hier"].get<double>(), 0.0);
+    EXPECT_FALSE(stats["prepareSeconds"].contains("segment"));
+    // 16 x 16 x 24 blocks of 4^3 voxels, 2 bytes each in the view's one octant.
+    EXPECT_EQ(stats["views"][0]["uploadedBytes"]["hier"].get<std::size_t>(), 16u * 16 * 24 * 2);
+
+    ASSERT_EQ(test::runVolprep(volume + tf + " --fields eacd -o " + q(dir / "head.vprep")).status, 0);
+    const test::CliOutcome file = volrender(q(dir / "head.vprep") + view + " --caster hier -o " + q(dir / "file.exr"));
+    ASSERT_EQ(file.status, 0) << file.err;
+    EXPECT_EQ(maxAbsDifference(readImage(dir / "one.exr"), readImage(dir / "file.exr")), 0.0f);
+
+    const std::string exact = volume + tf + view + " --to 0 --ta 0 -q -o ";
+    ASSERT_EQ(volrender(exact + q(dir / "hier0.exr") + " --caster hier").status, 0);
+    ASSERT_EQ(volrender(exact + q(dir / "primitive0.exr") + " --caster primitive").status, 0);
+    EXPECT_LT(maxAbsDifference(readImage(dir / "hier0.exr"), readImage(dir / "primitive0.exr")), 1e-4);
+}
+
 // --caster auto on a volume prepared here decides between classifying and segmenting: one small view costs less cast
-// without a field than the field would take to build, so nothing is segmented; an orbit of larger views pays for it.
+// without a field than even the hier field would take to build, so nothing is built; an orbit of larger views pays
+// for the hier field (no segmentation); a long orbit pays for segmenting and EACD's field, whose views take fewer
+// iterations.
 TEST(VolrenderCli, AutoDecidesBeforeBuildingAField) {
     const fs::path dir = test::scratchDir("volrender_cli_auto_here");
     const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
     const std::string volume = q(test::datasetsDir() / e.file) + " --tf " + q(test::datasetsDir() / e.tf);
     for (const auto& [view, caster] : {std::pair{" --size 48x40", "primitive"},
-                                       std::pair{" --size 256x256 --views 4", "eacd"}}) {
+                                       std::pair{" --size 256x256 --views 4", "hier"},
+                                       std::pair{" --size 256x256 --views 16", "eacd"}}) {
         SCOPED_TRACE(view);
         const test::CliOutcome r = volrender(volume + view + " --elevation 20 -o " + q(dir / "v.png") + " --stats " +
                                              q(dir / "v.json"));
@@ -191,6 +223,7 @@ TEST(VolrenderCli, AutoDecidesBeforeBuildingAField) {
         const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "v.json"));
         EXPECT_EQ(stats["settings"]["caster"], caster);
         EXPECT_EQ(stats["prepareSeconds"].contains("segment"), std::string(caster) == "eacd");
+        EXPECT_EQ(stats["prepareSeconds"].contains("hier"), std::string(caster) == "hier");
         const std::string why = stats["settings"]["casterChoice"];
         EXPECT_NE(why.find("cast without a field take an estimated"), std::string::npos) << why;
         EXPECT_NE(r.err.find("--caster auto chose " + std::string(caster)), std::string::npos) << r.err;

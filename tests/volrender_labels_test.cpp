@@ -70,6 +70,10 @@ TEST(VolrenderLabels, RendersAVtkLabelMapHereAndThroughVolprep) {
 
     const std::string again = q(prepared) + " --labels " + q(h.labels) + " -o " + q(h.dir / "again.png");
     test::expectRefusal(test::runVolrender(again), "volrender", again, {"prepared file holds its label map", "--labels"});
+    // The hier caster's blocks are classified by the scalars alone: a label map is refused, here and from a file.
+    for (const std::string& hier : {q(h.volume) + h.flags + labelled + " --caster hier -o " + q(h.dir / "hier.png"),
+                                    q(prepared) + " --size 40x40 --caster hier -o " + q(h.dir / "hier.png")})
+        test::expectRefusal(test::runVolrender(hier), "volrender", hier, {"hier caster does not take a label map"});
 
     r = test::runVolrender(q(h.volume) + h.flags + labelled + " -o " + q(device));
     ASSERT_EQ(r.status, 0) << r.err;

@@ -196,7 +196,7 @@ void expectCastersEqualPrimitive(const std::string& name, const PreparedVolume& 
     for (const ViewParams& vp : views) {
         const Camera cam = Camera::fit(p.grid(), vp);
         const RenderResult primitive = renderer().render(p, cam, renderSettings(Caster::Primitive));
-        for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
+        for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD, Caster::Hier}) {
             SCOPED_TRACE(name + " " + std::string(casterName(c)) + " az " + std::to_string(vp.azimuthDeg) +
                          " el " + std::to_string(vp.elevationDeg));
             const RenderResult r = renderer().render(p, cam, renderSettings(c));
@@ -226,12 +226,13 @@ TEST(VulkanCasters, LeapingCutsIterationsOnCtDatasets) {
         const Dataset d = loadDataset(prefix, 96);
         const PreparedVolume p = prepare(d.volume, d.tf, 0.05, 20);
         const Camera cam = Camera::fit(p.grid(), view(30, 20));
-        double it[4];
+        double it[int(Caster::Hier) + 1] = {};
         for (Caster c : kCasters) it[int(c)] = meanIterations(renderer().render(p, cam, renderSettings(c)));
         SCOPED_TRACE(d.name);
         EXPECT_GT(it[0], it[1]);
         EXPECT_GT(it[1], it[2]);
         EXPECT_LE(it[3], it[2]);
+        EXPECT_LT(it[int(Caster::Hier)], it[0]);
     }
     expectNoValidationErrors();
 }

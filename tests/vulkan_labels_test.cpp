@@ -40,7 +40,7 @@ Labelled headCt(bool wide) {
 }
 
 PreparedVolume prepare(const Labelled& l, bool trilinear) {
-    return test::prepareVolume(l.volume, l.tf, {0, 0, true, trilinear}, test::kAllFields, l.labels);
+    return test::prepareVolume(l.volume, l.tf, {0, 0, true, trilinear}, kRegionFields, l.labels);
 }
 
 TEST(VulkanLabels, MatchTheCpuReferenceAndLeapLikePrimitive) {

@@ -105,8 +105,8 @@ TEST(VulkanStereo, StructureOnlyTheRightEyeSeesIsRecast) {
 TEST(VulkanStereo, EveryCasterGivesThePairWithoutReuse) {
     const StereoPair pair = occludedPair(40, 32);
     VulkanRenderer& renderer = test::vulkanRenderer(16);
-    const GpuVolume volume = renderer.upload(occludedBlock(), {{Caster::Primitive, Caster::PC, Caster::ACD,
-                                                                Caster::EACD}, kAllOctants});
+    const GpuVolume volume =
+        renderer.upload(occludedBlock(), {{std::begin(test::kCasters), std::end(test::kCasters)}, kAllOctants});
     for (Caster caster : test::kCasters) {
         const RenderSettings s = test::renderSettings(caster, false, false);
         expectPairsAgree(renderer.renderStereo(volume, pair, s, true), renderer.renderStereo(volume, pair, s, false),

@@ -235,7 +235,7 @@ TEST(VulkanUploads, ShadedLeapingOverRegionsMadeWithoutNormalsIsRefused) {
     const Volume v = shellsPhantom({12, 10, 8});
     const PreparedVolume p = test::prepareVolume(v, phantomTf(), {0.02, 10, false, false});
     const Camera cam = Camera::fit(v.grid, view(30, 20));
-    const GpuVolume volume = whole().upload(p, {{kCasters, kCasters + 4}, viewOctants(cam)});
+    const GpuVolume volume = whole().upload(p, {{std::begin(kCasters), std::end(kCasters)}, viewOctants(cam)});
     for (Caster c : {Caster::PC, Caster::ACD, Caster::EACD}) {
         EXPECT_THROW(whole().render(volume, cam, renderSettings(c, true)), InputError) << casterName(c);
         EXPECT_THROW(whole().render(p, cam, renderSettings(c, true)), InputError) << casterName(c);
@@ -278,11 +278,14 @@ TEST(VulkanUploads, OneUploadServesAnOrbitOfEveryCaster) {
         octants |= viewOctants(cameras.back());
     }
     ASSERT_EQ(std::popcount(octants), 4);
-    const GpuVolume volume = whole().upload(p, {{kCasters, kCasters + 4}, octants});
+    const GpuVolume volume = whole().upload(p, {{std::begin(kCasters), std::end(kCasters)}, octants});
     ASSERT_EQ(v.sourceType, ScalarType::UInt8);
-    const Bytes all = always(p, {{"pc", voxels}, {"acd", voxels * 4}, {"eacd", voxels * 16}});
+    // The hier field: 2 bytes per block of 4^3 voxels and octant.
+    const std::size_t blocks = voxelCount(p.fields.hier.blocks);
+    EXPECT_EQ(blocks, 6u * 5 * 5);
+    const Bytes all = always(p, {{"pc", voxels}, {"acd", voxels * 4}, {"eacd", voxels * 16}, {"hier", blocks * 8}});
     EXPECT_EQ(bytesByName(volume.uploads()), all);
-    EXPECT_EQ(volume.uploadedBytes(), voxels * (1 + 1 + 4 + 16) + p.classification.table.size() * 16);
+    EXPECT_EQ(volume.uploadedBytes(), voxels * (1 + 1 + 4 + 16) + blocks * 8 + p.classification.table.size() * 16);
 
     for (const Camera& cam : cameras)
         for (Caster c : kCasters)
@@ -331,6 +334,12 @@ void expectBrickFigures(const GpuVolume& volume, const PreparedVolume& p, int sl
             EXPECT_EQ(u.bytes, p.classification.table.size() * 16);
             continue;
         }
+        if (u.name == "hier") {  // 2 bytes a block that the brick's images touch, per octant
+            const BrickBlocks blocks = brickBlocks(bricks[u.brick].imageLo, bricks[u.brick].imageDims,
+                                                   p.fields.hier.blockShift);
+            EXPECT_EQ(u.bytes, 2 * slots * texels(blocks.count)) << "hier brick " << u.brick;
+            continue;
+        }
         const std::size_t n = texels(bricks[u.brick].imageDims);
         const std::map<std::string, std::size_t> perTexel{{"scalars", scalarBytes(p.scalars.sourceType)},
                                                           {"pc", 1},
@@ -369,7 +378,7 @@ void expectSplitEqualsUnsplit(const std::string& name, const PreparedVolume& p) 
             }
     const unsigned inside = viewOctants(cameras.back().second);
     EXPECT_EQ(std::popcount(inside), 7);  // all but the one behind the eye
-    const GpuVolume volume = bricked().upload(p, {{kCasters, kCasters + 4}, inside});
+    const GpuVolume volume = bricked().upload(p, {{std::begin(kCasters), std::end(kCasters)}, inside});
     const Vec3i counts = volume.bricks().counts();
     EXPECT_GT(counts.x, 1);
     EXPECT_GT(counts.y, 1);

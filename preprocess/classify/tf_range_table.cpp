@@ -69,6 +69,8 @@ uint16_t TfRangeTable::entryAbove(float f) const {
     return uint16_t(w > 0 ? i + 1 : i);
 }
 
+bool TfRangeTable::clearEntries(uint16_t first, uint16_t last) const { return !(entries(first, last).opacityMax > 0); }
+
 bool TfRangeTable::alikeEntries(uint16_t first, uint16_t last, double threshold) const {
     const TfExtremes e = entries(first, last);
     if (!(e.opacityMax > 0)) return true;

@@ -30,6 +30,7 @@ public:
     uint16_t entryBelow(float f) const override;
     uint16_t entryAbove(float f) const override;
     bool alikeEntries(uint16_t first, uint16_t last, double threshold) const override;
+    bool clearEntries(uint16_t first, uint16_t last) const override;
 
     std::size_t size() const { return table_.opacity.size(); }
 

@@ -5,6 +5,7 @@
 
 #include "io/prepared_file.h"
 #include "preprocess/fields/build_fields.h"
+#include "preprocess/pipeline/hier_field.h"
 #include "preprocess/pipeline/prepared_statistics.h"
 #include "preprocess/pipeline/working_set.h"
 #include "preprocess/classify/label_colours.h"
@@ -116,9 +117,11 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
         classifiedWith_ = std::move(classifying);
     }
     if (options.classify.transferFunction) prepared_.meta.classification = options.classify.transferFunction->json;
-    // Regions that nothing reads are not made: no field asks for them and they are not kept.
+    // Regions that nothing reads are not made: no field asks for them and they are not kept (the hier field is
+    // built from the scalars).
     if (!options.fields && !options.keepRegions) last = std::min(last, PrepStage::Classify);
-    if (last >= PrepStage::Segment && segmentedWith_ != options.segmentation) {
+    const bool regionsRead = (options.fields & kRegionFields) || options.keepRegions;
+    if (last >= PrepStage::Segment && regionsRead && segmentedWith_ != options.segmentation) {
         run(PrepStage::Segment, [&](std::vector<StageTime>& times) {
             runStage("segment", times, [&] {
                 const ClassifiedVoxels voxels(prepared_.scalars, prepared_.classification, options.classify.normals,
@@ -134,14 +137,22 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
         segmentedWith_ = options.segmentation;
         prepared_.meta.segmentation = options.segmentation;
     }
-    const std::tuple<unsigned, ExtentCode, unsigned> fields{options.fields, options.eacdCode, options.octants};
+    const FieldsOptions fields{options.fields, options.eacdCode, options.octants, options.segmentation};
     if (last >= PrepStage::Fields && fieldsWith_ != fields) {
         run(PrepStage::Fields, [&](std::vector<StageTime>& times) {
-            prepared_.fields =
-                options.keepRegions
-                    ? buildTimedFields(prepared_.regions, options.fields, options.eacdCode, options.octants, times)
-                    : buildTimedFields(std::exchange(prepared_.regions, {}), options.fields, options.eacdCode,
-                                       options.octants, times);
+            if (options.fields & kRegionFields)
+                prepared_.fields =
+                    options.keepRegions
+                        ? buildTimedFields(prepared_.regions, options.fields, options.eacdCode, options.octants, times)
+                        : buildTimedFields(std::exchange(prepared_.regions, {}), options.fields, options.eacdCode,
+                                           options.octants, times);
+            if (options.fields & kFieldHier) {
+                prepared_.fields.dims = prepared_.grid().dims;
+                prepared_.meta.segmentation = options.segmentation;  // what the render checks ask of it
+                prepared_.fields.hier = runStage("hier", times, [&] {
+                    return buildHierarchicalEACD(prepared_, options.segmentation, options.octants);
+                });
+            }
         });
         fieldsWith_ = fields;
         if (!options.keepRegions) segmentedWith_.reset();  // the regions are gone: segment again when asked

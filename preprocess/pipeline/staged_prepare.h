@@ -22,7 +22,7 @@ namespace vr {
 struct PrepareOptions {
     ClassifyParams classify;           // the transfer function
     SegmentationParams segmentation;   // T_o, T_a, useNormals, trilinear
-    unsigned fields = kFieldPC | kFieldACD | kFieldEACD;
+    unsigned fields = kFieldPC | kFieldACD | kFieldEACD;  // kFieldHier too where asked (a render's: not in a file)
     ExtentCode eacdCode = kDefaultExtentCode;  // EACD extents rounded down to this code (core/extent_code.h)
     unsigned octants = kAllOctants;  // ACD and EACD octants to build: all for a file, a render's views' otherwise
     std::size_t memoryLimit = 0;     // bytes the first preparation may need (working_set.h); 0: what is available
@@ -86,7 +86,9 @@ private:
     // The options each stage last ran with; empty when it has no valid result.
     std::optional<ClassifyParams> classifiedWith_;  // as far as they classify (the TF's name and text left out)
     std::optional<SegmentationParams> segmentedWith_;
-    std::optional<std::tuple<unsigned, ExtentCode, unsigned>> fieldsWith_;  // kinds, EACD code, octants
+    // Kinds, EACD code, octants and, for the hier field, which reads no regions, the segmentation's parameters.
+    using FieldsOptions = std::tuple<unsigned, ExtentCode, unsigned, SegmentationParams>;
+    std::optional<FieldsOptions> fieldsWith_;
     std::vector<StageTime> loadTimes_;                           // of loading the volume, where it was loaded
     std::array<std::vector<StageTime>, kPrepStages> times_;      // of the run behind each stage's result
     std::vector<StageTime> writeTimes_;                          // of writing the current result

@@ -15,8 +15,9 @@ namespace vr {
 
 std::size_t preparationBytes(const GridGeometry& grid, const PrepareOptions& options) {
     const std::size_t octants = std::size_t(std::popcount(options.octants & kAllOctants));
-    // The scalars, and the region labels unless none are made (no field and none kept: a primitive render).
-    if (!options.fields && !options.keepRegions) return grid.voxels() * sizeof(float);
+    // The scalars, and the region labels unless none are made (no field over them and none kept: a primitive or
+    // hier render; the hier field's blocks take a few bytes per 64 voxels).
+    if (!(options.fields & kRegionFields) && !options.keepRegions) return grid.voxels() * sizeof(float);
     const std::size_t held = sizeof(float) + sizeof(uint32_t);
     // Segmentation classifies each voxel as it reads it; post-classified growth keeps each voxel's footprint range,
     // its normal class (the normal's bits at T_a = 0) and whether normals mix around it.
@@ -27,7 +28,7 @@ std::size_t preparationBytes(const GridGeometry& grid, const PrepareOptions& opt
             segment += options.segmentation.angleThresholdDeg == 0 ? 12 : 4;
     }
     std::size_t fields = 0;
-    if (options.fields != 0) fields += 6;  // axial runs, one byte per axis and sign (an upper bound: those read)
+    if (options.fields & kRegionFields) fields += 6;  // axial runs, one byte per axis and sign (an upper bound: those read)
     if (options.fields & (kFieldACD | kFieldEACD | kFieldPC))
         fields += (options.fields & kFieldPC) ? kOctants : octants;  // ACD, kept or built for PC and EACD
     if (options.fields & kFieldPC) fields += 1;

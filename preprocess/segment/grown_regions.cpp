@@ -14,11 +14,8 @@
 namespace vr {
 namespace {
 
-constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
-constexpr uint32_t kBorder = kUnset - 1;  // a border voxel before its label: joins no region
-
-// Labels kBorder where a voxel can join no region: its own footprint spreads beyond T_o, or normals mix around it
-// (normals in use); kUnset elsewhere.
+// Labels kBorderCell where a voxel can join no region: its own footprint spreads beyond T_o, or normals mix around it
+// (normals in use); kUnsetCell elsewhere.
 void markBorderVoxels(const Vec3i& dims, const std::vector<EntryRange>& footprints,
                       const ClassificationSpread& spread, double threshold, const RegionKeyer& keyer,
                       const ClassifiedVoxels& voxels, std::vector<uint32_t>& label) {
@@ -41,46 +38,32 @@ void markBorderVoxels(const Vec3i& dims, const std::vector<EntryRange>& footprin
                 last = f;
                 lastAlike = spread.alikeEntries(f.lo, f.hi, threshold);
             }
-            label[i] = mixed[i] || !lastAlike ? kBorder : kUnset;
+            label[i] = mixed[i] || !lastAlike ? kBorderCell : kUnsetCell;
         }
     });
 }
 
 }  // namespace
 
-void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const SegmentationParams& params,
-                               const std::vector<float>& scalars, const ClassificationSpread& spread, Regions& regions) {
-    const Vec3i d = voxels.grid().dims;
-    const std::size_t n = voxelCount(d);
-    if (n >= kBorder)
-        throw InputError("segmentation: " + std::to_string(n) + " voxels; at most 2^32 - 2 are supported");
-    if (scalars.size() != n) throw InputError("segmentation: the scalars do not match the classified volume");
-    const RegionKeyer keyer(voxels, params);  // checks the thresholds
-    const std::vector<EntryRange> footprints = footprintRanges(d, scalars, spread);
-    const double threshold = params.opacityThreshold;
-    regions.dims = d;
-    regions.label.resize(n);
-    std::vector<uint32_t>& label = regions.label;
-    markBorderVoxels(d, footprints, spread, threshold, keyer, voxels, label);
-
+uint32_t growRegions(const Vec3i& d, const std::vector<EntryRange>& ranges, const ClassificationSpread& spread,
+                     double threshold, std::vector<uint32_t>& label) {
+    const std::size_t n = label.size();
     const std::size_t nx = std::size_t(d.x), slice = nx * std::size_t(d.y);
     std::vector<uint32_t> pending;  // joined, neighbours not yet considered
     uint32_t count = 0;
-    // Every voxel before the seed is labelled, so the seed is its region's first voxel: labels in first-voxel order.
+    // Every cell before the seed is labelled, so the seed is its region's first cell: labels in first-cell order.
     for (std::size_t seed = 0; seed < n; ++seed) {
-        if (label[seed] < kBorder) continue;
-        const bool border = label[seed] == kBorder;
+        if (label[seed] < kBorderCell) continue;
+        const bool border = label[seed] == kBorderCell;
         const uint32_t id = count++;
         label[seed] = id;
         if (border) continue;
-        EntryRange range = footprints[seed];
-        // The range only widens as voxels join, so a voxel refused once would be refused again: each voxel is
-        // asked at most once per neighbour that joins a region. Normals and labels need no test: a voxel that is
-        // not a border voxel has the normal key and the label of all its neighbours, so the whole region has the
-        // seed's.
+        EntryRange range = ranges[seed];
+        // The range only widens as cells join, so a cell refused once would be refused again: each cell is asked at
+        // most once per neighbour that joins a region.
         const auto consider = [&](std::size_t u) {
-            if (label[u] != kUnset) return;
-            const EntryRange f = footprints[u];
+            if (label[u] != kUnsetCell) return;
+            const EntryRange f = ranges[u];
             if (f.lo < range.lo || f.hi > range.hi) {
                 const EntryRange wide{std::min(range.lo, f.lo), std::max(range.hi, f.hi)};
                 if (!spread.alikeEntries(wide.lo, wide.hi, threshold)) return;
@@ -103,7 +86,24 @@ void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const Segmentatio
             if (x + 1 < nx) consider(v + 1);
         }
     }
-    regions.count = count;
+    return count;
+}
+
+void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const SegmentationParams& params,
+                               const std::vector<float>& scalars, const ClassificationSpread& spread, Regions& regions) {
+    const Vec3i d = voxels.grid().dims;
+    const std::size_t n = voxelCount(d);
+    if (n >= kBorderCell)
+        throw InputError("segmentation: " + std::to_string(n) + " voxels; at most 2^32 - 2 are supported");
+    if (scalars.size() != n) throw InputError("segmentation: the scalars do not match the classified volume");
+    const RegionKeyer keyer(voxels, params);  // checks the thresholds
+    const std::vector<EntryRange> footprints = footprintRanges(d, scalars, spread);
+    regions.dims = d;
+    regions.label.resize(n);
+    markBorderVoxels(d, footprints, spread, params.opacityThreshold, keyer, voxels, regions.label);
+    // Normals and labels need no test as regions grow: a voxel that is not a border voxel has the normal key and the
+    // label of all its neighbours, so the whole region has the seed's.
+    regions.count = growRegions(d, footprints, spread, params.opacityThreshold, regions.label);
 }
 
 }  // namespace vr

@@ -31,6 +31,11 @@ void checkThreshold(double value, const char* what) {
 
 }  // namespace
 
+void checkThresholds(const SegmentationParams& params) {
+    checkThreshold(params.opacityThreshold, "opacity threshold T_o");
+    checkThreshold(params.angleThresholdDeg, "angle threshold T_a");
+}
+
 int cubeMapCellsPerEdge(double angleDeg) {
     if (angleDeg >= 180) return 0;
     return int(std::max(1.0, std::ceil(cellsPerEdgeFor(angleDeg))));
@@ -54,8 +59,7 @@ uint32_t cubeMapCell(const std::array<float, 3>& d, int cellsPerEdge) {
 }
 
 RegionKeyer::RegionKeyer(const ClassifiedVoxels& voxels, const SegmentationParams& params) : voxels_(voxels) {
-    checkThreshold(params.opacityThreshold, "opacity threshold T_o");
-    checkThreshold(params.angleThresholdDeg, "angle threshold T_a");
+    checkThresholds(params);
     opacityWidth_ = params.opacityThreshold >= kMinBinWidth ? params.opacityThreshold : 0.0;
     useNormals_ = params.useNormals && voxels.hasNormals();
     exactNormals_ = params.angleThresholdDeg == 0 || cellsPerEdgeFor(params.angleThresholdDeg) > kMaxCellsPerEdge;

@@ -41,6 +41,9 @@ uint32_t cubeMapCell(const std::array<float, 3>& direction, int cellsPerEdge);
 // A RegionKey in 64 bits where the thresholds bin every field (RegionKeyer::packs): equal packed keys <=> equal keys.
 using PackedKey = uint64_t;
 
+// Throws InputError naming the threshold where T_o or T_a is negative or NaN.
+void checkThresholds(const SegmentationParams& params);
+
 class RegionKeyer {
 public:
     // Keys of `voxels` (copied: a view whose volume or table must outlive the keyer). Throws InputError for a

@@ -4,6 +4,7 @@
 #include "preprocess/classify/label_colours.h"
 #include "preprocess/classify/tf_range_table.h"
 #include "preprocess/fields/build_fields.h"
+#include "preprocess/pipeline/hier_field.h"
 #include "preprocess/segment/segment.h"
 
 namespace vr::test {
@@ -27,6 +28,7 @@ PreparedVolume prepareVolume(const Volume& volume, const TransferFunction& tf, c
                         segmentation,
                         ClassifiedScalars{p.scalars.values, spread});
     p.fields = buildFields(p.regions, fields);
+    if (fields & kFieldHier) p.fields.hier = buildHierarchicalEACD(p, segmentation);
     return p;
 }
 

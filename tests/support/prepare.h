@@ -9,10 +9,11 @@
 
 namespace vr::test {
 
-inline constexpr unsigned kAllFields = kFieldPC | kFieldACD | kFieldEACD;
+inline constexpr unsigned kAllFields = kRegionFields | kFieldHier;
 
 // Classifies `volume` with `tf` (normals when segmentation.useNormals) and `labels` where given (their colours
-// classified), segments it with `segmentation` and builds `fields`; meta.source and meta.segmentation say so.
+// classified), segments it with `segmentation` and builds `fields` (the hier field as volrender builds it, from the
+// scalars); meta.source and meta.segmentation say so.
 PreparedVolume prepareVolume(const Volume& volume, const TransferFunction& tf, const SegmentationParams& segmentation,
                              unsigned fields = kAllFields, std::optional<LabelMap> labels = std::nullopt);
 

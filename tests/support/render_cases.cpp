@@ -15,6 +15,7 @@
 #include "io/prepared_file.h"
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
+#include "preprocess/pipeline/hier_field.h"
 #include "preprocess/segment/segment.h"
 #include "render/cpu_renderer.h"
 #include "support/datasets.h"
@@ -27,7 +28,7 @@ const RenderFn kCpuReference = [](const PreparedVolume& p, const Camera& c, cons
 
 namespace {
 
-constexpr Caster kLeaping[] = {Caster::PC, Caster::ACD, Caster::EACD};
+constexpr Caster kLeaping[] = {Caster::PC, Caster::ACD, Caster::EACD, Caster::Hier};
 
 std::string casterText(Caster c) { return std::string(casterName(c)); }
 
@@ -44,11 +45,14 @@ void expectSane(const RenderResult& r, const std::string& what) {
 
 unsigned maxOf(const std::vector<uint32_t>& v) { return v.empty() ? 0 : *std::max_element(v.begin(), v.end()); }
 
-// Renders the four casters; every leaping caster must give the primitive image (thresholds are 0), represent the
+// Each caster's render, indexed by Caster.
+using CasterRenders = std::array<RenderResult, int(Caster::Hier) + 1>;
+
+// Renders the casters; every leaping caster must give the primitive image (thresholds are 0), represent the
 // same samples and need no more fetches on any pixel.
-std::array<RenderResult, 4> renderAllAndCompare(const RenderFn& render, const PreparedVolume& p, const Camera& cam,
-                                               RenderSettings s, const std::string& what, CaseCount& count) {
-    std::array<RenderResult, 4> out;
+CasterRenders renderAllAndCompare(const RenderFn& render, const PreparedVolume& p, const Camera& cam,
+                                  RenderSettings s, const std::string& what, CaseCount& count) {
+    CasterRenders out;
     for (Caster c : kCasters) {
         s.caster = c;
         out[int(c)] = render(p, cam, s);
@@ -147,7 +151,8 @@ PreparedVolume syntheticPrepared(const GridGeometry& grid, double referenceStep,
             }
     p.meta.segmentation = {0, 0, false, false};
     p.regions = segment(ClassifiedVoxels(p.scalars, p.classification, false), p.meta.segmentation);
-    p.fields = buildFields(p.regions, kFieldPC | kFieldACD | kFieldEACD);
+    p.fields = buildFields(p.regions, kRegionFields);
+    p.fields.hier = buildHierarchicalEACD(p, p.meta.segmentation);
     return p;
 }
 
@@ -243,8 +248,9 @@ CaseCount thinSlabsAgainstTheLatticeSum(const RenderFn& render, const CaseOption
             const Composite want = latticeSum(ray, p, dt);
             EXPECT_GT(double(want.alpha), 0.3);  // deep enough to matter
             for (Caster c : kCasters) {
-                // One-voxel regions: PC steps every sample too.
-                if ((c == Caster::Primitive || c == Caster::PC) && want.samples > options.maxSteppedSamples) continue;
+                // One-voxel regions: PC steps every sample too, and so does hier (every block is mixed).
+                const bool steps = c == Caster::Primitive || c == Caster::PC || c == Caster::Hier;
+                if (steps && want.samples > options.maxSteppedSamples) continue;
                 RenderSettings s = unshaded(dt, 1.0);
                 s.caster = c;
                 const RenderResult r = render(p, ray.camera(), s);

@@ -20,7 +20,7 @@ using RenderFn = std::function<RenderResult(const PreparedVolume&, const Camera&
 // The CPU reference renderer (renderCpu) as a RenderFn.
 extern const RenderFn kCpuReference;
 
-inline constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
+inline constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD, Caster::Hier};
 
 struct VoxelClass {
     double alpha;  // opacity per reference step

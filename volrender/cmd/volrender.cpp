@@ -18,6 +18,7 @@
 #include "core/errors.h"
 #include "io/prepared_file.h"
 #include "preprocess/cmd/volume_flags.h"
+#include "preprocess/pipeline/hier_field.h"
 #include "volrender/cmd/calibration_in_use.h"
 #include "volrender/cmd/camera_flags.h"
 #include "volrender/cmd/clip_flags.h"
@@ -37,7 +38,8 @@ constexpr vr::ToolText kText{
     "volrender",
     "Renders a volume (any format volprep reads, with --tf; prepared in memory) or a prepared volume (see volprep) "
     "by ray casting with homogeneous-region leaping: the primitive "
-    "caster samples every step; pc, acd and eacd leap through regions with their distance fields and give the "
+    "caster samples every step; pc, acd and eacd leap through regions with their distance fields, hier through "
+    "blocks of 4^3 voxels with an EACD over them (built in a few ns per voxel, no segmentation), and all give the "
     "same image at thresholds 0; auto (the default) picks the cheapest for the views. Each sample is interpolated "
     "from the scalars (trilinear by default), classified through the transfer table and shaded from the scalars' "
     "gradient. --blend mip, minip, average or iso shows the largest, smallest or mean scalar, or the iso-surface of "
@@ -70,10 +72,10 @@ void addFlags(CLI::App& app, Flags& f) {
     vr::addVolumeFlags(app, f.volume);
     app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB) or .exr (float RGBA); or a movie "
                                             "of the views: .gif (256 colours a frame) or .mp4 (H.264)");
-    app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, blocks, or auto (composite: chosen from the "
+    app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, hier, blocks, or auto (composite: chosen from the "
                                          "file's ray probe and the views by a cost model, see --calibration; a "
-                                         "volume prepared here: primitive when its views cost less than building "
-                                         "EACD's field, else EACD; the other blends: blocks)")->capture_default_str();
+                                         "volume prepared here: primitive, hier or EACD, whichever its views and "
+                                         "the field's build cost least; the other blends: blocks)")->capture_default_str();
     app.add_option("--blend", f.blend, "what a ray shows: composite (front-to-back compositing of the classified "
                                        "samples), mip or minip (the largest or smallest scalar), average (the mean "
                                        "scalar), each in its transfer-function colour at its opacity (opaque with "
@@ -232,6 +234,7 @@ unsigned fieldsFor(vr::Caster c) {
         case vr::Caster::ACD: return vr::kFieldACD;
         case vr::Caster::EACD: return vr::kFieldEACD;
         case vr::Caster::Blocks: return 0;  // built from the scalars
+        case vr::Caster::Hier: return vr::kFieldHier;  // built from the scalars and their classification
     }
     return 0;
 }
@@ -256,6 +259,16 @@ unsigned orbitOctants(const std::vector<vr::Camera>& cameras) {
     return octants;
 }
 
+// A prepared file with what the caster reads: its field's chunks, or for hier (which no file holds) the field
+// built from the file's scalars and classification for the orbit's octants, with the file's thresholds.
+vr::PreparedVolume readPreparedFor(const Flags& f, vr::Caster caster, const vr::ViewParams& view) {
+    vr::PreparedVolume prepared = vr::readPrepared(f.input, fieldsFor(caster));
+    if (caster == vr::Caster::Hier)
+        prepared.fields.hier = vr::buildHierarchicalEACD(prepared, prepared.meta.segmentation,
+                                                         orbitOctants(eyeCameras(f, prepared.grid(), view)));
+    return prepared;
+}
+
 // --caster auto: the caster for the orbit's views, from the ray probe and the field sizes in the prepared file's
 // header (the chunks are read once the caster is known).
 vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s,
@@ -269,23 +282,34 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
     return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
 }
 
-// --caster auto for a volume prepared here, once it is classified and before any field is built: the primitive
-// caster when the orbit costs less cast without a field than EACD's field would take to build (priced with the
-// constants of the device the render will open), EACD otherwise.
+// --caster auto for a volume prepared here, once it is classified and before any field over voxel regions is built:
+// the primitive caster, hier (its field built here to probe it, where it can pay) or EACD, whichever the views and
+// the builds cost least (priced with the constants of the device the render will open).
 vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& view, const vr::RenderSettings& s,
-                                        const vr::PreparedVolume& classified, const std::vector<vr::Camera>& cameras) {
+                                        vr::StagedPreparation& staged, vr::PrepareOptions options,
+                                        const std::vector<vr::Camera>& cameras) {
     const vr::CalibrationInUse calibration =
         vr::calibrationInUse(f.calibration, vr::VulkanContext::chosenDevice(vr::VulkanOptions{f.device, false}).name);
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (const vr::Camera& camera : cameras) d.addView(camera);
-    return vr::chooseBeforeBuilding(vr::probePrimitiveIterations(classified, cameras, s), d,
-                                    classified.grid().voxels(), calibration.constants);
+    vr::RenderSettings probe = s;
+    probe.caster = vr::Caster::Primitive;
+    const vr::PreparedVolume& classified = staged.prepare(options, vr::PrepStage::Classify);
+    vr::ProbedIterations it{vr::probeIterations(classified, cameras, probe), {}};
+    const std::size_t voxels = classified.grid().voxels();
+    // A label map, not the scalars, would decide what a block holds: hier does not take one.
+    if (!classified.labels && vr::hierMayPay(it.primitive, d, voxels, calibration.constants)) {
+        options.fields = vr::kFieldHier;
+        probe.caster = vr::Caster::Hier;
+        it.hier = vr::probeIterations(staged.prepare(options), cameras, probe);
+    }
+    return vr::chooseBeforeBuilding(it, d, voxels, calibration.constants);
 }
 
 // The one-command path: the volume loaded, classified, segmented and given the field of the caster only, in the
 // octants of the orbit's rays only (regions for the sampling and shading asked), in memory, each stage timed. With
-// `chooseHere`, --caster auto picks the caster between classifying and segmenting (a primitive render segments
-// nothing) and says why in `choice`.
+// `chooseHere`, --caster auto picks the caster between classifying and segmenting (a primitive or hier render
+// segments nothing) and says why in `choice`.
 vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr::RenderSettings& s, bool chooseHere,
                                  std::string& choice, std::vector<vr::StageTime>& stages) {
     vr::PrepareOptions options = vr::prepareOptionsFrom(f.volume, !s.trilinear, !s.shading);
@@ -297,8 +321,7 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     const std::vector<vr::Camera> cameras = eyeCameras(f, staged.volume().grid, view);
     options.octants = orbitOctants(cameras);
     if (chooseHere) {
-        const vr::CasterChoice c =
-            autoCasterBeforeFields(f, view, s, staged.prepare(options, vr::PrepStage::Classify), cameras);
+        const vr::CasterChoice c = autoCasterBeforeFields(f, view, s, staged, options, cameras);
         s.caster = c.caster;
         choice = c.reason;
         options.fields = fieldsFor(s.caster);
@@ -436,7 +459,7 @@ int run(const Flags& f) {
         std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(settings.caster).data(),
                      choice.c_str());
     const vr::PreparedVolume prepared =
-        prepareHere ? std::move(*preparedHere) : vr::readPrepared(f.input, fieldsFor(settings.caster));
+        prepareHere ? std::move(*preparedHere) : readPreparedFor(f, settings.caster, view);
 
     const std::vector<vr::Camera> cameras = vr::Camera::orbit(prepared.grid(), view, f.views);
     const unsigned octants = orbitOctants(eyeCameras(f, prepared.grid(), view));  // the orbit shares one upload

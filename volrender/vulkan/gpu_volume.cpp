@@ -28,6 +28,9 @@ struct WholeImage {
     std::function<void(int slab, std::size_t first, int count, uint8_t* to)> row;
 };
 
+// The casters whose fields hold one slab per octant.
+bool usesOctants(Caster c) { return c == Caster::ACD || c == Caster::EACD || c == Caster::Hier; }
+
 // EACD texels: exact extents in RGB (A unused), or the code that the shader decodes through its table.
 vk::Format eacdFormat(ExtentCode code) {
     switch (code) {
@@ -39,6 +42,15 @@ vk::Format eacdFormat(ExtentCode code) {
 }
 
 }  // namespace
+
+BrickBlocks brickBlocks(const Vec3i& imageLo, const Vec3i& imageDims, int shift) {
+    BrickBlocks b;
+    for (int a = 0; a < 3; ++a) {
+        b.lo[a] = imageLo[a] >> shift;
+        b.count[a] = ((imageLo[a] + imageDims[a] - 1) >> shift) - b.lo[a] + 1;
+    }
+    return b;
+}
 
 vk::Format scalarFormat(ScalarType type) {
     switch (type) {
@@ -90,10 +102,11 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
         needs.blend = caster == Caster::Blocks ? Blend::MIP : Blend::Composite;  // one blend the caster serves
         needs.shading = false;
         checkRenderInputs(prepared, needs);
-        if ((caster == Caster::ACD || caster == Caster::EACD) && (octants & kAllOctants) == 0)
+        if (usesOctants(caster) && (octants & kAllOctants) == 0)
             throw std::invalid_argument("uploading the " + std::string(casterName(caster)) + " field needs octants");
         const unsigned held = caster == Caster::ACD    ? prepared.fields.acdOctants()
                               : caster == Caster::EACD ? prepared.fields.eacdOctants()
+                              : caster == Caster::Hier ? prepared.fields.hier.octants()
                                                        : kAllOctants;
         if ((octants & kAllOctants & ~held) != 0)
             throw InputError("the views need octants the " + std::string(casterName(caster)) +
@@ -167,8 +180,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     }
 
     const DistanceFields& f = prepared.fields;
-    const bool octantFields = std::any_of(contents.casters.begin(), contents.casters.end(),
-                                          [](Caster c) { return c == Caster::ACD || c == Caster::EACD; });
+    const bool octantFields = std::any_of(contents.casters.begin(), contents.casters.end(), usesOctants);
     std::vector<int> octantOfSlot;
     for (int oct = 0; oct < kOctants; ++oct)
         if (octantFields && (octants & (1u << oct))) {
@@ -201,13 +213,19 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
                               }});
     }
 
-    // One plan for every image: the bricks of the ACD / EACD images are as many slabs deep.
+    // One plan for every image: the bricks of the ACD / EACD images are as many slabs deep, the hier images hold
+    // as many slabs of the bricks' blocks (at most (edge + 2 B - 2) / B of them along an axis).
     int zSlabs = 1;
     for (const WholeImage& w : wholes) zSlabs = std::max(zSlabs, w.slabs);
+    const bool hasHier = std::find(contents.casters.begin(), contents.casters.end(), Caster::Hier) != contents.casters.end();
+    const int hierShift = f.hier.blockShift, hierEdge = 1 << hierShift;
     bricks_ = planBricks(dims, zSlabs, [&](const Vec3i& brick) {
         for (const WholeImage& w : wholes)
             if (!imageFits(ctx, {brick.x, brick.y, brick.z * w.slabs}, w.format, limits)) return false;
-        return true;
+        const Vec3i blocks{(brick.x + 2 * hierEdge - 2) >> hierShift, (brick.y + 2 * hierEdge - 2) >> hierShift,
+                           (brick.z + 2 * hierEdge - 2) >> hierShift};
+        return !hasHier || imageFits(ctx, {blocks.x, blocks.y, blocks.z * int(octantOfSlot.size())},
+                                     vk::Format::eR16Uint, limits);
     }, limits.minBricks);
     const std::vector<Brick>& bricks = bricks_.bricks();
     for (const WholeImage& w : wholes) {
@@ -238,6 +256,25 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
         blockLevelZ_ = e.levelZ;
         uploads_.push_back({"blocks", bytes, 0});
     }
+    if (hasHier) {
+        // Per brick the blocks its images' voxels touch, each octant's slab of them stacked along z.
+        const BlockEACD& h = f.hier;
+        hierBlockShift_ = h.blockShift;
+        for (std::size_t i = 0; i < bricks.size(); ++i) {
+            const BrickBlocks blocks = brickBlocks(bricks[i].imageLo, bricks[i].imageDims, h.blockShift);
+            const Vec3i texels{blocks.count.x, blocks.count.y, blocks.count.z * int(octantOfSlot.size())};
+            std::vector<uint16_t> codes;
+            codes.reserve(std::size_t(texels.x) * texels.y * texels.z);
+            for (int oct : octantOfSlot)
+                for (int z = 0; z < blocks.count.z; ++z)
+                    for (int y = 0; y < blocks.count.y; ++y)
+                        for (int x = 0; x < blocks.count.x; ++x)
+                            codes.push_back(h.code(oct, (blocks.lo + Vec3i{x, y, z}) * (1 << h.blockShift)));
+            const std::size_t bytes = codes.size() * sizeof(uint16_t);
+            hier_.push_back(std::make_unique<VolumeImage>(ctx, pool, texels, vk::Format::eR16Uint, codes.data(), bytes));
+            uploads_.push_back({"hier", bytes, int(i)});
+        }
+    }
     if (!scalarsFit)
         throw InputError("prepared volume: its " + std::string(scalarTypeName(scalarType_)) +
                          " scalars hold a value that is no " + std::string(scalarTypeName(scalarType_)) +
@@ -246,7 +283,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
 
 const VolumeImage* GpuVolume::field(Caster caster, int brick) const {
     if (caster == Caster::Blocks) return nullptr;
-    const Bricked& f = fields_[int(caster)];
+    const Bricked& f = caster == Caster::Hier ? hier_ : fields_[int(caster)];
     return f.empty() ? nullptr : f[brick].get();
 }
 
@@ -262,9 +299,9 @@ void GpuVolume::requireHolds(const RenderSettings& s, unsigned viewOctants) cons
         throw std::invalid_argument("the uploaded volume holds no stored gradients to shade by");
     if (s.caster == Caster::Blocks && !blockExtrema_)
         throw std::invalid_argument("the uploaded volume holds no block extrema for the blocks caster");
-    if (leapsThroughRegions(s.caster) && fields_[int(s.caster)].empty())
+    if (leapsThroughRegions(s.caster) && !field(s.caster, 0))
         throw std::invalid_argument("the uploaded volume holds no field of the " + caster + " caster");
-    if (s.caster == Caster::ACD || s.caster == Caster::EACD)
+    if (usesOctants(s.caster))
         for (int oct = 0; oct < kOctants; ++oct)
             if ((viewOctants >> oct & 1) && slot_[oct] < 0)
                 throw std::invalid_argument("the uploaded volume lacks octant " + std::to_string(oct) + " of the " +

@@ -16,7 +16,8 @@
 namespace vr {
 
 struct UploadedResource {
-    std::string name;  // "scalars", "table", "label map", "label table", "gradients", "pc", "acd", "eacd", "blocks"
+    std::string name;  // "scalars", "table", "label map", "label table", "gradients", "pc", "acd", "eacd", "blocks",
+                       // "hier"
     std::size_t bytes = 0;
     int brick = 0;     // index into GpuVolume::bricks(); the table, which every brick reads, counts as brick 0's
 };
@@ -31,6 +32,12 @@ struct GpuVolumeContents {
 };
 
 constexpr vk::Format kGradientFormat = vk::Format::eR32Uint;
+// The hier field's blocks of 2^shift voxels that the voxels imageLo .. imageLo + imageDims - 1 of a brick's images
+// touch: the first and their count per axis (shaders/brick_state.glsl blockTexel reads them so).
+struct BrickBlocks {
+    Vec3i lo, count;
+};
+BrickBlocks brickBlocks(const Vec3i& imageLo, const Vec3i& imageDims, int shift);
 
 // The block extrema's format: R32F, a block's lo and hi side by side along x (render/block_extrema.h's texels, two
 // floats each), a format every caster device reads already (float scalars), where RG32F would be one more.
@@ -69,8 +76,8 @@ public:
     // Uploads the scalars in their own type (scalarFormat), the transfer table (a storage buffer of vec4 per entry:
     // rgb colour, sigma), a label map's labels in their type and its table (as the transfer table) and each
     // caster's field: PC (R8_UINT), ACD (R8_UINT), EACD (RGBA8_UINT exact, R16_UINT
-    // log16, R8_UINT joint8); ACD and EACD hold the octants of the mask stacked along z, slab i holding the i-th
-    // octant of the mask. Each image is split into the bricks of one plan that fits every image.
+    // log16, R8_UINT joint8), hier (R16_UINT, one image of the blocks); ACD, EACD and hier hold the octants of the
+    // mask stacked along z, slab i holding the i-th octant of the mask. Each image is split into the bricks of one plan that fits every image.
     // Throws InputError when the prepared volume lacks a field asked for, its scalars do not fit their type, or
     // the table has more entries than the device's storage buffers hold (maxStorageBufferRange / 16).
     GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const PreparedVolume& prepared,
@@ -93,8 +100,11 @@ public:
     // Each voxel's stored gradient, null when not uploaded; the codes' base exponent.
     const VolumeImage* gradients(int brick) const { return gradients_.empty() ? nullptr : gradients_[brick].get(); }
     int gradientExponentBase() const { return gradientBase_; }
-    // Null for primitive, blocks or a caster not uploaded.
+    // Null for primitive, blocks or a caster not uploaded. A brick's hier image holds the blocks its images' voxels
+    // touch (brickBlocks), the octants' slabs stacked along z.
     const VolumeImage* field(Caster caster, int brick) const;
+    // The hier field's blocks are 1 << hierBlockShift() voxels per axis.
+    int hierBlockShift() const { return hierBlockShift_; }
     // Each block's scalar range, one image for every brick (in whole-volume blocks); null when not uploaded.
     const VolumeImage* blockExtrema() const { return blockExtrema_.get(); }
     // The first z texel of each level of blocks in that image.
@@ -131,6 +141,8 @@ private:
     int gradientBase_ = 0;
     std::array<Bricked, 4> fields_;  // by Caster, but blocks
     std::unique_ptr<VolumeImage> blockExtrema_;
+    Bricked hier_;
+    int hierBlockShift_ = 0;
     std::array<int, device::kBlockLevels> blockLevelZ_{};
     std::array<int, kOctants> slot_;
     std::vector<UploadedResource> uploads_;

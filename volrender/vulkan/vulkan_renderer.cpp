@@ -45,6 +45,7 @@ int deviceCaster(Caster caster) {
         case Caster::ACD: return device::kACD;
         case Caster::EACD: return device::kEACD;
         case Caster::Blocks: return device::kBlocks;
+        case Caster::Hier: return device::kHier;
     }
     throw std::logic_error("deviceCaster: a caster the device does not know");
 }
@@ -157,6 +158,7 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
     p.opaqueValues = s.opaqueValues ? 1 : 0;
     p.frustumShift = float(camera.shift);
     p.gradientExponentBase = volume.gradientExponentBase();
+    p.hierBlockShift = volume.hierBlockShift();
     return p;
 }
 
@@ -211,10 +213,10 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
 }
 
 const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
-    // Only the EACD caster reads the code: the others share one pipeline whatever the volume's code. Only composite
-    // and the iso-surface shade, and only a shaded variant reads gradients.
+    // Only the EACD and hier casters read the code: the others share one pipeline whatever the volume's code. Only
+    // composite and the iso-surface shade, and only a shaded variant reads gradients.
     v.shading = v.shading && (v.blend == Blend::Composite || v.blend == Blend::Iso);
-    if (v.caster != Caster::EACD) v.eacdCode = ExtentCode::Exact;
+    if (v.caster != Caster::EACD && v.caster != Caster::Hier) v.eacdCode = ExtentCode::Exact;
     v.storedGradients = v.storedGradients && v.shading;
     auto it = pipelines_.find(v);
     if (it != pipelines_.end()) return it->second;
@@ -290,8 +292,10 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                             const RenderSettings& settings, const PixelList* list, void* keep) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
+    // The hier caster's blocks are in log16, whatever code the volume's EACD has.
+    const ExtentCode extentCode = settings.caster == Caster::Hier ? ExtentCode::Log16 : volume.eacdCode();
     const vk::raii::Pipeline& pipe =
-        pipeline({settings.caster, settings.blend, settings.trilinear, settings.shading, volume.eacdCode(),
+        pipeline({settings.caster, settings.blend, settings.trilinear, settings.shading, extentCode,
                   volume.bricks().bricks().size() > 1, camera.projection == Projection::Perspective,
                   volume.scalarType(), deviceLabels(volume), list != nullptr, settings.gradients == Gradients::Stored});
 
@@ -300,7 +304,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const device::CasterParams p = makeParams(volume, camera, settings);
     std::memcpy(params.data(), &p, sizeof(p));
     HostBuffer extentTable(ctx_, sizeof(ExtentTable), B::eUniformBuffer);  // decodes coded EACD (extent_code.glsl)
-    std::memcpy(extentTable.data(), extentDecodeTable(volume.eacdCode()).data(), sizeof(ExtentTable));
+    std::memcpy(extentTable.data(), extentDecodeTable(extentCode).data(), sizeof(ExtentTable));
     const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
     HostBuffer out(ctx_, tilePixels * sizeof(device::OutPixel), B::eStorageBuffer);
     DeviceBuffer rayState(ctx_, tilePixels * sizeof(device::RayState), B::eStorageBuffer);
