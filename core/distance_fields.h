@@ -50,9 +50,9 @@ struct BlockEACD {
     }
     // The code of the block that holds voxel v, in a held octant.
     uint16_t code(int oct, const Vec3i& v) const {
-        const std::size_t i = (std::size_t(v.z >> blockShift) * std::size_t(blocks.y) + std::size_t(v.y >> blockShift)) *
-                                  std::size_t(blocks.x) +
-                              std::size_t(v.x >> blockShift);
+        const std::size_t x = std::size_t(v.x >> blockShift), y = std::size_t(v.y >> blockShift),
+                          z = std::size_t(v.z >> blockShift);
+        const std::size_t i = (z * std::size_t(blocks.y) + y) * std::size_t(blocks.x) + x;
         const uint8_t* b = octant[oct].data() + 2 * i;
         return uint16_t(b[0] | b[1] << 8);
     }

@@ -38,10 +38,11 @@ const CasterCalibration kBuiltIn{38, {11, 15, 17, 20}, 0.44, 0.05, "llvmpipe (LL
 // The smallest, so that a borderline case builds the field.
 constexpr double kFieldBuildNsPerVoxel = 120;
 
-// The hier field (block ranges, block regions, the EACD over blocks of 4) per voxel on the same machine
-// (bench/hier_bench, the octants of a 4-view orbit): 5.4 ns on the teapot, 8.2 on the cranium CT, 9.3 on the head CT,
-// 11.9 on a 512x512x1024 CT made from the cranium. The largest, so that a borderline case does not build it.
-constexpr double kHierBuildNsPerVoxel = 12;
+// The hier field (block ranges, block regions, the EACD over blocks of 4) per voxel on the same machine: volrender's
+// own stage time for one view (one octant) gave 4.4 ns on the cranium CT and 5.0 ns on a 512x512x1024 CT made from
+// it; bench/hier_bench (three octants, the machine loaded) 5.4 to 11.9. Above the one-view figures, so that a
+// borderline case does not build it.
+constexpr double kHierBuildNsPerVoxel = 6;
 // EACD's iterations per ray over hier's (bench/hier_bench: 512 x 512, trilinear, shaded, T_o 0.01, T_a 3, 4-view
 // orbits): 0.75 on the teapot, 0.81 on the cranium CT, 0.82 on the head CT, 0.86 on the clinical-size CT.
 constexpr double kEACDPerHierIterations = 0.8;

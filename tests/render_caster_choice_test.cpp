@@ -199,7 +199,7 @@ TEST(RenderCasterChoice, BeforeBuildingHierWinsUnlessAnOrbitIsLong) {
     CasterDemand d = ortho();
     d.pixels = 512 * 512;
     const std::size_t voxels = 256 * 256 * 128;
-    // The hier field may pay once the views cost more than its build (12 ns per voxel: 101 ms).
+    // The hier field may pay once the views cost more than its build (6 ns per voxel: 50 ms).
     EXPECT_TRUE(hierMayPay(100, d, voxels, calibration));
     EXPECT_FALSE(hierMayPay(2, d, voxels, calibration));
     // One view: 512^2 x (40 + 10 x 20) ns = 63 ms with hier, 273 ms without a field.

@@ -42,7 +42,8 @@ BlockEACD buildHierarchicalEACD(const PreparedVolume& classified, const Segmenta
         for (int y = 0; y < blocks.y; ++y)
             for (int x = 0; x < blocks.x; ++x, ++i) {
                 const Vec3i corner{x << blockShift, y << blockShift, z << blockShift};
-                ranges[i] = {spread.entryBelow(extrema.lo(level, corner)), spread.entryAbove(extrema.hi(level, corner))};
+                ranges[i] = {spread.entryBelow(extrema.lo(level, corner)),
+                             spread.entryAbove(extrema.hi(level, corner))};
             }
     const BlockRegions regions = segmentBlocks(blocks, ranges, spread, params);
     return buildBlockEACD(regions.regions, regions.homogeneous, blockShift, octants);

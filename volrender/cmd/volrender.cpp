@@ -1,5 +1,5 @@
 // volrender: renders a prepared volume (volprep's output), or a volume it prepares in the same process, with one of
-// the four casters, on a Vulkan device or with the CPU reference; writes the image, optionally an iteration heat
+// the casters, on a Vulkan device or with the CPU reference; writes the image, optionally an iteration heat
 // map and statistics.
 #include <unistd.h>
 

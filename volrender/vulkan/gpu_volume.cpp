@@ -217,7 +217,8 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     // as many slabs of the bricks' blocks (at most (edge + 2 B - 2) / B of them along an axis).
     int zSlabs = 1;
     for (const WholeImage& w : wholes) zSlabs = std::max(zSlabs, w.slabs);
-    const bool hasHier = std::find(contents.casters.begin(), contents.casters.end(), Caster::Hier) != contents.casters.end();
+    const bool hasHier =
+        std::find(contents.casters.begin(), contents.casters.end(), Caster::Hier) != contents.casters.end();
     const int hierShift = f.hier.blockShift, hierEdge = 1 << hierShift;
     bricks_ = planBricks(dims, zSlabs, [&](const Vec3i& brick) {
         for (const WholeImage& w : wholes)
@@ -271,7 +272,8 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
                         for (int x = 0; x < blocks.count.x; ++x)
                             codes.push_back(h.code(oct, (blocks.lo + Vec3i{x, y, z}) * (1 << h.blockShift)));
             const std::size_t bytes = codes.size() * sizeof(uint16_t);
-            hier_.push_back(std::make_unique<VolumeImage>(ctx, pool, texels, vk::Format::eR16Uint, codes.data(), bytes));
+            hier_.push_back(
+                std::make_unique<VolumeImage>(ctx, pool, texels, vk::Format::eR16Uint, codes.data(), bytes));
             uploads_.push_back({"hier", bytes, int(i)});
         }
     }
