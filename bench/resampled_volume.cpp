@@ -65,7 +65,8 @@ Volume resample(const Volume& v, Vec3i dims) {
 }
 
 Volume withNoise(Volume v, double sigma, unsigned seed) {
-    const auto [lo, hi] = typeRange(v.sourceType);
+    const std::pair<double, double> range = typeRange(v.sourceType);  // not a structured binding: clang 14's lambdas
+    const double lo = range.first, hi = range.second;                   // cannot capture one
     const bool integer = v.sourceType != ScalarType::Float32;
     const std::size_t slice = std::size_t(v.grid.dims.x) * std::size_t(v.grid.dims.y);
     tbb::parallel_for(tbb::blocked_range<int>(0, v.grid.dims.z), [&](const tbb::blocked_range<int>& zs) {
