@@ -35,9 +35,9 @@ void writePng(const fs::path& path, int width, int height, const std::vector<uns
     image.width = png_uint_32(width);
     image.height = png_uint_32(height);
     image.format = PNG_FORMAT_RGB;  // 8-bit, not linear: written with an sRGB chunk
-    png_alloc_size_t size = 0;
-    if (!png_image_write_to_memory(&image, nullptr, &size, 0, rgb.data(), 0, nullptr))
-        throw fileError(path.string(), std::string("cannot encode PNG: ") + image.message);
+    // Room for the largest PNG the image can make, so that it is compressed once (asking for the size first
+    // compresses it twice).
+    png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(image);
     std::vector<char> encoded(size);
     if (!png_image_write_to_memory(&image, encoded.data(), &size, 0, rgb.data(), 0, nullptr))
         throw fileError(path.string(), std::string("cannot encode PNG: ") + image.message);

@@ -4,11 +4,13 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 
@@ -282,14 +284,59 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
     return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
 }
 
+// The Vulkan device and its renderer, opened on a thread of their own while the volume loads: a CPU device's start
+// (its driver's libraries, the instance, the device) takes as long as loading and classifying a small CT.
+class OpeningDevice {
+public:
+    explicit OpeningDevice(int deviceIndex)
+        : opening_(std::async(std::launch::async, [deviceIndex] {
+              auto d = std::make_shared<Opened>();
+              d->context = std::make_unique<vr::VulkanContext>(vr::VulkanOptions{deviceIndex, false});
+              d->renderer = std::make_unique<vr::VulkanRenderer>(*d->context);
+              return d;
+          })) {}
+    // Wait for it to open; rethrow why it could not.
+    vr::VulkanContext& context() { return *opening_.get()->context; }
+    vr::VulkanRenderer& renderer() { return *opening_.get()->renderer; }
+
+    // Makes the pipelines of renders with `settings` by each of `casters` in turn (VulkanRenderer::preparePipeline),
+    // on a thread of their own once the device is open, while the volume is still being prepared: a CPU device
+    // takes about as long to make one as to render a small CT. Once chose() names the caster, the others are
+    // skipped. A pipeline that cannot be made is left to the render, which says why.
+    void preparePipelines(std::vector<vr::Caster> casters, vr::RenderSettings settings, vr::Projection projection,
+                          vr::ScalarType type) {
+        preparing_ = std::async(std::launch::async, [this, opening = opening_, casters, settings, projection,
+                                                      type]() mutable {
+            try {
+                for (vr::Caster caster : casters) {
+                    const int chosen = chosen_;
+                    if (chosen >= 0 && chosen != int(caster)) continue;
+                    settings.caster = caster;
+                    opening.get()->renderer->preparePipeline(settings, projection, type);
+                }
+            } catch (const std::exception&) {
+            }
+        });
+    }
+    void chose(vr::Caster caster) { chosen_ = int(caster); }
+
+private:
+    struct Opened {
+        std::unique_ptr<vr::VulkanContext> context;
+        std::unique_ptr<vr::VulkanRenderer> renderer;
+    };
+    std::shared_future<std::shared_ptr<Opened>> opening_;
+    std::atomic<int> chosen_{-1};  // the caster, once known
+    std::future<void> preparing_;  // joined before the device closes
+};
+
 // --caster auto for a volume prepared here, once it is classified and before any field over voxel regions is built:
 // the primitive caster, hier (its field built here to probe it, where it can pay) or EACD, whichever the views and
-// the builds cost least (priced with the constants of the device the render will open).
+// the builds cost least (priced with the constants of `device`, on which the render will run).
 vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& view, const vr::RenderSettings& s,
                                         vr::StagedPreparation& staged, vr::PrepareOptions options,
-                                        const std::vector<vr::Camera>& cameras) {
-    const vr::CalibrationInUse calibration =
-        vr::calibrationInUse(f.calibration, vr::VulkanContext::chosenDevice(vr::VulkanOptions{f.device, false}).name);
+                                        const std::vector<vr::Camera>& cameras, const std::string& device) {
+    const vr::CalibrationInUse calibration = vr::calibrationInUse(f.calibration, device);
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (const vr::Camera& camera : cameras) d.addView(camera);
     vr::RenderSettings probe = s;
@@ -307,11 +354,13 @@ vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& vi
 }
 
 // The one-command path: the volume loaded, classified, segmented and given the field of the caster only, in the
-// octants of the orbit's rays only (regions for the sampling and shading asked), in memory, each stage timed. With
-// `chooseHere`, --caster auto picks the caster between classifying and segmenting (a primitive or hier render
-// segments nothing) and says why in `choice`.
-vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr::RenderSettings& s, bool chooseHere,
-                                 std::string& choice, std::vector<vr::StageTime>& stages) {
+// octants of the orbit's rays only (regions for the sampling and shading asked), in memory, each stage timed. The
+// `device` (none for the CPU reference) makes its pipelines meanwhile. With `chooseHere`, --caster auto picks the
+// caster for the device between classifying and segmenting (a primitive or hier render segments nothing) and says
+// why in `choice`.
+vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr::RenderSettings& s,
+                                 OpeningDevice* device, bool chooseHere, std::string& choice,
+                                 std::vector<vr::StageTime>& stages) {
     vr::PrepareOptions options = vr::prepareOptionsFrom(f.volume, !s.trilinear, !s.shading);
     options.fields = fieldsFor(s.caster);
     options.keepRegions = false;  // the renderers read the field, never the labels: freed once the field has them
@@ -320,10 +369,15 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     vr::attachLabels(f.volume, labelColours, staged);
     const std::vector<vr::Camera> cameras = eyeCameras(f, staged.volume().grid, view);
     options.octants = orbitOctants(cameras);
+    if (device && f.volume.labels.empty())  // auto takes hier for most CTs, else the primitive caster
+        device->preparePipelines(chooseHere ? std::vector{vr::Caster::Hier, vr::Caster::Primitive} : std::vector{s.caster},
+                                 s, cameras.front().projection, staged.volume().sourceType);
     if (chooseHere) {
-        const vr::CasterChoice c = autoCasterBeforeFields(f, view, s, staged, options, cameras);
+        const vr::CasterChoice c =
+            autoCasterBeforeFields(f, view, s, staged, options, cameras, device->context().info().name);
         s.caster = c.caster;
         choice = c.reason;
+        device->chose(s.caster);
         options.fields = fieldsFor(s.caster);
     }
     staged.prepare(options);
@@ -436,17 +490,16 @@ int run(const Flags& f) {
         settings.caster = vr::Caster::EACD;
         choice = "the CPU reference has no calibration to weigh the casters: EACD, which leaps furthest";
     }
+    std::optional<OpeningDevice> device;
+    if (!f.cpu) device.emplace(f.device);
     std::vector<vr::StageTime> stages;  // of preparing the volume here
     std::optional<vr::PreparedVolume> preparedHere;
-    if (prepareHere) preparedHere = prepareVolume(f, view, settings, chooseCaster && !f.cpu, choice, stages);
-    // The device is opened once a volume prepared here is done (the preparation's memory is given back by then),
-    // and before a prepared file is read: auto weighs the casters with the constants measured on it.
-    std::unique_ptr<vr::VulkanContext> context;
-    std::unique_ptr<vr::VulkanRenderer> renderer;
-    if (!f.cpu) {
-        context = std::make_unique<vr::VulkanContext>(vr::VulkanOptions{f.device, false});
-        renderer = std::make_unique<vr::VulkanRenderer>(*context);
-    }
+    if (prepareHere)
+        preparedHere = prepareVolume(f, view, settings, device ? &*device : nullptr, chooseCaster && device, choice,
+                                     stages);
+    // Before a prepared file is read: auto weighs the casters with the constants measured on the device.
+    vr::VulkanContext* context = device ? &device->context() : nullptr;
+    vr::VulkanRenderer* renderer = device ? &device->renderer() : nullptr;
     const vr::CalibrationInUse calibration =
         vr::calibrationInUse(f.calibration, context ? std::optional(context->info().name) : std::nullopt);
     if (chooseCaster && !prepareHere) {

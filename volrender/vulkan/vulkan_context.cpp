@@ -136,14 +136,6 @@ std::vector<VulkanDeviceInfo> VulkanContext::listDevices() {
     return out;
 }
 
-VulkanDeviceInfo VulkanContext::chosenDevice(const VulkanOptions& options) {
-    vk::raii::Context context;
-    vk::raii::Instance instance = makeInstance(context, false);
-    vk::raii::PhysicalDevices devices(instance);
-    const int chosen = chooseDevice(devices, options.deviceIndex);
-    return deviceInfo(devices[chosen], chosen);
-}
-
 std::vector<std::string> VulkanContext::validationErrors() const {
     std::lock_guard lock(errorsMutex_);
     return errors_;

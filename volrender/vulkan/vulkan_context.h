@@ -28,10 +28,6 @@ public:
     VulkanContext& operator=(const VulkanContext&) = delete;
 
     static std::vector<VulkanDeviceInfo> listDevices();
-    // The device a context with `options` would open, without opening it (a temporary instance): what volrender
-    // asks before preparing a volume, while the device's own memory is not yet held. Throws as the constructor does
-    // when there is none.
-    static VulkanDeviceInfo chosenDevice(const VulkanOptions& options);
 
     const vk::raii::PhysicalDevice& physicalDevice() const { return physical_; }
     const vk::raii::Device& device() const { return device_; }

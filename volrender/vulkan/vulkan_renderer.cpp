@@ -212,12 +212,22 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
                                                        vk::BufferUsageFlagBits::eStorageBuffer);
 }
 
+VulkanRenderer::Variant VulkanRenderer::variantOf(const RenderSettings& settings, bool perspective, ScalarType type,
+                                                  int labels, bool bricked, bool pixelList, ExtentCode eacdCode) {
+    // The hier caster's blocks are in log16, whatever code the volume's EACD has.
+    if (settings.caster == Caster::Hier) eacdCode = ExtentCode::Log16;
+    return {settings.caster, settings.blend, settings.trilinear,  settings.shading,
+            eacdCode,        bricked,        perspective,         type,
+            labels,          pixelList,      settings.gradients == Gradients::Stored};
+}
+
 const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
     // Only the EACD and hier casters read the code: the others share one pipeline whatever the volume's code. Only
     // composite and the iso-surface shade, and only a shaded variant reads gradients.
     v.shading = v.shading && (v.blend == Blend::Composite || v.blend == Blend::Iso);
     if (v.caster != Caster::EACD && v.caster != Caster::Hier) v.eacdCode = ExtentCode::Exact;
     v.storedGradients = v.storedGradients && v.shading;
+    std::lock_guard lock(pipelinesMutex_);
     auto it = pipelines_.find(v);
     if (it != pipelines_.end()) return it->second;
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
@@ -244,6 +254,11 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
     vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *shader_, "main", &spec);
     vk::raii::Pipeline p(ctx_.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *pipelineLayout_));
     return pipelines_.emplace(v, std::move(p)).first->second;
+}
+
+void VulkanRenderer::preparePipeline(const RenderSettings& settings, Projection projection, ScalarType type) {
+    pipeline(variantOf(settings, projection == Projection::Perspective, type, device::kNoLabels, false, false,
+                       kDefaultExtentCode));
 }
 
 GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolumeContents& contents) {
@@ -292,12 +307,11 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                             const RenderSettings& settings, const PixelList* list, void* keep) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
-    // The hier caster's blocks are in log16, whatever code the volume's EACD has.
-    const ExtentCode extentCode = settings.caster == Caster::Hier ? ExtentCode::Log16 : volume.eacdCode();
-    const vk::raii::Pipeline& pipe =
-        pipeline({settings.caster, settings.blend, settings.trilinear, settings.shading, extentCode,
-                  volume.bricks().bricks().size() > 1, camera.projection == Projection::Perspective,
-                  volume.scalarType(), deviceLabels(volume), list != nullptr, settings.gradients == Gradients::Stored});
+    const Variant variant =
+        variantOf(settings, camera.projection == Projection::Perspective, volume.scalarType(), deviceLabels(volume),
+                  volume.bricks().bricks().size() > 1, list != nullptr, volume.eacdCode());
+    const ExtentCode extentCode = variant.eacdCode;
+    const vk::raii::Pipeline& pipe = pipeline(variant);
 
     using B = vk::BufferUsageFlagBits;
     HostBuffer params(ctx_, sizeof(device::CasterParams), B::eUniformBuffer);

@@ -3,6 +3,7 @@
 #include <map>
 #include <stdexcept>
 #include <memory>
+#include <mutex>
 #include <tuple>
 #include <vector>
 
@@ -56,6 +57,12 @@ public:
     StereoRender renderStereo(const GpuVolume& volume, const StereoPair& pair, const RenderSettings& settings,
                               bool reuse);
 
+    // Makes, ahead of any render, the pipeline that a render of a one-brick volume of scalars of `type`, without a
+    // label map, with `settings` in `projection` (and an EACD in the default code) takes: volrender makes it while the volume is still being prepared
+    // (a CPU device takes longer to make a pipeline than to render a small CT). Safe beside a render on another
+    // thread: a render that needs a pipeline being made waits for it.
+    void preparePipeline(const RenderSettings& settings, Projection projection, ScalarType type);
+
     ~VulkanRenderer();
 
     // The resources the last render read (of the volume uploaded for it or given to it), per brick: the scalars,
@@ -88,6 +95,8 @@ private:
         bool storedGradients;  // read by shaded variants only: the others' hold false
         auto operator<=>(const Variant&) const = default;
     };
+    static Variant variantOf(const RenderSettings& settings, bool perspective, ScalarType type, int labels,
+                             bool bricked, bool pixelList, ExtentCode eacdCode);
     const vk::raii::Pipeline& pipeline(Variant variant);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
@@ -102,6 +111,7 @@ private:
     vk::raii::ShaderModule shader_{nullptr};
     std::unique_ptr<DeviceTimer> timer_;
     std::map<Variant, vk::raii::Pipeline> pipelines_;
+    std::mutex pipelinesMutex_;  // held while a pipeline is looked up or made
     // Bound where a variant reads nothing (the scalar bindings of the other types, the field for primitive, the
     // field bindings of the other formats, the block extrema for every caster but blocks, the label bindings of a
     // volume without labels or of the other label type, the gradients where none are stored): never read.
