@@ -5,7 +5,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libvtk9-dev libopenvdb-dev libboost-iostreams-dev
   libpng-dev libopenexr-dev libfreetype-dev fonts-dejavu-core
-  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools spirv-tools
   libtbb-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libzstd-dev
   libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
