@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
                     }
                     const auto start = std::chrono::steady_clock::now();
                     const GpuVolume volume =
-                        renderer.upload(p, {{c}, octants, s.shading && s.gradients == Gradients::Stored});
+                        renderer.upload(p, {{c}, octants, s.readsStoredGradients()});
                     const double uploadMs =
                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                     for (int v = -1; v < views; ++v) {  // v = -1: the warm-up frame

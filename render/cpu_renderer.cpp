@@ -191,7 +191,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const double dt = settings.stepVoxels * grid.smallestSpacing(), ertDepth = terminationDepth(settings.ert);
     const Sampler sampler(prepared.scalars, prepared.classification, prepared.labels ? &*prepared.labels : nullptr,
                           settings.trilinear,
-                          settings.gradients == Gradients::Stored
+                          settings.readsStoredGradients()
                               ? std::optional(GradientPacker(prepared.scalars, prepared.classification.table))
                               : std::nullopt);
     const Blend blend = settings.blend;

@@ -78,6 +78,9 @@ struct RenderSettings {
     // MIP, MinIP and average show their value's TF colour opaque, not at the TF's opacity: with the grey ramp of
     // --window/--level, a grey window (docs/ALGORITHMS.md section 11).
     bool opaqueValues = false;
+
+    // Whether the render reads each voxel's stored gradient: it shades, from stored gradients.
+    bool readsStoredGradients() const { return shading && gradients == Gradients::Stored; }
 };
 
 }  // namespace vr

@@ -520,8 +520,7 @@ int run(const Flags& f) {
     nlohmann::json uploadStats;
     if (renderer) {
         const auto start = std::chrono::steady_clock::now();
-        const bool gradients = settings.shading && settings.gradients == vr::Gradients::Stored;
-        uploaded.emplace(renderer->upload(prepared, {{settings.caster}, octants, gradients}));
+        uploaded.emplace(renderer->upload(prepared, {{settings.caster}, octants, settings.readsStoredGradients()}));
         uploadStats = vr::uploadStatistics(
             *uploaded, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         if (!f.quiet)

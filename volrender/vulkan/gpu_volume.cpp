@@ -297,7 +297,7 @@ std::size_t GpuVolume::uploadedBytes() const {
 
 void GpuVolume::requireHolds(const RenderSettings& s, unsigned viewOctants) const {
     const std::string caster(casterName(s.caster));
-    if (s.gradients == Gradients::Stored && gradients_.empty())
+    if (s.readsStoredGradients() && gradients_.empty())
         throw std::invalid_argument("the uploaded volume holds no stored gradients to shade by");
     if (s.caster == Caster::Blocks && !blockExtrema_)
         throw std::invalid_argument("the uploaded volume holds no block extrema for the blocks caster");

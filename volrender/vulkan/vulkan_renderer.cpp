@@ -286,7 +286,7 @@ void VulkanRenderer::checkRender(const GpuVolume& volume, const Camera& camera, 
     uploads_.clear();  // what this render reads of the volume
     for (const UploadedResource& u : volume.uploads())
         if (u.name == "scalars" || u.name == "table" || u.name == "label map" || u.name == "label table" ||
-            (settings.gradients == Gradients::Stored && settings.shading && u.name == "gradients") ||
+            (settings.readsStoredGradients() && u.name == "gradients") ||
             (settings.caster != Caster::Primitive && u.name == casterName(settings.caster)))
             uploads_.push_back(u);
 }
@@ -295,8 +295,8 @@ RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera
                                     const RenderSettings& settings) {
     checkRenderInputs(prepared, settings);
     const auto start = std::chrono::steady_clock::now();
-    const bool gradients = settings.gradients == Gradients::Stored && settings.shading;
-    const GpuVolume volume = upload(prepared, {{settings.caster}, viewOctants(camera), gradients});
+    const GpuVolume volume =
+        upload(prepared, {{settings.caster}, viewOctants(camera), settings.readsStoredGradients()});
     RenderResult result = render(volume, camera, settings);
     result.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
