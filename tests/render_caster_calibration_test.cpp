@@ -40,7 +40,7 @@ TEST(RenderCasterCalibration, BuiltInIsLavapipesFit) {
     EXPECT_EQ(c.iterationNs, (std::array<double, 4>{11, 15, 17, 20}));
     EXPECT_EQ(c.uploadNsPerByte, 0.44);
     EXPECT_EQ(c.tie, 0.05);
-    EXPECT_EQ(c.growth, (IterationGrowth{16.8e6, 0.08}));
+    EXPECT_EQ(c.growth, (IterationGrowth{16.8e6, 0.1}));
     EXPECT_NE(c.deviceName.find("llvmpipe"), std::string::npos);
 }
 
