@@ -4,8 +4,10 @@
 // auto's one choice for the views (render/caster_choice.h, from the ray probe volprep stores) and its ratio to
 // the fastest fixed caster (target: at most 1.10), the run-to-run spread of the fastest fixed caster (the noise
 // the ratio sits in), and a least-squares fit of the choice model's constants to the renders (re-run it when the
-// shader loop or the device changes; --write-calibration FILE stores it for volrender --calibration). Prints a
-// Markdown table. --short: one tiny dataset at 64x64 (CTest).
+// shader loop or the device changes; --write-calibration FILE stores it for volrender --calibration), and how the
+// primitive caster's iteration time grows with the scalars' bytes, on the cranium CT resampled to larger sizes
+// (--growth-sizes; the calibration's iterationGrowth). Prints Markdown tables. --short: one tiny dataset at 64x64
+// (CTest).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
@@ -13,12 +15,14 @@
 #include <cstdio>
 #include <ctime>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 
 #include "bench_checks.h"
 #include "datasets/phantoms.h"
 #include "io/caster_calibration_file.h"
+#include "resampled_volume.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
 #include "sweep/order_statistics.h"
@@ -30,7 +34,9 @@ namespace fs = std::filesystem;
 using namespace vr;
 
 constexpr double kTarget = 1.10;  // auto within 10 % of the fastest fixed caster
-constexpr int kRowsToFit = 10;  // 5 unknowns: fewer rows leave the ray's ns ill-determined
+constexpr int kRowsToFit = 10;
+// The clinical-size CT of the whole-process benchmark and sizes on the way to it.
+const std::string kDefaultGrowthSizes = "256x256x128,512x512x256,512x512x512,512x512x1024";  // 5 unknowns: fewer rows leave the ray's ns ill-determined
 const Caster kFixed[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
 
 struct Scene {
@@ -136,7 +142,8 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
     s.stepVoxels = step;
     std::vector<Camera> cameras;
     GpuVolumeContents contents{{std::begin(kFixed), std::end(kFixed)}, 0};
-    CasterDemand demand{0, {}, (long long)views.front().width * views.front().height, step};
+    CasterDemand demand{0, {}, (long long)views.front().width * views.front().height, step,
+                        scalarBytesOnDevice(p.grid(), p.scalars.sourceType)};
     for (const ViewParams& v : views) {
         cameras.push_back(Camera::fit(p.grid(), v));
         demand.addView(cameras.back());
@@ -271,6 +278,100 @@ bool hasFieldOf(const PreparedVolume& p, Caster c) {
     return false;
 }
 
+// The primitive caster's time per iteration on one volume size: the views' device ns per pixel (median over the
+// repeats) less the ray's ns, over the mean iterations per pixel.
+struct SizeSample {
+    double scalarBytes;
+    double iterations;  // per pixel
+    double iterationNs;
+};
+
+SizeSample primitiveOnSize(VulkanRenderer& renderer, const PreparedVolume& p, const std::vector<ViewParams>& views,
+                           int repeats, double step, double rayNs) {
+    RenderSettings s;
+    s.stepVoxels = step;
+    std::vector<Camera> cameras;
+    unsigned octants = 0;
+    for (const ViewParams& v : views) {
+        cameras.push_back(Camera::fit(p.grid(), v));
+        octants |= viewOctants(cameras.back());
+    }
+    const GpuVolume volume = renderer.upload(p, {{Caster::Primitive}, octants});
+    renderer.render(volume, cameras.front(), s);  // warm-up
+    double nsPerPixel = 0, iterations = 0;
+    for (const Camera& camera : cameras) {
+        std::vector<double> ms;
+        for (int r = 0; r < repeats; ++r) {
+            const RenderResult result = renderer.render(volume, camera, s);
+            ms.push_back(result.deviceMilliseconds);
+            if (r > 0) continue;
+            double sum = 0;
+            for (uint32_t n : result.iterations) sum += n & kIterationMask;
+            iterations += sum / double(result.iterations.size()) / double(cameras.size());
+        }
+        nsPerPixel += median(ms) * 1e6 / double(camera.width * camera.height) / double(cameras.size());
+    }
+    return {scalarBytesOnDevice(p.grid(), p.scalars.sourceType), iterations, (nsPerPixel - rayNs) / iterations};
+}
+
+// The growth that fits the samples (smallest first) best: for each sample's bytes as the knee, the in-cache time
+// is the mean of those at or below it and the growth per doubling beyond it a least-squares slope of the times
+// over it against log2 of the bytes over the knee; the knee with the least squared error wins.
+IterationGrowth fitGrowth(const std::vector<SizeSample>& samples) {
+    IterationGrowth best;
+    double leastError = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        double inCache = 0;
+        for (std::size_t i = 0; i <= k; ++i) inCache += samples[i].iterationNs / double(k + 1);
+        double xy = 0, xx = 0;
+        for (std::size_t i = k + 1; i < samples.size(); ++i) {
+            const double x = std::log2(samples[i].scalarBytes / samples[k].scalarBytes);
+            xy += x * (samples[i].iterationNs / inCache - 1);
+            xx += x * x;
+        }
+        const IterationGrowth g{samples[k].scalarBytes, xx > 0 ? std::max(0.0, xy / xx) : 0};
+        double error = 0;
+        for (const SizeSample& sample : samples)
+            error += std::pow(sample.iterationNs / inCache - iterationScale(g, sample.scalarBytes), 2);
+        if (error < leastError) leastError = error, best = g;
+    }
+    return best;
+}
+
+// Each size's primitive renders, printed as a table, and the growth fitted to them.
+IterationGrowth measureGrowth(bench::Checks& checks, VulkanRenderer& renderer, const std::vector<Vec3i>& sizes,
+                              const std::vector<ViewParams>& views, int repeats, double step, double rayNs) {
+    const test::DatasetEntry e = test::rawDataset("cranium_ct");
+    RawOptions raw;
+    raw.dims = e.dims;
+    raw.type = e.type;
+    raw.spacing = e.spacing;
+    const Volume source = loadVolume(test::datasetsDir() / e.file, raw);
+    PrepareOptions options;
+    options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
+    options.fields = 0;
+    std::printf("\nThe primitive caster's time per iteration against the scalars' bytes: %s resampled (noise of 20), "
+                "the same views, ns per iteration = (device ns per pixel - ray %.0f) / iterations per pixel.\n\n"
+                "| size | scalar MB | iterations per pixel | ns per iteration |\n|---|---:|---:|---:|\n",
+                e.file.c_str(), rayNs);
+    std::vector<SizeSample> samples;
+    for (const Vec3i& dims : sizes) {
+        StagedPreparation staged(bench::withNoise(bench::resample(source, dims), 20, 1));
+        samples.push_back(primitiveOnSize(renderer, staged.prepare(options), views, repeats, step, rayNs));
+        const SizeSample& sample = samples.back();
+        std::printf("| %dx%dx%d | %.0f | %.1f | %.1f |\n", dims.x, dims.y, dims.z, sample.scalarBytes / 1e6,
+                    sample.iterations, sample.iterationNs);
+        checks.expect(sample.iterations > 0 && std::isfinite(sample.iterationNs) && sample.iterationNs > 0,
+                      "%dx%dx%d: %g iterations per pixel at %g ns each, not both > 0", dims.x, dims.y, dims.z,
+                      sample.iterations, sample.iterationNs);
+        std::fflush(stdout);
+    }
+    const IterationGrowth g = fitGrowth(samples);
+    std::printf("\nGrowth (a calibration's iterationGrowth): %.2f per doubling of the scalars' bytes beyond %.0f MB.\n",
+                g.perDoubling, g.cachedBytes / 1e6);
+    return g;
+}
+
 // What a row of the table says: the regions partition the voxels; every fixed caster rendered every view in a
 // positive time and looped in it; a field costs bytes to upload (primitive has none); auto chose a caster whose field
 // the volume has, for a reason; and its ratio to the fastest is a ratio of times. (Whether auto is within the target
@@ -310,6 +411,8 @@ int main(int argc, char** argv) {
     std::vector<double> to{0, 0.02}, ta{0, 10};
     std::vector<std::string> datasets;
     std::string calibrationFile;
+    std::vector<std::string> growthSizes;
+    bool growthOnly = false;
     app.add_flag("--short", shortMode, "one tiny dataset (vtk_headmr), 64x64, 2 views, once: a few seconds (CTest)");
     app.add_flag("--explain", explain, "print auto's estimates for every view below each row");
     app.add_option("--datasets", datasets, "dataset name prefixes (MANIFEST.tsv files, phantom_NAME); default all")
@@ -325,7 +428,35 @@ int main(int argc, char** argv) {
     app.add_option("--write-calibration", calibrationFile,
                    "write the fit, the upload rate and the device as a calibration file for volrender "
                    "--calibration (needs 10 rows or more)");
+    app.add_option("--growth-sizes", growthSizes,
+                   "sizes XxYxZ, smallest first, of the cranium CT resampled with noise, primitive renders only: how an "
+                   "iteration's time grows with the scalars' bytes (a calibration's iterationGrowth; 3 or more; "
+                   "with --write-calibration the default is " + kDefaultGrowthSizes + ")")
+        ->delimiter(',');
+    app.add_flag("--growth-only", growthOnly, "only the --growth-sizes table: no dataset rows, no calibration");
     CLI11_PARSE(app, argc, argv);
+    if (!calibrationFile.empty() && growthSizes.empty()) growthSizes = CLI::detail::split(kDefaultGrowthSizes, ',');
+    std::vector<Vec3i> growthDims;
+    for (const std::string& text : growthSizes) {
+        Vec3i dims;
+        char tail = 0;
+        if (std::sscanf(text.c_str(), "%dx%dx%d%c", &dims.x, &dims.y, &dims.z, &tail) != 3 || dims.x < 2 ||
+            dims.y < 2 || dims.z < 2) {
+            std::fprintf(stderr, "auto_caster_bench: --growth-sizes: '%s' is not XxYxZ of 2 voxels or more each\n",
+                         text.c_str());
+            return 2;
+        }
+        growthDims.push_back(dims);
+    }
+    if (growthOnly && (growthDims.empty() || !calibrationFile.empty())) {
+        std::fprintf(stderr, "auto_caster_bench: --growth-only needs --growth-sizes and writes no calibration\n");
+        return 2;
+    }
+    if (!calibrationFile.empty() && growthDims.size() < 3) {
+        std::fprintf(stderr, "auto_caster_bench: --write-calibration: the growth's fit needs 3 --growth-sizes or "
+                     "more, not %zu\n", growthDims.size());
+        return 2;
+    }
     if (shortMode) {
         datasets = {"vtk_headmr"};
         size = 64, viewCount = 2, repeats = 1, to = {0.01}, ta = {3};
@@ -334,7 +465,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "auto_caster_bench: --to and --ta need as many values\n");
         return 2;
     }
-    const std::vector<Scene> measured = scenes(datasets, phantomSize);
+    const std::vector<Scene> measured = growthOnly ? std::vector<Scene>{} : scenes(datasets, phantomSize);
     const std::size_t rowCount = measured.size() * to.size();
     if (!calibrationFile.empty() && rowCount < std::size_t(kRowsToFit)) {
         std::fprintf(stderr, "auto_caster_bench: --write-calibration: the fit needs %d rows (datasets x settings) "
@@ -415,6 +546,10 @@ int main(int argc, char** argv) {
                          scene.voxels, t, renders, ratio, spreads.back());
             }
         }
+        if (growthOnly) {
+            measureGrowth(checks, renderer, growthDims, views, repeats, step, builtInCalibration().rayNs);
+            return checks.exitStatus();
+        }
         if (!checks.expect(rows > 0, "no row: no dataset or phantom matched %zu prefix(es)", datasets.size()))
             return checks.exitStatus();
         std::printf("\nauto within %.0f %% of the fastest fixed caster on %d of %d rows; worst ratio %.2f.\n",
@@ -422,25 +557,26 @@ int main(int argc, char** argv) {
         std::printf("Run-to-run spread of the fastest fixed caster ((max - min) / median of its per-repeat sums over "
                     "the views): median %.0f %%, largest %.0f %%.\n",
                     100 * median(spreads), 100 * *std::max_element(spreads.begin(), spreads.end()));
-        const double uploadNsPerByte = median(perByte);
+        CasterCalibration fitted = builtInCalibration();  // the tie stays: it is the probe's precision
+        fitted.uploadNsPerByte = median(perByte);
         if (rows >= kRowsToFit) {
             const std::array<double, 5> fit = fitModel(renderSamples);
             std::printf("Fit of the renders, device ns per pixel = ray + iterations x per-iteration "
                         "(a calibration's rayNs and iterationNs): ray %.0f;", fit[0]);
             for (Caster c : kFixed) std::printf(" %s %.0f;", casterName(c).data(), fit[1 + int(c)]);
-            if (!calibrationFile.empty()) {
-                CasterCalibration fitted = builtInCalibration();  // the tie stays: it is the probe's precision
-                fitted.rayNs = fit[0];
-                std::copy(fit.begin() + 1, fit.end(), fitted.iterationNs.begin());
-                fitted.uploadNsPerByte = uploadNsPerByte;
-                describeDevice(ctx, fitted);
-                writeCasterCalibration(calibrationFile, fitted);
-            }
+            fitted.rayNs = fit[0];
+            std::copy(fit.begin() + 1, fit.end(), fitted.iterationNs.begin());
         }
-        std::printf("\nWall ns per field byte uploaded (median over rows): %.2f.\n", uploadNsPerByte);
-        checks.expect(std::isfinite(uploadNsPerByte) && uploadNsPerByte >= 0, "wall ns per field byte %g, not >= 0",
-                      uploadNsPerByte);
-        if (!calibrationFile.empty()) std::printf("Calibration written to %s.\n", calibrationFile.c_str());
+        std::printf("\nWall ns per field byte uploaded (median over rows): %.2f.\n", fitted.uploadNsPerByte);
+        checks.expect(std::isfinite(fitted.uploadNsPerByte) && fitted.uploadNsPerByte >= 0,
+                      "wall ns per field byte %g, not >= 0", fitted.uploadNsPerByte);
+        if (!growthDims.empty())
+            fitted.growth = measureGrowth(checks, renderer, growthDims, views, repeats, step, fitted.rayNs);
+        if (!calibrationFile.empty()) {
+            describeDevice(ctx, fitted);
+            writeCasterCalibration(calibrationFile, fitted);
+            std::printf("Calibration written to %s.\n", calibrationFile.c_str());
+        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "auto_caster_bench: %s\n", e.what());
         return 1;

@@ -14,7 +14,7 @@ using json = nlohmann::json;
 namespace {
 
 constexpr const char* kFormat = "volrender caster calibration";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2 added iterationGrowth; a version 1 file has none (no growth)
 
 // The problem with a calibration's values, or empty when there is none.
 std::string problemWith(const CasterCalibration& c) {
@@ -25,6 +25,8 @@ std::string problemWith(const CasterCalibration& c) {
             return std::string("iterationNs.") + kCalibratedCasters[i] + " must be a finite number >= 0";
     if (bad(c.uploadNsPerByte)) return "uploadNsPerByte must be a finite number >= 0";
     if (bad(c.tie) || c.tie >= 1) return "tie must be a fraction in [0, 1)";
+    if (bad(c.growth.cachedBytes)) return "iterationGrowth.cachedBytes must be a finite number >= 0";
+    if (bad(c.growth.perDoubling)) return "iterationGrowth.perDoubling must be a finite number >= 0";
     if (c.deviceName.empty()) return "device.name must name the Vulkan device it was measured on";
     return {};
 }
@@ -43,8 +45,10 @@ T valueAt(const json& j, const std::string& where, const char* key) {
 CasterCalibration calibrationFromJson(const json& j) {
     if (!j.is_object() || valueAt<std::string>(j, "", "format") != kFormat)
         throw InputError(std::string("not a calibration file (\"format\" must be \"") + kFormat + "\")");
-    if (valueAt<double>(j, "", "version") != kVersion)
-        throw InputError("version " + j.at("version").dump() + " is not supported (" + std::to_string(kVersion) + ")");
+    const double version = valueAt<double>(j, "", "version");
+    if (version != 1 && version != kVersion)
+        throw InputError("version " + j.at("version").dump() + " is not supported (1 or " + std::to_string(kVersion) +
+                         ")");
     CasterCalibration c;
     c.rayNs = valueAt<double>(j, "", "rayNs");
     const json iterations = j.value("iterationNs", json::object());
@@ -52,6 +56,11 @@ CasterCalibration calibrationFromJson(const json& j) {
         c.iterationNs[i] = valueAt<double>(iterations, "iterationNs.", kCalibratedCasters[i]);
     c.uploadNsPerByte = valueAt<double>(j, "", "uploadNsPerByte");
     c.tie = valueAt<double>(j, "", "tie");
+    if (version >= 2) {
+        const json growth = j.value("iterationGrowth", json::object());
+        c.growth.cachedBytes = valueAt<double>(growth, "iterationGrowth.", "cachedBytes");
+        c.growth.perDoubling = valueAt<double>(growth, "iterationGrowth.", "perDoubling");
+    }
     const json device = j.value("device", json::object());
     c.deviceName = valueAt<std::string>(device, "device.", "name");
     c.driverVersion = valueAt<std::string>(device, "device.", "driverVersion");
@@ -70,6 +79,7 @@ json casterCalibrationJson(const CasterCalibration& c) {
             {"device", {{"name", c.deviceName}, {"driverVersion", c.driverVersion}, {"measuredAt", c.measuredAt}}},
             {"rayNs", c.rayNs},
             {"iterationNs", iterations},
+            {"iterationGrowth", {{"cachedBytes", c.growth.cachedBytes}, {"perDoubling", c.growth.perDoubling}}},
             {"uploadNsPerByte", c.uploadNsPerByte},
             {"tie", c.tie}};
 }

@@ -11,6 +11,15 @@ namespace vr {
 // The casters whose loop iteration the file prices, in the order of render/render_settings.h's Caster.
 constexpr std::array<const char*, 4> kCalibratedCasters{"primitive", "pc", "acd", "eacd"};
 
+// How an iteration's time grows once the scalars outgrow the caches the casters sample them through: by
+// perDoubling of itself per doubling of the scalars' device bytes beyond cachedBytes (render/caster_choice.h).
+// Zero: every volume priced alike, as a file of version 1 prices it.
+struct IterationGrowth {
+    double cachedBytes = 0;
+    double perDoubling = 0;
+    bool operator==(const IterationGrowth&) const = default;
+};
+
 struct CasterCalibration {
     double rayNs = 0;                     // device time of a ray, whatever its iterations
     std::array<double, 4> iterationNs{};  // device time of one loop iteration, per caster (kCalibratedCasters)
@@ -19,16 +28,18 @@ struct CasterCalibration {
     // Where and when it was measured: the Vulkan device name (the one volrender matches), its driver version and
     // the time in ISO 8601 UTC.
     std::string deviceName, driverVersion, measuredAt;
+    IterationGrowth growth;  // of every caster's iteration time with the volume's bytes
     bool operator==(const CasterCalibration&) const = default;
 };
 
 nlohmann::json casterCalibrationJson(const CasterCalibration& calibration);
 
-// Throws InputError naming `path` and the problem: unreadable, not JSON, not a calibration, a constant missing,
-// negative or not a number, a tie outside [0, 1), or the device's name missing.
+// Reads version 2 (with iterationGrowth) and version 1 (without: no growth). Throws InputError naming `path` and
+// the problem: unreadable, not JSON, not a calibration, another version, a constant missing, negative or not a
+// number, a tie outside [0, 1), or the device's name missing.
 CasterCalibration readCasterCalibration(const std::filesystem::path& path);
 
-// Writes atomically (io/atomic_file.h) after the checks the reader makes, so that no file is written that
+// Writes version 2 atomically (io/atomic_file.h) after the checks the reader makes, so that no file is written that
 // volrender would refuse.
 void writeCasterCalibration(const std::filesystem::path& path, const CasterCalibration& calibration);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -23,14 +24,23 @@ constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caste
 // phantoms, T = 0 and 0.02/10, 256x256, 4 views). A leaping iteration adds a field fetch, a box exit and the
 // leap's bounds check to the sample; EACD also decodes its extents. Kept after later shader changes made every
 // iteration cheaper (primitive 2.8x, EACD 1.2x): they still pick within 10 % on 33 of 34 rows, where a fit to
-// the faster shaders (ray 27; 5, 9, 11, 13) picks so on 29-30. An iteration's time grows with the
-// volume (primitive: 3 ns on 2 MB of classified voxels, 10 ns on 268 MB), which these constants do not model.
+// the faster shaders (ray 27; 5, 9, 11, 13) picks so on 29-30. Those rows' scalars are 16 MB or less; beyond, an
+// iteration's time grows as the scalars outgrow the caches: bench/auto_caster_bench --growth-sizes on the cranium CT
+// resampled from 2 MB to 537 MB of scalars (primitive renders, the machine loaded by builds) gave 36, 38, 42, 49
+// and 53 ns per iteration at 2, 17, 75, 268 and 537 MB in one run, 32, 34, 40, 48 and 51 in another: 8 % and 11 %
+// more per doubling beyond 17 MB. 10 %.
 // Uploading a field byte (written in place into the image's memory): the bench's median over its rows (0.40-0.45
 // in three runs; 0.58-0.66 when uploads went through a staging copy); a field pays off only when it saves more
 // iterations than its bytes cost. The tie: the probe samples a few hundred rays per direction class, and the
 // constants are not finer than 5 %.
-const CasterCalibration kBuiltIn{38, {11, 15, 17, 20}, 0.44, 0.05, "llvmpipe (LLVM 15.0.6, 256 bits)",
-                                 "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)", "2026-11-21"};
+const CasterCalibration kBuiltIn{38,
+                                 {11, 15, 17, 20},
+                                 0.44,
+                                 0.05,
+                                 "llvmpipe (LLVM 15.0.6, 256 bits)",
+                                 "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)",
+                                 "2026-11-21",
+                                 {16.8e6, 0.1}};
 
 // Segmentation (post-classified, trilinear, with normals) and EACD's field in one octant, per voxel, on this
 // project's 2-core machine: volrender's own stage times (--stats prepareSeconds) gave 120 ns on the cranium CT (7.1 M
@@ -40,8 +50,9 @@ constexpr double kFieldBuildNsPerVoxel = 120;
 
 // The hier field (block ranges, block regions, the EACD over blocks of 4) per voxel on the same machine: volrender's
 // own stage time for one view (one octant) gave 4.4 ns on the cranium CT and 5.0 ns on a 512x512x1024 CT made from
-// it; bench/hier_bench (three octants, the machine loaded) 5.4 to 11.9. Above the one-view figures, so that a
-// borderline case does not build it.
+// it while the block ranges were taken from all four levels of the blocks caster's; with their one-level pass
+// 3.6-3.7 ns on the shared CTs and 3.2-5.6 ns on the 512x512x1024 CT (the machine loaded by builds). Above the
+// one-view figures, so that a borderline case does not build it.
 constexpr double kHierBuildNsPerVoxel = 6;
 // EACD's iterations per ray over hier's (bench/hier_bench: 512 x 512, trilinear, shaded, T_o 0.01, T_a 3, 4-view
 // orbits): 0.75 on the teapot, 0.81 on the cranium CT, 0.82 on the head CT, 0.86 on the clinical-size CT.
@@ -81,6 +92,15 @@ double classMean(const PerDirectionClass& counts, unsigned classes) {
     return sum / std::popcount(classes);
 }
 
+// Where the volume's bytes raised the iterations' times: by how much, and why; else nothing.
+std::string scaleNote(double scale, const CasterDemand& d) {
+    if (scale == 1) return {};
+    char note[128];
+    std::snprintf(note, sizeof note, " (each iteration priced at %.2f x its calibrated time: %.0f MB of scalars)",
+                  scale, d.scalarBytes / 1e6);
+    return note;
+}
+
 struct Estimate {
     Caster caster;
     double iterations;  // per pixel
@@ -91,6 +111,15 @@ struct Estimate {
 }  // namespace
 
 const CasterCalibration& builtInCalibration() { return kBuiltIn; }
+
+double scalarBytesOnDevice(const GridGeometry& grid, ScalarType type) {
+    return double(grid.voxels()) * double(scalarBytes(type));
+}
+
+double iterationScale(const IterationGrowth& growth, double scalarBytes) {
+    if (!(growth.cachedBytes > 0) || !(scalarBytes > growth.cachedBytes)) return 1;
+    return 1 + growth.perDoubling * std::log2(scalarBytes / growth.cachedBytes);
+}
 
 CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes& bytes, const CasterDemand& d,
                           const CasterCalibration& calibration) {
@@ -123,8 +152,9 @@ CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes
         estimates.push_back({c, iterations, uploaded});
     }
     const double views = double(d.views.size());
+    const double scale = iterationScale(calibration.growth, d.scalarBytes);
     for (Estimate& e : estimates) {
-        const double iterationNs = calibration.iterationNs[std::size_t(e.caster)];
+        const double iterationNs = calibration.iterationNs[std::size_t(e.caster)] * scale;
         e.cost = double(d.pixels) * (calibration.rayNs + e.iterations * iterationNs) +
                  e.bytes * calibration.uploadNsPerByte / views;
     }
@@ -145,14 +175,17 @@ CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes
         reason += part;
     }
     reason.pop_back();
+    reason += scaleNote(scale, d);
     return {best->caster, reason};
 }
 
 namespace {
 
-// Milliseconds of the views at `iterations` per pixel, each iteration `iterationNs`.
+// Milliseconds of the views at `iterations` per pixel, each iteration `iterationNs` as calibrated (scaled here for
+// the volume's bytes).
 double viewsMs(const CasterDemand& d, double iterations, double iterationNs, const CasterCalibration& calibration) {
-    return double(d.views.size()) * double(d.pixels) * (calibration.rayNs + iterations * iterationNs) * 1e-6;
+    const double scale = iterationScale(calibration.growth, d.scalarBytes);
+    return double(d.views.size()) * double(d.pixels) * (calibration.rayNs + iterations * iterationNs * scale) * 1e-6;
 }
 
 }  // namespace
@@ -170,15 +203,15 @@ CasterChoice chooseBeforeBuilding(const ProbedIterations& it, const CasterDemand
     const double buildMs = double(voxels) * kFieldBuildNsPerVoxel * 1e-6;
     const double eacdMs = buildMs + (it.hier ? viewsMs(d, *it.hier * kEACDPerHierIterations, leapNs, calibration) : 0);
     const double hierMs = it.hier ? viewsMs(d, *it.hier, leapNs, calibration) : primitiveMs;
-    char reason[320];
+    char reason[448];
     int at = std::snprintf(reason, sizeof reason,
                            "%zu view(s) cast without a field take an estimated %.0f ms (%.1f iterations per pixel); ",
                            d.views.size(), primitiveMs, it.primitive);
     if (it.hier)
         at += std::snprintf(reason + at, sizeof reason - std::size_t(at),
                             "with the hier field, built, %.0f ms (%.1f iterations per pixel); ", hierMs, *it.hier);
-    std::snprintf(reason + at, sizeof reason - std::size_t(at), "EACD's field alone would take %.0f ms to build",
-                  buildMs);
+    std::snprintf(reason + at, sizeof reason - std::size_t(at), "EACD's field alone would take %.0f ms to build%s",
+                  buildMs, scaleNote(iterationScale(calibration.growth, d.scalarBytes), d).c_str());
     const Caster best = primitiveMs <= std::min(hierMs, eacdMs) ? Caster::Primitive
                         : hierMs <= eacdMs                      ? Caster::Hier
                                                                 : Caster::EACD;

@@ -33,6 +33,9 @@ struct CasterDemand {
     std::vector<unsigned> views;   // per view, the ray probe's direction classes its rays fall in
     long long pixels = 512 * 512;  // per view
     double stepVoxels = 0.5;
+    // The volume's scalars on the device (voxels x their type's bytes), which every iteration samples: beyond the
+    // caches an iteration costs more (iterationScale). 0 when unknown: priced as a volume the caches hold.
+    double scalarBytes = 0;
 
     void addView(const Camera& camera) {
         octants |= viewOctants(camera);
@@ -49,8 +52,15 @@ struct CasterChoice {
 // device without a calibration file of its own.
 const CasterCalibration& builtInCalibration();
 
+// A volume's scalars' bytes on the device, in their own type as the casters sample them: CasterDemand::scalarBytes.
+double scalarBytesOnDevice(const GridGeometry& grid, ScalarType type);
+
+// The factor on every caster's time per iteration for a volume of `scalarBytes` on the device: 1 up to the growth's
+// cachedBytes, then 1 + perDoubling x log2(scalarBytes / cachedBytes); 1 where the growth or the bytes are 0.
+double iterationScale(const IterationGrowth& growth, double scalarBytes);
+
 // Estimates each available caster's time as pixels x (a cost per ray + iterations per pixel x its time per
-// iteration) per view, the iterations from the probe for the view's direction classes (rescaled to the step), plus
+// iteration, scaled for the volume's bytes by iterationScale) per view, the iterations from the probe for the view's direction classes (rescaled to the step), plus
 // the upload of its field (`fieldBytes`, per octant uploaded) shared by the views, and returns the cheapest; when a
 // leaner caster is within the calibration's tie of it, the one with less to upload. Without a probe (an old or
 // foreign file, or rays too long to probe) the primitive caster, which needs no field, and a reason that says so.

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 CasterCalibration measuredElsewhere() {
-    return {27, {5, 9, 11, 13}, 0.3, 0.1, "Some GPU", "1.2.3", "2026-01-02T03:04:05Z"};
+    return {27, {5, 9, 11, 13}, 0.3, 0.1, "Some GPU", "1.2.3", "2026-01-02T03:04:05Z", {64e6, 0.25}};
 }
 
 TEST(RenderCasterCalibration, NamesTheCastersInTheirOrder) {
@@ -40,7 +40,20 @@ TEST(RenderCasterCalibration, BuiltInIsLavapipesFit) {
     EXPECT_EQ(c.iterationNs, (std::array<double, 4>{11, 15, 17, 20}));
     EXPECT_EQ(c.uploadNsPerByte, 0.44);
     EXPECT_EQ(c.tie, 0.05);
+    EXPECT_EQ(c.growth, (IterationGrowth{16.8e6, 0.1}));
     EXPECT_NE(c.deviceName.find("llvmpipe"), std::string::npos);
+}
+
+TEST(RenderCasterCalibration, AVersion1FileReadsWithoutGrowth) {
+    // Written before the growth with the volume's bytes was calibrated: its constants price every volume alike.
+    json j = casterCalibrationJson(measuredElsewhere());
+    j["version"] = 1;
+    j.erase("iterationGrowth");
+    const fs::path file = test::scratchDir("calibration_version_1") / "calibration.json";
+    std::ofstream(file) << j.dump();
+    CasterCalibration expected = measuredElsewhere();
+    expected.growth = {};
+    EXPECT_EQ(readCasterCalibration(file), expected);
 }
 
 // Writes `text` as a calibration file and expects reading it to fail with a message naming the file and `says`.
@@ -69,7 +82,15 @@ TEST(RenderCasterCalibration, BadFilesAreRefusedWithTheProblem) {
     expectRefused("nan", "{\"rayNs\": NaN}", "not valid JSON");
     expectRefused("array", "[1, 2]", "not a calibration file");
     expectRefused("other_format", edited([](json& j) { j["format"] = "something else"; }), "not a calibration file");
-    expectRefused("version", edited([](json& j) { j["version"] = 2; }), "version 2");
+    expectRefused("version", edited([](json& j) { j["version"] = 3; }), "version 3 is not supported (1 or 2)");
+    expectRefused("no_growth", edited([](json& j) { j.erase("iterationGrowth"); }),
+                  "iterationGrowth.cachedBytes is missing");
+    expectRefused("text_growth", edited([](json& j) { j["iterationGrowth"]["perDoubling"] = "0.1"; }),
+                  "iterationGrowth.perDoubling must be a number");
+    expectRefused("negative_growth", edited([](json& j) { j["iterationGrowth"]["perDoubling"] = -0.1; }),
+                  "iterationGrowth.perDoubling must be a finite number >= 0");
+    expectRefused("negative_cache", edited([](json& j) { j["iterationGrowth"]["cachedBytes"] = -1; }),
+                  "iterationGrowth.cachedBytes must be a finite number >= 0");
     expectRefused("no_ray", edited([](json& j) { j.erase("rayNs"); }), "rayNs is missing");
     expectRefused("null_ray", edited([](json& j) { j["rayNs"] = nullptr; }), "rayNs must be a number");
     expectRefused("negative_ray", edited([](json& j) { j["rayNs"] = -1; }), "rayNs must be a finite number >= 0");

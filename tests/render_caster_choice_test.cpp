@@ -175,10 +175,40 @@ TEST(RenderCasterChoice, SaysWhy) {
         EXPECT_NE(c.reason.find(caster), std::string::npos) << c.reason;
 }
 
+TEST(RenderCasterChoice, AnIterationCostsMoreOnceTheScalarsOutgrowTheCaches) {
+    const IterationGrowth growth{16e6, 0.25};
+    EXPECT_EQ(iterationScale(growth, 0), 1);  // bytes unknown
+    EXPECT_EQ(iterationScale(growth, 8e6), 1);
+    EXPECT_EQ(iterationScale(growth, 16e6), 1);
+    EXPECT_DOUBLE_EQ(iterationScale(growth, 64e6), 1.5);  // two doublings beyond
+    EXPECT_EQ(iterationScale({}, 1e12), 1);                // no growth (a version 1 calibration)
+}
+
+// A field whose upload costs more than the iterations it saves on a volume the caches hold pays once the volume
+// outgrows them and every iteration costs twice as much.
+TEST(RenderCasterChoice, TheVolumesBytesPriceEveryIteration) {
+    const CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", "", {1e6, 1}};
+    Prepared s = probed({{"primitive", {0, 100}}, {"pc", {40, 0}}});
+    s.bytes.pc = 6'250'000;  // 2.5 ms to upload
+    CasterDemand d = ortho();
+    d.pixels = 64 * 64;  // 100 x 10 - 40 x 15 ns saved per pixel: 1.6 ms at 1 x, 3.3 ms at 2 x
+    for (double bytes : {0.0, 1e6}) {
+        d.scalarBytes = bytes;
+        const CasterChoice c = chooseCaster(s.probe, s.bytes, d, calibration);
+        EXPECT_EQ(c.caster, Caster::Primitive) << bytes;
+        EXPECT_EQ(c.reason.find("priced at"), std::string::npos) << c.reason;
+    }
+    d.scalarBytes = 2e6;
+    const CasterChoice c = chooseCaster(s.probe, s.bytes, d, calibration);
+    EXPECT_EQ(c.caster, Caster::PC);
+    EXPECT_NE(c.reason.find("each iteration priced at 2.00 x its calibrated time: 2 MB of scalars"), std::string::npos)
+        << c.reason;
+}
+
 // Before any field is built: primitive while its views cost less than building EACD's field, which no EACD render
 // can win back; EACD once they cost more. The reason gives both estimates.
 TEST(RenderCasterChoice, BeforeBuildingPrimitiveWinsUntilItsViewsCostMoreThanTheField) {
-    const CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", ""};
+    const CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", "", {}};
     CasterDemand d = ortho();
     d.pixels = 512 * 512;
     const std::size_t voxels = 256 * 256 * 128;  // about 1 s to segment and build at 120 ns per voxel
@@ -195,7 +225,7 @@ TEST(RenderCasterChoice, BeforeBuildingPrimitiveWinsUntilItsViewsCostMoreThanThe
 // With the hier field probed: hier wherever its views cost less than the primitive caster's and than EACD's build
 // and views; EACD over a long orbit, whose views at fewer iterations win its build back.
 TEST(RenderCasterChoice, BeforeBuildingHierWinsUnlessAnOrbitIsLong) {
-    const CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", ""};
+    const CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", "", {}};
     CasterDemand d = ortho();
     d.pixels = 512 * 512;
     const std::size_t voxels = 256 * 256 * 128;
@@ -212,6 +242,26 @@ TEST(RenderCasterChoice, BeforeBuildingHierWinsUnlessAnOrbitIsLong) {
     // 200 views: EACD's build is won back by its fewer iterations.
     d.views.assign(200, d.views.front());
     EXPECT_EQ(chooseBeforeBuilding({100, 10.0}, d, voxels, calibration).caster, Caster::EACD);
+}
+
+// The same volume and views: primitive while the scalars fit the caches (its frame costs less than building even
+// the hier field, so that the field is not built to probe it), hier once they outgrow them and every iteration
+// costs twice as much, which hier's fewer iterations save.
+TEST(RenderCasterChoice, BeforeBuildingALargeVolumeTakesHier) {
+    const std::size_t voxels = 256 * 256 * 256;  // the hier field: 101 ms to build at 6 ns per voxel
+    const CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", "", {voxels / 2.0, 0.5}};
+    CasterDemand d = ortho();
+    d.pixels = 512 * 512;
+    const ProbedIterations it{32, 5.0};
+    d.scalarBytes = voxels / 2.0;  // 1 x: primitive's frame 94 ms
+    EXPECT_FALSE(hierMayPay(it.primitive, d, voxels, calibration));
+    EXPECT_EQ(chooseBeforeBuilding({it.primitive, {}}, d, voxels, calibration).caster, Caster::Primitive);
+    d.scalarBytes = voxels * 2.0;  // two doublings beyond: 2 x, primitive's frame 178 ms, hier's 63 ms + its build
+    EXPECT_TRUE(hierMayPay(it.primitive, d, voxels, calibration));
+    const CasterChoice c = chooseBeforeBuilding(it, d, voxels, calibration);
+    EXPECT_EQ(c.caster, Caster::Hier);
+    for (const char* part : {"178 ms", "63 ms", "priced at 2.00 x"})
+        EXPECT_NE(c.reason.find(part), std::string::npos) << c.reason;
 }
 
 }  // namespace

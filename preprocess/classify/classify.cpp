@@ -106,34 +106,9 @@ private:
         }
     }
 
-    // The gradient of core/gradient.h (centralGradient) along one row: the same operations in the same order.
+    // The gradient of core/gradient.h along one row.
     void rowGradient(int y, int z, std::vector<double>& gx, std::vector<double>& gy, std::vector<double>& gz) const {
-        const Vec3d& h = volume_.grid.spacing;
-        const float* row = &volume_.values[linearIndex(dims_, 0, y, z)];
-        const int nx = dims_.x;
-        if (nx < 2) {
-            gx[0] = 0;
-        } else {
-            const double inner = 2 * h.x, edge = 1 * h.x;
-            gx[0] = (double(row[1]) - double(row[0])) / edge;
-            for (int x = 1; x < nx - 1; ++x) gx[x] = (double(row[x + 1]) - double(row[x - 1])) / inner;
-            gx[nx - 1] = (double(row[nx - 1]) - double(row[nx - 2])) / edge;
-        }
-        alongRows(gy, dims_.y, y, h.y, [&](int w) { return &volume_.values[linearIndex(dims_, 0, w, z)]; });
-        alongRows(gz, dims_.z, z, h.z, [&](int w) { return &volume_.values[linearIndex(dims_, 0, y, w)]; });
-    }
-
-    // Derivative along y or z (axis length n, this row at v, spacing h): the difference of two whole rows.
-    template <typename RowAt>
-    void alongRows(std::vector<double>& g, int n, int v, double h, RowAt rowAt) const {
-        if (n < 2) {
-            std::fill(g.begin(), g.end(), 0.0);
-            return;
-        }
-        const int lo = std::max(v - 1, 0), hi = std::min(v + 1, n - 1);
-        const double span = (hi - lo) * h;
-        const float *a = rowAt(lo), *b = rowAt(hi);
-        for (std::size_t x = 0; x < g.size(); ++x) g[x] = (double(b[x]) - double(a[x])) / span;
+        centralGradientRun(volume_, 0, dims_.x, y, z, gx.data(), gy.data(), gz.data());
     }
 
     // sigma and colour as a nearest sample of scalar f takes them (shaders/transfer_lookup.h): an entry exactly

@@ -1,5 +1,8 @@
 #include "preprocess/pipeline/hier_field.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <stdexcept>
 
 #include "core/errors.h"
@@ -24,28 +27,20 @@ SampledTransferFunction tableSamples(const ScalarClassification& c) {
 
 BlockEACD buildHierarchicalEACD(const PreparedVolume& classified, const SegmentationParams& params, unsigned octants,
                                 int blockShift) {
-    const int level = blockShift - device::kBlockShift;  // the block extrema's level of that edge
-    if (level < 0 || level >= device::kBlockLevels)
+    if (blockShift < 1)
         throw std::invalid_argument("buildHierarchicalEACD: blocks of 2^" + std::to_string(blockShift) +
-                                    " voxels are not a level of the block extrema");
+                                    " voxels: a block must be 2 voxels or more per axis");
     if (classified.labels)
         throw InputError("the hier caster does not take a label map (--labels): its blocks are classified by the "
                          "scalars alone (use --caster eacd)");
     const TfRangeTable spread(tableSamples(classified.classification));
-    const BlockExtrema extrema = blockExtrema(classified.scalars);
-    const int edge = 1 << blockShift;
-    const Vec3i d = classified.grid().dims;
-    const Vec3i blocks{(d.x + edge - 1) >> blockShift, (d.y + edge - 1) >> blockShift, (d.z + edge - 1) >> blockShift};
-    std::vector<EntryRange> ranges(voxelCount(blocks));
-    std::size_t i = 0;
-    for (int z = 0; z < blocks.z; ++z)
-        for (int y = 0; y < blocks.y; ++y)
-            for (int x = 0; x < blocks.x; ++x, ++i) {
-                const Vec3i corner{x << blockShift, y << blockShift, z << blockShift};
-                ranges[i] = {spread.entryBelow(extrema.lo(level, corner)),
-                             spread.entryAbove(extrema.hi(level, corner))};
-            }
-    const BlockRegions regions = segmentBlocks(blocks, ranges, spread, params);
+    const BlockRanges scalarRanges = blockRanges(classified.scalars, blockShift);
+    std::vector<EntryRange> ranges(voxelCount(scalarRanges.blocks));
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ranges.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i)
+            ranges[i] = {spread.entryBelow(scalarRanges.range[2 * i]), spread.entryAbove(scalarRanges.range[2 * i + 1])};
+    });
+    const BlockRegions regions = segmentBlocks(scalarRanges.blocks, ranges, spread, params);
     return buildBlockEACD(regions.regions, regions.homogeneous, blockShift, octants);
 }
 
