@@ -281,6 +281,7 @@ vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::Rende
                                        "trilinear sampling cannot leap through them (render with --nearest to leap)"};
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (const vr::Camera& camera : eyeCameras(f, header.grid, view)) d.addView(camera);
+    d.scalarBytes = vr::scalarBytesOnDevice(header.grid, header.scalarType);
     return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
 }
 
@@ -342,6 +343,7 @@ vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& vi
     vr::RenderSettings probe = s;
     probe.caster = vr::Caster::Primitive;
     const vr::PreparedVolume& classified = staged.prepare(options, vr::PrepStage::Classify);
+    d.scalarBytes = vr::scalarBytesOnDevice(classified.grid(), classified.scalars.sourceType);
     vr::ProbedIterations it{vr::probeIterations(classified, cameras, probe), {}};
     const std::size_t voxels = classified.grid().voxels();
     // A label map, not the scalars, would decide what a block holds: hier does not take one.
