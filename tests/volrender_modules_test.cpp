@@ -29,12 +29,8 @@ TEST(VolrenderModules, TheToolsLoadNoneOfTheModulesLibrariesAtStart) {
 // A copy of volprep in a folder without lib/volrender/: raw files need no module; every other format's loader is
 // a module's, refused before the file is read.
 TEST(VolrenderModules, WithoutTheFormatModulesRawFilesAreReadAndOtherFormatsRefused) {
-    const fs::path dir = test::scratchDir("volrender_modules_formats");
-    for (const auto& entry : fs::directory_iterator(dir)) fs::remove_all(entry.path());
-    fs::create_directories(dir / "bin");
-    const fs::path copy = dir / "bin" / "volprep";
-    fs::copy_file(test::volprepExecutable(), copy);
-    const fs::path in = dir / "in", out = dir / "out";
+    const fs::path copy = test::copiedWithoutModules(test::volprepExecutable(), "volrender_modules_formats");
+    const fs::path dir = copy.parent_path().parent_path(), in = dir / "in", out = dir / "out";
     fs::create_directories(in / "dicom");
     fs::create_directories(out);
     const std::string transfer = " --window 255 --level 128 -o ";

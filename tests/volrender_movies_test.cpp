@@ -168,12 +168,8 @@ TEST(VolrenderMovies, AnUnfinishedMovieLeavesNothing) {
 // volrender's: a copy of volrender without its modules still renders images, and refuses a movie before it renders,
 // naming the module's file and why it cannot be loaded, and writing nothing.
 TEST(VolrenderMovies, WithoutTheMovieModuleImagesAreRenderedAndMoviesRefused) {
-    const fs::path dir = test::scratchDir("volrender_movies_no_module");
-    for (const auto& entry : fs::directory_iterator(dir)) fs::remove_all(entry.path());
-    fs::create_directories(dir / "bin");
-    const fs::path copy = dir / "bin" / "volrender";
-    fs::copy_file(test::volrenderExecutable(), copy);
-    const fs::path out = dir / "out";
+    const fs::path copy = test::copiedWithoutModules(test::volrenderExecutable(), "volrender_movies_no_module");
+    const fs::path dir = copy.parent_path().parent_path(), out = dir / "out";
     fs::create_directories(out);
 
     const test::CliOutcome image = test::runCli(copy, orbit(out / "view.png"));
