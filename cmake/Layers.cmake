@@ -11,6 +11,7 @@ set(VR_LAYERS
   "volshaders     shaders              1"
   "volrendercore  render               2"
   "volload        preprocess/load      2"
+  "volloadchecks  preprocess/load      2"
   "volclassify    preprocess/classify  2"
   "volsegment     preprocess/segment   2"
   "volfields      preprocess/fields    2"

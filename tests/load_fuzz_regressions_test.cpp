@@ -193,7 +193,7 @@ const Regression kRegressions[] = {
       "vdb/float_tree_raw_values_beyond_the_node.vdb", "vdb/float_tree_zipped_length_of_8gib.vdb",
       "vdb/absurd_length_field.vdb"}, kSmallInputAllocation},
     // Active tiles in a float tree of 13 KiB whose bounding box densifies to 6 GiB (found by fuzz_vdb): within this
-    // machine's memory, but not backed by the file (preprocess/load/vdb_loader.cpp: at most 256 voxels per byte).
+    // machine's memory, but not backed by the file (preprocess/load/vdb/vdb_loader.cpp: at most 256 voxels per byte).
     {"VdbSparseGridDensifyingToGigabytes", {"vdb/float_tree_active_box_of_6gib.vdb"}, kSmallInputAllocation},
 };
 

@@ -84,7 +84,7 @@ TEST(LoadVdb, AnisotropicVoxelSize) {
 // A float grid whose leaves hold every kind of inactive values that io::writeCompressedValues tells apart (none
 // but the background, minus the background, one or two other values, three or more), across two root children, with
 // tiles at the root and in internal nodes: every compression and half floats must pass the loader's walk of the tree
-// (preprocess/load/vdb_file_check.cpp) and load with the values OpenVDB holds.
+// (preprocess/load/vdb/vdb_file_check.cpp) and load with the values OpenVDB holds.
 openvdb::FloatGrid::Ptr everyKindOfNode() {
     auto grid = openvdb::FloatGrid::create(0.5f);
     grid->setName("density");

@@ -164,6 +164,26 @@ TEST(VolrenderMovies, AnUnfinishedMovieLeavesNothing) {
     for (const auto& entry : fs::directory_iterator(dir)) EXPECT_EQ(entry.path().filename(), "orbit.mp4");
 }
 
+// FFmpeg is volrender's movie module's (lib/volrender/volrender_movies.so above the executable's folder), not
+// volrender's: a copy of volrender without its modules still renders images, and refuses a movie before it renders,
+// naming the module's file and why it cannot be loaded, and writing nothing.
+TEST(VolrenderMovies, WithoutTheMovieModuleImagesAreRenderedAndMoviesRefused) {
+    const fs::path copy = test::copiedWithoutModules(test::volrenderExecutable(), "volrender_movies_no_module");
+    const fs::path dir = copy.parent_path().parent_path(), out = dir / "out";
+    fs::create_directories(out);
+
+    const test::CliOutcome image = test::runCli(copy, orbit(out / "view.png"));
+    EXPECT_EQ(image.status, 0) << image.err;
+    EXPECT_TRUE(fs::exists(out / "view_005.png"));
+    for (const char* movie : {"orbit.gif", "orbit.mp4"}) {
+        const std::string args = orbit(out / movie);
+        test::expectRefusal(test::runCli(copy, args), "volrender", args,
+                            {"-o", movie, (dir / "lib/volrender/volrender_movies.so").string(),
+                             "cannot load the module that writes movies", "No such file"});
+    }
+    EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), kViews);  // the images only
+}
+
 // On a terminal a movie shows a bar over its frames and then one line; --quiet shows nothing.
 TEST(VolrenderMovies, ProgressBarOverTheFrames) {
     const fs::path dir = test::scratchDir("volrender_movies_bar");

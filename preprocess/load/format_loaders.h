@@ -1,5 +1,7 @@
 // One loader per file format; loadVolume() picks one by the file name. Each throws InputError naming the file.
-// They fill grid, sourceType and values; loadVolume() adds the checks every format shares.
+// They fill grid, sourceType and values; loadVolume() adds the checks every format shares. The raw loader is
+// volload's; the others are its modules' (format_module.h): VTK's formats in volload_vtk (preprocess/load/vtk/),
+// OpenVDB in volload_vdb (preprocess/load/vdb/).
 #pragma once
 #include <filesystem>
 

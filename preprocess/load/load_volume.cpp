@@ -8,34 +8,36 @@
 
 #include "core/errors.h"
 #include "preprocess/load/format_loaders.h"
+#include "preprocess/load/format_module.h"
 
 namespace vr {
 namespace fs = std::filesystem;
 
 namespace {
 
-using Loader = Volume (*)(const fs::path&, const RawOptions&);
-
-template <Volume (*load)(const fs::path&)>
-Volume ignoringRawOptions(const fs::path& path, const RawOptions&) { return load(path); }
+template <ModuleFormat format>
+Volume throughModule(const fs::path& path, const RawOptions& raw) {
+    return loadThroughModule(format, path, raw);
+}
 
 struct Format {
     const char* suffix;  // lower case, matched against the end of the lower-cased file name
-    Loader load;
+    FormatLoader load;
 };
 
+// Raw files are read here; the other formats by the modules of the libraries that read them (format_module.h).
 constexpr Format formats[] = {
     {".raw", loadRaw},
     {".raw.gz", loadRaw},
-    {".nrrd", ignoringRawOptions<loadNrrd>},
-    {".nhdr", ignoringRawOptions<loadNrrd>},
-    {".mhd", ignoringRawOptions<loadMetaImage>},
-    {".mha", ignoringRawOptions<loadMetaImage>},
-    {".nii", ignoringRawOptions<loadNifti>},
-    {".nii.gz", ignoringRawOptions<loadNifti>},
-    {".vti", ignoringRawOptions<loadVtkXmlImage>},
-    {".vtk", ignoringRawOptions<loadVtkLegacy>},
-    {".vdb", ignoringRawOptions<loadVdb>},
+    {".nrrd", throughModule<ModuleFormat::Nrrd>},
+    {".nhdr", throughModule<ModuleFormat::Nrrd>},
+    {".mhd", throughModule<ModuleFormat::MetaImage>},
+    {".mha", throughModule<ModuleFormat::MetaImage>},
+    {".nii", throughModule<ModuleFormat::Nifti>},
+    {".nii.gz", throughModule<ModuleFormat::Nifti>},
+    {".vti", throughModule<ModuleFormat::VtkXmlImage>},
+    {".vtk", throughModule<ModuleFormat::VtkLegacy>},
+    {".vdb", throughModule<ModuleFormat::Vdb>},
 };
 
 std::string supportedFormats() {
@@ -44,7 +46,7 @@ std::string supportedFormats() {
     return list + "or a folder holding a DICOM series";
 }
 
-Loader loaderFor(const fs::path& path) {
+FormatLoader loaderFor(const fs::path& path) {
     std::string name = path.filename().string();
     std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     for (const Format& f : formats)
@@ -91,7 +93,8 @@ Volume loadVolume(const fs::path& path, const RawOptions& raw) {
     if (!fs::exists(status)) throw fileError(path.string(), "no such file or folder");
     if (!raw.series.empty() && !fs::is_directory(status))
         throw fileError(path.string(), "--series chooses a series of a DICOM folder; this is a file");
-    Volume v = fs::is_directory(status) ? loadDicomSeries(path, raw.series) : loaderFor(path)(path, raw);
+    Volume v = fs::is_directory(status) ? loadThroughModule(ModuleFormat::DicomSeries, path, raw)
+                                          : loaderFor(path)(path, raw);
     requireValidGeometry(v.grid, path);
     requireFinite(v, path);
     v.source = path.string();

@@ -28,6 +28,8 @@ struct RawOptions {
 // sample's position in the file. Sets sourceType (Float32 for types other than the four, and for rescaled
 // NIfTI) and source (= path). Throws InputError naming the file and the problem: unknown format, missing file,
 // sizes that do not match, corrupt files, non-finite voxels (with their count and the first one's index).
+// The formats but raw are read by volload's modules (format_module.h), loaded on first use: one that cannot be
+// loaded is a std::runtime_error naming the path and the module's file.
 // Not for concurrent use from several threads (VTK's readers report through process-wide channels).
 Volume loadVolume(const std::filesystem::path& path, const RawOptions& raw = {});
 

@@ -24,6 +24,13 @@ fs::path volprepExecutable() { return fs::path(VR_BINARY_DIR) / "preprocess" / "
 fs::path volrenderExecutable() { return fs::path(VR_BINARY_DIR) / "volrender" / "volrender"; }
 fs::path volphantomExecutable() { return fs::path(VR_BINARY_DIR) / "datasets" / "volphantom"; }
 
+fs::path copiedWithoutModules(const fs::path& executable, const std::string& name) {
+    const fs::path bin = scratchDir(name) / "bin";
+    fs::create_directories(bin);
+    fs::copy_file(executable, bin / executable.filename());
+    return bin / executable.filename();
+}
+
 std::string shellQuote(const fs::path& p) {
     std::string out = "'";
     for (char c : p.string()) out += c == '\'' ? std::string("'\\''") : std::string(1, c);

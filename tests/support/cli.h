@@ -11,6 +11,10 @@ std::filesystem::path volprepExecutable();
 std::filesystem::path volrenderExecutable();
 std::filesystem::path volphantomExecutable();
 
+// A copy of `executable` in bin/ of a fresh scratch folder `name` (scratchDir), which holds no lib/volrender/: the
+// tool without its modules (tools/runtime_module.h). Returns the copy.
+std::filesystem::path copiedWithoutModules(const std::filesystem::path& executable, const std::string& name);
+
 // A path single-quoted for the shell.
 std::string shellQuote(const std::filesystem::path& p);
 std::string slurp(const std::filesystem::path& p);

@@ -4,8 +4,20 @@
 #include <cctype>
 
 #include "core/errors.h"
+#include "tools/runtime_module.h"
 
 namespace vr {
+namespace {
+
+// FFmpeg's libraries, with the codecs they load, are over a hundred shared libraries: the module keeps them out of
+// volrender's start.
+decltype(vrOpenMovieEncoder)* openEncoder() {
+    static decltype(vrOpenMovieEncoder)* const open = moduleFunction<decltype(vrOpenMovieEncoder)>(
+        "volrender_movies", "vrOpenMovieEncoder", "writes movies (.gif, .mp4)");
+    return open;
+}
+
+}  // namespace
 
 std::optional<MovieFormat> movieFormat(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
@@ -15,8 +27,18 @@ std::optional<MovieFormat> movieFormat(const std::filesystem::path& path) {
     return std::nullopt;
 }
 
-MovieWriter::MovieWriter(const std::filesystem::path& path, const MovieSpec& spec, std::string format)
-    : file_(path), spec_(spec), format_(std::move(format)) {}
+void requireMovieModule() { openEncoder(); }
+
+MovieWriter::MovieWriter(const std::filesystem::path& path, const MovieSpec& spec) : file_(path), spec_(spec) {
+    const std::optional<MovieFormat> format = movieFormat(path);
+    if (!format) throw fileError(path.string(), "not a movie: movies are written as .gif or .mp4");
+    format_ = *format == MovieFormat::Gif ? "GIF" : "MP4";
+    try {
+        encoder_.reset(openEncoder()(*format, file_.temporary().c_str(), spec));
+    } catch (const std::exception& e) {
+        fail(e.what());
+    }
+}
 
 void MovieWriter::fail(const std::string& why) const {
     throw fileError(file_.path().string(), "cannot write the " + format_ + ": " + why);
@@ -27,21 +49,23 @@ void MovieWriter::add(const Image& frame) {
     if (frame.width != spec_.width || frame.height != spec_.height)
         fail("a frame of " + std::to_string(frame.width) + "x" + std::to_string(frame.height) + " in a movie of " +
              std::to_string(spec_.width) + "x" + std::to_string(spec_.height));
-    write(srgbBytes(frame), added_);
+    try {
+        encoder_->write(srgbBytes(frame), added_);
+    } catch (const std::exception& e) {
+        fail(e.what());
+    }
     ++added_;
 }
 
 void MovieWriter::finish() {
     if (added_ != spec_.frames)
         fail(std::to_string(added_) + " frames of the " + std::to_string(spec_.frames) + " announced");
-    close();
+    try {
+        encoder_->close();
+    } catch (const std::exception& e) {
+        fail(e.what());
+    }
     file_.commit();
-}
-
-std::unique_ptr<MovieWriter> openMovie(const std::filesystem::path& path, const MovieSpec& spec) {
-    const std::optional<MovieFormat> format = movieFormat(path);
-    if (!format) throw fileError(path.string(), "not a movie: movies are written as .gif or .mp4");
-    return *format == MovieFormat::Gif ? openGif(path, spec) : openMp4(path, spec);
 }
 
 }  // namespace vr

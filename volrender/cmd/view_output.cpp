@@ -1,6 +1,7 @@
 #include "volrender/cmd/view_output.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 #include "core/errors.h"
 
@@ -15,10 +16,16 @@ void checkViewOutput(const std::string& path, const char* flag, int width, int h
     if (!movie && !isImageFormat(path))
         throw InputError(std::string(flag) + " " + path +
                          ": neither an image format (.png, .exr) nor a movie (.gif, .mp4)");
+    if (!movie) return;
+    try {
+        requireMovieModule();
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(std::string(flag) + " " + path + ": " + e.what());
+    }
 }
 
 ViewOutput::ViewOutput(std::string path, const MovieSpec& movie) : path_(std::move(path)), views_(movie.frames) {
-    if (movieFormat(path_)) movie_ = openMovie(path_, movie);
+    if (movieFormat(path_)) movie_ = std::make_unique<MovieWriter>(path_, movie);
 }
 
 // NAME.EXT -> NAME_007.EXT for view 7 of an orbit; unchanged for a single view or a movie.

@@ -9,7 +9,8 @@
 namespace vr {
 
 // Refuses, before anything is rendered, a path that is neither a movie nor an image format (isImageFormat), and a
-// movie its codec cannot hold (an MP4 needs an even width and height). InputError naming `flag` and the path.
+// movie its codec cannot hold (an MP4 needs an even width and height): InputError naming `flag` and the path. For a
+// movie, loads the movie module (std::runtime_error naming `flag`, the path and the module's file where it cannot).
 void checkViewOutput(const std::string& path, const char* flag, int width, int height);
 
 class ViewOutput {

@@ -4,16 +4,16 @@
 #include <cstdint>
 #include <cstring>
 
-#include "volrender/cmd/gif_palette.h"
-#include "volrender/cmd/video_movie.h"
+#include "volrender/movies/gif_palette.h"
+#include "volrender/movies/video_movie.h"
 
 namespace vr {
 namespace {
 
 class GifMovie final : public VideoMovie {
 public:
-    GifMovie(const std::filesystem::path& path, const MovieSpec& spec)
-        : VideoMovie(path, spec, "GIF", "gif", "gif", [](AVCodecContext& codec) { codec.pix_fmt = AV_PIX_FMT_PAL8; }) {}
+    GifMovie(const char* path, const MovieSpec& spec)
+        : VideoMovie(path, spec, "gif", "gif", [](AVCodecContext& codec) { codec.pix_fmt = AV_PIX_FMT_PAL8; }) {}
 
 private:
     void fill(const std::vector<unsigned char>& rgb, AVFrame& frame) override {
@@ -34,7 +34,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<MovieWriter> openGif(const std::filesystem::path& path, const MovieSpec& spec) {
+std::unique_ptr<MovieEncoder> openGif(const char* path, const MovieSpec& spec) {
     return std::make_unique<GifMovie>(path, spec);
 }
 

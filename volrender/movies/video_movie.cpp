@@ -1,8 +1,10 @@
-#include "volrender/cmd/video_movie.h"
+#include "volrender/movies/video_movie.h"
 
 extern "C" {
 #include <libavutil/log.h>
 }
+
+#include <stdexcept>
 
 namespace vr {
 namespace {
@@ -13,15 +15,16 @@ std::string avError(int code) {
 }
 }  // namespace
 
-VideoMovie::VideoMovie(const std::filesystem::path& path, const MovieSpec& spec, std::string format,
-                       const char* encoder, const char* muxer,
+void VideoMovie::fail(const std::string& why) { throw std::runtime_error(why); }
+
+VideoMovie::VideoMovie(const char* path, const MovieSpec& spec, const char* encoder, const char* muxer,
                        const std::function<void(AVCodecContext&)>& configure)
-    : MovieWriter(path, spec, std::move(format)) {
+    : spec_(spec) {
     av_log_set_level(AV_LOG_ERROR);  // encoders report their settings and statistics otherwise
     const AVCodec* codec = avcodec_find_encoder_by_name(encoder);
     if (!codec) fail(std::string("this libavcodec has no ") + encoder + " encoder");
     AVFormatContext* context = nullptr;
-    if (int e = avformat_alloc_output_context2(&context, nullptr, muxer, temporary().c_str()); e < 0)
+    if (int e = avformat_alloc_output_context2(&context, nullptr, muxer, path); e < 0)
         fail(avError(e));
     format_.reset(context);
     stream_ = avformat_new_stream(context, nullptr);
@@ -36,7 +39,7 @@ VideoMovie::VideoMovie(const std::filesystem::path& path, const MovieSpec& spec,
     if (int e = avcodec_open2(codec_.get(), codec, nullptr); e < 0) fail(avError(e));
     if (int e = avcodec_parameters_from_context(stream_->codecpar, codec_.get()); e < 0) fail(avError(e));
     stream_->time_base = codec_->time_base;
-    if (int e = avio_open(&format_->pb, temporary().c_str(), AVIO_FLAG_WRITE); e < 0) fail(avError(e));
+    if (int e = avio_open(&format_->pb, path, AVIO_FLAG_WRITE); e < 0) fail(avError(e));
     if (int e = avformat_write_header(format_.get(), nullptr); e < 0) fail(avError(e));
 
     frame_.reset(av_frame_alloc());

@@ -5,7 +5,7 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
-#include "volrender/cmd/video_movie.h"
+#include "volrender/movies/video_movie.h"
 
 namespace vr {
 namespace {
@@ -28,8 +28,7 @@ void configureH264(AVCodecContext& codec) {
 
 class Mp4Movie final : public VideoMovie {
 public:
-    Mp4Movie(const std::filesystem::path& path, const MovieSpec& spec)
-        : VideoMovie(path, spec, "MP4", "libx264", "mp4", configureH264) {
+    Mp4Movie(const char* path, const MovieSpec& spec) : VideoMovie(path, spec, "libx264", "mp4", configureH264) {
         toYuv_.reset(sws_getContext(spec.width, spec.height, AV_PIX_FMT_RGB24, spec.width, spec.height,
                                     AV_PIX_FMT_YUV420P, SWS_BICUBIC | SWS_ACCURATE_RND, nullptr, nullptr, nullptr));
         if (!toYuv_) fail("no RGB to YUV 4:2:0 conversion");
@@ -49,7 +48,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<MovieWriter> openMp4(const std::filesystem::path& path, const MovieSpec& spec) {
+std::unique_ptr<MovieEncoder> openMp4(const char* path, const MovieSpec& spec) {
     return std::make_unique<Mp4Movie>(path, spec);
 }
 

@@ -10,16 +10,18 @@ extern "C" {
 #include <memory>
 #include <string>
 
-#include "volrender/cmd/movie_writer.h"
+#include "volrender/movies/movie_encoder.h"
 
 namespace vr {
 
-class VideoMovie : public MovieWriter {
+class VideoMovie : public MovieEncoder {
 protected:
-    // `encoder` and `muxer` by their FFmpeg names; `configure` sets the codec's pixel format and options before it
-    // opens (the size and rate are set already).
-    VideoMovie(const std::filesystem::path& path, const MovieSpec& spec, std::string format, const char* encoder,
-               const char* muxer, const std::function<void(AVCodecContext&)>& configure);
+    // Writes `path`; `encoder` and `muxer` by their FFmpeg names; `configure` sets the codec's pixel format and
+    // options before it opens (the size and rate are set already).
+    VideoMovie(const char* path, const MovieSpec& spec, const char* encoder, const char* muxer,
+               const std::function<void(AVCodecContext&)>& configure);
+    [[noreturn]] static void fail(const std::string& why);
+    const MovieSpec& spec() const { return spec_; }
 
 private:
     // The frame's buffers are writable and in the codec's pixel format; rgb: 3 bytes a pixel from the top row.
@@ -45,12 +47,17 @@ private:
         void operator()(AVPacket* p) const { av_packet_free(&p); }
     };
 
-    // Destroyed unfinished, the file is closed here and the temporary removed with the base.
+    MovieSpec spec_;
+    // Destroyed unfinished, the file is closed here (the caller removes it).
     std::unique_ptr<AVFormatContext, FormatFree> format_;
     AVStream* stream_ = nullptr;  // owned by format_
     std::unique_ptr<AVCodecContext, CodecFree> codec_;
     std::unique_ptr<AVFrame, FrameFree> frame_;
     std::unique_ptr<AVPacket, PacketFree> packet_;
 };
+
+// The two movies, each in its own file.
+std::unique_ptr<MovieEncoder> openGif(const char* path, const MovieSpec& spec);
+std::unique_ptr<MovieEncoder> openMp4(const char* path, const MovieSpec& spec);
 
 }  // namespace vr

@@ -2,7 +2,7 @@
 // box with the widest range in one channel is split at its pixels' median in that channel until there are as many
 // boxes as colours (or no box holds two colours). A box's colour is the mean of its pixels; each pixel gets its
 // colour's box.
-#include "volrender/cmd/gif_palette.h"
+#include "volrender/movies/gif_palette.h"
 
 #include <algorithm>
 #include <cstdint>

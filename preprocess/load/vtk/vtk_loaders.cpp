@@ -9,8 +9,8 @@
 #include "core/errors.h"
 #include "preprocess/load/format_loaders.h"
 #include "preprocess/load/header_checks.h"
-#include "preprocess/load/vtk_image_volume.h"
-#include "preprocess/load/vtk_read.h"
+#include "preprocess/load/vtk/vtk_image_volume.h"
+#include "preprocess/load/vtk/vtk_read.h"
 
 namespace vr {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "preprocess/load/vtk_read.h"
+#include "preprocess/load/vtk/vtk_read.h"
 
 #include <vtkAbstractArray.h>
 #include <vtkAlgorithm.h>

@@ -1,4 +1,4 @@
-#include "preprocess/load/vtk_image_volume.h"
+#include "preprocess/load/vtk/vtk_image_volume.h"
 
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
