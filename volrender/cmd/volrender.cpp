@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -513,6 +514,14 @@ int run(const Flags& f) {
     if (f.caster == "auto" && !f.quiet)
         std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(settings.caster).data(),
                      choice.c_str());
+    if (device && !prepareHere) {  // the device makes the caster's pipeline while the file is read
+        const vr::PreparedHeader header = vr::readPreparedHeader(f.input);
+        if (std::none_of(header.chunks.begin(), header.chunks.end(), [](const vr::PreparedChunkBytes& c) {
+                return c.name == "labelMap";
+            }))
+            device->preparePipelines({settings.caster}, settings, eyeCameras(f, header.grid, view).front().projection,
+                                     header.scalarType);
+    }
     const vr::PreparedVolume prepared =
         prepareHere ? std::move(*preparedHere) : readPreparedFor(f, settings.caster, view);
 
