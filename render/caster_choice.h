@@ -60,10 +60,11 @@ double scalarBytesOnDevice(const GridGeometry& grid, ScalarType type);
 double iterationScale(const IterationGrowth& growth, double scalarBytes);
 
 // Estimates each available caster's time as pixels x (a cost per ray + iterations per pixel x its time per
-// iteration, scaled for the volume's bytes by iterationScale) per view, the iterations from the probe for the view's direction classes (rescaled to the step), plus
-// the upload of its field (`fieldBytes`, per octant uploaded) shared by the views, and returns the cheapest; when a
-// leaner caster is within the calibration's tie of it, the one with less to upload. Without a probe (an old or
-// foreign file, or rays too long to probe) the primitive caster, which needs no field, and a reason that says so.
+// iteration, scaled for the volume's bytes by iterationScale) per view, the iterations from the probe for the view's
+// direction classes (rescaled to the step), plus the upload of its field (`fieldBytes`, per octant uploaded) shared
+// by the views, and returns the cheapest; when a leaner caster is within the calibration's tie of it, the one with
+// less to upload. Without a probe (an old or foreign file, or rays too long to probe) the primitive caster, which
+// needs no field, and a reason that says so.
 CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes& fieldBytes,
                           const CasterDemand& demand,
                           const CasterCalibration& calibration = builtInCalibration());

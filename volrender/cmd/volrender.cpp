@@ -274,9 +274,8 @@ vr::PreparedVolume readPreparedFor(const Flags& f, vr::Caster caster, const vr::
 
 // --caster auto: the caster for the orbit's views, from the ray probe and the field sizes in the prepared file's
 // header (the chunks are read once the caster is known).
-vr::CasterChoice autoCaster(const Flags& f, vr::ViewParams view, const vr::RenderSettings& s,
-                            const vr::CasterCalibration& calibration) {
-    const vr::PreparedHeader header = vr::readPreparedHeader(f.input);
+vr::CasterChoice autoCaster(const Flags& f, const vr::PreparedHeader& header, vr::ViewParams view,
+                            const vr::RenderSettings& s, const vr::CasterCalibration& calibration) {
     if (s.trilinear && !header.meta.segmentation.trilinear)
         return {vr::Caster::Primitive, "the regions were made for nearest sampling only (volprep --nearest): "
                                        "trilinear sampling cannot leap through them (render with --nearest to leap)"};
@@ -373,8 +372,9 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     const std::vector<vr::Camera> cameras = eyeCameras(f, staged.volume().grid, view);
     options.octants = orbitOctants(cameras);
     if (device && f.volume.labels.empty())  // auto takes hier for most CTs, else the primitive caster
-        device->preparePipelines(chooseHere ? std::vector{vr::Caster::Hier, vr::Caster::Primitive} : std::vector{s.caster},
-                                 s, cameras.front().projection, staged.volume().sourceType);
+        device->preparePipelines(
+            chooseHere ? std::vector{vr::Caster::Hier, vr::Caster::Primitive} : std::vector{s.caster}, s,
+            cameras.front().projection, staged.volume().sourceType);
     if (chooseHere) {
         const vr::CasterChoice c =
             autoCasterBeforeFields(f, view, s, staged, options, cameras, device->context().info().name);
@@ -505,23 +505,23 @@ int run(const Flags& f) {
     vr::VulkanRenderer* renderer = device ? &device->renderer() : nullptr;
     const vr::CalibrationInUse calibration =
         vr::calibrationInUse(f.calibration, context ? std::optional(context->info().name) : std::nullopt);
-    if (chooseCaster && !prepareHere) {
+    // A prepared file's header: what auto weighs and what the device's pipeline is made for.
+    const std::optional<vr::PreparedHeader> header =
+        prepareHere ? std::nullopt : std::optional(vr::readPreparedHeader(f.input));
+    if (chooseCaster && header) {
         if (!calibration.note.empty() && !f.quiet) std::fprintf(stderr, "volrender: %s\n", calibration.note.c_str());
-        const vr::CasterChoice c = autoCaster(f, view, settings, calibration.constants);
+        const vr::CasterChoice c = autoCaster(f, *header, view, settings, calibration.constants);
         settings.caster = c.caster;
         choice = c.reason;
     }
     if (f.caster == "auto" && !f.quiet)
         std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(settings.caster).data(),
                      choice.c_str());
-    if (device && !prepareHere) {  // the device makes the caster's pipeline while the file is read
-        const vr::PreparedHeader header = vr::readPreparedHeader(f.input);
-        if (std::none_of(header.chunks.begin(), header.chunks.end(), [](const vr::PreparedChunkBytes& c) {
-                return c.name == "labelMap";
-            }))
-            device->preparePipelines({settings.caster}, settings, eyeCameras(f, header.grid, view).front().projection,
-                                     header.scalarType);
-    }
+    // The device makes the caster's pipeline while the file is read.
+    if (device && header && std::none_of(header->chunks.begin(), header->chunks.end(),
+                                         [](const vr::PreparedChunkBytes& c) { return c.name == "labelMap"; }))
+        device->preparePipelines({settings.caster}, settings, eyeCameras(f, header->grid, view).front().projection,
+                                 header->scalarType);
     const vr::PreparedVolume prepared =
         prepareHere ? std::move(*preparedHere) : readPreparedFor(f, settings.caster, view);
 
