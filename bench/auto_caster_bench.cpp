@@ -195,6 +195,33 @@ Timings measure(VulkanRenderer& renderer, const PreparedVolume& p, const std::ve
     return t;
 }
 
+// A blocks MIP iteration's device time over a primitive one's on the views, trilinear as users render MIP: (blocks
+// ms / its iterations) / (primitive ms / its iterations), ms the sum over the views of the median over repeats. The
+// calibration's blocksIterationRatio is the median over the scenes.
+double blocksIterationRatio(VulkanRenderer& renderer, const PreparedVolume& p, const std::vector<ViewParams>& views,
+                            int repeats, double step) {
+    RenderSettings s;
+    s.stepVoxels = step;
+    s.blend = Blend::MIP;
+    s.trilinear = true;
+    const GpuVolume volume = renderer.upload(p, {{Caster::Primitive, Caster::Blocks}, 0});
+    std::map<Caster, double> nsPerIteration;
+    for (Caster c : {Caster::Primitive, Caster::Blocks}) {
+        s.caster = c;
+        renderer.render(volume, Camera::fit(p.grid(), views.front()), s);  // warm-up
+        double ms = 0, iterations = 0;
+        for (const ViewParams& v : views) {
+            const Camera camera = Camera::fit(p.grid(), v);
+            std::vector<double> times;
+            for (int r = 0; r < repeats; ++r) times.push_back(renderer.render(volume, camera, s).deviceMilliseconds);
+            ms += median(times);
+            for (uint32_t n : renderer.render(volume, camera, s).iterations) iterations += n & kIterationMask;
+        }
+        nsPerIteration[c] = 1e6 * ms / iterations;
+    }
+    return nsPerIteration[Caster::Blocks] / nsPerIteration[Caster::Primitive];
+}
+
 // A caster's time for the views: the sum over views of the median over repeats.
 double total(const std::vector<std::vector<double>>& perView) {
     double sum = 0;
@@ -493,6 +520,7 @@ int main(int argc, char** argv) {
         std::vector<double> spreads;
         std::vector<RenderSample> renderSamples;             // every caster's renders, per row
         std::vector<double> perByte;                         // wall ns per field byte uploaded, per row
+        std::vector<double> blocksRatios;                    // a blocks MIP iteration over a primitive one, per scene
         for (const Scene& scene : measured) {
             StagedPreparation staged(scene.load());
             PrepareOptions options;
@@ -500,6 +528,7 @@ int main(int argc, char** argv) {
             for (std::size_t k = 0; k < to.size(); ++k) {
                 StageTime statistics;
                 const PreparedVolume& p = prepareSetting(staged, options, to[k], ta[k], statistics);
+                if (k == 0) blocksRatios.push_back(blocksIterationRatio(renderer, p, views, repeats, step));
                 const Timings t = measure(renderer, p, views, repeats, step);
                 std::map<Caster, double> renders, totals;
                 Caster fastest = Caster::Primitive, fastestRenders = Caster::Primitive;
@@ -567,7 +596,13 @@ int main(int argc, char** argv) {
             fitted.rayNs = fit[0];
             std::copy(fit.begin() + 1, fit.end(), fitted.iterationNs.begin());
         }
-        std::printf("\nWall ns per field byte uploaded (median over rows): %.2f.\n", fitted.uploadNsPerByte);
+        fitted.blocksIterationRatio = median(blocksRatios);
+        std::printf("\nA blocks MIP iteration over a primitive one (trilinear; a calibration's blocksIterationRatio): "
+                    "median %.2f over %zu scene(s), from %.2f to %.2f.\n",
+                    fitted.blocksIterationRatio, blocksRatios.size(),
+                    *std::min_element(blocksRatios.begin(), blocksRatios.end()),
+                    *std::max_element(blocksRatios.begin(), blocksRatios.end()));
+        std::printf("Wall ns per field byte uploaded (median over rows): %.2f.\n", fitted.uploadNsPerByte);
         checks.expect(std::isfinite(fitted.uploadNsPerByte) && fitted.uploadNsPerByte >= 0,
                       "wall ns per field byte %g, not >= 0", fitted.uploadNsPerByte);
         if (!growthDims.empty())

@@ -27,6 +27,7 @@ std::string problemWith(const CasterCalibration& c) {
     if (bad(c.tie) || c.tie >= 1) return "tie must be a fraction in [0, 1)";
     if (bad(c.growth.cachedBytes)) return "iterationGrowth.cachedBytes must be a finite number >= 0";
     if (bad(c.growth.perDoubling)) return "iterationGrowth.perDoubling must be a finite number >= 0";
+    if (bad(c.blocksIterationRatio)) return "blocksIterationRatio must be a finite number >= 0";
     if (c.deviceName.empty()) return "device.name must name the Vulkan device it was measured on";
     return {};
 }
@@ -60,6 +61,7 @@ CasterCalibration calibrationFromJson(const json& j) {
         const json growth = j.value("iterationGrowth", json::object());
         c.growth.cachedBytes = valueAt<double>(growth, "iterationGrowth.", "cachedBytes");
         c.growth.perDoubling = valueAt<double>(growth, "iterationGrowth.", "perDoubling");
+        if (j.contains("blocksIterationRatio")) c.blocksIterationRatio = valueAt<double>(j, "", "blocksIterationRatio");
     }
     const json device = j.value("device", json::object());
     c.deviceName = valueAt<std::string>(device, "device.", "name");
@@ -80,6 +82,7 @@ json casterCalibrationJson(const CasterCalibration& c) {
             {"rayNs", c.rayNs},
             {"iterationNs", iterations},
             {"iterationGrowth", {{"cachedBytes", c.growth.cachedBytes}, {"perDoubling", c.growth.perDoubling}}},
+            {"blocksIterationRatio", c.blocksIterationRatio},
             {"uploadNsPerByte", c.uploadNsPerByte},
             {"tie", c.tie}};
 }

@@ -29,14 +29,18 @@ struct CasterCalibration {
     // the time in ISO 8601 UTC.
     std::string deviceName, driverVersion, measuredAt;
     IterationGrowth growth;  // of every caster's iteration time with the volume's bytes
+    // A MIP iteration of the blocks caster over one of the primitive caster, whole renders' device time per
+    // iteration (the ray's own cost included): a block lookup and, on a SIMD device, lanes that wait for the rays
+    // still sampling. 0: not measured, the built-in value (render/caster_choice.h) stands.
+    double blocksIterationRatio = 0;
     bool operator==(const CasterCalibration&) const = default;
 };
 
 nlohmann::json casterCalibrationJson(const CasterCalibration& calibration);
 
-// Reads version 2 (with iterationGrowth) and version 1 (without: no growth). Throws InputError naming `path` and
-// the problem: unreadable, not JSON, not a calibration, another version, a constant missing, negative or not a
-// number, a tie outside [0, 1), or the device's name missing.
+// Reads version 2 (with iterationGrowth; blocksIterationRatio optional) and version 1 (without: no growth).
+// Throws InputError naming `path` and the problem: unreadable, not JSON, not a calibration, another version, a
+// constant missing, negative or not a number, a tie outside [0, 1), or the device's name missing.
 CasterCalibration readCasterCalibration(const std::filesystem::path& path);
 
 // Writes version 2 atomically (io/atomic_file.h) after the checks the reader makes, so that no file is written that

@@ -29,6 +29,11 @@ constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caste
 // resampled from 2 MB to 537 MB of scalars (primitive renders, the machine loaded by builds) gave 36, 38, 42, 49
 // and 53 ns per iteration at 2, 17, 75, 268 and 537 MB in one run, 32, 34, 40, 48 and 51 in another: 8 % and 11 %
 // more per doubling beyond 17 MB. 10 %.
+// A blocks MIP iteration over a primitive one (bench/blend_bench, 512x512, trilinear, 2 views, device ms per
+// iteration of whole renders): 2.07 on the teapot, 2.36 on the cranium CT, 2.28 on the head CT in one run; 2.65 on
+// the cranium CT in another. Lavapipe's SIMD lanes of 8 rays run a block's lookups and the sampling whenever any
+// of its rays needs either, so a leap saves less than its iterations suggest.
+constexpr double kBlocksIterationRatio = 2.3;
 // Uploading a field byte (written in place into the image's memory): the bench's median over its rows (0.40-0.45
 // in three runs; 0.58-0.66 when uploads went through a staging copy); a field pays off only when it saves more
 // iterations than its bytes cost. The tie: the probe samples a few hundred rays per direction class, and the
@@ -40,13 +45,18 @@ const CasterCalibration kBuiltIn{38,
                                  "llvmpipe (LLVM 15.0.6, 256 bits)",
                                  "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)",
                                  "2026-11-21",
-                                 {16.8e6, 0.1}};
+                                 {16.8e6, 0.1},
+                                 kBlocksIterationRatio};
 
 // Segmentation (post-classified, trilinear, with normals) and EACD's field in one octant, per voxel, on this
 // project's 2-core machine: volrender's own stage times (--stats prepareSeconds) gave 120 ns on the cranium CT (7.1 M
 // voxels), 138 ns on a 512x512x1024 CT and 161 ns on a 1024x1024x512 one (both resampled from it, with noise).
 // The smallest, so that a borderline case builds the field.
 constexpr double kFieldBuildNsPerVoxel = 120;
+
+// The blocks caster's extrema (4 levels) per voxel, built at upload: volrender's MIP upload took 18-22 ms without
+// them and 33 ms with them on the cranium CT (7.1 M voxels), 27 and 54-70 ms on the teapot (11.7 M): 2-3.5 ns.
+constexpr double kBlockExtremaNsPerVoxel = 3;
 
 // The hier field (block ranges, block regions, the EACD over blocks of 4) per voxel on the same machine: volrender's
 // own stage time for one view (one octant) gave 4.4 ns on the cranium CT and 5.0 ns on a 512x512x1024 CT made from
@@ -216,6 +226,22 @@ CasterChoice chooseBeforeBuilding(const ProbedIterations& it, const CasterDemand
                         : hierMs <= eacdMs                      ? Caster::Hier
                                                                 : Caster::EACD;
     return {best, reason};
+}
+
+CasterChoice chooseBlendCaster(double primitiveIterations, double blocksIterations, const CasterDemand& d,
+                               std::size_t voxels, const CasterCalibration& calibration) {
+    const double ratio =
+        calibration.blocksIterationRatio > 0 ? calibration.blocksIterationRatio : kBlocksIterationRatio;
+    const double primitiveNs = calibration.iterationNs[std::size_t(Caster::Primitive)];
+    const double primitiveMs = viewsMs(d, primitiveIterations, primitiveNs, calibration);
+    const double buildMs = double(voxels) * kBlockExtremaNsPerVoxel * 1e-6;
+    const double blocksMs = viewsMs(d, blocksIterations, primitiveNs * ratio, calibration) + buildMs;
+    char reason[256];
+    std::snprintf(reason, sizeof reason,
+                  "%zu view(s) cast without leaping take an estimated %.0f ms (%.1f iterations per pixel), by the "
+                  "blocks' extrema %.0f ms (%.1f iterations per pixel, each %.2f times as dear)",
+                  d.views.size(), primitiveMs, primitiveIterations, blocksMs, blocksIterations, ratio);
+    return {blocksMs < primitiveMs * (1 - calibration.tie) ? Caster::Blocks : Caster::Primitive, reason};
 }
 
 }  // namespace vr

@@ -91,4 +91,12 @@ bool hierMayPay(double primitiveIterations, const CasterDemand& demand, std::siz
 CasterChoice chooseBeforeBuilding(const ProbedIterations& iterations, const CasterDemand& demand, std::size_t voxels,
                                   const CasterCalibration& calibration = builtInCalibration());
 
+// --caster auto for the blends other than composite (MIP, MinIP, average, iso), which leap by the blocks' scalar
+// extrema or not at all: the primitive caster or blocks, whichever casts the views in less time. Each takes its
+// probed iterations per pixel (probeIterations, with the blend); a blocks iteration costs the calibration's
+// blocksIterationRatio times a primitive one (the built-in ratio where the calibration has none), plus the block
+// extrema's build per voxel. A tie goes to the primitive caster, which builds and uploads nothing more.
+CasterChoice chooseBlendCaster(double primitiveIterations, double blocksIterations, const CasterDemand& demand,
+                               std::size_t voxels, const CasterCalibration& calibration = builtInCalibration());
+
 }  // namespace vr

@@ -41,6 +41,7 @@ TEST(RenderCasterCalibration, BuiltInIsLavapipesFit) {
     EXPECT_EQ(c.uploadNsPerByte, 0.44);
     EXPECT_EQ(c.tie, 0.05);
     EXPECT_EQ(c.growth, (IterationGrowth{16.8e6, 0.1}));
+    EXPECT_EQ(c.blocksIterationRatio, 2.3);
     EXPECT_NE(c.deviceName.find("llvmpipe"), std::string::npos);
 }
 
@@ -75,6 +76,20 @@ std::string edited(const std::function<void(json&)>& change) {
     json j = casterCalibrationJson(measuredElsewhere());
     change(j);
     return j.dump();
+}
+
+TEST(RenderCasterCalibration, AFileWithoutTheBlocksRatioLeavesItUnmeasured) {
+    // Written before the blocks caster's iterations were calibrated: 0, the built-in ratio then stands.
+    CasterCalibration measured = measuredElsewhere();
+    measured.blocksIterationRatio = 1.4;
+    json j = casterCalibrationJson(measured);
+    EXPECT_EQ(j.at("blocksIterationRatio"), 1.4);
+    j.erase("blocksIterationRatio");
+    const fs::path file = test::scratchDir("calibration_without_blocks") / "calibration.json";
+    std::ofstream(file) << j.dump();
+    EXPECT_EQ(readCasterCalibration(file).blocksIterationRatio, 0);
+    expectRefused("negative_blocks", edited([](json& j) { j["blocksIterationRatio"] = -1; }),
+                  "blocksIterationRatio must be a finite number >= 0");
 }
 
 TEST(RenderCasterCalibration, BadFilesAreRefusedWithTheProblem) {

@@ -265,4 +265,31 @@ TEST(RenderCasterChoice, BeforeBuildingALargeVolumeTakesHier) {
 }
 
 }  // namespace
+
+// The blends other than composite: blocks where its iterations, each blocksIterationRatio times as dear, and the
+// extrema's build cost less than the primitive caster's; the primitive caster on a tie. A calibration without the
+// ratio takes the built-in one.
+TEST(RenderCasterChoice, AnotherBlendLeapsByBlocksOnlyWhereItsDearerIterationsPay) {
+    CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", "", {}, 2};
+    CasterDemand d = ortho();
+    d.pixels = 512 * 512;
+    const std::size_t voxels = 256 * 256 * 128;  // the extrema: 25 ms at 3 ns per voxel
+    // Primitive: 512^2 x (40 + 140 x 10) ns = 377 ms; blocks: 512^2 x (40 + 40 x 20) ns + 25 ms = 245 ms.
+    const CasterChoice teapot = chooseBlendCaster(140, 40, d, voxels, calibration);
+    EXPECT_EQ(teapot.caster, Caster::Blocks);
+    for (const char* part : {"1 view(s)", "377 ms (140.0 iterations", "245 ms (40.0 iterations", "2.00 times"})
+        EXPECT_NE(teapot.reason.find(part), std::string::npos) << teapot.reason;
+    // Blocks halves the iterations, at twice the price: no gain, and the extrema to build.
+    EXPECT_EQ(chooseBlendCaster(140, 70, d, voxels, calibration).caster, Caster::Primitive);
+    // The same counts on a device where a blocks iteration costs as much as a primitive one.
+    calibration.blocksIterationRatio = 1;
+    EXPECT_EQ(chooseBlendCaster(140, 70, d, voxels, calibration).caster, Caster::Blocks);
+    // Not measured: the built-in ratio.
+    calibration.blocksIterationRatio = 0;
+    const double builtIn = builtInCalibration().blocksIterationRatio;
+    EXPECT_GT(builtIn, 1);
+    EXPECT_NE(chooseBlendCaster(140, 70, d, voxels, calibration).reason.find(std::to_string(builtIn).substr(0, 4)),
+              std::string::npos);
+}
+
 }  // namespace vr

@@ -261,14 +261,15 @@ TEST(VolrenderCli, RendersTheCraniumWithAPresetInOneCommand) {
     EXPECT_FALSE(fs::exists(dir / "y.png"));
 }
 
-// The blends other than composite: auto leaps by blocks, and the device renders what the CPU reference renders.
+// The blends other than composite: the device's blocks caster renders what the CPU reference renders, where auto
+// leaps by blocks.
 TEST(VolrenderCli, BlendModesRenderOnTheDeviceAsOnTheCpu) {
     const fs::path dir = test::scratchDir("volrender_cli_blend");
     for (const char* blend : {"mip", "minip", "average", "iso --iso 1000"}) {
         const std::string run = q(preparedHead()) + " --size 40x36 --azimuth 30 --elevation 20 --blend " + blend;
-        const test::CliOutcome device = volrender(run + " -o " + q(dir / "device.exr") + " --stats " + q(dir / "s.json"));
+        const test::CliOutcome device = volrender(run + " --caster blocks -o " + q(dir / "device.exr"));
         ASSERT_EQ(device.status, 0) << device.err;
-        ASSERT_EQ(volrender(run + " --cpu -o " + q(dir / "cpu.exr")).status, 0);
+        ASSERT_EQ(volrender(run + " --cpu -o " + q(dir / "cpu.exr") + " --stats " + q(dir / "s.json")).status, 0);
         const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "s.json"));
         EXPECT_EQ(stats["settings"]["caster"], "blocks") << blend;
         EXPECT_EQ(stats["settings"]["blend"], std::string(blend).substr(0, std::string(blend).find(' ')));
@@ -292,6 +293,40 @@ TEST(VolrenderCli, ProgressBarsOnATerminalAndNoneWithQuiet) {
     const test::CliOutcome quiet = test::runOnTerminal(test::volrenderExecutable(), args + " --quiet");
     ASSERT_EQ(quiet.status, 0) << quiet.out;
     EXPECT_EQ(quiet.out, "");
+}
+
+// Auto on a device for the blends other than composite weighs the probed iterations of blocks, each as dear as the
+// calibration's ratio says, against the primitive caster's: a ratio near 0 takes blocks, a huge one primitive, both
+// for a prepared file and for a volume prepared here, and the reason gives the estimates. The images agree.
+TEST(VolrenderCli, AutoWeighsBlocksAgainstThePrimitiveCasterForTheOtherBlends) {
+    const fs::path dir = test::scratchDir("volrender_cli_auto_blend");
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    const std::string here = q(test::datasetsDir() / e.file) + " --tf " + q(test::datasetsDir() / e.tf);
+    const std::string view = " --size 64x64 --elevation 20 --blend mip --stats " + q(dir / "s.json") + " -o ";
+    ASSERT_EQ(volrender(q(preparedHead()) + view + q(dir / "x.exr")).status, 0);
+    CasterCalibration cheap = builtInCalibration(), dear = builtInCalibration();
+    cheap.deviceName = dear.deviceName = nlohmann::json::parse(slurp(dir / "s.json"))["renderer"];
+    cheap.blocksIterationRatio = 1e-3;
+    dear.blocksIterationRatio = 1e3;
+    writeCasterCalibration(dir / "cheap.json", cheap);
+    writeCasterCalibration(dir / "dear.json", dear);
+    for (const std::string& input : {q(preparedHead()), here})
+        for (const auto& [file, caster] : {std::pair{"cheap.json", "blocks"}, std::pair{"dear.json", "primitive"}}) {
+            SCOPED_TRACE(input + " " + file);
+            const std::string image = std::string(caster) + (input == here ? "_here" : "_file") + ".exr";
+            const test::CliOutcome r =
+                volrender(input + view + q(dir / image) + " --calibration " + q(dir / file));
+            ASSERT_EQ(r.status, 0) << r.err;
+            const nlohmann::json stats = nlohmann::json::parse(slurp(dir / "s.json"));
+            EXPECT_EQ(stats["settings"]["caster"], caster);
+            const std::string why = stats["settings"]["casterChoice"];
+            EXPECT_NE(why.find("cast without leaping take an estimated"), std::string::npos) << why;
+            EXPECT_NE(r.err.find("--caster auto chose " + std::string(caster)), std::string::npos) << r.err;
+        }
+    for (const char* input : {"_here", "_file"})
+        EXPECT_LT(maxAbsDifference(readImage(dir / ("blocks" + std::string(input) + ".exr")),
+                                   readImage(dir / ("primitive" + std::string(input) + ".exr"))),
+                  1e-4);
 }
 
 TEST(VolrenderCli, AutoTakesTheCalibrationOfItsDeviceAndSaysWhich) {

@@ -78,7 +78,9 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, hier, blocks, or auto (composite: chosen from the "
                                          "file's ray probe and the views by a cost model, see --calibration; a "
                                          "volume prepared here: primitive, hier or EACD, whichever its views and "
-                                         "the field's build cost least; the other blends: blocks)")->capture_default_str();
+                                         "the field's build cost least; the other blends: primitive or blocks, "
+                                         "whichever the views probed cost least)")
+        ->capture_default_str();
     app.add_option("--blend", f.blend, "what a ray shows: composite (front-to-back compositing of the classified "
                                        "samples), mip or minip (the largest or smallest scalar), average (the mean "
                                        "scalar), each in its transfer-function colour at its opacity (opaque with "
@@ -355,11 +357,33 @@ vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& vi
     return vr::chooseBeforeBuilding(it, d, voxels, calibration.constants);
 }
 
+// --caster auto for a blend other than composite, on the device named: the primitive caster or blocks
+// (chooseBlendCaster), each probed on the classified volume over at most 4 of the views, evenly spread (the blocks'
+// probe builds their extrema once per view).
+vr::CasterChoice autoBlendCaster(const Flags& f, const vr::PreparedVolume& classified, const vr::ViewParams& view,
+                                 const vr::RenderSettings& s, const std::vector<vr::Camera>& cameras,
+                                 const std::string& device) {
+    vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
+    for (const vr::Camera& camera : cameras) d.addView(camera);
+    d.scalarBytes = vr::scalarBytesOnDevice(classified.grid(), classified.scalars.sourceType);
+    constexpr std::size_t kProbedViews = 4;
+    std::vector<vr::Camera> probed;
+    for (std::size_t i = 0; i < std::min(cameras.size(), kProbedViews); ++i)
+        probed.push_back(cameras[i * cameras.size() / std::min(cameras.size(), kProbedViews)]);
+    vr::RenderSettings probe = s;
+    probe.caster = vr::Caster::Primitive;
+    const double primitive = vr::probeIterations(classified, probed, probe);
+    probe.caster = vr::Caster::Blocks;
+    const double blocks = vr::probeIterations(classified, probed, probe);
+    return vr::chooseBlendCaster(primitive, blocks, d, classified.grid().voxels(),
+                                 vr::calibrationInUse(f.calibration, device).constants);
+}
+
 // The one-command path: the volume loaded, classified, segmented and given the field of the caster only, in the
 // octants of the orbit's rays only (regions for the sampling and shading asked), in memory, each stage timed. The
 // `device` (none for the CPU reference) makes its pipelines meanwhile. With `chooseHere`, --caster auto picks the
-// caster for the device between classifying and segmenting (a primitive or hier render segments nothing) and says
-// why in `choice`.
+// caster for the device between classifying and segmenting (a primitive, hier or blocks render segments nothing) and
+// says why in `choice`.
 vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr::RenderSettings& s,
                                  OpeningDevice* device, bool chooseHere, std::string& choice,
                                  std::vector<vr::StageTime>& stages) {
@@ -371,16 +395,24 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     vr::attachLabels(f.volume, labelColours, staged);
     const std::vector<vr::Camera> cameras = eyeCameras(f, staged.volume().grid, view);
     options.octants = orbitOctants(cameras);
-    if (device && f.volume.labels.empty())  // auto takes hier for most CTs, else the primitive caster
+    // Auto for another blend chooses within a few ms of classifying: its pipeline is made once chosen, rather than
+    // a guess's first (a CPU device takes 0.1-0.2 s over one).
+    const bool composite = s.blend == vr::Blend::Composite;
+    const bool makeAhead = device && f.volume.labels.empty();
+    if (makeAhead && (composite || !chooseHere))  // auto takes hier for most CTs, else the primitive caster
         device->preparePipelines(
             chooseHere ? std::vector{vr::Caster::Hier, vr::Caster::Primitive} : std::vector{s.caster}, s,
             cameras.front().projection, staged.volume().sourceType);
     if (chooseHere) {
+        const std::string name = device->context().info().name;
         const vr::CasterChoice c =
-            autoCasterBeforeFields(f, view, s, staged, options, cameras, device->context().info().name);
+            composite ? autoCasterBeforeFields(f, view, s, staged, options, cameras, name)
+                      : autoBlendCaster(f, staged.prepare(options, vr::PrepStage::Classify), view, s, cameras, name);
         s.caster = c.caster;
         choice = c.reason;
         device->chose(s.caster);
+        if (makeAhead && !composite)
+            device->preparePipelines({s.caster}, s, cameras.front().projection, staged.volume().sourceType);
         options.fields = fieldsFor(s.caster);
     }
     staged.prepare(options);
@@ -486,10 +518,11 @@ int run(const Flags& f) {
     const bool prepareHere = !checkFlags(f, view, settings);
     if (f.quiet) vr::ProgressBar::silenceAll();
     std::string choice;  // why --caster auto chose its caster
-    const bool chooseCaster = f.caster == "auto" && settings.blend == vr::Blend::Composite;
-    if (settings.blend != vr::Blend::Composite && f.caster == "auto")
+    const bool chooseCaster = f.caster == "auto";
+    const bool composite = settings.blend == vr::Blend::Composite;
+    if (chooseCaster && !composite)  // the CPU reference's choice; a device's weighs it against the primitive caster
         choice = "the " + f.blend + " blend leaps by the blocks' scalar extrema";
-    if (prepareHere && chooseCaster) {  // the device's choice is made between classifying and segmenting
+    if (prepareHere && chooseCaster && composite) {  // the device's choice is made between classifying and segmenting
         settings.caster = vr::Caster::EACD;
         choice = "the CPU reference has no calibration to weigh the casters: EACD, which leaps furthest";
     }
@@ -508,22 +541,36 @@ int run(const Flags& f) {
     // A prepared file's header: what auto weighs and what the device's pipeline is made for.
     const std::optional<vr::PreparedHeader> header =
         prepareHere ? std::nullopt : std::optional(vr::readPreparedHeader(f.input));
-    if (chooseCaster && header) {
+    if (chooseCaster && composite && header) {
         if (!calibration.note.empty() && !f.quiet) std::fprintf(stderr, "volrender: %s\n", calibration.note.c_str());
         const vr::CasterChoice c = autoCaster(f, *header, view, settings, calibration.constants);
         settings.caster = c.caster;
         choice = c.reason;
     }
-    if (f.caster == "auto" && !f.quiet)
-        std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(settings.caster).data(),
-                     choice.c_str());
-    // The device makes the caster's pipeline while the file is read.
-    if (device && header && std::none_of(header->chunks.begin(), header->chunks.end(),
-                                         [](const vr::PreparedChunkBytes& c) { return c.name == "labelMap"; }))
-        device->preparePipelines({settings.caster}, settings, eyeCameras(f, header->grid, view).front().projection,
-                                 header->scalarType);
+    // Another blend's choice on the device needs the scalars: made once the file is read, and its pipeline then.
+    const bool chooseAfterReading = chooseCaster && !composite && header && device;
+    // Else the device makes the caster's pipeline while the file is read.
+    const bool makeAhead = device && header && std::none_of(header->chunks.begin(), header->chunks.end(),
+                                                            [](const vr::PreparedChunkBytes& c) {
+                                                                return c.name == "labelMap";
+                                                            });
+    auto makePipeline = [&] {
+        device->preparePipelines({settings.caster}, settings,
+                                 eyeCameras(f, header->grid, view).front().projection, header->scalarType);
+    };
+    if (makeAhead && !chooseAfterReading) makePipeline();
     const vr::PreparedVolume prepared =
         prepareHere ? std::move(*preparedHere) : readPreparedFor(f, settings.caster, view);
+    if (chooseAfterReading) {
+        const vr::CasterChoice c = autoBlendCaster(f, prepared, view, settings, eyeCameras(f, prepared.grid(), view),
+                                                   context->info().name);
+        settings.caster = c.caster;
+        choice = c.reason;
+        if (makeAhead) makePipeline();
+    }
+    if (chooseCaster && !f.quiet)
+        std::fprintf(stderr, "volrender: --caster auto chose %s: %s\n", vr::casterName(settings.caster).data(),
+                     choice.c_str());
 
     const std::vector<vr::Camera> cameras = vr::Camera::orbit(prepared.grid(), view, f.views);
     const unsigned octants = orbitOctants(eyeCameras(f, prepared.grid(), view));  // the orbit shares one upload
