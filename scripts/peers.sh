@@ -7,7 +7,7 @@
 # MANIFEST gives its spacing and transfer function. "smoke": one 64x64 view of vtk_headmr (a few seconds).
 # Defaults: 8 views, 512x512, out/peers/NAME. BUILD_DIR (default build) is the build folder; THREADS (default 2);
 # ELEVATION (default 0) the views' elevation in degrees;
-# PEER_LIST (comma-separated, default all: ours-cpu-primitive,vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render).
+# PEER_LIST (comma-separated, default all: ours-cpu-primitive,vtk-fixed-point,vtk-gpu,volpack,vdb_render).
 # Every peer renders nearest and unshaded, unless USER_SETTINGS=1 (vr_peers --user-settings): the settings users
 # render with, trilinear and shaded (our Phong material, one headlight), for our reference and both VTK mappers;
 # VolPack and vdb_render cannot and are skipped (a row says why). Its default OUTDIR is out/peers/NAME_user.

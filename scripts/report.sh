@@ -10,7 +10,7 @@
 # 0,0.005,0.01,0.02,0.05,0.1 x 0,1,3,10,20), BIG_VOXELS (4000000), DOWNSAMPLE (2), ONLY
 # (space-separated dataset name prefixes, e.g. "cranium_ct vtk_headsq_ct phantom"), PEERS (dataset prefixes for
 # the peers, default the CT volumes "boston_teapot cranium_ct vtk_headsq_ct"; "" for none), PEER_SIZE (512x512),
-# PEER_VIEWS (8), PEER_LIST (the peers run, default vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render),
+# PEER_VIEWS (8), PEER_LIST (the peers run, default vtk-fixed-point,vtk-gpu,volpack,vdb_render),
 # UNSHADED_TO (T_o values of the unshaded full-size sweep beside the peers, default 0,0.01,0.02,0.05,0.1),
 # RESUME=1 (keep OUTDIR and skip the settings already in its sweep.csv).
 set -euo pipefail
@@ -29,7 +29,7 @@ only=${ONLY:-}
 peers=${PEERS-boston_teapot cranium_ct vtk_headsq_ct}
 peer_size=${PEER_SIZE:-512x512}
 peer_views=${PEER_VIEWS:-8}
-peer_list=${PEER_LIST:-vtk-fixed-point,vtk-gpu-llvmpipe,volpack,vdb_render}
+peer_list=${PEER_LIST:-vtk-fixed-point,vtk-gpu,volpack,vdb_render}
 unshaded_to=${UNSHADED_TO:-0,0.01,0.02,0.05,0.1}
 phantom_dims=128x128x128
 

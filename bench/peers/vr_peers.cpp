@@ -22,7 +22,7 @@
 namespace {
 namespace fs = std::filesystem;
 
-const std::vector<std::string> kPeers = {"ours-cpu-primitive", "vtk-fixed-point", "vtk-gpu-llvmpipe", "volpack",
+const std::vector<std::string> kPeers = {"ours-cpu-primitive", "vtk-fixed-point", "vtk-gpu", "volpack",
                                          "vdb_render"};
 
 // Why a peer cannot render a blend other than composite, or empty when it can.
@@ -55,7 +55,7 @@ nlohmann::json settingsJson(const vr::PeerSceneOptions& o) {
 vr::PeerRun runPeer(const std::string& name, const vr::PeerScene& scene, const fs::path& out) {
     if (name == "ours-cpu-primitive") return vr::runReferencePeer(scene, out);
     if (name == "vtk-fixed-point") return vr::runVtkPeer(scene, vr::VtkMapper::FixedPoint, out);
-    if (name == "vtk-gpu-llvmpipe") return vr::runVtkPeer(scene, vr::VtkMapper::Gpu, out);
+    if (name == "vtk-gpu") return vr::runVtkPeer(scene, vr::VtkMapper::Gpu, out);
     if (name == "volpack") return vr::runVolPackPeer(scene, out);
     return vr::runVdbRenderPeer(scene, out);
 }

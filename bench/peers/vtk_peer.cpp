@@ -43,15 +43,25 @@ const char* notes(VtkMapper kind, bool userSettings) {
                    : "linear 3D texture, ShadeOn with our material and a white headlight, two-sided; gradient per "
                      "sample (central differences on the texture), Blinn-Phong (N.H)^24 (with a headlight a wider "
                      "highlight than our (R.V)^24), flat samples ambient only; no jittering, same sample distance / "
-                     "opacity unit distance; 8-bit framebuffer; Mesa llvmpipe (LP_NUM_THREADS); its box spans the "
+                     "opacity unit distance; 8-bit framebuffer; its box spans the "
                      "voxel centres (half a voxel inside ours on every face)";
     return kind == VtkMapper::FixedPoint
                ? "nearest, ShadeOff, SampleDistance = step x smallest spacing, opacity unit distance = smallest "
                  "spacing; 15-bit fixed-point compositing; points on our voxel corners (its nearest truncates), so the "
                  "last voxel layer on the +x, +y, +z faces is outside its box"
                : "nearest 3D texture, ShadeOff, no jittering, same sample distance / opacity unit distance; "
-                 "8-bit framebuffer; Mesa llvmpipe (LP_NUM_THREADS); its box spans the voxel centres (half a "
-                 "voxel inside ours on every face)";
+                 "8-bit framebuffer; its box spans the voxel centres (half a voxel inside ours on every face)";
+}
+
+// The OpenGL renderer of the window's context, once it has rendered: Mesa llvmpipe under Xvfb (LP_NUM_THREADS
+// threads), or the GPU whose driver serves the display.
+std::string openGlRenderer(vtkRenderWindow* window) {
+    const std::string capabilities = window->ReportCapabilities();
+    const std::string key = "OpenGL renderer string:";
+    const std::size_t at = capabilities.find(key);
+    if (at == std::string::npos) return "not reported";
+    const std::size_t from = capabilities.find_first_not_of(' ', at + key.size());
+    return capabilities.substr(from, capabilities.find('\n', from) - from);
 }
 
 }  // namespace
@@ -85,7 +95,7 @@ PeerRun runVtkPeer(const PeerScene& scene, VtkMapper kind, const std::filesystem
         vtkOffscreenWindow(renderer, scene.options.width, scene.options.height);
     const double setupMs = millisecondsSince(setup);
 
-    const char* name = kind == VtkMapper::FixedPoint ? "vtk-fixed-point" : "vtk-gpu-llvmpipe";
+    const char* name = kind == VtkMapper::FixedPoint ? "vtk-fixed-point" : "vtk-gpu";
     PeerRun run = runViews(name, scene, outDir, [&](std::size_t i, Image& out) {
         setVtkCamera(renderer->GetActiveCamera(), scene.views[i], scene.volume.grid,
                      user ? kVtkHeadlightDistance : 1);
@@ -100,6 +110,7 @@ PeerRun runVtkPeer(const PeerScene& scene, VtkMapper kind, const std::filesystem
     run.notes = scene.options.blend == Blend::MIP
                     ? std::string("SetBlendModeToMaximumIntensity (shading unused); ") + notes(kind, user)
                     : std::string(notes(kind, user));
+    if (kind == VtkMapper::Gpu) run.notes += "; OpenGL renderer: " + openGlRenderer(window);
     return run;
 }
 

@@ -1,5 +1,6 @@
 // VTK's two volume ray casters on our views: vtkFixedPointVolumeRayCastMapper (CPU) and
-// vtkOpenGLGPUVolumeRayCastMapper (OpenGL; here on Mesa llvmpipe). Needs an X display (run under xvfb-run).
+// vtkOpenGLGPUVolumeRayCastMapper (OpenGL: Mesa llvmpipe under Xvfb, or a GPU; its notes name the renderer).
+// Needs an X display (run under xvfb-run).
 #pragma once
 #include <filesystem>
 
