@@ -303,6 +303,22 @@ RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera
     return result;
 }
 
+VulkanRenderer::FrameBuffers::FrameBuffers(const VulkanContext& ctx, std::size_t pixels)
+    : pixels(pixels),
+      params(ctx, sizeof(device::CasterParams), vk::BufferUsageFlagBits::eUniformBuffer),
+      extentTable(ctx, sizeof(ExtentTable), vk::BufferUsageFlagBits::eUniformBuffer),  // decodes coded EACD
+      out(ctx, pixels * sizeof(device::OutPixel), vk::BufferUsageFlagBits::eStorageBuffer),
+      noList(ctx, 2 * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer),  // bound, never read, without a list
+      rayState(ctx, pixels * sizeof(device::RayState), vk::BufferUsageFlagBits::eStorageBuffer) {}
+
+VulkanRenderer::FrameBuffers& VulkanRenderer::frameBuffers(std::size_t pixels) {
+    if (!frame_ || frame_->pixels < pixels) {
+        frame_.reset();  // the old ones freed before the larger are allocated
+        frame_.emplace(ctx_, pixels);
+    }
+    return *frame_;
+}
+
 RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camera& camera,
                                             const RenderSettings& settings, const PixelList* list, void* keep) {
     const auto start = std::chrono::steady_clock::now();
@@ -313,16 +329,14 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const ExtentCode extentCode = variant.eacdCode;
     const vk::raii::Pipeline& pipe = pipeline(variant);
 
-    using B = vk::BufferUsageFlagBits;
-    HostBuffer params(ctx_, sizeof(device::CasterParams), B::eUniformBuffer);
+    const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
+    FrameBuffers& frame = frameBuffers(list ? tilePixels
+                                            : std::size_t(std::min(tileSize_, camera.width)) *
+                                                  std::size_t(std::min(tileSize_, camera.height)));
+    const HostBuffer &params = frame.params, &extentTable = frame.extentTable, &out = frame.out;
     const device::CasterParams p = makeParams(volume, camera, settings);
     std::memcpy(params.data(), &p, sizeof(p));
-    HostBuffer extentTable(ctx_, sizeof(ExtentTable), B::eUniformBuffer);  // decodes coded EACD (extent_code.glsl)
     std::memcpy(extentTable.data(), extentDecodeTable(extentCode).data(), sizeof(ExtentTable));
-    const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
-    HostBuffer out(ctx_, tilePixels * sizeof(device::OutPixel), B::eStorageBuffer);
-    DeviceBuffer rayState(ctx_, tilePixels * sizeof(device::RayState), B::eStorageBuffer);
-    HostBuffer noList(ctx_, 2 * sizeof(uint32_t), B::eStorageBuffer);  // bound, never read, without a list
 
     // One descriptor set per brick: its images, the rest shared.
     const std::vector<Brick>& bricks = volume.bricks().bricks();
@@ -341,8 +355,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     };
     const vk::DescriptorBufferInfo buffers[4] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*out.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*rayState.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*(list ? list->buffer : noList).buffer(), 0, VK_WHOLE_SIZE}};
+                                                 {*frame.rayState.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*(list ? list->buffer : frame.noList).buffer(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo transferEntries(*volume.table().buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo labelEntries(

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -98,6 +99,16 @@ private:
     static Variant variantOf(const RenderSettings& settings, bool perspective, ScalarType type, int labels,
                              bool bricked, bool pixelList, ExtentCode eacdCode);
     const vk::raii::Pipeline& pipeline(Variant variant);
+    // What one tile's dispatches read and write beside the volume, for tiles of up to `pixels` pixels. Kept from
+    // render to render, and grown when a render needs more: a GPU driver pins host memory as it is allocated, which
+    // took longer than the frame on an H100. One render at a time uses them.
+    struct FrameBuffers {
+        FrameBuffers(const VulkanContext& ctx, std::size_t pixels);
+        std::size_t pixels;
+        HostBuffer params, extentTable, out, noList;
+        DeviceBuffer rayState;
+    };
+    FrameBuffers& frameBuffers(std::size_t pixels);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
     auto deviceErrors(Work&& work) -> decltype(work());
@@ -112,6 +123,7 @@ private:
     std::unique_ptr<DeviceTimer> timer_;
     std::map<Variant, vk::raii::Pipeline> pipelines_;
     std::mutex pipelinesMutex_;  // held while a pipeline is looked up or made
+    std::optional<FrameBuffers> frame_;
     // Bound where a variant reads nothing (the scalar bindings of the other types, the field for primitive, the
     // field bindings of the other formats, the block extrema for every caster but blocks, the label bindings of a
     // volume without labels or of the other label type, the gradients where none are stored): never read.
