@@ -265,6 +265,36 @@ TEST(VulkanUploads, StagedUploadsRenderWhatInPlaceUploadsRender) {
     expectNoValidationErrors();
 }
 
+// The casters' pixels written to device memory and copied to the host (a discrete GPU's path, forced here) are
+// the pixels written to host memory, for every caster, on full and partial tiles, for both eyes of a stereo pair
+// (the right eye's re-cast pixels come as a list), and a later, larger image grows the frame's buffers.
+TEST(VulkanUploads, OutputCopiedFromDeviceMemoryEqualsOutputWrittenToTheHost) {
+    VulkanRenderer host(test::vulkanContext(), 20, {}, VulkanRenderer::OutputMemory::Host);
+    VulkanRenderer device(test::vulkanContext(), 20, {}, VulkanRenderer::OutputMemory::Device);
+    const PreparedVolume p = prepare(shellsPhantom({21, 18, 13}), 0.02, 10, false);
+    for (const ViewParams& v : {test::orbitView(30, 20, 16, 12), view(200, -25, Projection::Perspective)}) {
+        const Camera cam = Camera::fit(p.grid(), v);
+        for (Caster c : kCasters) {
+            SCOPED_TRACE(std::string(casterName(c)) + " " + std::to_string(cam.width));
+            const RenderResult written = host.render(p, cam, renderSettings(c, true));
+            const RenderResult copied = device.render(p, cam, renderSettings(c, true));
+            EXPECT_EQ(maxAbsDifference(copied.image, written.image), 0.0);
+            EXPECT_EQ(copied.iterations, written.iterations);
+        }
+    }
+    const StereoPair pair = stereoPair(Camera::fit(p.grid(), view(30, 20, Projection::Perspective)), p.grid(), 2,
+                                       std::nullopt);
+    const GpuVolume onHost = host.upload(p, {{Caster::EACD}, kAllOctants});
+    const GpuVolume onDevice = device.upload(p, {{Caster::EACD}, kAllOctants});
+    const RenderSettings s = renderSettings(Caster::EACD, true);
+    const StereoRender written = host.renderStereo(onHost, pair, s, true);
+    const StereoRender copied = device.renderStereo(onDevice, pair, s, true);
+    EXPECT_GT(copied.recastFraction, 0);
+    EXPECT_EQ(copied.recast, written.recast);
+    EXPECT_EQ(maxAbsDifference(copied.right.image, written.right.image), 0.0);
+    expectNoValidationErrors();
+}
+
 // One upload for an orbit and every caster: each render reads (and reports) its own part, and renders what a
 // render that uploads for itself renders.
 TEST(VulkanUploads, OneUploadServesAnOrbitOfEveryCaster) {

@@ -164,8 +164,12 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
 
 }  // namespace
 
-VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const ImageLimits& limits)
-    : ctx_(ctx), tileSize_(tileSize != kAutoTile ? tileSize : ctx.info().type == "cpu" ? 512 : 1024), limits_(limits) {
+VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const ImageLimits& limits,
+                               OutputMemory output)
+    : ctx_(ctx),
+      tileSize_(tileSize != kAutoTile ? tileSize : ctx.info().type == "cpu" ? 512 : 1024),
+      limits_(limits),
+      stagedOutput_(output == OutputMemory::Auto ? ctx.info().type == "discrete" : output == OutputMemory::Device) {
     const vk::raii::Device& device = ctx.device();
     requireCasterImageSupport(ctx.info().name, ctx.physicalDevice().getFeatures(),
                               [&](vk::Format f) { return ctx.physicalDevice().getFormatProperties(f); });
@@ -303,18 +307,23 @@ RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera
     return result;
 }
 
-VulkanRenderer::FrameBuffers::FrameBuffers(const VulkanContext& ctx, std::size_t pixels)
+VulkanRenderer::FrameBuffers::FrameBuffers(const VulkanContext& ctx, std::size_t pixels, bool staged)
     : pixels(pixels),
       params(ctx, sizeof(device::CasterParams), vk::BufferUsageFlagBits::eUniformBuffer),
       extentTable(ctx, sizeof(ExtentTable), vk::BufferUsageFlagBits::eUniformBuffer),  // decodes coded EACD
-      out(ctx, pixels * sizeof(device::OutPixel), vk::BufferUsageFlagBits::eStorageBuffer),
+      out(ctx, pixels * sizeof(device::OutPixel),
+          vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst),
       noList(ctx, 2 * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer),  // bound, never read, without a list
-      rayState(ctx, pixels * sizeof(device::RayState), vk::BufferUsageFlagBits::eStorageBuffer) {}
+      rayState(ctx, pixels * sizeof(device::RayState), vk::BufferUsageFlagBits::eStorageBuffer) {
+    if (staged)
+        outOnDevice.emplace(ctx, pixels * sizeof(device::OutPixel),
+                            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc);
+}
 
 VulkanRenderer::FrameBuffers& VulkanRenderer::frameBuffers(std::size_t pixels) {
     if (!frame_ || frame_->pixels < pixels) {
         frame_.reset();  // the old ones freed before the larger are allocated
-        frame_.emplace(ctx_, pixels);
+        frame_.emplace(ctx_, pixels, stagedOutput_);
     }
     return *frame_;
 }
@@ -354,7 +363,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
         return vk::DescriptorImageInfo(nullptr, *image.view(), kVolumeLayout);
     };
     const vk::DescriptorBufferInfo buffers[4] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*out.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*frame.written(), 0, VK_WHOLE_SIZE},
                                                  {*frame.rayState.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*(list ? list->buffer : frame.noList).buffer(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
@@ -447,9 +456,16 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     tile.firstDispatch = 0;
                 }
             }
+            if (frame.outOnDevice) {  // the tile's pixels to host memory by the transfer engine
+                vk::MemoryBarrier toCopy(A::eShaderWrite, A::eTransferRead);
+                cmd.pipelineBarrier(S::eComputeShader, S::eTransfer, {}, toCopy, {}, {});
+                const vk::DeviceSize bytes =
+                    vk::DeviceSize(tile.tileSize.x) * vk::DeviceSize(tile.tileSize.y) * sizeof(device::OutPixel);
+                cmd.copyBuffer(*frame.outOnDevice->buffer(), *out.buffer(), vk::BufferCopy(0, 0, bytes));
+            }
             timer_->stop(cmd);
-            vk::MemoryBarrier toHost(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
-            cmd.pipelineBarrier(S::eComputeShader, S::eHost, {}, toHost, {}, {});
+            vk::MemoryBarrier toHost(A::eShaderWrite | A::eTransferWrite, A::eHostRead);
+            cmd.pipelineBarrier(S::eComputeShader | S::eTransfer, S::eHost, {}, toHost, {}, {});
         });
         result.deviceMilliseconds += timer_->milliseconds();
         const auto* pixelsOut = static_cast<const device::OutPixel*>(out.data());
