@@ -10,6 +10,8 @@
 #include <string>
 #include <utility>
 
+#include <tbb/parallel_for.h>
+
 #include "core/errors.h"
 #include "render/ray_setup.h"
 #include "render/render_checks.h"
@@ -469,7 +471,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
         });
         result.deviceMilliseconds += timer_->milliseconds();
         const auto* pixelsOut = static_cast<const device::OutPixel*>(out.data());
-        for (int ly = 0; ly < tile.tileSize.y; ++ly) {
+        // Rows in parallel: a 512 x 512 frame's 8 MB took one core longer than the H100 took to render it.
+        tbb::parallel_for(0, tile.tileSize.y, [&](int ly) {
             for (int lx = 0; lx < tile.tileSize.x; ++lx) {
                 const std::size_t local = std::size_t(ly) * tile.tileSize.x + lx;
                 int px = tile.tileOrigin.x + lx, py = tile.tileOrigin.y + ly;
@@ -497,7 +500,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                 result.iterations[index] = iterations;
                 result.samples[index] = o.counts.x;
             }
-        }
+        });
     }
     result.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
