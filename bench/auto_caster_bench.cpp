@@ -213,9 +213,13 @@ double blocksIterationRatio(VulkanRenderer& renderer, const PreparedVolume& p, c
         for (const ViewParams& v : views) {
             const Camera camera = Camera::fit(p.grid(), v);
             std::vector<double> times;
-            for (int r = 0; r < repeats; ++r) times.push_back(renderer.render(volume, camera, s).deviceMilliseconds);
+            RenderResult r;
+            for (int k = 0; k < repeats; ++k) {
+                r = renderer.render(volume, camera, s);
+                times.push_back(r.deviceMilliseconds);
+            }
             ms += median(times);
-            for (uint32_t n : renderer.render(volume, camera, s).iterations) iterations += n & kIterationMask;
+            for (uint32_t n : r.iterations) iterations += n & kIterationMask;  // the same every repeat
         }
         nsPerIteration[c] = 1e6 * ms / iterations;
     }

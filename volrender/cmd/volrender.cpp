@@ -357,26 +357,24 @@ vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& vi
     return vr::chooseBeforeBuilding(it, d, voxels, calibration.constants);
 }
 
-// --caster auto for a blend other than composite, on the device named: the primitive caster or blocks
-// (chooseBlendCaster), each probed on the classified volume over at most 4 of the views, evenly spread (the blocks'
-// probe builds their extrema once per view).
-vr::CasterChoice autoBlendCaster(const Flags& f, const vr::PreparedVolume& classified, const vr::ViewParams& view,
+// --caster auto for a blend other than composite, priced with the device's `calibration`: the primitive caster or
+// blocks (chooseBlendCaster), each probed on the classified volume over at most 4 of the views, evenly spread (the
+// blocks' probe builds their extrema once per view).
+vr::CasterChoice autoBlendCaster(const vr::PreparedVolume& classified, const vr::ViewParams& view,
                                  const vr::RenderSettings& s, const std::vector<vr::Camera>& cameras,
-                                 const std::string& device) {
+                                 const vr::CasterCalibration& calibration) {
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (const vr::Camera& camera : cameras) d.addView(camera);
     d.scalarBytes = vr::scalarBytesOnDevice(classified.grid(), classified.scalars.sourceType);
-    constexpr std::size_t kProbedViews = 4;
+    const std::size_t probedViews = std::min<std::size_t>(cameras.size(), 4);
     std::vector<vr::Camera> probed;
-    for (std::size_t i = 0; i < std::min(cameras.size(), kProbedViews); ++i)
-        probed.push_back(cameras[i * cameras.size() / std::min(cameras.size(), kProbedViews)]);
+    for (std::size_t i = 0; i < probedViews; ++i) probed.push_back(cameras[i * cameras.size() / probedViews]);
     vr::RenderSettings probe = s;
     probe.caster = vr::Caster::Primitive;
     const double primitive = vr::probeIterations(classified, probed, probe);
     probe.caster = vr::Caster::Blocks;
     const double blocks = vr::probeIterations(classified, probed, probe);
-    return vr::chooseBlendCaster(primitive, blocks, d, classified.grid().voxels(),
-                                 vr::calibrationInUse(f.calibration, device).constants);
+    return vr::chooseBlendCaster(primitive, blocks, d, classified.grid().voxels(), calibration);
 }
 
 // The one-command path: the volume loaded, classified, segmented and given the field of the caster only, in the
@@ -407,7 +405,8 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
         const std::string name = device->context().info().name;
         const vr::CasterChoice c =
             composite ? autoCasterBeforeFields(f, view, s, staged, options, cameras, name)
-                      : autoBlendCaster(f, staged.prepare(options, vr::PrepStage::Classify), view, s, cameras, name);
+                      : autoBlendCaster(staged.prepare(options, vr::PrepStage::Classify), view, s, cameras,
+                                        vr::calibrationInUse(f.calibration, name).constants);
         s.caster = c.caster;
         choice = c.reason;
         device->chose(s.caster);
@@ -562,8 +561,8 @@ int run(const Flags& f) {
     const vr::PreparedVolume prepared =
         prepareHere ? std::move(*preparedHere) : readPreparedFor(f, settings.caster, view);
     if (chooseAfterReading) {
-        const vr::CasterChoice c = autoBlendCaster(f, prepared, view, settings, eyeCameras(f, prepared.grid(), view),
-                                                   context->info().name);
+        const vr::CasterChoice c =
+            autoBlendCaster(prepared, view, settings, eyeCameras(f, prepared.grid(), view), calibration.constants);
         settings.caster = c.caster;
         choice = c.reason;
         if (makeAhead) makePipeline();
