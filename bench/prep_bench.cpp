@@ -179,8 +179,8 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
     std::printf("\nMiB per chunk, in memory (uncompressed) / in the file (zstd level %d, blocks of %zu MiB):\n\n"
                 "| dataset |", vr::kPreparedZstdLevel, vr::kPreparedBlockBytes >> 20);
     for (const auto& c : kChunks) std::printf(" %s |", c.c_str());
-    std::printf(" all | file | file bytes per voxel |\n|---|");
-    for (std::size_t i = 0; i <= kChunks.size() + 2; ++i) std::printf("---:|");
+    std::printf(" all | file | file bytes per voxel | write: MB/s of arrays, of file |\n|---|");
+    for (std::size_t i = 0; i <= kChunks.size() + 3; ++i) std::printf("---:|");
     std::printf("\n");
     for (const auto& r : results) {
         std::printf("| %s |", r.name.c_str());
@@ -192,8 +192,11 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
             stored += inFile;
             std::printf(" %.1f / %.2f |", mib(bytes), mib(inFile));
         }
-        std::printf(" %.1f / %.2f (%.1fx) | %.2f | %.2f |\n", mib(all), mib(stored), all / stored,
-                    mib(double(r.fileBytes)), double(r.fileBytes) / r.statistics["voxels"].get<double>());
+        // The write stage's rate: encoding, compressing, checksumming, writing and fsyncing, per second.
+        const double write = median(r.wall.at("write"));
+        std::printf(" %.1f / %.2f (%.1fx) | %.2f | %.2f | %.0f, %.0f |\n", mib(all), mib(stored), all / stored,
+                    mib(double(r.fileBytes)), double(r.fileBytes) / r.statistics["voxels"].get<double>(),
+                    all / write / 1e6, double(r.fileBytes) / write / 1e6);
     }
 
     std::printf("\nRegions and mean leaps in voxels (ACD edge: the same in every octant; EACD extents x,y,z of octant 0):\n\n"
