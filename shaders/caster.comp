@@ -344,14 +344,17 @@ void main() {
     // slowest ray takes: each batch takes a 4x2 block of pixels, whose rays stay closer together than an 8x1 row's.
     uvec2 l = gl_LocalInvocationID.xy;
     uvec2 inGroup = uvec2((l.x & 3u) | ((l.y & 1u) << 2), (l.y & ~1u) | (l.x >> 2));
-    ivec2 local = ivec2(gl_WorkGroupID.xy * uint(kWorkgroupSize) + inGroup);
+    // Rows of workgroups interleaved over the tile (volrender/vulkan/workgroup_rows.h): llvmpipe's threads each
+    // take a contiguous run of workgroups.
+    uvec2 group = uvec2(gl_WorkGroupID.x, gl_WorkGroupID.y * uint(tile.groupRowStride) % gl_NumWorkGroups.y);
+    ivec2 local = ivec2(group * uint(kWorkgroupSize) + inGroup);
     if (!PIXEL_LIST && any(greaterThanEqual(local, tile.tileSize))) return;
     ivec2 pixel = tile.tileOrigin + local;
     uint outIndex = uint(local.y * tile.tileSize.x + local.x);
     if (PIXEL_LIST) {
         // This dispatch's chunk of the list starts at entry tileOrigin.x; each workgroup takes 64 consecutive
         // entries, so that a SIMD batch takes neighbouring pixels (the list is in the order of 8 x 8 blocks).
-        outIndex = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * uint(kWorkgroupSize * kWorkgroupSize) +
+        outIndex = (group.y * gl_NumWorkGroups.x + group.x) * uint(kWorkgroupSize * kWorkgroupSize) +
                    gl_LocalInvocationIndex;
         uint entry = uint(tile.tileOrigin.x) + outIndex;
         if (outIndex >= uint(tile.tileSize.x * tile.tileSize.y) || entry >= listCount) return;

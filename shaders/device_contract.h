@@ -147,6 +147,8 @@ struct TilePush {
     int lastDispatch;   // 1: a ray left unfinished was in no pass (a bug)
     int passAxes;       // this pass takes the rays whose octant bits on passAxes ...
     int passSigns;      // ... are passSigns (the bricks come in an order they all cross them in)
+    int groupRowStride;  // workgroup row r takes the tile's row (r groupRowStride) mod rows (workgroup_rows.h)
+    int pad[3];          // to the struct's std430 size
 };
 
 // A ray's state between the dispatches of its bricks (std430; shaders/brick_state.glsl).
@@ -197,7 +199,7 @@ static_assert(offsetof(CasterParams, hierBlockShift) == 440);
 static_assert(sizeof(CasterParams) == 448);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);
-static_assert(sizeof(TilePush) == 96);
+static_assert(sizeof(TilePush) == 112);
 static_assert(offsetof(RayState, k) == 24);
 static_assert(offsetof(RayState, interval) == 40);
 static_assert(sizeof(RayState) == 48);  // std430 rounds the array stride up to the vec4's 16

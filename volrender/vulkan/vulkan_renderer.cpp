@@ -21,6 +21,7 @@
 #include "shaders/embedded_shaders.h"
 #include "shaders/stereo_reprojection.h"
 #include "volrender/vulkan/stereo_reprojector.h"
+#include "volrender/vulkan/workgroup_rows.h"
 
 namespace vr {
 namespace {
@@ -432,6 +433,10 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                  {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)}});
     }
     for (device::TilePush tile : tiles) {
+        tile.groupRowStride =
+            ctx_.info().type == "cpu" ? interleavedRowStride((tile.tileSize.y + device::kWorkgroupSize - 1) /
+                                                             device::kWorkgroupSize)
+                                      : 1;
         submitAndWait(ctx_, pool_, [&](const vk::raii::CommandBuffer& cmd) {
             using S = vk::PipelineStageFlagBits;
             using A = vk::AccessFlagBits;
