@@ -35,6 +35,9 @@ void writePng(const fs::path& path, int width, int height, const std::vector<uns
     image.width = png_uint_32(width);
     image.height = png_uint_32(height);
     image.format = PNG_FORMAT_RGB;  // 8-bit, not linear: written with an sRGB chunk
+    // libpng's fast filters and zlib level: a 512 x 512 render is encoded in 4 ms instead of 19 (the last step of
+    // every render, on one core), for a file 27-54 % larger (66 -> 84 KB, 77 -> 119 KB).
+    image.flags |= PNG_IMAGE_FLAG_FAST;
     // Room for the largest PNG the image can make, so that it is compressed once (asking for the size first
     // compresses it twice).
     png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(image);
