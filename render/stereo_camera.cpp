@@ -60,9 +60,10 @@ double disparityAt(const StereoPair& pair, double depth) {
     return device::stereoDisparity(disparityScale(pair), 1 / pair.focus, depth);
 }
 
-double nearestDepth(const StereoPair& pair, const GridGeometry& grid) {
+DepthRange depthRange(const StereoPair& pair, const GridGeometry& grid) {
     const Vec3d middle = (pair.left.eye + pair.right.eye) * 0.5;
-    return dot(grid.centre() - middle, pair.left.forward) - 0.5 * length(grid.extent());
+    const double centre = dot(grid.centre() - middle, pair.left.forward), radius = 0.5 * length(grid.extent());
+    return {centre - radius, centre + radius};
 }
 
 }  // namespace vr

@@ -9,14 +9,18 @@
 
 namespace vr {
 
-// The reuse rules' thresholds (shaders/stereo_reprojection.h, measured by bench/stereo_bench.cpp): a pixel whose
-// interval spans at most kMaxSpreadPixels of disparity is reprojected from one depth; neighbours that land more than
-// 1 + kMaxGapPixels apart open a gap, and ones whose colours differ by more than kMaxColourStep are detail; a reused
-// piece at least kOpaqueAlpha opaque hides what lies behind it.
+// The reuse rules' thresholds (shaders/stereo_reprojection.h, measured by bench/stereo_bench.cpp): one depth stands
+// for what spans at most kMaxSpreadPixels of disparity (a composite band's width, another blend's narrow interval);
+// neighbours that land more than 1 + kMaxGapPixels apart open a gap, and ones whose colours differ by more than
+// kMaxColourStep (kMaxBandStep between two segments of a band) are detail; a reused piece at least kOpaqueAlpha
+// opaque hides what lies behind it; a band's segment below kFaintAlpha lands where its neighbour's does. A pair needing more than device::kMaxBands bands (the eyes
+// close to the volume) casts its right eye in full.
 constexpr double kMaxSpreadPixels = 3;
 constexpr double kMaxGapPixels = 1;
 constexpr double kOpaqueAlpha = 0.98;
 constexpr double kMaxColourStep = 0.05;
+constexpr double kMaxBandStep = 0.2;
+constexpr double kFaintAlpha = 1.0 / 64;
 
 struct StereoPair {
     Camera left, right;
@@ -38,7 +42,11 @@ double disparityScale(const StereoPair& pair);
 // The disparity of a point at `depth` along the view direction (+inf: a point at infinity).
 double disparityAt(const StereoPair& pair, double depth);
 
-// The nearest depth along the view direction of the volume's bounding sphere (<= 0 when the eyes are inside it).
-double nearestDepth(const StereoPair& pair, const GridGeometry& grid);
+// The nearest and farthest depths along the view direction of the volume's bounding sphere (the nearest <= 0 when
+// the eyes are inside it).
+struct DepthRange {
+    double nearest, farthest;
+};
+DepthRange depthRange(const StereoPair& pair, const GridGeometry& grid);
 
 }  // namespace vr

@@ -11,7 +11,7 @@ layout(set = 0, binding = kBindingRayStates, std430) buffer RayStates { RayState
 // Member by member: glslang stores a whole struct into a buffer with an OpStore of mismatched types.
 RayState loadRayState(uint i) {
     return RayState(rayState[i].composite, rayState[i].depth, rayState[i].k, rayState[i].iterations,
-                    rayState[i].flags, rayState[i].interval);
+                    rayState[i].flags, rayState[i].moment, rayState[i].bands);
 }
 
 void storeRayState(uint i, RayState s) {
@@ -20,7 +20,8 @@ void storeRayState(uint i, RayState s) {
     rayState[i].k = s.k;
     rayState[i].iterations = s.iterations;
     rayState[i].flags = s.flags;
-    rayState[i].interval = s.interval;
+    rayState[i].moment = s.moment;
+    rayState[i].bands = s.bands;
 }
 
 bool inBrick(ivec3 v) { return all(greaterThanEqual(v, tile.brickLo.xyz)) && all(lessThanEqual(v, tile.brickHi.xyz)); }

@@ -36,6 +36,8 @@ layout(constant_id = kSpecIdLabels) const int LABELS = kNoLabels;
 layout(constant_id = kSpecIdPixelList) const bool PIXEL_LIST = false;
 // Shade by each voxel's stored gradient (gradient_code.h) instead of central differences of the scalars.
 layout(constant_id = kSpecIdStoredGradients) const bool STORED_GRADIENTS = false;
+// The left eye of a stereo pair: record what the ray gathered at the far end of each band (stereo_reprojection.h).
+layout(constant_id = kSpecIdStereoBands) const bool STEREO_BANDS = false;
 
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
@@ -67,6 +69,19 @@ layout(set = 0, binding = kBindingLabelsUInt16, r16ui) uniform readonly uimage3D
 layout(set = 0, binding = kBindingLabelTable, std430) readonly buffer LabelTable { vec4 labelTableEntry[]; };
 layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; uint listPixel[]; };
 layout(set = 0, binding = kBindingGradients, r32ui) uniform readonly uimage3D gradients;
+layout(set = 0, binding = kBindingStereoBands, std430) writeonly buffer StereoBands { BandEnd bandEnd[]; };
+
+// Where the ray's band `band` ends along it: its far depth over the cosine of the ray's angle to the view direction.
+float bandEndT(int band, float cosine) {
+    vec4 b = params.stereoBands;
+    return bandFarDepth(b.x, b.y, b.z, b.w, band, params.stereoBandCount) / cosine;
+}
+
+// Member by member, as the ray states.
+void storeBandEnd(uint i, vec3 colour, float transmittance, float moment) {
+    bandEnd[i].composite = vec4(colour, transmittance);
+    bandEnd[i].moment = moment;
+}
 
 uvec4 loadField(ivec3 texel) {
     if (CASTER == kEACD && EACD_CODE == kLog16) return imageLoad(field16, texel);
@@ -375,8 +390,7 @@ void main() {
 
     bool missingOctant = (CASTER == kACD || CASTER == kEACD || CASTER == kHier) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
-    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u,
-                                              vec2(kInfinity))
+    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u, 0.0, 0u)
                                    : loadRayState(outIndex);
     vec3 colour = state.composite.rgb;
     // What the colour's float sum has lost so far (Kahan): the primitive caster adds one sample at a time, and
@@ -392,7 +406,18 @@ void main() {
     uint iterations = state.iterations;
     bool failed = (state.flags & kFailed) != 0u;
     uint k = state.k;
-    vec2 interval = state.interval;  // composite: where its opacity rose (stereo_reprojection.h)
+    // A stereo left eye's bands: the band the ray is in and where it ends (the bands before it are recorded: its
+    // spans so far crossed their ends), the first moment of its opacity over t, the bands it gathered anything in.
+    float moment = state.moment;
+    uint gathered = state.bands;
+    int band = 0;
+    float cosine = dot(direction, params.forward.xyz), bandEnd = kInfinity;
+    uint bandBase = uint(pixel.y * params.imageSize.x + pixel.x) * uint(params.stereoBandCount);
+    if (STEREO_BANDS) {
+        float tk = latticeT(iv, k);
+        while (k > 0u && band + 1 < params.stereoBandCount && bandEndT(band, cosine) < tk) ++band;
+        bandEnd = bandEndT(band, cosine);
+    }
     // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
     bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, iv, k))));
@@ -499,23 +524,31 @@ void main() {
         // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.
         vec2 spanDepth = CASTER == kPrimitive ? vec2(sampleDepth, 0.0) : exactProduct(float(n), sampleDepth);
         float spanAlpha = spanOpacity(spanDepth.x);
+        vec3 shaded = s.rgb;
+        if (SHADING && spanAlpha > 0.0) shaded = shade(s.rgb, sampleNormal(fp, v), toEye, toLight);
+        // A stereo left eye records the bands whose far end the span reaches: what it gathered up to there, the
+        // span split where the band ends (in one iteration, however many samples the span leaps).
+        float t0 = latticeT(iv, k), t1 = latticeT(iv, k + n);
+        while (STEREO_BANDS && t1 > bandEnd) {
+            precise float part = spanDepthBefore(spanDepth.x, t0, t1, bandEnd);
+            float w = transmittance * spanOpacity(part);
+            storeBandEnd(bandBase + uint(band), colour - colourLost + shaded * w, transmittance - w,
+                         moment + w * (t0 + max(bandEnd - t0, 0.0) * spanMeanFraction(part)));
+            if (spanAlpha > 0.0 && bandEnd > t0) gathered |= 1u << band;
+            bandEnd = bandEndT(++band, cosine);
+        }
+        if (STEREO_BANDS && spanAlpha > 0.0) gathered |= 1u << band;
         if (spanAlpha > 0.0) {
-            vec3 shaded = s.rgb;
-            if (SHADING) shaded = shade(s.rgb, sampleNormal(fp, v), toEye, toLight);
             precise float w = transmittance * spanAlpha;
             precise vec3 added = shaded * w - colourLost;
             precise vec3 total = colour + added;
             colourLost = (total - colour) - added;
             colour = total;
-            int levelBefore = opacityLevel(1.0 - transmittance);
+            if (STEREO_BANDS) moment += w * (t0 + (t1 - t0) * spanMeanFraction(spanDepth.x));
             depth = addPair(depth, spanDepth);
             // From the optical depth, not by subtracting w: 1 - 1e-9 is 1 in float, which would keep the weights of
             // 10^7 samples of opacity 1e-9 at transmittance 1 (0.5 % too much colour in all).
             transmittance = 1.0 - spanOpacity(depth.x + depth.y);
-            if (opacityLevel(1.0 - transmittance) > levelBefore) {
-                if (levelBefore == 0) interval.x = latticeT(iv, k);
-                interval.y = latticeT(iv, k + n);
-            }
         }
     }
 
@@ -534,14 +567,20 @@ void main() {
     vec4 carried = BLEND == kBlendComposite ? vec4(colour, transmittance)
                    : BLEND == kBlendAverage ? vec4(sum, 0.0, 0.0)
                                             : vec4(running, 0.0, 0.0, 0.0);
-    if (!lastDispatch) storeRayState(outIndex, RayState(carried, depth, k, iterations, flags, interval));
+    if (!lastDispatch) storeRayState(outIndex, RayState(carried, depth, k, iterations, flags, moment, gathered));
+    // After the ray's last span, the bands it did not reach end with all it gathered.
+    for (; STEREO_BANDS && lastDispatch && band < params.stereoBandCount; ++band)
+        storeBandEnd(bandBase + uint(band), colour, transmittance, moment);
 
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.
     float alpha = spanOpacity(depth.x + depth.y);
     vec4 pixelColour = vec4(colour + params.background.rgb * (1.0 - alpha), alpha);
     if (BLEND == kBlendMIP || BLEND == kBlendMinIP) pixelColour = shownValue(running, kCount > 0u);
     if (BLEND == kBlendAverage) pixelColour = shownValue((sum.x + sum.y) / float(kCount), kCount > 0u);
-    // The other blends depend on every sample of the ray (MIP, MinIP, average) or on the surface's hit (iso).
+    // The other blends depend on every sample of the ray (MIP, MinIP, average) or on the surface's hit (iso);
+    // composite carries its depths in its bands (and the bands it gathered anything in).
+    vec2 interval = vec2(kInfinity);
+    if (STEREO_BANDS) interval = vec2(uintBitsToFloat(gathered), 0.0);
     if (BLEND != kBlendComposite && BLEND != kBlendIso && kCount > 0u) interval = vec2(iv.tEntry, iv.tExit);
     if (BLEND == kBlendIso) {
         float tHit = kInfinity;

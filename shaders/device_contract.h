@@ -42,6 +42,8 @@ VR_CONSTANT int kBindingLabelTable = 15;
 VR_CONSTANT int kBindingPixelList = 16;     // storage buffer: uint count, then the pixels to cast (x | y << 16),
                                             // read by the list variant (stereo re-casts: stereo_reprojection.h)
 VR_CONSTANT int kBindingGradients = 17;     // R32_UINT: each voxel's stored gradient (gradient_code.h)
+VR_CONSTANT int kBindingStereoBands = 18;   // storage buffer: a stereo left eye's BandEnd per band per pixel of the
+                                            // image, written by the bands variant (stereo_reprojection.h)
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
@@ -55,6 +57,7 @@ VR_CONSTANT int kSpecIdBlend = 7;        // one of the blends below
 VR_CONSTANT int kSpecIdLabels = 8;       // one of the label types below: which label image the casters read
 VR_CONSTANT int kSpecIdPixelList = 9;    // bool: cast the pixels of the list (kBindingPixelList), not a tile's
 VR_CONSTANT int kSpecIdStoredGradients = 10;  // bool: shade by the stored gradients (kBindingGradients)
+VR_CONSTANT int kSpecIdStereoBands = 11;      // bool: composite, the left eye of a stereo pair: record the bands
 VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4, kHier = 5;
 // The hierarchical EACD's block codes (core/distance_fields.h BlockEACD): log16 extents in blocks, this bit set where
 // the block is homogeneous (0: a mixed block, stepped sample by sample).
@@ -133,6 +136,10 @@ struct CasterParams {
     float frustumShift;  // Camera::shift: an off-axis (stereo) eye's horizontal window offset, 0 otherwise
     int gradientExponentBase;  // the stored gradients' base exponent (gradient_code.h)
     int hierBlockShift;        // the hier caster: its blocks' edge is 1 << hierBlockShift voxels
+    // A stereo left eye's bands (stereo_reprojection.h): the disparity scale, 1 / the focus distance, the first
+    // band's near disparity and the bands' width in pixels; their number.
+    vec4 stereoBands;
+    int stereoBandCount;
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -159,7 +166,8 @@ struct RayState {
     uint k;          // the next lattice sample: also the samples the spans so far represent
     uint iterations;
     uint flags;      // kFailed, kCutShort, kIsoInside, kIsoHit
-    vec2 interval;   // composite: the depth interval gathered so far (OutPixel::counts zw)
+    float moment;    // composite, a stereo left eye: the first moment of its opacity over t so far (BandEnd)
+    uint bands;      // and the bands it gathered anything in (bit b: band b)
 };
 
 // A pixel's result (std430): the colour's four floats' bits, then the samples and the iteration count with its
@@ -168,7 +176,8 @@ struct RayState {
 struct OutPixel {
     uvec4 colour;
     uvec4 counts;  // x: samples, y: iterations | flags, zw: the float bits of the pixel's contributing depth
-                   // interval [t_near, t_far] along its ray (+inf, +inf: nothing; shaders/stereo_reprojection.h)
+                   // interval [t_near, t_far] along its ray (+inf, +inf: nothing; shaders/stereo_reprojection.h);
+                   // composite: +inf, +inf, and a stereo left eye's bands that gathered anything (bit b: band b), 0
 };
 
 #ifdef __cplusplus
@@ -196,12 +205,14 @@ static_assert(offsetof(CasterParams, opaqueValues) == 428);
 static_assert(offsetof(CasterParams, frustumShift) == 432);
 static_assert(offsetof(CasterParams, gradientExponentBase) == 436);
 static_assert(offsetof(CasterParams, hierBlockShift) == 440);
-static_assert(sizeof(CasterParams) == 448);
+static_assert(offsetof(CasterParams, stereoBands) == 448);
+static_assert(sizeof(CasterParams) == 480);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);
 static_assert(sizeof(TilePush) == 112);
 static_assert(offsetof(RayState, k) == 24);
-static_assert(offsetof(RayState, interval) == 40);
+static_assert(offsetof(RayState, moment) == 36);
+static_assert(offsetof(RayState, bands) == 40);
 static_assert(sizeof(RayState) == 48);  // std430 rounds the array stride up to the vec4's 16
 static_assert(sizeof(OutPixel) == 32);
 }  // namespace vr::device

@@ -1,11 +1,13 @@
 // Stereo by reprojection (docs/ALGORITHMS.md section 12), its rules stated once: the casters
-// (caster.comp) record each pixel's contributing depth interval, the reprojection shader (stereo_reproject.comp)
-// moves the left eye's pixels into the right eye and decides which it can vouch for; the C++ side reads the same
+// (caster.comp) record what each left pixel gathered per band of disparity (composite) or its contributing depth
+// interval (the other blends), the reprojection shader (stereo_reproject.comp) moves the left eye's pixels into the
+// right eye and decides which it can vouch for; the C++ side reads the same
 // rules (render/stereo_camera.h, the tests). Reals are double in C++ and float in GLSL (shared_language.h).
 #ifndef VR_STEREO_REPROJECTION_H
 #define VR_STEREO_REPROJECTION_H
 
 #include "device_contract.h"
+#include "ray_math.h"
 
 #ifdef __cplusplus
 namespace vr::device {
@@ -17,14 +19,47 @@ VR_CONSTANT int kBindingLeftPixels = 1;    // storage buffer: OutPixel per pixel
 VR_CONSTANT int kBindingRightPixels = 2;   // storage buffer: OutPixel per pixel of the right image (the reprojection)
 VR_CONSTANT int kBindingRecastList = 3;    // storage buffer: the count, then the right pixels to re-cast (the
                                            // casters' kBindingPixelList)
+VR_CONSTANT int kBindingLeftBands = 4;     // storage buffer: BandEnd per band per pixel of the left image (composite;
+                                           // the casters' kBindingStereoBands)
+VR_CONSTANT int kSpecIdBands = 0;          // bool: reproject the left eye's bands (composite), not its intervals
 VR_CONSTANT int kReprojectGroup = 64;      // invocations per workgroup, along a row
 
-// A composite ray's opacity alpha is counted in levels of 1 / kOpacityLevels: its contributing depth interval runs
-// from the span where alpha first reaches a level to the end of the last span that raised it to a new one. What lies
-// outside it adds less than one level to alpha before the interval (and one after); a ray that never reaches a level
-// carries no interval (+inf, +inf), like a ray that misses the volume.
-VR_CONSTANT int kOpacityLevels = 16;
-VR_FUNCTION int opacityLevel(VR_REAL alpha) { return int(alpha * VR_REAL(kOpacityLevels)); }
+// Bands (composite): band b holds the depths whose disparity lies in [first + b width, first + (b + 1) width), the
+// first band also the nearer ones and the last the farther. A left ray records, at the far end of each band, what it
+// has gathered from its start: its premultiplied colour, its transmittance and the first moment of its opacity over
+// its depth t (the sum of each part's opacity weight times its mean t), so that band b's own segment is the
+// difference between the records of bands b - 1 and b. A span that crosses a band's far end is split there: its
+// sigma and colour are constant over it, so the part before t gathers the optical depth sigma (t - t0), and its
+// opacity's moment is its opacity weight times t0 + (t - t0) spanMeanFraction(sigma (t - t0)).
+struct BandEnd {
+    vec4 composite;  // rgb: premultiplied colour, a: transmittance
+    float moment;    // the first moment of the opacity over t
+};
+
+// The most bands a pair takes (more: the eyes are close to the volume; its right eye is cast in full).
+VR_CONSTANT int kMaxBands = 32;
+
+// The depth (along the view direction) where band b ends: +inf for the last band, and for a band that reaches
+// infinity's disparity.
+VR_FUNCTION VR_REAL bandFarDepth(VR_REAL scale, VR_REAL focusInverse, VR_REAL first, VR_REAL width, int b, int count) {
+    VR_REAL inverse = focusInverse - (first + VR_REAL(b + 1) * width) / scale;
+    return b + 1 < count && inverse > VR_REAL(0) ? VR_REAL(1) / inverse : kInfinity;
+}
+
+// Where the opacity of a homogeneous span of optical depth `depth` lies on average, as a fraction of its length from
+// its start: 1 / depth - 1 / (e^depth - 1), from 1/2 for a faint span (its series below depth 1/64) down to
+// 1 / depth for a dense one. Exact for a span of constant sigma, so that a leap's moment is the sum of its samples'.
+VR_FUNCTION VR_REAL spanMeanFraction(VR_REAL depth) {
+    if (depth < VR_REAL(1) / VR_REAL(64)) return VR_REAL(0.5) - depth / VR_REAL(12);
+    return VR_REAL(1) / depth - VR_REAL(1) / vrExpm1(depth);
+}
+
+// The part of a span [t0, t1) of optical depth `depth` that lies before t: its optical depth (sigma is constant over
+// the span). t <= t0 gives none, t >= t1 the whole span.
+VR_FUNCTION VR_REAL spanDepthBefore(VR_REAL depth, VR_REAL t0, VR_REAL t1, VR_REAL t) {
+    VR_REAL f = (t - t0) / (t1 - t0);
+    return depth * (f < VR_REAL(0) ? VR_REAL(0) : f < VR_REAL(1) ? f : VR_REAL(1));
+}
 
 // A list entry: a pixel's x and y in 16 bits each (images are at most 16384 wide).
 VR_FUNCTION uint packListPixel(int x, int y) { return uint(x) | (uint(y) << 16); }
@@ -37,11 +72,16 @@ struct StereoParams {
     float halfHeight;      // Camera::halfHeight (tan of half the vertical field of view)
     float leftShift;       // the left eye's Camera::shift
     float maxSpread;       // pixels: the widest disparity range over a pixel's interval that one depth stands for
+                           // (composite: the bands' width)
     float opaqueAlpha;     // a reused piece at least this opaque hides what lies behind it
     float maxStep;         // the largest colour difference between the two ends of a piece that it interpolates
     float maxGap;          // pixels: neighbours reprojected farther apart than 1 + maxGap open a gap
     ivec2 window;          // right pixel x gathers the left pixels x - window.y .. x - window.x (the disparities'
                            // bounds, widened by the neighbours a piece spans)
+    vec4 background;       // rgb: what a composite right pixel shows through its transmittance
+    float firstDisparity;  // composite: the first band's near disparity
+    int bandCount;         // composite: the number of bands
+    float faintAlpha;      // a band's segment below this opacity is faint: it lands where its neighbour's does
 };
 
 // The disparity in pixels (x in the right image minus x in the left) of a point at depth z along the eyes' common
@@ -59,14 +99,19 @@ VR_FUNCTION int pixelKind(bool empty, VR_REAL nearDisparity, VR_REAL farDisparit
     return farDisparity - nearDisparity <= maxSpread ? kPixelNarrow : kPixelWide;  // NaN: wide
 }
 
-// Two neighbouring left pixels reprojected to xa <= xb are one continuous piece of what they show, whose colour the
-// right pixels between them interpolate, when neither is wide, they landed at most 1 + maxGap pixels apart
-// (farther apart they open a gap: what the left eye could not see) and their colours differ by at most maxStep in
-// each channel (a steeper step is detail the interpolation would blur, or that the right eye's own samples place
+// Two neighbouring left pixels (or two segments of a band) reprojected to xa <= xb are one continuous piece of what
+// they show, whose colour the right pixels between them interpolate, when they landed at most 1 + maxGap pixels
+// apart (farther apart they open a gap: what the left eye could not see) and their colours differ by at most maxStep
+// in each channel (a steeper step is detail the interpolation would blur, or that the right eye's own samples place
 // elsewhere: an edge, the sampling lattice's rings on a surface). Anything else is re-cast.
+VR_FUNCTION bool continuousSpan(VR_REAL xa, VR_REAL xb, VR_REAL maxGap, VR_REAL colourStep, VR_REAL maxStep) {
+    return xb - xa <= VR_REAL(1) + maxGap && colourStep <= maxStep;
+}
+
+// Two left pixels' piece (the other blends) also needs neither to be wide.
 VR_FUNCTION bool continuousPiece(int kindA, int kindB, VR_REAL xa, VR_REAL xb, VR_REAL maxGap, VR_REAL colourStep,
                                  VR_REAL maxStep) {
-    return kindA != kPixelWide && kindB != kPixelWide && xb - xa <= VR_REAL(1) + maxGap && colourStep <= maxStep;
+    return kindA != kPixelWide && kindB != kPixelWide && continuousSpan(xa, xb, maxGap, colourStep, maxStep);
 }
 
 // A right pixel keeps the reprojection when the nearest of what covers it is a continuous piece that either is
@@ -79,6 +124,9 @@ VR_FUNCTION bool reuseCover(bool continuous, VR_REAL pieceAlpha, VR_REAL opaqueA
 #ifdef __cplusplus
 static_assert(offsetof(StereoParams, disparityScale) == 8);
 static_assert(offsetof(StereoParams, window) == 40);
+static_assert(offsetof(StereoParams, background) == 48);
+static_assert(sizeof(StereoParams) == 80);
+static_assert(sizeof(BandEnd) == 32);
 }  // namespace vr::device
 #else
 ivec2 unpackListPixel(uint p) { return ivec2(int(p & 0xffffu), int(p >> 16)); }

@@ -72,14 +72,15 @@ TEST(RenderStereoCamera, DisparityIsWhereTheEyesSeeAPoint) {
     EXPECT_LT(disparityAt(p, 30), 0);  // in front of the focus: crossed
 }
 
-TEST(RenderStereoCamera, NearestDepthBoundsTheVolume) {
+TEST(RenderStereoCamera, DepthRangeBoundsTheVolume) {
     const StereoPair p = pairAt(10, 10, 4, std::nullopt);
-    const double nearest = nearestDepth(p, kGrid);
+    const auto [nearest, farthest] = depthRange(p, kGrid);
     const Vec3d middle = (p.left.eye + p.right.eye) * 0.5;
     for (int corner = 0; corner < 8; ++corner) {
         const Vec3d e = kGrid.extent();
         const Vec3d c = kGrid.origin + Vec3d{corner & 1 ? e.x : 0, corner & 2 ? e.y : 0, corner & 4 ? e.z : 0};
         EXPECT_GE(dot(c - middle, p.left.forward), nearest);
+        EXPECT_LE(dot(c - middle, p.left.forward), farthest);
     }
 }
 

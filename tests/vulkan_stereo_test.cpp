@@ -102,6 +102,73 @@ TEST(VulkanStereo, StructureOnlyTheRightEyeSeesIsRecast) {
     test::expectNoValidationErrors();
 }
 
+// A thick translucent slab over the whole volume, in two halves of two colours along x: each ray gathers
+// its colour over a depth whose disparities span several bands.
+const PreparedVolume& stripedSlab() {
+    const GridGeometry grid{{32, 16, 32}, {1, 1, 1}, {0, 0, 0}};
+    static const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
+        if (v.z < 4 || v.z >= 28) return test::VoxelClass{0.0, {0, 0, 0}};
+        return test::VoxelClass{0.04, v.x < 16 ? Vec3d{1, 0.6, 0.2} : Vec3d{0.2, 0.6, 1}};
+    });
+    return p;
+}
+
+StereoPair slabPair(int width, int height) {
+    const PreparedVolume& p = stripedSlab();
+    const Camera centre = Camera::fit(p.grid(), test::orbitView(0, 0, width, height, Projection::Perspective));
+    return stereoPair(centre, p.grid(), kSeparation, std::nullopt);
+}
+
+// The disparities of the slab's near and far faces along the view direction.
+double slabSpread(const StereoPair& pair) {
+    const Vec3d middle = (pair.left.eye + pair.right.eye) * 0.5;
+    double lo = INFINITY, hi = -INFINITY;
+    for (double z : {4.0, 28.0}) {
+        const double d = disparityAt(pair, dot(Vec3d{16, 8, z} - middle, pair.left.forward));
+        lo = std::min(lo, d), hi = std::max(hi, d);
+    }
+    return hi - lo;
+}
+
+// A ray through the slab gathers over more disparity than one depth stands for, yet its segment of each band lands
+// where it belongs: the right eye is reused, not re-cast, save the slab's edges and the image's.
+TEST(VulkanStereo, TranslucentSlabIsReused) {
+    const StereoPair pair = slabPair(64, 48);
+    ASSERT_GT(slabSpread(pair), 2 * kMaxSpreadPixels);  // the scene does what it is for: wide rays
+    VulkanRenderer& renderer = test::vulkanRenderer(16);
+    const GpuVolume volume = renderer.upload(stripedSlab(), {{Caster::Primitive, Caster::EACD}, kAllOctants});
+    for (Caster caster : {Caster::Primitive, Caster::EACD}) {
+        const RenderSettings s = test::renderSettings(caster, false, false);
+        const StereoRender full = renderer.renderStereo(volume, pair, s, false);
+        const StereoRender reused = renderer.renderStereo(volume, pair, s, true);
+        int slab = 0, slabReused = 0;
+        for (std::size_t i = 0; i < reused.recast.size(); ++i)
+            if (full.right.image.rgba[4 * i + 3] > 0.3f) ++slab, slabReused += !reused.recast[i];
+        ASSERT_GT(slab, int(reused.recast.size() / 8));
+        EXPECT_GT(slabReused, slab * 3 / 4) << casterName(caster);
+        expectPairsAgree(reused, full, 0.01, std::string(casterName(caster)));
+    }
+    test::expectNoValidationErrors();
+}
+
+// A leap over a homogeneous span is split at the band ends it crosses, in closed form: the bands it records, and so
+// the reused right eye, are those of the same span stepped sample by sample.
+TEST(VulkanStereo, LeapSplitAcrossBandsEqualsSteppedSamples) {
+    const StereoPair pair = slabPair(64, 48);
+    VulkanRenderer& renderer = test::vulkanRenderer(16);
+    const GpuVolume volume = renderer.upload(stripedSlab(), {{Caster::Primitive, Caster::EACD}, kAllOctants});
+    const StereoRender stepped = renderer.renderStereo(volume, pair, test::renderSettings(Caster::Primitive, false), true);
+    const StereoRender leapt = renderer.renderStereo(volume, pair, test::renderSettings(Caster::EACD, false), true);
+    // The leaps are real: EACD takes far fewer iterations than samples.
+    std::uint64_t samples = 0, iterations = 0;
+    for (std::size_t i = 0; i < leapt.left.samples.size(); ++i)
+        samples += leapt.left.samples[i], iterations += leapt.left.iterations[i];
+    ASSERT_LT(4 * iterations, samples);
+    EXPECT_EQ(leapt.recast, stepped.recast);
+    EXPECT_LE(maxAbsDifference(leapt.right.image, stepped.right.image), 1e-4);
+    test::expectNoValidationErrors();
+}
+
 TEST(VulkanStereo, EveryCasterGivesThePairWithoutReuse) {
     const StereoPair pair = occludedPair(40, 32);
     VulkanRenderer& renderer = test::vulkanRenderer(16);

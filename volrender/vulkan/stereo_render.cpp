@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/vulkan_renderer.h"
@@ -10,7 +11,23 @@
 namespace vr {
 namespace {
 
-device::StereoParams reprojection(const StereoPair& pair, const GridGeometry& grid) {
+// The composite bands of a pair: kMaxSpreadPixels wide from the disparity of the volume's nearest point to its
+// farthest's (none where that takes more than device::kMaxBands).
+struct Bands {
+    double first = 0;
+    int count = 0;
+};
+
+Bands bandsOf(const StereoPair& pair, const GridGeometry& grid) {
+    const DepthRange depths = depthRange(pair, grid);
+    if (depths.nearest <= 0) return {};
+    const double first = disparityAt(pair, depths.nearest);
+    const double count = std::ceil((disparityAt(pair, depths.farthest) - first) / kMaxSpreadPixels);
+    return count <= device::kMaxBands ? Bands{first, std::max(1, int(count))} : Bands{};
+}
+
+device::StereoParams reprojection(const StereoPair& pair, const GridGeometry& grid, const RenderSettings& settings,
+                                  const Bands& bands) {
     const Camera& left = pair.left;
     device::StereoParams p{};
     p.imageSize = {left.width, left.height};
@@ -20,13 +37,17 @@ device::StereoParams reprojection(const StereoPair& pair, const GridGeometry& gr
     p.leftShift = float(left.shift);
     p.maxSpread = float(kMaxSpreadPixels);
     p.opaqueAlpha = float(kOpaqueAlpha);
-    p.maxStep = float(kMaxColourStep);
+    p.maxStep = float(settings.blend == Blend::Composite ? kMaxBandStep : kMaxColourStep);
     p.maxGap = float(kMaxGapPixels);
     // The disparities lie between the volume's nearest point's and infinity's; eyes inside the volume search the row.
-    const double nearest = nearestDepth(pair, grid);
+    const double nearest = depthRange(pair, grid).nearest;
     const double lowest = nearest > 0 ? std::max(disparityAt(pair, nearest), -double(left.width)) : -left.width;
     const double highest = std::min(disparityAt(pair, INFINITY), double(left.width));
     p.window = {int(std::floor(lowest)) - 2, int(std::ceil(highest)) + 2};
+    p.background = {float(settings.background.x), float(settings.background.y), float(settings.background.z), 0};
+    p.firstDisparity = float(bands.first);
+    p.bandCount = bands.count;
+    p.faintAlpha = float(kFaintAlpha);
     return p;
 }
 
@@ -43,7 +64,9 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
     StereoRender out;
     const int width = pair.left.width, height = pair.left.height;
     const std::size_t pixels = std::size_t(width) * height;
-    if (!reuse) {
+    const bool composite = settings.blend == Blend::Composite;
+    const Bands bands = composite ? bandsOf(pair, volume.grid()) : Bands{};
+    if (!reuse || (composite && bands.count == 0)) {
         out.left = render(volume, pair.left, settings);
         out.right = render(volume, pair.right, settings);
         out.recast.assign(pixels, 1);
@@ -56,12 +79,19 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         HostBuffer left(ctx_, pixels * sizeof(device::OutPixel), B::eStorageBuffer);
         HostBuffer right(ctx_, pixels * sizeof(device::OutPixel), B::eStorageBuffer);
         HostBuffer recast(ctx_, (pixels + 1) * sizeof(uint32_t), B::eStorageBuffer);
-        out.left = renderOnDevice(volume, pair.left, settings, nullptr, left.data());
+        std::optional<DeviceBuffer> leftBands;
+        if (composite) leftBands.emplace(ctx_, pixels * bands.count * sizeof(device::BandEnd), B::eStorageBuffer);
+        const StereoLeft leftEye{left.data(), leftBands ? &*leftBands : nullptr,
+                                 {float(disparityScale(pair)), float(1 / pair.focus), float(bands.first),
+                                  float(kMaxSpreadPixels)},
+                                 bands.count};
+        out.left = renderOnDevice(volume, pair.left, settings, nullptr, &leftEye);
         if (!reprojector_) reprojector_ = std::make_unique<StereoReprojector>(ctx_);
         auto* list = static_cast<uint32_t*>(recast.data());
         list[0] = 0;
-        out.reprojectMilliseconds = reprojector_->reproject(pool_, reprojection(pair, volume.grid()), left, right,
-                                                              recast);
+        out.reprojectMilliseconds = reprojector_->reproject(
+            pool_, reprojection(pair, volume.grid(), settings, bands), left, leftBands ? &*leftBands : nullptr, right,
+            recast);
         // Blocks of 8 x 8 pixels in row order, each block's pixels in row order: a workgroup's rays stay as close
         // together as a tile's (the device appended them in any order).
         std::sort(list + 1, list + 1 + list[0], [](uint32_t a, uint32_t b) { return blockOrder(a) < blockOrder(b); });

@@ -9,45 +9,56 @@ namespace vr {
 StereoReprojector::StereoReprojector(const VulkanContext& ctx) : ctx_(ctx), timer_(ctx) {
     using T = vk::DescriptorType;
     const auto compute = vk::ShaderStageFlagBits::eCompute;
-    const std::array<vk::DescriptorSetLayoutBinding, 4> bindings{{
+    const std::array<vk::DescriptorSetLayoutBinding, 5> bindings{{
         {device::kBindingStereoParams, T::eUniformBuffer, 1, compute},
         {device::kBindingLeftPixels, T::eStorageBuffer, 1, compute},
         {device::kBindingRightPixels, T::eStorageBuffer, 1, compute},
-        {device::kBindingRecastList, T::eStorageBuffer, 1, compute}}};
+        {device::kBindingRecastList, T::eStorageBuffer, 1, compute},
+        {device::kBindingLeftBands, T::eStorageBuffer, 1, compute}}};
     setLayout_ = vk::raii::DescriptorSetLayout(ctx.device(), vk::DescriptorSetLayoutCreateInfo({}, bindings));
     const vk::DescriptorSetLayout setLayout = *setLayout_;
     layout_ = vk::raii::PipelineLayout(ctx.device(), vk::PipelineLayoutCreateInfo({}, setLayout));
     shader_ = vk::raii::ShaderModule(ctx.device(), vk::ShaderModuleCreateInfo({}, stereo_reproject_spv));
-    vk::PipelineShaderStageCreateInfo stage({}, compute, *shader_, "main");
-    pipeline_ = vk::raii::Pipeline(ctx.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *layout_));
+    for (const bool bands : {false, true}) {
+        const VkBool32 value = bands;
+        const vk::SpecializationMapEntry entry(device::kSpecIdBands, 0, sizeof value);
+        const vk::SpecializationInfo specialization(1, &entry, sizeof value, &value);
+        vk::PipelineShaderStageCreateInfo stage({}, compute, *shader_, "main", &specialization);
+        (bands ? bands_ : intervals_) =
+            vk::raii::Pipeline(ctx.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *layout_));
+    }
 }
 
 double StereoReprojector::reproject(const vk::raii::CommandPool& pool, const device::StereoParams& params,
-                                    const HostBuffer& left, const HostBuffer& right, const HostBuffer& recast) {
+                                    const HostBuffer& left, const DeviceBuffer* bands, const HostBuffer& right,
+                                    const HostBuffer& recast) {
     HostBuffer uniform(ctx_, sizeof params, vk::BufferUsageFlagBits::eUniformBuffer);
     std::memcpy(uniform.data(), &params, sizeof params);
     const std::array<vk::DescriptorPoolSize, 2> sizes{vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1),
-                                                      vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3)};
+                                                      vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 4)};
     vk::raii::DescriptorPool descriptorPool(
         ctx_.device(), vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, sizes));
     const vk::DescriptorSetLayout setLayout = *setLayout_;
     vk::raii::DescriptorSets sets(ctx_.device(), vk::DescriptorSetAllocateInfo(*descriptorPool, setLayout));
-    const vk::DescriptorBufferInfo buffers[4] = {{*uniform.buffer(), 0, VK_WHOLE_SIZE},
+    // Without bands the left pixels stand in for them, never read.
+    const vk::DescriptorBufferInfo buffers[5] = {{*uniform.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*left.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*right.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*recast.buffer(), 0, VK_WHOLE_SIZE}};
+                                                 {*recast.buffer(), 0, VK_WHOLE_SIZE},
+                                                 {*(bands ? bands->buffer() : left.buffer()), 0, VK_WHOLE_SIZE}};
     using T = vk::DescriptorType;
     const vk::DescriptorSet set = *sets[0];
-    const std::array<vk::WriteDescriptorSet, 4> writes{{
+    const std::array<vk::WriteDescriptorSet, 5> writes{{
         {set, device::kBindingStereoParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
         {set, device::kBindingLeftPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
         {set, device::kBindingRightPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
-        {set, device::kBindingRecastList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]}}};
+        {set, device::kBindingRecastList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
+        {set, device::kBindingLeftBands, 0, 1, T::eStorageBuffer, nullptr, &buffers[4]}}};
     ctx_.device().updateDescriptorSets(writes, {});
     submitAndWait(ctx_, pool, [&](const vk::raii::CommandBuffer& cmd) {
         using S = vk::PipelineStageFlagBits;
         timer_.start(cmd);
-        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_);
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, bands ? *bands_ : *intervals_);
         cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout_, 0, set, {});
         cmd.dispatch(uint32_t((params.imageSize.x + device::kReprojectGroup - 1) / device::kReprojectGroup),
                      uint32_t(params.imageSize.y), 1);

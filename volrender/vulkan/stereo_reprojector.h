@@ -10,11 +10,12 @@ class StereoReprojector {
 public:
     explicit StereoReprojector(const VulkanContext& ctx);
 
-    // Reads the left eye's pixels (device::OutPixel each, row by row), writes the reprojected right eye (the same)
-    // and appends the right pixels it cannot vouch for to `recast` (its count, then the packed pixels; the count
-    // must start at 0). Returns the device milliseconds it took (0 where the queue has no timestamps).
+    // Reads the left eye's pixels (device::OutPixel each, row by row) or, for composite, its bands
+    // (device::BandEnd per band per pixel: `bands`), writes the reprojected right eye (OutPixel each) and appends
+    // the right pixels it cannot vouch for to `recast` (its count, then the packed pixels; the count must start at
+    // 0). Returns the device milliseconds it took (0 where the queue has no timestamps).
     double reproject(const vk::raii::CommandPool& pool, const device::StereoParams& params, const HostBuffer& left,
-                     const HostBuffer& right, const HostBuffer& recast);
+                     const DeviceBuffer* bands, const HostBuffer& right, const HostBuffer& recast);
 
 private:
     const VulkanContext& ctx_;
@@ -22,7 +23,7 @@ private:
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout layout_{nullptr};
     vk::raii::ShaderModule shader_{nullptr};
-    vk::raii::Pipeline pipeline_{nullptr};
+    vk::raii::Pipeline intervals_{nullptr}, bands_{nullptr};  // the shader without and with its bands constant
 };
 
 }  // namespace vr

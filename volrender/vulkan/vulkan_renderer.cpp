@@ -187,7 +187,8 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
         {device::kBindingExtentTable, T::eUniformBuffer, 1, compute},
         {device::kBindingTransferTable, T::eStorageBuffer, 1, compute},
         {device::kBindingLabelTable, T::eStorageBuffer, 1, compute},
-        {device::kBindingPixelList, T::eStorageBuffer, 1, compute}};
+        {device::kBindingPixelList, T::eStorageBuffer, 1, compute},
+        {device::kBindingStereoBands, T::eStorageBuffer, 1, compute}};
     for (uint32_t binding : kScalarBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     for (uint32_t binding : kFieldBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     bindings.emplace_back(device::kBindingBlockExtrema, T::eStorageImage, 1, compute);
@@ -220,12 +221,14 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
 }
 
 VulkanRenderer::Variant VulkanRenderer::variantOf(const RenderSettings& settings, bool perspective, ScalarType type,
-                                                  int labels, bool bricked, bool pixelList, ExtentCode eacdCode) {
+                                                  int labels, bool bricked, bool pixelList, ExtentCode eacdCode,
+                                                  bool stereoBands) {
     // The hier caster's blocks are in log16, whatever code the volume's EACD has.
     if (settings.caster == Caster::Hier) eacdCode = ExtentCode::Log16;
     return {settings.caster, settings.blend, settings.trilinear,  settings.shading,
             eacdCode,        bricked,        perspective,         type,
-            labels,          pixelList,      settings.gradients == Gradients::Stored};
+            labels,          pixelList,      settings.gradients == Gradients::Stored,
+            stereoBands};
 }
 
 const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
@@ -234,11 +237,12 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
     v.shading = v.shading && (v.blend == Blend::Composite || v.blend == Blend::Iso);
     if (v.caster != Caster::EACD && v.caster != Caster::Hier) v.eacdCode = ExtentCode::Exact;
     v.storedGradients = v.storedGradients && v.shading;
+    v.stereoBands = v.stereoBands && v.blend == Blend::Composite;
     std::lock_guard lock(pipelinesMutex_);
     auto it = pipelines_.find(v);
     if (it != pipelines_.end()) return it->second;
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
-    const std::array<std::pair<int, uint32_t>, 11> constants{{
+    const std::array<std::pair<int, uint32_t>, 12> constants{{
         {device::kSpecIdCaster, uint32_t(deviceCaster(v.caster))},
         {device::kSpecIdBlend, uint32_t(deviceBlend(v.blend))},
         {device::kSpecIdTrilinear, v.trilinear ? 1u : 0u},
@@ -249,7 +253,8 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
         {device::kSpecIdScalarType, uint32_t(deviceScalarType(v.scalarType))},
         {device::kSpecIdLabels, uint32_t(v.labels)},
         {device::kSpecIdPixelList, v.pixelList ? 1u : 0u},
-        {device::kSpecIdStoredGradients, v.storedGradients ? 1u : 0u}}};
+        {device::kSpecIdStoredGradients, v.storedGradients ? 1u : 0u},
+        {device::kSpecIdStereoBands, v.stereoBands ? 1u : 0u}}};
     std::array<uint32_t, constants.size()> values;
     std::array<vk::SpecializationMapEntry, constants.size()> entries;
     for (std::size_t i = 0; i < constants.size(); ++i) {
@@ -316,7 +321,8 @@ VulkanRenderer::FrameBuffers::FrameBuffers(const VulkanContext& ctx, std::size_t
       extentTable(ctx, sizeof(ExtentTable), vk::BufferUsageFlagBits::eUniformBuffer),  // decodes coded EACD
       out(ctx, pixels * sizeof(device::OutPixel),
           vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst),
-      noList(ctx, 2 * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer),  // bound, never read, without a list
+      // bound, never read, without a list (and as the bands without them)
+      noList(ctx, 2 * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer),
       rayState(ctx, pixels * sizeof(device::RayState), vk::BufferUsageFlagBits::eStorageBuffer) {
     if (staged)
         outOnDevice.emplace(ctx, pixels * sizeof(device::OutPixel),
@@ -332,12 +338,13 @@ VulkanRenderer::FrameBuffers& VulkanRenderer::frameBuffers(std::size_t pixels) {
 }
 
 RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camera& camera,
-                                            const RenderSettings& settings, const PixelList* list, void* keep) {
+                                            const RenderSettings& settings, const PixelList* list,
+                                            const StereoLeft* left) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
     const Variant variant =
         variantOf(settings, camera.projection == Projection::Perspective, volume.scalarType(), deviceLabels(volume),
-                  volume.bricks().bricks().size() > 1, list != nullptr, volume.eacdCode());
+                  volume.bricks().bricks().size() > 1, list != nullptr, volume.eacdCode(), left && left->bands);
     const ExtentCode extentCode = variant.eacdCode;
     const vk::raii::Pipeline& pipe = pipeline(variant);
 
@@ -346,7 +353,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                             : std::size_t(std::min(tileSize_, camera.width)) *
                                                   std::size_t(std::min(tileSize_, camera.height)));
     const HostBuffer &params = frame.params, &extentTable = frame.extentTable, &out = frame.out;
-    const device::CasterParams p = makeParams(volume, camera, settings);
+    device::CasterParams p = makeParams(volume, camera, settings);
+    if (left) p.stereoBands = left->bandGeometry, p.stereoBandCount = left->bandCount;
     std::memcpy(params.data(), &p, sizeof(p));
     std::memcpy(extentTable.data(), extentDecodeTable(extentCode).data(), sizeof(ExtentTable));
 
@@ -356,7 +364,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     std::array<vk::DescriptorPoolSize, 3> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 11 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 5 * brickCount)};
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 6 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
         vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, brickCount, sizes));
@@ -365,10 +373,12 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     auto imageInfo = [&](const VolumeImage& image) {
         return vk::DescriptorImageInfo(nullptr, *image.view(), kVolumeLayout);
     };
-    const vk::DescriptorBufferInfo buffers[4] = {{*params.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*frame.written(), 0, VK_WHOLE_SIZE},
-                                                 {*frame.rayState.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*(list ? list->buffer : frame.noList).buffer(), 0, VK_WHOLE_SIZE}};
+    const vk::DescriptorBufferInfo buffers[5] = {
+        {*params.buffer(), 0, VK_WHOLE_SIZE},
+        {*frame.written(), 0, VK_WHOLE_SIZE},
+        {*frame.rayState.buffer(), 0, VK_WHOLE_SIZE},
+        {*(list ? list->buffer : frame.noList).buffer(), 0, VK_WHOLE_SIZE},
+        {left && left->bands ? *left->bands->buffer() : *frame.noList.buffer(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo transferEntries(*volume.table().buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo labelEntries(
@@ -396,7 +406,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             {set, device::kBindingExtentTable, 0, 1, T::eUniformBuffer, nullptr, &extentEntries},
             {set, device::kBindingTransferTable, 0, 1, T::eStorageBuffer, nullptr, &transferEntries},
             {set, device::kBindingLabelTable, 0, 1, T::eStorageBuffer, nullptr, &labelEntries},
-            {set, device::kBindingPixelList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]}};
+            {set, device::kBindingPixelList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
+            {set, device::kBindingStereoBands, 0, 1, T::eStorageBuffer, nullptr, &buffers[4]}};
         for (int i = 0; i < 4; ++i) writes.emplace_back(set, kScalarBindings[i], 0, 1, T::eStorageImage, &scalars[i]);
         for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
         writes.emplace_back(set, device::kBindingBlockExtrema, 0, 1, T::eStorageImage, &blockRanges);
@@ -501,7 +512,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                              std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
                                              "pass (a bug)");
                 std::memcpy(result.image.pixel(px, py), &o.colour, 4 * sizeof(float));
-                if (keep) std::memcpy(static_cast<device::OutPixel*>(keep) + index, &o, sizeof o);
+                if (left) std::memcpy(static_cast<device::OutPixel*>(left->pixels) + index, &o, sizeof o);
                 result.iterations[index] = iterations;
                 result.samples[index] = o.counts.x;
             }

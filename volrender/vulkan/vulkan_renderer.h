@@ -12,6 +12,7 @@
 #include "render/camera.h"
 #include "render/render_result.h"
 #include "render/stereo_camera.h"
+#include "shaders/device_contract.h"
 #include "volrender/vulkan/device_timer.h"
 #include "volrender/vulkan/gpu_volume.h"
 #include "volrender/vulkan/vulkan_context.h"
@@ -84,9 +85,16 @@ private:
         const HostBuffer& buffer;
         std::vector<uint32_t> pixels;
     };
-    // keep: every pixel's OutPixel, row by row, for the reprojection (a whole image of them).
+    // A stereo pair's left eye, for the reprojection: every pixel's OutPixel kept, row by row (a whole image of
+    // them), and for composite its bands recorded (device::BandEnd per band per pixel, shaders/stereo_reprojection.h).
+    struct StereoLeft {
+        void* pixels;
+        const DeviceBuffer* bands;  // composite only
+        device::vec4 bandGeometry;  // CasterParams::stereoBands
+        int bandCount;
+    };
     RenderResult renderOnDevice(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings,
-                                const PixelList* list = nullptr, void* keep = nullptr);
+                                const PixelList* list = nullptr, const StereoLeft* left = nullptr);
     // What picks a pipeline: one value per specialization constant of shaders/caster.comp.
     struct Variant {
         Caster caster;
@@ -99,10 +107,11 @@ private:
         int labels;           // the device's label type (device::kNoLabels without a label map)
         bool pixelList;
         bool storedGradients;  // read by shaded variants only: the others' hold false
+        bool stereoBands;      // composite only: the others' hold false
         auto operator<=>(const Variant&) const = default;
     };
     static Variant variantOf(const RenderSettings& settings, bool perspective, ScalarType type, int labels,
-                             bool bricked, bool pixelList, ExtentCode eacdCode);
+                             bool bricked, bool pixelList, ExtentCode eacdCode, bool stereoBands = false);
     const vk::raii::Pipeline& pipeline(Variant variant);
     // What one tile's dispatches read and write beside the volume, for tiles of up to `pixels` pixels. Kept from
     // render to render, and grown when a render needs more: a GPU driver pins host memory as it is allocated, which
