@@ -76,14 +76,21 @@ double expectPairsAgree(const StereoRender& reused, const StereoRender& full, do
     return reused.recastFraction;
 }
 
+// A pair cast in full and with reuse.
+struct PairRenders {
+    StereoRender full, reused;
+};
+PairRenders fullAndReused(VulkanRenderer& renderer, const GpuVolume& volume, const StereoPair& pair, Caster caster) {
+    const RenderSettings s = test::renderSettings(caster, false, false);
+    return {renderer.renderStereo(volume, pair, s, false), renderer.renderStereo(volume, pair, s, true)};
+}
+
 TEST(VulkanStereo, StructureOnlyTheRightEyeSeesIsRecast) {
     const StereoPair pair = occludedPair(64, 48);
     VulkanRenderer& renderer = test::vulkanRenderer(16);
     const GpuVolume volume = renderer.upload(occludedBlock(), {{Caster::Primitive, Caster::EACD}, kAllOctants});
     for (Caster caster : {Caster::Primitive, Caster::EACD}) {
-        const RenderSettings s = test::renderSettings(caster, false, false);
-        const StereoRender full = renderer.renderStereo(volume, pair, s, false);
-        const StereoRender reused = renderer.renderStereo(volume, pair, s, true);
+        const auto [full, reused] = fullAndReused(renderer, volume, pair, caster);
         // The scene does what it is for: the block is hidden from the left eye, in sight of the right.
         ASSERT_EQ(hiddenPixels(full.left.image), 0);
         ASSERT_GE(hiddenPixels(full.right.image), 6);
@@ -104,7 +111,7 @@ TEST(VulkanStereo, StructureOnlyTheRightEyeSeesIsRecast) {
 
 // A thick translucent slab over the whole volume, in two halves of two colours along x: each ray gathers
 // its colour over a depth whose disparities span several bands.
-const PreparedVolume& stripedSlab() {
+const PreparedVolume& twoColourSlab() {
     const GridGeometry grid{{32, 16, 32}, {1, 1, 1}, {0, 0, 0}};
     static const PreparedVolume p = test::syntheticPrepared(grid, 1.0, [](const Vec3i& v) {
         if (v.z < 4 || v.z >= 28) return test::VoxelClass{0.0, {0, 0, 0}};
@@ -114,7 +121,7 @@ const PreparedVolume& stripedSlab() {
 }
 
 StereoPair slabPair(int width, int height) {
-    const PreparedVolume& p = stripedSlab();
+    const PreparedVolume& p = twoColourSlab();
     const Camera centre = Camera::fit(p.grid(), test::orbitView(0, 0, width, height, Projection::Perspective));
     return stereoPair(centre, p.grid(), kSeparation, std::nullopt);
 }
@@ -136,11 +143,9 @@ TEST(VulkanStereo, TranslucentSlabIsReused) {
     const StereoPair pair = slabPair(64, 48);
     ASSERT_GT(slabSpread(pair), 2 * kMaxSpreadPixels);  // the scene does what it is for: wide rays
     VulkanRenderer& renderer = test::vulkanRenderer(16);
-    const GpuVolume volume = renderer.upload(stripedSlab(), {{Caster::Primitive, Caster::EACD}, kAllOctants});
+    const GpuVolume volume = renderer.upload(twoColourSlab(), {{Caster::Primitive, Caster::EACD}, kAllOctants});
     for (Caster caster : {Caster::Primitive, Caster::EACD}) {
-        const RenderSettings s = test::renderSettings(caster, false, false);
-        const StereoRender full = renderer.renderStereo(volume, pair, s, false);
-        const StereoRender reused = renderer.renderStereo(volume, pair, s, true);
+        const auto [full, reused] = fullAndReused(renderer, volume, pair, caster);
         int slab = 0, slabReused = 0;
         for (std::size_t i = 0; i < reused.recast.size(); ++i)
             if (full.right.image.rgba[4 * i + 3] > 0.3f) ++slab, slabReused += !reused.recast[i];
@@ -156,7 +161,7 @@ TEST(VulkanStereo, TranslucentSlabIsReused) {
 TEST(VulkanStereo, LeapSplitAcrossBandsEqualsSteppedSamples) {
     const StereoPair pair = slabPair(64, 48);
     VulkanRenderer& renderer = test::vulkanRenderer(16);
-    const GpuVolume volume = renderer.upload(stripedSlab(), {{Caster::Primitive, Caster::EACD}, kAllOctants});
+    const GpuVolume volume = renderer.upload(twoColourSlab(), {{Caster::Primitive, Caster::EACD}, kAllOctants});
     const StereoRender stepped = renderer.renderStereo(volume, pair, test::renderSettings(Caster::Primitive, false), true);
     const StereoRender leapt = renderer.renderStereo(volume, pair, test::renderSettings(Caster::EACD, false), true);
     // The leaps are real: EACD takes far fewer iterations than samples.
