@@ -14,7 +14,7 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
     renderer.renderStereo(volume, pairAbout(cameras.front()), settings, false);
     StereoMeasurement m;
     m.separation = pairAbout(cameras.front()).separation;
-    std::vector<double> pair, oneEye, fullPair, reproject;
+    std::vector<double> pair, oneEye, leftEye, fullPair, reproject;
     std::vector<ImageError> errors;
     double recastIterations = 0, fullIterations = 0;
     for (const Camera& camera : cameras) {
@@ -23,6 +23,7 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
         const StereoRender full = renderer.renderStereo(volume, eyes, settings, false);
         pair.push_back(reused.left.deviceMilliseconds + reused.right.deviceMilliseconds);
         oneEye.push_back(full.left.deviceMilliseconds);
+        leftEye.push_back(reused.left.deviceMilliseconds);
         fullPair.push_back(full.left.deviceMilliseconds + full.right.deviceMilliseconds);
         reproject.push_back(reused.reprojectMilliseconds);
         m.recastFraction += reused.recastFraction / double(cameras.size());
@@ -39,6 +40,7 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
     }
     m.pairMs = median(pair);
     m.oneEyeMs = median(oneEye);
+    m.leftEyeMs = median(leftEye);
     m.fullPairMs = median(fullPair);
     m.reprojectMs = median(reproject);
     m.error = summarize(errors);

@@ -17,6 +17,7 @@ constexpr double kSeparationPerFocus = 1.0 / 30;
 struct StereoMeasurement {
     double pairMs = 0;          // median over the views: left eye + right eye with reuse, device time
     double oneEyeMs = 0;        // median over the views: the left eye cast in full
+    double leftEyeMs = 0;       // median over the views: the reuse's left eye (cast in full, recording its bands)
     double fullPairMs = 0;      // median over the views: both eyes cast in full
     double reprojectMs = 0;     // median over the views: the reprojection alone
     double recastFraction = 0;  // mean over the views: of the right eye's pixels
