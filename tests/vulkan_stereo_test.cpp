@@ -174,6 +174,21 @@ TEST(VulkanStereo, LeapSplitAcrossBandsEqualsSteppedSamples) {
     test::expectNoValidationErrors();
 }
 
+// Eyes inside the volume's bounding sphere would need bands from any disparity in front of them: composite casts
+// the right eye in full.
+TEST(VulkanStereo, EyesInsideTheVolumeCastTheRightEyeInFull) {
+    const PreparedVolume& p = twoColourSlab();
+    Camera centre = Camera::fit(p.grid(), test::orbitView(0, 0, 32, 24, Projection::Perspective));
+    centre.eye = p.grid().centre() - centre.forward * 2.0;
+    ASSERT_LE(depthRange(stereoPair(centre, p.grid(), 1, 8), p.grid()).nearest, 0);
+    VulkanRenderer& renderer = test::vulkanRenderer(16);
+    const GpuVolume volume = renderer.upload(p, {{Caster::Primitive}, kAllOctants});
+    const auto [full, reused] = fullAndReused(renderer, volume, stereoPair(centre, p.grid(), 1, 8), Caster::Primitive);
+    EXPECT_EQ(reused.recastFraction, 1.0);
+    EXPECT_LE(maxAbsDifference(reused.right.image, full.right.image), 1e-6);
+    test::expectNoValidationErrors();
+}
+
 TEST(VulkanStereo, EveryCasterGivesThePairWithoutReuse) {
     const StereoPair pair = occludedPair(40, 32);
     VulkanRenderer& renderer = test::vulkanRenderer(16);
