@@ -18,15 +18,14 @@ struct Bands {
     int count = 0;
 };
 
-Bands bandsOf(const StereoPair& pair, const GridGeometry& grid) {
-    const DepthRange depths = depthRange(pair, grid);
+Bands bandsOf(const StereoPair& pair, const DepthRange& depths) {
     if (depths.nearest <= 0) return {};
     const double first = disparityAt(pair, depths.nearest);
     const double count = std::ceil((disparityAt(pair, depths.farthest) - first) / kMaxSpreadPixels);
     return count <= device::kMaxBands ? Bands{first, std::max(1, int(count))} : Bands{};
 }
 
-device::StereoParams reprojection(const StereoPair& pair, const GridGeometry& grid, const RenderSettings& settings,
+device::StereoParams reprojection(const StereoPair& pair, const DepthRange& depths, const RenderSettings& settings,
                                   const Bands& bands) {
     const Camera& left = pair.left;
     device::StereoParams p{};
@@ -40,7 +39,7 @@ device::StereoParams reprojection(const StereoPair& pair, const GridGeometry& gr
     p.maxStep = float(settings.blend == Blend::Composite ? kMaxBandStep : kMaxColourStep);
     p.maxGap = float(kMaxGapPixels);
     // The disparities lie between the volume's nearest point's and infinity's; eyes inside the volume search the row.
-    const double nearest = depthRange(pair, grid).nearest;
+    const double nearest = depths.nearest;
     const double lowest = nearest > 0 ? std::max(disparityAt(pair, nearest), -double(left.width)) : -left.width;
     const double highest = std::min(disparityAt(pair, INFINITY), double(left.width));
     p.window = {int(std::floor(lowest)) - 2, int(std::ceil(highest)) + 2};
@@ -65,7 +64,8 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
     const int width = pair.left.width, height = pair.left.height;
     const std::size_t pixels = std::size_t(width) * height;
     const bool composite = settings.blend == Blend::Composite;
-    const Bands bands = composite ? bandsOf(pair, volume.grid()) : Bands{};
+    const DepthRange depths = depthRange(pair, volume.grid());
+    const Bands bands = composite ? bandsOf(pair, depths) : Bands{};
     if (!reuse || (composite && bands.count == 0)) {
         out.left = render(volume, pair.left, settings);
         out.right = render(volume, pair.right, settings);
@@ -90,7 +90,7 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         auto* list = static_cast<uint32_t*>(recast.data());
         list[0] = 0;
         out.reprojectMilliseconds = reprojector_->reproject(
-            pool_, reprojection(pair, volume.grid(), settings, bands), left, leftBands ? &*leftBands : nullptr, right,
+            pool_, reprojection(pair, depths, settings, bands), left, leftBands ? &*leftBands : nullptr, right,
             recast);
         // Blocks of 8 x 8 pixels in row order, each block's pixels in row order: a workgroup's rays stay as close
         // together as a tile's (the device appended them in any order).

@@ -172,7 +172,8 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     : ctx_(ctx),
       tileSize_(tileSize != kAutoTile ? tileSize : ctx.info().type == "cpu" ? 512 : 1024),
       limits_(limits),
-      stagedOutput_(output == OutputMemory::Auto ? ctx.info().type == "discrete" : output == OutputMemory::Device) {
+      stagedOutput_(output == OutputMemory::Auto ? ctx.info().type == "discrete" : output == OutputMemory::Device),
+      interleavedRows_(ctx.info().type == "cpu") {
     const vk::raii::Device& device = ctx.device();
     requireCasterImageSupport(ctx.info().name, ctx.physicalDevice().getFeatures(),
                               [&](vk::Format f) { return ctx.physicalDevice().getFormatProperties(f); });
@@ -444,10 +445,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                  {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)}});
     }
     for (device::TilePush tile : tiles) {
-        tile.groupRowStride =
-            ctx_.info().type == "cpu" ? interleavedRowStride((tile.tileSize.y + device::kWorkgroupSize - 1) /
-                                                             device::kWorkgroupSize)
-                                      : 1;
+        const int groupRows = (tile.tileSize.y + device::kWorkgroupSize - 1) / device::kWorkgroupSize;
+        tile.groupRowStride = interleavedRows_ ? interleavedRowStride(groupRows) : 1;
         submitAndWait(ctx_, pool_, [&](const vk::raii::CommandBuffer& cmd) {
             using S = vk::PipelineStageFlagBits;
             using A = vk::AccessFlagBits;

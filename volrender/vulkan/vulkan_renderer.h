@@ -133,6 +133,7 @@ private:
     int tileSize_;
     ImageLimits limits_;
     bool stagedOutput_;  // OutputMemory::Device
+    bool interleavedRows_;  // a CPU device: its threads take contiguous runs of workgroups (workgroup_rows.h)
     vk::raii::CommandPool pool_{nullptr};
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout pipelineLayout_{nullptr};
