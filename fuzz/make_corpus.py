@@ -240,11 +240,17 @@ def zstd_frame(data):
     return frame
 
 
-def prepared_file(dims, chunks, version=4, eacd_code="exact", scalar_type="uint8", entries=4, block_bytes=16,
+def slice_delta(block, slice_bytes):
+    """A block of a per-voxel chunk as version 6 stores it: each byte less the byte one slice before it in the block."""
+    return bytes(b if i < slice_bytes else (b - block[i - slice_bytes]) % 256 for i, b in enumerate(block))
+
+
+def prepared_file(dims, chunks, version=6, eacd_code="exact", scalar_type="uint8", entries=4, block_bytes=16,
                   edit_block=None):
-    """A prepared file. Version 4: each chunk in zstd frames of block_bytes bytes each (the last one the rest), each
-    frame with its CRC-32; version 3 and earlier: the chunks raw, each with its CRC-32. edit_block(name, k, frame)
-    may return another frame for block k of chunk `name` (its CRC-32 is the new frame's)."""
+    """A prepared file. Version 4 and later: each chunk in zstd frames of block_bytes bytes each (the last one the
+    rest), each frame with its CRC-32; version 6: a per-voxel chunk's blocks hold their bytes' differences over z
+    slices; version 3 and earlier: the chunks raw, each with its CRC-32. edit_block(name, k, frame) may return
+    another frame for block k of chunk `name` (its CRC-32 is the new frame's)."""
     voxels = dims[0] * dims[1] * dims[2]
     table, blobs, offset = [], [], 0
     for name, type_, components, size in chunks:
@@ -252,8 +258,10 @@ def prepared_file(dims, chunks, version=4, eacd_code="exact", scalar_type="uint8
         entry = {"name": name, "type": type_, "components": components, "offset": offset, "bytes": len(blob)}
         if version >= 4:
             entry["blocks"] = []
+            per_voxel = version >= 6 and name not in ("table", "labelTable")
             for k, at in enumerate(range(0, len(blob), block_bytes)):
-                frame = zstd_frame(blob[at:at + block_bytes])
+                block = blob[at:at + block_bytes]
+                frame = zstd_frame(slice_delta(block, len(blob) // voxels * dims[0] * dims[1]) if per_voxel else block)
                 if edit_block:
                     frame = edit_block(name, k, frame)
                 entry["blocks"].append({"compressedBytes": len(frame), "crc32": zlib.crc32(frame)})
@@ -279,6 +287,8 @@ def prepared_file(dims, chunks, version=4, eacd_code="exact", scalar_type="uint8
         header["transferTable"] = {"lo": 0.0, "step": 1.0, "entries": entries}
     if version >= 4:  # version 4: every chunk compressed in blocks
         header["compression"] = {"codec": "zstd", "level": 1, "blockBytes": block_bytes}
+    if version >= 6:  # version 6: per-voxel chunks coded over z slices
+        header["compression"]["filter"] = "sliceDelta"
     header = json.dumps(header, indent=1).encode()
     return (b"VOLPREP\0" + struct.pack("<IQ", version, len(header)) + header + struct.pack("<I", zlib.crc32(header))
             + b"".join(blobs))

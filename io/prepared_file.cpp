@@ -23,6 +23,7 @@
 #include "io/atomic_file.h"
 #include "io/crc32.h"
 #include "io/ray_probe_json.h"
+#include "io/slice_delta.h"
 #include "core/errors.h"
 #include "core/extent_code.h"
 
@@ -36,6 +37,8 @@ static_assert(std::endian::native == std::endian::little, "the prepared format i
 namespace {
 
 constexpr char kMagic[8] = {'V', 'O', 'L', 'P', 'R', 'E', 'P', '\0'};
+// How the per-voxel chunks are coded before zstd (io/slice_delta.h).
+constexpr const char* kSliceDeltaFilter = "sliceDelta";
 constexpr std::size_t kPreambleBytes = sizeof(kMagic) + sizeof(uint32_t) + sizeof(uint64_t);
 // Limits that catch a corrupted header before it turns into a huge allocation.
 constexpr uint64_t kMaxHeaderBytes = uint64_t(1) << 30;
@@ -70,6 +73,14 @@ ChunkLayout layoutOf(const std::string& name, ExtentCode eacdCode, ScalarType sc
                                                    : ChunkLayout{"uint8", 1, 1};
     }
     return {"", 0, 0};
+}
+
+bool isTableChunk(const std::string& name) { return name == "table" || name == "labelTable"; }
+
+// The bytes of one z slice of a chunk: a per-voxel chunk is stored as its differences over slices
+// (io/slice_delta.h); 0 for the tables, stored as they are.
+uint64_t sliceBytesOf(const std::string& name, const ChunkLayout& l, const Vec3i& dims) {
+    return isTableChunk(name) ? 0 : uint64_t(dims.x) * uint64_t(dims.y) * uint64_t(l.components) * l.elementBytes;
 }
 
 // The first index in [0, n) where `bad` holds, or n: the lowest one, so that a message names the same voxel on
@@ -298,6 +309,7 @@ struct BlockEntry {
 struct ChunkEntry {
     uint64_t offset = 0, bytes = 0;  // of the first block (from the data section), and uncompressed
     uint64_t storedBytes = 0;        // of all its blocks
+    uint64_t sliceBytes = 0;         // sliceBytesOf
     std::vector<BlockEntry> blocks;
 };
 
@@ -396,7 +408,10 @@ void readChunks(const Reader& r, const std::vector<ChunkRead>& reads) {
         const BlockEntry& b = c.entry.blocks[job.block];
         std::unique_ptr<char[]> frame(new char[b.stored]);
         r.read(b.at, frame.get(), b.stored, "chunk '" + c.name + "'");
-        problems[j] = decodeBlock(frame.get(), b, data[job.chunk] + job.to, c.name, job.block, c.entry.blocks.size());
+        char* to = data[job.chunk] + job.to;
+        problems[j] = decodeBlock(frame.get(), b, to, c.name, job.block, c.entry.blocks.size());
+        if (problems[j].empty() && c.entry.sliceBytes > 0)
+            sliceDeltaDecode(reinterpret_cast<unsigned char*>(to), b.bytes, c.entry.sliceBytes);
     });
     for (const std::string& problem : problems)
         if (!problem.empty()) throw r.fail(problem);
@@ -449,11 +464,12 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
         std::size_t stored = 0;
         uint32_t crc = 0;
     };
-    std::vector<uint64_t> chunkBytes;
+    std::vector<uint64_t> chunkBytes, sliceBytes;
     std::vector<Block> blocks;
     for (std::size_t i = 0; i < chunks.size(); ++i) {
         ChunkLayout l = layoutOf(chunks[i].name, code, scalarType, labelType);
         chunkBytes.push_back(uint64_t(chunks[i].elements) * l.components * l.elementBytes);
+        sliceBytes.push_back(sliceBytesOf(chunks[i].name, l, g.dims));
         for (uint64_t b = 0; b < chunkBytes[i]; b += options.blockBytes)
             blocks.push_back({i, b, std::min<uint64_t>(options.blockBytes, chunkBytes[i] - b), nullptr});
     }
@@ -462,14 +478,21 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
     using Context = std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)>;
     tbb::enumerable_thread_specific<Context> contexts([] { return Context(ZSTD_createCCtx(), &ZSTD_freeCCtx); });
     tbb::enumerable_thread_specific<std::vector<char>> scratches;
+    tbb::enumerable_thread_specific<std::vector<unsigned char>> differences;
     tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t k) {
         Block& b = blocks[k];
         Context& context = contexts.local();
         if (!context) throw std::bad_alloc();
         std::vector<char>& scratch = scratches.local();
         scratch.resize(std::max(scratch.size(), ZSTD_compressBound(b.bytes)));
-        b.stored = ZSTD_compressCCtx(context.get(), scratch.data(), scratch.size(),
-                                     static_cast<const char*>(chunks[b.chunk].data) + b.begin, b.bytes, options.zstdLevel);
+        const unsigned char* from = static_cast<const unsigned char*>(chunks[b.chunk].data) + b.begin;
+        if (sliceBytes[b.chunk] > 0) {
+            std::vector<unsigned char>& d = differences.local();
+            d.resize(std::max<std::size_t>(d.size(), b.bytes));
+            sliceDeltaEncode(from, b.bytes, sliceBytes[b.chunk], d.data());
+            from = d.data();
+        }
+        b.stored = ZSTD_compressCCtx(context.get(), scratch.data(), scratch.size(), from, b.bytes, options.zstdLevel);
         if (ZSTD_isError(b.stored))
             throw fileError(path.string(), std::string("cannot write: zstd: ") + ZSTD_getErrorName(b.stored));
         b.frame.reset(new char[b.stored]);
@@ -505,7 +528,8 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
 
                    {"metadata", metadataJson(p.meta)},
                    {"eacdCode", extentCodeName(code)},
-                   {"compression", {{"codec", "zstd"}, {"level", options.zstdLevel}, {"blockBytes", options.blockBytes}}},
+                   {"compression",
+                    {{"codec", "zstd"}, {"filter", kSliceDeltaFilter}, {"level", options.zstdLevel}, {"blockBytes", options.blockBytes}}},
                    {"chunks", table}};
     if (p.labels)
         header["labelMap"] = {{"type", scalarTypeName(labelType)},
@@ -670,6 +694,9 @@ Header readHeader(const Reader& r) {
     if (!compression.is_object()) throw r.fail("bad header: missing or invalid 'compression'");
     const auto codec = field<std::string>(r, compression, "codec");
     if (codec != "zstd") throw r.fail("bad header: 'compression.codec': unknown codec '" + codec + "' (expected zstd)");
+    const auto filter = field<std::string>(r, compression, "filter");
+    if (filter != kSliceDeltaFilter)
+        throw r.fail("bad header: 'compression.filter': unknown filter '" + filter + "' (expected " + kSliceDeltaFilter + ")");
     json blockBytes = field<json>(r, compression, "blockBytes");
     if (!blockBytes.is_number_unsigned() || blockBytes.get<uint64_t>() < 1 ||
         blockBytes.get<uint64_t>() > kMaxPreparedBlockBytes)
@@ -693,7 +720,8 @@ Header readHeader(const Reader& r) {
         ChunkEntry e;
         e.offset = countField(r, chunk, "offset", UINT64_MAX);
         e.bytes = countField(r, chunk, "bytes", UINT64_MAX);
-        const bool isTable = name == "table" || name == "labelTable";
+        const bool isTable = isTableChunk(name);
+        e.sliceBytes = sliceBytesOf(name, l, n);
         const std::size_t entries = name == "table" ? h.tableEntries : h.labelEntries;
         uint64_t expected = uint64_t(isTable ? entries : voxelCount(n)) * l.components * l.elementBytes;
         if (e.bytes != expected)

@@ -10,11 +10,12 @@
 
 namespace vr {
 
+// 6: every per-voxel chunk stored as its bytes' differences from the slice before (compression.filter sliceDelta).
 // 5: a label map beside the scalars (the labelMap header and its two chunks), where one was given.
 // 4: every chunk compressed with zstd in independent blocks, each with the CRC-32 of its compressed bytes.
 // 3: the scalars and the tabulated transfer function instead of the classified volume (sigma, colour, normal).
 // 2: EACD chunks coded (eacdCode).
-constexpr int kPreparedFormatVersion = 5;
+constexpr int kPreparedFormatVersion = 6;
 
 // How writePrepared compresses: the zstd level (chosen by measurement, docs/PREPARED_FORMAT.md) and the bytes of a
 // chunk (uncompressed) that each independent block holds, the last block of a chunk holding the rest.

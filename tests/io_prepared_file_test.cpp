@@ -13,6 +13,7 @@
 #include "core/errors.h"
 #include "core/extent_code.h"
 #include "io/prepared_file.h"
+#include "io/slice_delta.h"
 #include "datasets/phantoms.h"
 #include "support/datasets.h"
 
@@ -187,8 +188,8 @@ std::vector<std::vector<char>> storedBlocks(const Parts& parts, const std::strin
     return blocks;
 }
 
-// A chunk's bytes, its blocks decompressed.
-std::vector<char> chunkBytes(const Parts& parts, const std::string& name) {
+// A chunk's stored bytes, its blocks decompressed.
+std::vector<char> storedBytes(const Parts& parts, const std::string& name) {
     std::vector<char> bytes;
     for (const std::vector<char>& frame : storedBlocks(parts, name)) {
         const unsigned long long n = ZSTD_getFrameContentSize(frame.data(), frame.size());
@@ -197,6 +198,26 @@ std::vector<char> chunkBytes(const Parts& parts, const std::string& name) {
         bytes.resize(at + n);
         if (ZSTD_decompress(bytes.data() + at, n, frame.data(), frame.size()) != n) throw std::runtime_error("bad frame");
     }
+    return bytes;
+}
+
+// The bytes of one z slice of a per-voxel chunk, whose bytes are stored as differences over slices; 0 for a table.
+uint64_t sliceBytes(const Parts& parts, const std::string& name) {
+    if (name == "table" || name == "labelTable") return 0;
+    const json& dims = parts.header["grid"]["dims"];
+    const uint64_t voxels = dims[0].get<uint64_t>() * dims[1].get<uint64_t>() * dims[2].get<uint64_t>();
+    return chunkEntry(parts.header, name)["bytes"].get<uint64_t>() / voxels * dims[0].get<uint64_t>() *
+           dims[1].get<uint64_t>();
+}
+
+// A chunk's bytes as the array holds them: its blocks decompressed, and a per-voxel chunk's blocks decoded.
+std::vector<char> chunkBytes(const Parts& parts, const std::string& name) {
+    std::vector<char> bytes = storedBytes(parts, name);
+    const uint64_t block = parts.header["compression"]["blockBytes"].get<uint64_t>();
+    if (const uint64_t slice = sliceBytes(parts, name))
+        for (uint64_t b = 0; b < bytes.size(); b += block)
+            sliceDeltaDecode(reinterpret_cast<unsigned char*>(bytes.data() + b), std::min<uint64_t>(block, bytes.size() - b),
+                             slice);
     return bytes;
 }
 
@@ -218,12 +239,20 @@ void replaceBlocks(Parts& parts, const std::string& name, const std::vector<std:
     }
 }
 
-// Stores `bytes` as chunk `name`, compressed in blocks of the header's size.
-void rewriteChunk(Parts& parts, const std::string& name, const std::vector<char>& bytes) {
+// Stores `array` as chunk `name` (coded over slices where it is per voxel), compressed in blocks of the header's
+// size.
+void rewriteChunk(Parts& parts, const std::string& name, const std::vector<char>& array) {
     const uint64_t block = parts.header["compression"]["blockBytes"].get<uint64_t>();
+    const uint64_t slice = sliceBytes(parts, name);
     std::vector<std::vector<char>> blocks;
-    for (uint64_t b = 0; b < bytes.size(); b += block)
-        blocks.push_back(compress(bytes.data() + b, std::min<uint64_t>(block, bytes.size() - b)));
+    for (uint64_t b = 0; b < array.size(); b += block) {
+        const uint64_t n = std::min<uint64_t>(block, array.size() - b);
+        std::vector<char> bytes(array.begin() + std::ptrdiff_t(b), array.begin() + std::ptrdiff_t(b + n));
+        if (slice > 0)
+            sliceDeltaEncode(reinterpret_cast<const unsigned char*>(array.data() + b), n, slice,
+                             reinterpret_cast<unsigned char*>(bytes.data()));
+        blocks.push_back(compress(bytes.data(), n));
+    }
     replaceBlocks(parts, name, blocks);
 }
 
@@ -611,14 +640,15 @@ TEST_F(IoPreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
 
 TEST_F(IoPreparedFile, RejectsEarlierVersions) {
     // Version 1 stored EACD as 3 bytes per octant with no eacdCode, version 2 the classified volume (sigma, colour,
-    // normal) instead of the scalars and the table, version 3 every chunk uncompressed, version 4 no label map:
+    // normal) instead of the scalars and the table, version 3 every chunk uncompressed, version 4 no label map, version 5
+    // the chunks' bytes as they are:
     // refused with the way out, not misread.
-    for (uint32_t v : {1u, 2u, 3u, 4u}) {
+    for (uint32_t v : {1u, 2u, 3u, 4u, 5u}) {
         std::vector<char> b = readBytes(good);
         std::memcpy(b.data() + 8, &v, 4);
         writeBytes(bad, b);
         expectRejected(bad, "prepared format version " + std::to_string(v) +
-                                ", this build reads version 5 (run volprep again)");
+                                ", this build reads version 6 (run volprep again)");
     }
     // A version 3 file as it was: the chunks raw, each with the CRC-32 of its bytes, no compression in the header.
     Parts parts = split(good);
@@ -635,7 +665,7 @@ TEST_F(IoPreparedFile, RejectsEarlierVersions) {
     const uint32_t three = 3;
     std::memcpy(parts.preamble.data() + 8, &three, 4);
     join(bad, parts);
-    expectRejected(bad, "prepared format version 3, this build reads version 5 (run volprep again)");
+    expectRejected(bad, "prepared format version 3, this build reads version 6 (run volprep again)");
     EXPECT_THROW(readPreparedHeader(bad), InputError);
 }
 
@@ -702,7 +732,7 @@ TEST_F(IoPreparedFile, RejectsAFlippedByteInAChunk) {
 TEST_F(IoPreparedFile, WritesEveryChunkAsIndependentZstdBlocks) {
     const Parts parts = split(good);
     EXPECT_EQ(parts.header["compression"],
-              (json{{"codec", "zstd"}, {"level", kPreparedZstdLevel}, {"blockBytes", kSmallBlock}}));
+              (json{{"codec", "zstd"}, {"filter", "sliceDelta"}, {"level", kPreparedZstdLevel}, {"blockBytes", kSmallBlock}}));
     uint64_t offset = 0;
     for (const json& c : parts.header["chunks"]) {
         const std::string name = c["name"].get<std::string>();
@@ -734,7 +764,7 @@ TEST_F(IoPreparedFile, WritesEveryChunkAsIndependentZstdBlocks) {
     writePrepared(bad, prepared);
     const Parts defaults = split(bad);
     EXPECT_EQ(defaults.header["compression"],
-              (json{{"codec", "zstd"}, {"level", kPreparedZstdLevel}, {"blockBytes", kPreparedBlockBytes}}));
+              (json{{"codec", "zstd"}, {"filter", "sliceDelta"}, {"level", kPreparedZstdLevel}, {"blockBytes", kPreparedBlockBytes}}));
     for (const json& c : defaults.header["chunks"]) EXPECT_EQ(c["blocks"].size(), 1u) << c["name"];
     EXPECT_LT(chunkEntry(defaults.header, "acd0")["blocks"][0]["compressedBytes"].get<uint64_t>(),
               prepared.grid().voxels());
@@ -919,6 +949,10 @@ TEST_F(IoPreparedFile, RejectsABadCompressionHeader) {
     expectEditedHeaderRejected([](json& h) { h["compression"]["codec"] = "lz4"; },
                                "bad header: 'compression.codec': unknown codec 'lz4' (expected zstd)");
     expectEditedHeaderRejected([](json& h) { h["compression"]["codec"] = 1; }, "bad header: missing or invalid 'codec'");
+    expectEditedHeaderRejected([](json& h) { h["compression"]["filter"] = "shuffle"; },
+                               "bad header: 'compression.filter': unknown filter 'shuffle' (expected sliceDelta)");
+    expectEditedHeaderRejected([](json& h) { h["compression"].erase("filter"); },
+                               "bad header: missing or invalid 'filter'");
     expectEditedHeaderRejected([](json& h) { h["compression"] = "zstd"; }, "bad header: missing or invalid 'compression'");
     expectEditedHeaderRejected([](json& h) { h.erase("compression"); }, "bad header: missing or invalid 'compression'");
     // The level is informative: the reader needs none.
