@@ -59,14 +59,15 @@ layout(set = 0, binding = kBindingFieldRGBA8, rgba8ui) uniform readonly uimage3D
 // Each block's scalar range over the whole volume, lo and hi side by side along x, for the blocks caster
 // (render/block_extrema.h).
 layout(set = 0, binding = kBindingBlockExtrema, r32f) uniform readonly image3D blockExtrema;
-// The transfer table: entry i classifies the scalar tableLo + i step (rgb colour, a: extinction sigma).
-layout(set = 0, binding = kBindingTransferTable, std430) readonly buffer TransferTable { vec4 transferEntry[]; };
+// The transfer table: entry i classifies the scalar tableLo + i step (rgb colour, a: extinction sigma). A texel
+// buffer (volrender/vulkan/gpu_buffer.h TexelTable), as the label table.
+layout(set = 0, binding = kBindingTransferTable, rgba32f) uniform readonly imageBuffer transferTable;
 layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels { OutPixel outPixel[]; };
 // The label map's labels in their type (the other image is unused) and its table: entry l for label l (rgb colour,
 // a: extinction sigma).
 layout(set = 0, binding = kBindingLabelsUInt8, r8ui) uniform readonly uimage3D labelsUInt8;
 layout(set = 0, binding = kBindingLabelsUInt16, r16ui) uniform readonly uimage3D labelsUInt16;
-layout(set = 0, binding = kBindingLabelTable, std430) readonly buffer LabelTable { vec4 labelTableEntry[]; };
+layout(set = 0, binding = kBindingLabelTable, rgba32f) uniform readonly imageBuffer labelTable;
 layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; uint listPixel[]; };
 layout(set = 0, binding = kBindingGradients, r32ui) uniform readonly uimage3D gradients;
 layout(set = 0, binding = kBindingStereoBands, std430) writeonly buffer StereoBands { BandEnd bandEnd[]; };
@@ -107,7 +108,7 @@ vec4 classify(float scalar) {
     int i = int(t);
     int j = min(i + 1, int(params.tableLastEntry));
     float w = t - float(i);
-    vec4 a = transferEntry[i], b = transferEntry[j];
+    vec4 a = imageLoad(transferTable, i), b = imageLoad(transferTable, j);
     return vec4(interpolate(a.r, b.r, w), interpolate(a.g, b.g, w), interpolate(a.b, b.b, w),
                 interpolate(a.a, b.a, w));
 }
@@ -117,7 +118,7 @@ int loadLabel(ivec3 v) {
     ivec3 texel = brickTexel(v);
     return int(LABELS == kLabelsUInt8 ? imageLoad(labelsUInt8, texel).r : imageLoad(labelsUInt16, texel).r);
 }
-vec4 labelClass(int label) { return labelTableEntry[labelEntry(label, params.labelLastEntry)]; }
+vec4 labelClass(int label) { return imageLoad(labelTable, labelEntry(label, params.labelLastEntry)); }
 
 // A sample's classification with the label of its voxel v mixed in (label_lookup.h): never interpolated.
 vec4 labelled(vec4 c, ivec3 v) {

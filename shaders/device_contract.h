@@ -21,7 +21,7 @@ VR_CONSTANT int kBindingOutPixels = 1;      // storage buffer: OutPixel per pixe
 VR_CONSTANT int kBindingRayStates = 2;      // storage buffer: RayState per pixel of the tile
 VR_CONSTANT int kBindingExtentTable = 3;    // uniform: uvec4 per entry of extentDecodeTable() (core/extent_code.h)
 VR_CONSTANT int kExtentTableEntries = 256;
-VR_CONSTANT int kBindingTransferTable = 4;  // storage buffer: vec4 per entry of the transfer table (rgb colour,
+VR_CONSTANT int kBindingTransferTable = 4;  // storage texel buffer, RGBA32F: an entry of the transfer table (rgb colour,
                                             // a: extinction sigma; core/scalar_classification.h)
 // Storage images of the scalars in the volume's own type, one binding per format (a storage image is read in the
 // format it declares); the scalar type's specialization constant picks the one the casters read.
@@ -34,11 +34,11 @@ VR_CONSTANT int kBindingField16 = 10;       // joint8 EACD), R16 (log16 EACD), R
 VR_CONSTANT int kBindingFieldRGBA8 = 11;
 VR_CONSTANT int kBindingBlockExtrema = 12;  // storage image R32F: each block's scalar range (lo, hi side by side
                                             // along x) for the blocks caster (render/block_extrema.h)
-// A label map's labels, one storage image per format as the scalars', and its table: vec4 per label (rgb colour,
-// a: extinction sigma; core/label_map.h).
+// A label map's labels, one storage image per format as the scalars', and its table: an RGBA32F texel per label
+// (rgb colour, a: extinction sigma; core/label_map.h).
 VR_CONSTANT int kBindingLabelsUInt8 = 13;   // R8_UINT
 VR_CONSTANT int kBindingLabelsUInt16 = 14;  // R16_UINT
-VR_CONSTANT int kBindingLabelTable = 15;
+VR_CONSTANT int kBindingLabelTable = 15;   // storage texel buffer, as the transfer table
 VR_CONSTANT int kBindingPixelList = 16;     // storage buffer: uint count, then the pixels to cast (x | y << 16),
                                             // read by the list variant (stereo re-casts: stereo_reprojection.h)
 VR_CONSTANT int kBindingGradients = 17;     // R32_UINT: each voxel's stored gradient (gradient_code.h)

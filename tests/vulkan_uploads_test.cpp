@@ -152,26 +152,26 @@ TEST(VulkanUploads, FieldsOfSomeOctantsServeTheirViewsOnly) {
     expectNoValidationErrors();
 }
 
-// A transfer table is one storage buffer of 16 bytes an entry: one beyond the device's maxStorageBufferRange is
-// refused before anything is uploaded, naming the table's entries and the limit.
-TEST(VulkanUploads, TableBeyondTheStorageBufferRangeIsRefused) {
+// A transfer table is one texel buffer, a texel an entry: one beyond the device's maxTexelBufferElements is refused
+// before anything is uploaded, naming the table's entries and the limit.
+TEST(VulkanUploads, TableBeyondTheTexelBufferLimitIsRefused) {
     const Volume v = shellsPhantom({12, 10, 8});
     const PreparedVolume p = prepare(v, 0.02, 10, false);
     const std::size_t entries = p.classification.table.size();
     ASSERT_GT(entries, 2u);
     const Camera cam = Camera::fit(v.grid, view(30, 20));
-    VulkanRenderer fits(test::vulkanContext(), 20, ImageLimits{.maxStorageBufferRange = 16 * entries});
+    VulkanRenderer fits(test::vulkanContext(), 20, ImageLimits{.maxTableEntries = entries});
     EXPECT_NO_THROW(fits.render(p, cam, renderSettings(Caster::Primitive)));
-    VulkanRenderer small(test::vulkanContext(), 20, ImageLimits{.maxStorageBufferRange = 16 * entries - 1});
+    VulkanRenderer small(test::vulkanContext(), 20, ImageLimits{.maxTableEntries = entries - 1});
     for (Caster c : kCasters) {
         try {
             small.render(p, cam, renderSettings(c));
-            ADD_FAILURE() << "uploaded a table beyond the storage buffer range";
+            ADD_FAILURE() << "uploaded a table beyond the texel buffer limit";
         } catch (const InputError& e) {
             const std::string what = e.what();
             EXPECT_NE(what.find("transfer table of " + std::to_string(entries) + " entries"), std::string::npos)
                 << what;
-            EXPECT_NE(what.find("maxStorageBufferRange " + std::to_string(16 * entries - 1)), std::string::npos)
+            EXPECT_NE(what.find("maxTexelBufferElements " + std::to_string(entries - 1)), std::string::npos)
                 << what;
             EXPECT_NE(what.find("at most " + std::to_string(entries - 1) + " entries"), std::string::npos) << what;
         }

@@ -43,6 +43,11 @@ DeviceBuffer::DeviceBuffer(const VulkanContext& ctx, const vk::raii::CommandPool
     });
 }
 
+TexelTable::TexelTable(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const std::vector<float>& entries)
+    : buffer_(ctx, pool, entries.data(), entries.size() * sizeof(float), vk::BufferUsageFlagBits::eStorageTexelBuffer),
+      view_(ctx.device(),
+            vk::BufferViewCreateInfo({}, *buffer_.buffer(), vk::Format::eR32G32B32A32Sfloat, 0, VK_WHOLE_SIZE)) {}
+
 namespace {
 
 constexpr vk::ImageUsageFlags kVolumeUsage = vk::ImageUsageFlagBits::eStorage | vk::ImageUsageFlagBits::eTransferDst;

@@ -28,6 +28,9 @@ struct WholeImage {
     std::function<void(int slab, std::size_t first, int count, uint8_t* to)> row;
 };
 
+// Bytes of a table's entry: the shader's vec4.
+constexpr std::size_t kTableEntryBytes = 4 * sizeof(float);
+
 // The casters whose fields hold one slab per octant.
 bool usesOctants(Caster c) { return c == Caster::ACD || c == Caster::EACD || c == Caster::Hier; }
 
@@ -113,23 +116,22 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
                              " field was not built for (mask " + std::to_string(octants & ~held) + ")");
     }
 
-    // The table first: a device whose storage buffers cannot hold it is refused before any image is made.
+    // The table first: a device whose texel buffers cannot hold it is refused before any image is made.
     const ScalarClassification& classification = prepared.classification;
     const TransferTable& table = classification.table;
     placement_ = {table.lo, table.step, table.size(), classification.flatGradient, classification.referenceStep};
-    vk::DeviceSize bufferRange = ctx.physicalDevice().getProperties().limits.maxStorageBufferRange;
-    if (limits.maxStorageBufferRange > 0) bufferRange = std::min(bufferRange, limits.maxStorageBufferRange);
-    constexpr std::size_t kEntryBytes = 4 * sizeof(float);  // the shader's vec4
-    const vk::DeviceSize tableBytes = vk::DeviceSize(table.size()) * kEntryBytes;
-    if (tableBytes > bufferRange)
-        throw InputError("the transfer table of " + std::to_string(table.size()) + " entries (" +
-                         std::to_string(tableBytes) + " bytes) exceeds the storage buffer limit of the Vulkan device " +
-                         ctx.info().name + " (maxStorageBufferRange " + std::to_string(bufferRange) + " bytes: at most " +
-                         std::to_string(bufferRange / kEntryBytes) + " entries); render with --cpu");
-    const std::vector<float> entries = table.interleaved();
-    table_ = std::make_unique<DeviceBuffer>(ctx, pool, entries.data(), tableBytes,
-                                            vk::BufferUsageFlagBits::eStorageBuffer);
-    uploads_.push_back({"table", std::size_t(tableBytes), 0});
+    vk::DeviceSize maxEntries = ctx.physicalDevice().getProperties().limits.maxTexelBufferElements;
+    if (limits.maxTableEntries > 0) maxEntries = std::min(maxEntries, limits.maxTableEntries);
+    const auto tableFits = [&](const std::string& what, std::size_t entries) {
+        if (entries > maxEntries)
+            throw InputError(what + " of " + std::to_string(entries) + " entries exceeds the texel buffer limit of the "
+                             "Vulkan device " + ctx.info().name + " (maxTexelBufferElements " +
+                             std::to_string(maxEntries) + ": at most " + std::to_string(maxEntries) +
+                             " entries); render with --cpu");
+    };
+    tableFits("the transfer table", table.size());
+    table_ = std::make_unique<TexelTable>(ctx, pool, table.interleaved());
+    uploads_.push_back({"table", table.size() * kTableEntryBytes, 0});
 
     const Vec3i dims = grid_.dims;
     const std::vector<float>& values = prepared.scalars.values;
@@ -142,15 +144,9 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     };
     wholes.push_back({&scalars_, "scalars", 1, scalarFormat(scalarType_), scalarRow});
     if (const std::optional<LabelMap>& labels = prepared.labels) {
-        // The table is as small as the transfer table's (a label's entry each): checked against the same limit.
-        const std::vector<float> classes = labels->classes.interleaved();
-        const vk::DeviceSize classBytes = vk::DeviceSize(classes.size()) * sizeof(float);
-        if (classBytes > bufferRange)
-            throw InputError("the label table of " + std::to_string(labels->classes.size()) + " labels exceeds the "
-                             "storage buffer limit of the Vulkan device " + ctx.info().name + "; render with --cpu");
-        labelTable_ = std::make_unique<DeviceBuffer>(ctx, pool, classes.data(), classBytes,
-                                                     vk::BufferUsageFlagBits::eStorageBuffer);
-        uploads_.push_back({"label table", std::size_t(classBytes), 0});
+        tableFits("the label table", labels->classes.size());
+        labelTable_ = std::make_unique<TexelTable>(ctx, pool, labels->classes.interleaved());
+        uploads_.push_back({"label table", labels->classes.size() * kTableEntryBytes, 0});
         labelType_ = labels->type;
         labelLastEntry_ = labels->lastEntry();
         const std::vector<uint16_t>& l = labels->label;

@@ -73,13 +73,13 @@ struct TablePlacement {
 
 class GpuVolume {
 public:
-    // Uploads the scalars in their own type (scalarFormat), the transfer table (a storage buffer of vec4 per entry:
+    // Uploads the scalars in their own type (scalarFormat), the transfer table (a TexelTable, an entry per texel:
     // rgb colour, sigma), a label map's labels in their type and its table (as the transfer table) and each
     // caster's field: PC (R8_UINT), ACD (R8_UINT), EACD (RGBA8_UINT exact, R16_UINT
     // log16, R8_UINT joint8), hier (R16_UINT, one image of the blocks); ACD, EACD and hier hold the octants of the
     // mask stacked along z, slab i holding the i-th octant of the mask. Each image is split into the bricks of one plan that fits every image.
     // Throws InputError when the prepared volume lacks a field asked for, its scalars do not fit their type, or
-    // the table has more entries than the device's storage buffers hold (maxStorageBufferRange / 16).
+    // a table has more entries than the device's texel buffers hold (maxTexelBufferElements).
     GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const PreparedVolume& prepared,
               const GpuVolumeContents& contents, const ImageLimits& limits = {});
 
@@ -93,9 +93,9 @@ public:
     bool labelled() const { return labelTable_ != nullptr; }
     ScalarType labelType() const { return labelType_; }
     const VolumeImage* labels(int brick) const { return labels_.empty() ? nullptr : labels_[brick].get(); }
-    const DeviceBuffer* labelTable() const { return labelTable_.get(); }
+    const TexelTable* labelTable() const { return labelTable_.get(); }
     int labelLastEntry() const { return labelLastEntry_; }
-    const DeviceBuffer& table() const { return *table_; }
+    const TexelTable& table() const { return *table_; }
     const TablePlacement& tablePlacement() const { return placement_; }
     // Each voxel's stored gradient, null when not uploaded; the codes' base exponent.
     const VolumeImage* gradients(int brick) const { return gradients_.empty() ? nullptr : gradients_[brick].get(); }
@@ -132,9 +132,9 @@ private:
     TablePlacement placement_;
     BrickGrid bricks_;
     Bricked scalars_;
-    std::unique_ptr<DeviceBuffer> table_;
+    std::unique_ptr<TexelTable> table_;
     Bricked labels_;
-    std::unique_ptr<DeviceBuffer> labelTable_;
+    std::unique_ptr<TexelTable> labelTable_;
     ScalarType labelType_ = ScalarType::UInt8;
     int labelLastEntry_ = 0;
     Bricked gradients_;

@@ -186,8 +186,8 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
         {device::kBindingOutPixels, T::eStorageBuffer, 1, compute},
         {device::kBindingRayStates, T::eStorageBuffer, 1, compute},
         {device::kBindingExtentTable, T::eUniformBuffer, 1, compute},
-        {device::kBindingTransferTable, T::eStorageBuffer, 1, compute},
-        {device::kBindingLabelTable, T::eStorageBuffer, 1, compute},
+        {device::kBindingTransferTable, T::eStorageTexelBuffer, 1, compute},
+        {device::kBindingLabelTable, T::eStorageTexelBuffer, 1, compute},
         {device::kBindingPixelList, T::eStorageBuffer, 1, compute},
         {device::kBindingStereoBands, T::eStorageBuffer, 1, compute}};
     for (uint32_t binding : kScalarBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
@@ -216,9 +216,7 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
                                                          formatBytes(kLabelFormats[i]));
     unusedGradients_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kGradientFormat, zeros,
                                                      formatBytes(kGradientFormat));
-    const float noLabel[4] = {};
-    unusedLabelTable_ = std::make_unique<DeviceBuffer>(ctx, pool_, noLabel, sizeof(noLabel),
-                                                       vk::BufferUsageFlagBits::eStorageBuffer);
+    unusedLabelTable_ = std::make_unique<TexelTable>(ctx, pool_, std::vector<float>(4, 0.f));
 }
 
 VulkanRenderer::Variant VulkanRenderer::variantOf(const RenderSettings& settings, bool perspective, ScalarType type,
@@ -362,10 +360,11 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     // One descriptor set per brick: its images, the rest shared.
     const std::vector<Brick>& bricks = volume.bricks().bricks();
     const uint32_t brickCount = uint32_t(bricks.size());
-    std::array<vk::DescriptorPoolSize, 3> sizes{
+    std::array<vk::DescriptorPoolSize, 4> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 11 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 6 * brickCount)};
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 4 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageTexelBuffer, 2 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
         vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, brickCount, sizes));
@@ -381,9 +380,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
         {*(list ? list->buffer : frame.noList).buffer(), 0, VK_WHOLE_SIZE},
         {left && left->bands ? *left->bands->buffer() : *frame.noList.buffer(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
-    const vk::DescriptorBufferInfo transferEntries(*volume.table().buffer(), 0, VK_WHOLE_SIZE);
-    const vk::DescriptorBufferInfo labelEntries(
-        *(volume.labelTable() ? volume.labelTable() : unusedLabelTable_.get())->buffer(), 0, VK_WHOLE_SIZE);
+    const vk::BufferView transferEntries = *volume.table().view();
+    const vk::BufferView labelEntries = *(volume.labelTable() ? volume.labelTable() : unusedLabelTable_.get())->view();
     const vk::DescriptorImageInfo blockRanges =
         imageInfo(volume.blockExtrema() ? *volume.blockExtrema() : *unusedBlockExtrema_);
     for (uint32_t b = 0; b < brickCount; ++b) {
@@ -405,8 +403,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             {set, device::kBindingOutPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
             {set, device::kBindingRayStates, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
             {set, device::kBindingExtentTable, 0, 1, T::eUniformBuffer, nullptr, &extentEntries},
-            {set, device::kBindingTransferTable, 0, 1, T::eStorageBuffer, nullptr, &transferEntries},
-            {set, device::kBindingLabelTable, 0, 1, T::eStorageBuffer, nullptr, &labelEntries},
+            {set, device::kBindingTransferTable, 0, 1, T::eStorageTexelBuffer, nullptr, nullptr, &transferEntries},
+            {set, device::kBindingLabelTable, 0, 1, T::eStorageTexelBuffer, nullptr, nullptr, &labelEntries},
             {set, device::kBindingPixelList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
             {set, device::kBindingStereoBands, 0, 1, T::eStorageBuffer, nullptr, &buffers[4]}};
         for (int i = 0; i < 4; ++i) writes.emplace_back(set, kScalarBindings[i], 0, 1, T::eStorageImage, &scalars[i]);

@@ -147,7 +147,7 @@ private:
     // volume without labels or of the other label type, the gradients where none are stored): never read.
     std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3], unusedBlockExtrema_, unusedLabels_[2],
         unusedGradients_;
-    std::unique_ptr<DeviceBuffer> unusedLabelTable_;  // bound without a label map
+    std::unique_ptr<TexelTable> unusedLabelTable_;  // bound without a label map
     std::vector<UploadedResource> uploads_;
     std::unique_ptr<StereoReprojector> reprojector_;  // made by the first pair with reuse
 };
