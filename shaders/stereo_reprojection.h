@@ -19,22 +19,20 @@ VR_CONSTANT int kBindingLeftPixels = 1;    // storage buffer: OutPixel per pixel
 VR_CONSTANT int kBindingRightPixels = 2;   // storage buffer: OutPixel per pixel of the right image (the reprojection)
 VR_CONSTANT int kBindingRecastList = 3;    // storage buffer: the count, then the right pixels to re-cast (the
                                            // casters' kBindingPixelList)
-VR_CONSTANT int kBindingLeftBands = 4;     // storage buffer: BandEnd per band per pixel of the left image (composite;
-                                           // the casters' kBindingStereoBands)
+VR_CONSTANT int kBindingLeftBands = 4;     // storage image RGBA32UI, 2D array: a left pixel's segment of band b
+                                           // at (x, y, layer b) (composite; the casters' kBindingStereoBands)
 VR_CONSTANT int kSpecIdBands = 0;          // bool: reproject the left eye's bands (composite), not its intervals
 VR_CONSTANT int kReprojectGroup = 64;      // invocations per workgroup, along a row
 
 // Bands (composite): band b holds the depths whose disparity lies in [first + b width, first + (b + 1) width), the
-// first band also the nearer ones and the last the farther. A left ray records, at the far end of each band, what it
-// has gathered from its start: its premultiplied colour, its transmittance and the first moment of its opacity over
-// its depth t (the sum of each part's opacity weight times its mean t), so that band b's own segment is the
-// difference between the records of bands b - 1 and b. A span that crosses a band's far end is split there: its
-// sigma and colour are constant over it, so the part before t gathers the optical depth sigma (t - t0), and its
-// opacity's moment is its opacity weight times t0 + (t - t0) spanMeanFraction(sigma (t - t0)).
-struct BandEnd {
-    vec4 composite;  // rgb: premultiplied colour, a: transmittance
-    float moment;    // the first moment of the opacity over t
-};
+// first band also the nearer ones and the last the farther. A left ray keeps, at the far end of each band, what it
+// has gathered from its start (a record): its premultiplied colour, its transmittance and the first moment of its
+// opacity over its depth t (the sum of each part's opacity weight times its mean t). Band b's own segment is the
+// difference between the records of bands b - 1 and b: its colour and opacity composited from a transparent start,
+// at its opacity-weighted mean depth; the caster stores it with the ray's transmittance at the band's far end (its
+// texel: packBandSegment). A span that crosses a band's far end is split there: its sigma and colour are constant
+// over it, so the part before t gathers the optical depth sigma (t - t0), and its opacity's moment is its opacity
+// weight times t0 + (t - t0) spanMeanFraction(sigma (t - t0)).
 
 // The most bands a pair takes (more: the eyes are close to the volume; its right eye is cast in full).
 VR_CONSTANT int kMaxBands = 32;
@@ -126,10 +124,43 @@ static_assert(offsetof(StereoParams, disparityScale) == 8);
 static_assert(offsetof(StereoParams, window) == 40);
 static_assert(offsetof(StereoParams, background) == 48);
 static_assert(sizeof(StereoParams) == 80);
-static_assert(sizeof(BandEnd) == 32);
 }  // namespace vr::device
 #else
 ivec2 unpackListPixel(uint p) { return ivec2(int(p & 0xffffu), int(p >> 16)); }
+
+// A left pixel's segment of a band, as one texel (kBindingLeftBands): its premultiplied colour and opacity (16-bit
+// unorm each: they lie in [0, 1]), the disparity of its mean depth (meaningless where its opacity is 0) and the ray's
+// transmittance at the band's far end. One texel, not several buffer words: llvmpipe stores and loads a buffer lane
+// by lane and word by word, an image's texel at once.
+struct BandSegment {
+    vec4 colour;
+    float disparity;
+    float transmittance;
+};
+
+uvec4 packBandSegment(BandSegment s) {
+    return uvec4(packUnorm2x16(s.colour.rg), packUnorm2x16(s.colour.ba), floatBitsToUint(s.disparity),
+                 floatBitsToUint(s.transmittance));
+}
+
+BandSegment unpackBandSegment(uvec4 t) {
+    return BandSegment(vec4(unpackUnorm2x16(t.x), unpackUnorm2x16(t.y)), uintBitsToFloat(t.z), uintBitsToFloat(t.w));
+}
+
+// Band b's segment from the ray's records at its near end (start) and far end (end: rgb premultiplied colour, a
+// transmittance; with the moments of opacity over t); `cosine` turns t into depth along the view direction. A band
+// the ray gathered nothing in has none.
+BandSegment bandSegment(vec4 start, float startMoment, vec4 end, float endMoment, bool gathered, float cosine,
+                        float scale, float focusInverse) {
+    BandSegment s;
+    s.colour.a = start.a > 0.0 ? clamp(1.0 - end.a / start.a, 0.0, 1.0) : 0.0;
+    s.colour.rgb = clamp((end.rgb - start.rgb) / max(start.a, 1e-30), 0.0, 1.0);
+    if (!gathered) s.colour = vec4(0.0);
+    float meanT = (endMoment - startMoment) / (start.a - end.a);
+    s.disparity = stereoDisparity(scale, focusInverse, meanT * cosine);
+    s.transmittance = end.a;
+    return s;
+}
 #endif
 
 #endif

@@ -79,14 +79,14 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         HostBuffer left(ctx_, pixels * sizeof(device::OutPixel), B::eStorageBuffer);
         HostBuffer right(ctx_, pixels * sizeof(device::OutPixel), B::eStorageBuffer);
         HostBuffer recast(ctx_, (pixels + 1) * sizeof(uint32_t), B::eStorageBuffer);
-        std::optional<DeviceBuffer> leftBands;
-        if (composite) leftBands.emplace(ctx_, pixels * bands.count * sizeof(device::BandEnd), B::eStorageBuffer);
+        std::optional<ShaderImage> leftBands;
+        if (composite) leftBands.emplace(ctx_, pool_, width, height, bands.count, kBandSegmentFormat);
         const StereoLeft leftEye{left.data(), leftBands ? &*leftBands : nullptr,
                                  {float(disparityScale(pair)), float(1 / pair.focus), float(bands.first),
                                   float(kMaxSpreadPixels)},
                                  bands.count};
         out.left = renderOnDevice(volume, pair.left, settings, nullptr, &leftEye);
-        if (!reprojector_) reprojector_ = std::make_unique<StereoReprojector>(ctx_);
+        if (!reprojector_) reprojector_ = std::make_unique<StereoReprojector>(ctx_, pool_);
         auto* list = static_cast<uint32_t*>(recast.data());
         list[0] = 0;
         out.reprojectMilliseconds = reprojector_->reproject(
