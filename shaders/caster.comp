@@ -582,12 +582,11 @@ void main() {
                                          bandStartMoment, bandStart));
     // After the ray's last span, the bands it did not reach end with all it gathered: the band it ended in holds
     // the rest, the bands after it nothing.
-    for (; STEREO_BANDS && lastDispatch && band < params.stereoBandCount; ++band) {
+    if (STEREO_BANDS && lastDispatch && band < params.stereoBandCount) {
         storeBandSegment(pixel, band, bandStart, bandStartMoment, vec4(colour, transmittance), moment, bandGathered,
                          cosine);
-        bandStart = vec4(colour, transmittance);
-        bandStartMoment = moment;
-        bandGathered = false;
+        uvec4 nothing = packBandSegment(BandSegment(vec4(0.0), 0.0, transmittance));
+        for (++band; band < params.stereoBandCount; ++band) imageStore(bandSegments, ivec3(pixel, band), nothing);
     }
 
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.

@@ -149,15 +149,15 @@ BandSegment unpackBandSegment(uvec4 t) {
 
 // Band b's segment from the ray's records at its near end (start) and far end (end: rgb premultiplied colour, a
 // transmittance; with the moments of opacity over t); `cosine` turns t into depth along the view direction. A band
-// the ray gathered nothing in has none.
+// the ray gathered nothing in has none. Two divisions (llvmpipe divides at a tenth of its multiplications' rate): the
+// disparity of mean depth z = moment / (opacity weight) is scale (1 / focus - weight / moment).
 BandSegment bandSegment(vec4 start, float startMoment, vec4 end, float endMoment, bool gathered, float cosine,
                         float scale, float focusInverse) {
     BandSegment s;
-    s.colour.a = start.a > 0.0 ? clamp(1.0 - end.a / start.a, 0.0, 1.0) : 0.0;
-    s.colour.rgb = clamp((end.rgb - start.rgb) / max(start.a, 1e-30), 0.0, 1.0);
-    if (!gathered) s.colour = vec4(0.0);
-    float meanT = (endMoment - startMoment) / (start.a - end.a);
-    s.disparity = stereoDisparity(scale, focusInverse, meanT * cosine);
+    float inverse = 1.0 / max(start.a, 1e-30);
+    s.colour = clamp(vec4((end.rgb - start.rgb) * inverse, 1.0 - end.a * inverse), 0.0, 1.0);
+    if (!gathered || start.a <= 0.0) s.colour = vec4(0.0);
+    s.disparity = scale * (focusInverse - (start.a - end.a) / ((endMoment - startMoment) * cosine));
     s.transmittance = end.a;
     return s;
 }
