@@ -130,8 +130,8 @@ ivec2 unpackListPixel(uint p) { return ivec2(int(p & 0xffffu), int(p >> 16)); }
 
 // A left pixel's segment of a band, as one texel (kBindingLeftBands): its premultiplied colour and opacity (16-bit
 // unorm each: they lie in [0, 1]), the disparity of its mean depth (meaningless where its opacity is 0) and the ray's
-// transmittance at the band's far end. One texel, not several buffer words: llvmpipe stores and loads a buffer lane
-// by lane and word by word, an image's texel at once.
+// transmittance at the band's far end. One texel of an image, not buffer words: llvmpipe loads a buffer lane by lane
+// and word by word, an image's texels as one gather (the reprojection reads five texels per band per pixel).
 struct BandSegment {
     vec4 colour;
     float disparity;
