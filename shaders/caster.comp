@@ -69,7 +69,7 @@ layout(set = 0, binding = kBindingLabelsUInt16, r16ui) uniform readonly uimage3D
 layout(set = 0, binding = kBindingLabelTable, std430) readonly buffer LabelTable { vec4 labelTableEntry[]; };
 layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; uint listPixel[]; };
 layout(set = 0, binding = kBindingGradients, r32ui) uniform readonly uimage3D gradients;
-layout(set = 0, binding = kBindingStereoBands, rgba32ui) uniform writeonly uimage2DArray bandSegments;
+layout(set = 0, binding = kBindingStereoBands, std430) writeonly buffer StereoBands { uvec4 segments[]; };
 
 // Where the ray's band `band` ends along it: its far depth over the cosine of the ray's angle to the view direction.
 float bandEndT(int band, float cosine) {
@@ -82,7 +82,7 @@ void storeBandSegment(ivec2 pixel, int band, vec4 start, float startMoment, vec4
                       float cosine) {
     BandSegment s = bandSegment(start, startMoment, end, endMoment, gathered, cosine, params.stereoBands.x,
                                 params.stereoBands.y);
-    imageStore(bandSegments, ivec3(pixel, band), packBandSegment(s));
+    segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = packBandSegment(s);
 }
 
 uvec4 loadField(ivec3 texel) {
@@ -586,7 +586,8 @@ void main() {
         storeBandSegment(pixel, band, bandStart, bandStartMoment, vec4(colour, transmittance), moment, bandGathered,
                          cosine);
         uvec4 nothing = packBandSegment(BandSegment(vec4(0.0), 0.0, transmittance));
-        for (++band; band < params.stereoBandCount; ++band) imageStore(bandSegments, ivec3(pixel, band), nothing);
+        for (++band; band < params.stereoBandCount; ++band)
+            segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = nothing;
     }
 
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.

@@ -42,9 +42,9 @@ VR_CONSTANT int kBindingLabelTable = 15;
 VR_CONSTANT int kBindingPixelList = 16;     // storage buffer: uint count, then the pixels to cast (x | y << 16),
                                             // read by the list variant (stereo re-casts: stereo_reprojection.h)
 VR_CONSTANT int kBindingGradients = 17;     // R32_UINT: each voxel's stored gradient (gradient_code.h)
-VR_CONSTANT int kBindingStereoBands = 18;   // storage image RGBA32UI, 2D array: a stereo left eye's segment of
-                                            // band b of pixel (x, y) at (x, y, layer b), written by the bands
-                                            // variant (stereo_reprojection.h packBandSegment)
+VR_CONSTANT int kBindingStereoBands = 18;   // storage buffer: a stereo left eye's segment of each band of each
+                                            // pixel (uvec4), written by the bands variant (stereo_reprojection.h
+                                            // bandTexel, packBandSegment)
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below

@@ -21,7 +21,7 @@ layout(set = 0, binding = kBindingStereoParams, std140) uniform Params { StereoP
 layout(set = 0, binding = kBindingLeftPixels, std430) readonly buffer LeftPixels { OutPixel leftPixel[]; };
 layout(set = 0, binding = kBindingRightPixels, std430) writeonly buffer RightPixels { OutPixel rightPixel[]; };
 layout(set = 0, binding = kBindingRecastList, std430) buffer RecastList { uint recastCount; uint recastPixel[]; };
-layout(set = 0, binding = kBindingLeftBands, rgba32ui) uniform readonly uimage2DArray leftBands;
+layout(set = 0, binding = kBindingLeftBands, rgba32ui) uniform readonly uimageBuffer leftBands;
 
 // The cosine of the angle between the left ray of pixel centre (px, row with v) and the view direction: t to depth.
 float leftCosine(float px, float vSquared) {
@@ -145,9 +145,9 @@ void reprojectIntervals() {
 // Composite: band by band. Left pixel x's segment of band b as the right eye sees it (the caster stored it: see
 // stereo_reprojection.h bandSegment): its colour (premultiplied rgb, alpha) and where it lands (its opacity-weighted
 // mean disparity, the band's middle when faint); hidden when the ray's transmittance at the band's end is at most
-// 1 - opaqueAlpha (the left eye did not see what lies behind it); outside when x lies outside the image. Read from
-// the image by each right pixel that needs it, not shared: llvmpipe loads shared memory lane by lane, an image's
-// texels at once.
+// 1 - opaqueAlpha (the left eye did not see what lies behind it); outside when x lies outside the image. Read as a
+// texel by each right pixel that needs it, not shared: llvmpipe loads shared memory lane by lane, texels as one
+// gather.
 struct Segment {
     vec4 colour;
     float disparity;
@@ -156,7 +156,8 @@ struct Segment {
 
 Segment segmentAt(int x, int y, int b) {
     int width = params.imageSize.x;
-    BandSegment t = unpackBandSegment(imageLoad(leftBands, ivec3(clamp(x, 0, width - 1), y, b)));
+    uint texel = bandTexel(clamp(x, 0, width - 1), y, b, width, params.imageSize.y);
+    BandSegment t = unpackBandSegment(imageLoad(leftBands, int(texel)));
     Segment s;
     s.outside = x < 0 || x >= width;
     s.colour = s.outside ? vec4(0.0) : t.colour;

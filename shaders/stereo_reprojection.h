@@ -19,8 +19,8 @@ VR_CONSTANT int kBindingLeftPixels = 1;    // storage buffer: OutPixel per pixel
 VR_CONSTANT int kBindingRightPixels = 2;   // storage buffer: OutPixel per pixel of the right image (the reprojection)
 VR_CONSTANT int kBindingRecastList = 3;    // storage buffer: the count, then the right pixels to re-cast (the
                                            // casters' kBindingPixelList)
-VR_CONSTANT int kBindingLeftBands = 4;     // storage image RGBA32UI, 2D array: a left pixel's segment of band b
-                                           // at (x, y, layer b) (composite; the casters' kBindingStereoBands)
+VR_CONSTANT int kBindingLeftBands = 4;     // storage texel buffer RGBA32UI: a left pixel's segment of each band
+                                           // (composite; the casters' kBindingStereoBands, as texels: bandTexel)
 VR_CONSTANT int kSpecIdBands = 0;          // bool: reproject the left eye's bands (composite), not its intervals
 VR_CONSTANT int kReprojectGroup = 64;      // invocations per workgroup, along a row
 
@@ -57,6 +57,12 @@ VR_FUNCTION VR_REAL spanMeanFraction(VR_REAL depth) {
 VR_FUNCTION VR_REAL spanDepthBefore(VR_REAL depth, VR_REAL t0, VR_REAL t1, VR_REAL t) {
     VR_REAL f = (t - t0) / (t1 - t0);
     return depth * (f < VR_REAL(0) ? VR_REAL(0) : f < VR_REAL(1) ? f : VR_REAL(1));
+}
+
+// Where band b's segment of pixel (x, y) lies among the segments: band by band, each band's row by row, so that
+// the reprojection's neighbouring invocations read neighbouring texels.
+VR_FUNCTION uint bandTexel(int x, int y, int b, int width, int height) {
+    return (uint(b) * uint(height) + uint(y)) * uint(width) + uint(x);
 }
 
 // A list entry: a pixel's x and y in 16 bits each (images are at most 16384 wide).
@@ -130,8 +136,9 @@ ivec2 unpackListPixel(uint p) { return ivec2(int(p & 0xffffu), int(p >> 16)); }
 
 // A left pixel's segment of a band, as one texel (kBindingLeftBands): its premultiplied colour and opacity (16-bit
 // unorm each: they lie in [0, 1]), the disparity of its mean depth (meaningless where its opacity is 0) and the ray's
-// transmittance at the band's far end. One texel of an image, not buffer words: llvmpipe loads a buffer lane by lane
-// and word by word, an image's texels as one gather (the reprojection reads five texels per band per pixel).
+// transmittance at the band's far end. The caster stores it as a buffer's uvec4 (llvmpipe stores an image's texel
+// at a higher cost), the reprojection reads it as a texel buffer's texel (llvmpipe loads a buffer lane by lane and
+// word by word, a texel buffer's texels as one gather; it reads five per band per pixel).
 struct BandSegment {
     vec4 colour;
     float disparity;

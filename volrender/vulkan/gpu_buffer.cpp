@@ -192,27 +192,4 @@ VolumeImage::VolumeImage(const VulkanContext& ctx, const vk::raii::CommandPool& 
                                                                       range));
 }
 
-ShaderImage::ShaderImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, int width, int height,
-                         int layers, vk::Format format) {
-    image_ = vk::raii::Image(
-        ctx.device(), vk::ImageCreateInfo({}, vk::ImageType::e2D, format, vk::Extent3D(uint32_t(width), uint32_t(height), 1),
-                                          1, uint32_t(layers), vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal,
-                                          vk::ImageUsageFlagBits::eStorage));
-    const auto req = image_.getMemoryRequirements();
-    memory_ = vk::raii::DeviceMemory(
-        ctx.device(),
-        vk::MemoryAllocateInfo(req.size, ctx.memoryType(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal)));
-    image_.bindMemory(*memory_, 0);
-    const vk::ImageSubresourceRange range(vk::ImageAspectFlagBits::eColor, 0, 1, 0, uint32_t(layers));
-    submitAndWait(ctx, pool, [&](const vk::raii::CommandBuffer& cmd) {
-        vk::ImageMemoryBarrier toGeneral({}, vk::AccessFlagBits::eShaderWrite | vk::AccessFlagBits::eShaderRead,
-                                         vk::ImageLayout::eUndefined, kVolumeLayout, VK_QUEUE_FAMILY_IGNORED,
-                                         VK_QUEUE_FAMILY_IGNORED, *image_, range);
-        cmd.pipelineBarrier(vk::PipelineStageFlagBits::eTopOfPipe, vk::PipelineStageFlagBits::eComputeShader, {}, {},
-                            {}, toGeneral);
-    });
-    view_ = vk::raii::ImageView(ctx.device(),
-                                vk::ImageViewCreateInfo({}, *image_, vk::ImageViewType::e2DArray, format, {}, range));
-}
-
 }  // namespace vr

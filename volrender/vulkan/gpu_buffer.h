@@ -90,20 +90,6 @@ private:
     std::size_t bytes_ = 0;
 };
 
-// A 2D array image in device memory that only shaders write and read (imageStore, imageLoad), in kVolumeLayout
-// from its creation on: a stereo left eye's band segments.
-class ShaderImage {
-public:
-    ShaderImage(const VulkanContext& ctx, const vk::raii::CommandPool& pool, int width, int height, int layers,
-                vk::Format format);
-    const vk::raii::ImageView& view() const { return view_; }
-
-private:
-    vk::raii::Image image_{nullptr};
-    vk::raii::DeviceMemory memory_{nullptr};
-    vk::raii::ImageView view_{nullptr};
-};
-
 // Records commands into a fresh one-time command buffer, submits it and waits for it.
 template <typename Record>
 void submitAndWait(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Record&& record) {

@@ -6,8 +6,8 @@
 
 namespace vr {
 
-StereoReprojector::StereoReprojector(const VulkanContext& ctx, const vk::raii::CommandPool& pool)
-    : ctx_(ctx), timer_(ctx), unusedBands_(ctx, pool, 1, 1, 1, kBandSegmentFormat) {
+StereoReprojector::StereoReprojector(const VulkanContext& ctx)
+    : ctx_(ctx), timer_(ctx), unusedBands_(ctx, 16, kBandSegmentUsage) {
     using T = vk::DescriptorType;
     const auto compute = vk::ShaderStageFlagBits::eCompute;
     const std::array<vk::DescriptorSetLayoutBinding, 5> bindings{{
@@ -15,7 +15,7 @@ StereoReprojector::StereoReprojector(const VulkanContext& ctx, const vk::raii::C
         {device::kBindingLeftPixels, T::eStorageBuffer, 1, compute},
         {device::kBindingRightPixels, T::eStorageBuffer, 1, compute},
         {device::kBindingRecastList, T::eStorageBuffer, 1, compute},
-        {device::kBindingLeftBands, T::eStorageImage, 1, compute}}};
+        {device::kBindingLeftBands, T::eStorageTexelBuffer, 1, compute}}};
     setLayout_ = vk::raii::DescriptorSetLayout(ctx.device(), vk::DescriptorSetLayoutCreateInfo({}, bindings));
     const vk::DescriptorSetLayout setLayout = *setLayout_;
     layout_ = vk::raii::PipelineLayout(ctx.device(), vk::PipelineLayoutCreateInfo({}, setLayout));
@@ -31,13 +31,14 @@ StereoReprojector::StereoReprojector(const VulkanContext& ctx, const vk::raii::C
 }
 
 double StereoReprojector::reproject(const vk::raii::CommandPool& pool, const device::StereoParams& params,
-                                    const HostBuffer& left, const ShaderImage* bands, const HostBuffer& right,
+                                    const HostBuffer& left, const DeviceBuffer* bands, const HostBuffer& right,
                                     const HostBuffer& recast) {
     HostBuffer uniform(ctx_, sizeof params, vk::BufferUsageFlagBits::eUniformBuffer);
     std::memcpy(uniform.data(), &params, sizeof params);
-    const std::array<vk::DescriptorPoolSize, 3> sizes{vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1),
-                                                      vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3),
-                                                      vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 1)};
+    const std::array<vk::DescriptorPoolSize, 3> sizes{
+        vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageTexelBuffer, 1)};
     vk::raii::DescriptorPool descriptorPool(
         ctx_.device(), vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, sizes));
     const vk::DescriptorSetLayout setLayout = *setLayout_;
@@ -46,7 +47,10 @@ double StereoReprojector::reproject(const vk::raii::CommandPool& pool, const dev
                                                  {*left.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*right.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*recast.buffer(), 0, VK_WHOLE_SIZE}};
-    const vk::DescriptorImageInfo segments(nullptr, *(bands ? *bands : unusedBands_).view(), kVolumeLayout);
+    const vk::raii::BufferView segments(
+        ctx_.device(),
+        vk::BufferViewCreateInfo({}, *(bands ? *bands : unusedBands_).buffer(), kBandSegmentFormat, 0, VK_WHOLE_SIZE));
+    const vk::BufferView segmentView = *segments;
     using T = vk::DescriptorType;
     const vk::DescriptorSet set = *sets[0];
     const std::array<vk::WriteDescriptorSet, 5> writes{{
@@ -54,7 +58,7 @@ double StereoReprojector::reproject(const vk::raii::CommandPool& pool, const dev
         {set, device::kBindingLeftPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
         {set, device::kBindingRightPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
         {set, device::kBindingRecastList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
-        {set, device::kBindingLeftBands, 0, 1, T::eStorageImage, &segments}}};
+        {set, device::kBindingLeftBands, 0, 1, T::eStorageTexelBuffer, nullptr, nullptr, &segmentView}}};
     ctx_.device().updateDescriptorSets(writes, {});
     submitAndWait(ctx_, pool, [&](const vk::raii::CommandBuffer& cmd) {
         using S = vk::PipelineStageFlagBits;

@@ -189,7 +189,7 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
         {device::kBindingTransferTable, T::eStorageBuffer, 1, compute},
         {device::kBindingLabelTable, T::eStorageBuffer, 1, compute},
         {device::kBindingPixelList, T::eStorageBuffer, 1, compute},
-        {device::kBindingStereoBands, T::eStorageImage, 1, compute}};
+        {device::kBindingStereoBands, T::eStorageBuffer, 1, compute}};
     for (uint32_t binding : kScalarBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     for (uint32_t binding : kFieldBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     bindings.emplace_back(device::kBindingBlockExtrema, T::eStorageImage, 1, compute);
@@ -216,7 +216,6 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
                                                          formatBytes(kLabelFormats[i]));
     unusedGradients_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kGradientFormat, zeros,
                                                      formatBytes(kGradientFormat));
-    unusedBands_ = std::make_unique<ShaderImage>(ctx, pool_, 1, 1, 1, kBandSegmentFormat);
     const float noLabel[4] = {};
     unusedLabelTable_ = std::make_unique<DeviceBuffer>(ctx, pool_, noLabel, sizeof(noLabel),
                                                        vk::BufferUsageFlagBits::eStorageBuffer);
@@ -323,7 +322,7 @@ VulkanRenderer::FrameBuffers::FrameBuffers(const VulkanContext& ctx, std::size_t
       extentTable(ctx, sizeof(ExtentTable), vk::BufferUsageFlagBits::eUniformBuffer),  // decodes coded EACD
       out(ctx, pixels * sizeof(device::OutPixel),
           vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst),
-      // bound, never read, without a list
+      // bound, never read, without a list (and as the bands without them)
       noList(ctx, 2 * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer),
       rayState(ctx, pixels * sizeof(device::RayState), vk::BufferUsageFlagBits::eStorageBuffer) {
     if (staged)
@@ -365,8 +364,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const uint32_t brickCount = uint32_t(bricks.size());
     std::array<vk::DescriptorPoolSize, 3> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 12 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 5 * brickCount)};
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 11 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 6 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
         vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, brickCount, sizes));
@@ -375,13 +374,12 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     auto imageInfo = [&](const VolumeImage& image) {
         return vk::DescriptorImageInfo(nullptr, *image.view(), kVolumeLayout);
     };
-    const vk::DescriptorBufferInfo buffers[4] = {
+    const vk::DescriptorBufferInfo buffers[5] = {
         {*params.buffer(), 0, VK_WHOLE_SIZE},
         {*frame.written(), 0, VK_WHOLE_SIZE},
         {*frame.rayState.buffer(), 0, VK_WHOLE_SIZE},
-        {*(list ? list->buffer : frame.noList).buffer(), 0, VK_WHOLE_SIZE}};
-    const vk::DescriptorImageInfo bandSegments(nullptr, *(left && left->bands ? left->bands : unusedBands_.get())->view(),
-                                               kVolumeLayout);
+        {*(list ? list->buffer : frame.noList).buffer(), 0, VK_WHOLE_SIZE},
+        {left && left->bands ? *left->bands->buffer() : *frame.noList.buffer(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo transferEntries(*volume.table().buffer(), 0, VK_WHOLE_SIZE);
     const vk::DescriptorBufferInfo labelEntries(
@@ -410,7 +408,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             {set, device::kBindingTransferTable, 0, 1, T::eStorageBuffer, nullptr, &transferEntries},
             {set, device::kBindingLabelTable, 0, 1, T::eStorageBuffer, nullptr, &labelEntries},
             {set, device::kBindingPixelList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
-            {set, device::kBindingStereoBands, 0, 1, T::eStorageImage, &bandSegments}};
+            {set, device::kBindingStereoBands, 0, 1, T::eStorageBuffer, nullptr, &buffers[4]}};
         for (int i = 0; i < 4; ++i) writes.emplace_back(set, kScalarBindings[i], 0, 1, T::eStorageImage, &scalars[i]);
         for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
         writes.emplace_back(set, device::kBindingBlockExtrema, 0, 1, T::eStorageImage, &blockRanges);

@@ -86,10 +86,10 @@ private:
         std::vector<uint32_t> pixels;
     };
     // A stereo pair's left eye, for the reprojection: every pixel's OutPixel kept, row by row (a whole image of
-    // them), and for composite its bands' segments stored (a layer per band: shaders/stereo_reprojection.h).
+    // them), and for composite its bands' segments (a uvec4 each, shaders/stereo_reprojection.h bandTexel).
     struct StereoLeft {
         void* pixels;
-        const ShaderImage* bands;  // composite only
+        const DeviceBuffer* bands;  // composite only
         device::vec4 bandGeometry;  // CasterParams::stereoBands
         int bandCount;
     };
@@ -147,7 +147,6 @@ private:
     // volume without labels or of the other label type, the gradients where none are stored): never read.
     std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3], unusedBlockExtrema_, unusedLabels_[2],
         unusedGradients_;
-    std::unique_ptr<ShaderImage> unusedBands_;  // bound without a stereo left eye's bands
     std::unique_ptr<DeviceBuffer> unusedLabelTable_;  // bound without a label map
     std::vector<UploadedResource> uploads_;
     std::unique_ptr<StereoReprojector> reprojector_;  // made by the first pair with reuse
