@@ -8,10 +8,18 @@
 
 layout(set = 0, binding = kBindingRayStates, std430) buffer RayStates { RayState rayState[]; };
 
-// Member by member: glslang stores a whole struct into a buffer with an OpStore of mismatched types.
+// Member by member: glslang stores a whole struct into a buffer with an OpStore of mismatched types. Only a stereo
+// left eye's variant loads and stores its bands' members (llvmpipe would move them lane by lane).
 RayState loadRayState(uint i) {
-    return RayState(rayState[i].composite, rayState[i].depth, rayState[i].k, rayState[i].iterations,
-                    rayState[i].flags, rayState[i].moment, rayState[i].bands);
+    RayState s = RayState(rayState[i].composite, rayState[i].depth, rayState[i].k, rayState[i].iterations,
+                          rayState[i].flags, 0.0, 0u, 0.0, vec4(0.0));
+    if (STEREO_BANDS) {
+        s.moment = rayState[i].moment;
+        s.bandGathered = rayState[i].bandGathered;
+        s.bandStartMoment = rayState[i].bandStartMoment;
+        s.bandStart = rayState[i].bandStart;
+    }
+    return s;
 }
 
 void storeRayState(uint i, RayState s) {
@@ -20,8 +28,12 @@ void storeRayState(uint i, RayState s) {
     rayState[i].k = s.k;
     rayState[i].iterations = s.iterations;
     rayState[i].flags = s.flags;
-    rayState[i].moment = s.moment;
-    rayState[i].bands = s.bands;
+    if (STEREO_BANDS) {
+        rayState[i].moment = s.moment;
+        rayState[i].bandGathered = s.bandGathered;
+        rayState[i].bandStartMoment = s.bandStartMoment;
+        rayState[i].bandStart = s.bandStart;
+    }
 }
 
 bool inBrick(ivec3 v) { return all(greaterThanEqual(v, tile.brickLo.xyz)) && all(lessThanEqual(v, tile.brickHi.xyz)); }

@@ -70,7 +70,7 @@ layout(set = 0, binding = kBindingLabelsUInt16, r16ui) uniform readonly uimage3D
 layout(set = 0, binding = kBindingLabelTable, rgba32f) uniform readonly imageBuffer labelTable;
 layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; uint listPixel[]; };
 layout(set = 0, binding = kBindingGradients, r32ui) uniform readonly uimage3D gradients;
-layout(set = 0, binding = kBindingStereoBands, std430) writeonly buffer StereoBands { BandEnd bandEnd[]; };
+layout(set = 0, binding = kBindingStereoBands, std430) writeonly buffer StereoBands { uvec4 segments[]; };
 
 // Where the ray's band `band` ends along it: its far depth over the cosine of the ray's angle to the view direction.
 float bandEndT(int band, float cosine) {
@@ -78,10 +78,12 @@ float bandEndT(int band, float cosine) {
     return bandFarDepth(b.x, b.y, b.z, b.w, band, params.stereoBandCount) / cosine;
 }
 
-// Member by member, as the ray states.
-void storeBandEnd(uint i, vec3 colour, float transmittance, float moment) {
-    bandEnd[i].composite = vec4(colour, transmittance);
-    bandEnd[i].moment = moment;
+// Band `band`'s segment of `pixel`, from the ray's records at the band's near end (start) and far end.
+void storeBandSegment(ivec2 pixel, int band, vec4 start, float startMoment, vec4 end, float endMoment, bool gathered,
+                      float cosine) {
+    BandSegment s = bandSegment(start, startMoment, end, endMoment, gathered, cosine, params.stereoBands.x,
+                                params.stereoBands.y);
+    segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = packBandSegment(s);
 }
 
 uvec4 loadField(ivec3 texel) {
@@ -391,7 +393,8 @@ void main() {
 
     bool missingOctant = (CASTER == kACD || CASTER == kEACD || CASTER == kHier) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
-    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u, 0.0, 0u)
+    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u,
+                                              0.0, 0u, 0.0, vec4(0.0, 0.0, 0.0, 1.0))
                                    : loadRayState(outIndex);
     vec3 colour = state.composite.rgb;
     // What the colour's float sum has lost so far (Kahan): the primitive caster adds one sample at a time, and
@@ -407,13 +410,15 @@ void main() {
     uint iterations = state.iterations;
     bool failed = (state.flags & kFailed) != 0u;
     uint k = state.k;
-    // A stereo left eye's bands: the band the ray is in and where it ends (the bands before it are recorded: its
-    // spans so far crossed their ends), the first moment of its opacity over t, the bands it gathered anything in.
+    // A stereo left eye's bands: the band the ray is in and where it ends (the bands before it are stored: its
+    // spans so far crossed their ends), the first moment of its opacity over t, whether it gathered anything in its
+    // band, and its record at the band's near end.
     float moment = state.moment;
-    uint gathered = state.bands;
+    bool bandGathered = state.bandGathered != 0u;
+    vec4 bandStart = state.bandStart;
+    float bandStartMoment = state.bandStartMoment;
     int band = 0;
     float cosine = dot(direction, params.forward.xyz), bandEnd = kInfinity;
-    uint bandBase = uint(pixel.y * params.imageSize.x + pixel.x) * uint(params.stereoBandCount);
     if (STEREO_BANDS) {
         float tk = latticeT(iv, k);
         while (k > 0u && band + 1 < params.stereoBandCount && bandEndT(band, cosine) < tk) ++band;
@@ -527,18 +532,23 @@ void main() {
         float spanAlpha = spanOpacity(spanDepth.x);
         vec3 shaded = s.rgb;
         if (SHADING && spanAlpha > 0.0) shaded = shade(s.rgb, sampleNormal(fp, v), toEye, toLight);
-        // A stereo left eye records the bands whose far end the span reaches: what it gathered up to there, the
-        // span split where the band ends (in one iteration, however many samples the span leaps).
+        // A stereo left eye stores the segments of the bands whose far end the span reaches, from its record
+        // there: what it gathered up to there, the span split where the band ends (in one iteration, however many
+        // samples the span leaps).
         float t0 = latticeT(iv, k), t1 = latticeT(iv, k + n);
         while (STEREO_BANDS && t1 > bandEnd) {
             precise float part = spanDepthBefore(spanDepth.x, t0, t1, bandEnd);
             float w = transmittance * spanOpacity(part);
-            storeBandEnd(bandBase + uint(band), colour - colourLost + shaded * w, transmittance - w,
-                         moment + w * (t0 + max(bandEnd - t0, 0.0) * spanMeanFraction(part)));
-            if (spanAlpha > 0.0 && bandEnd > t0) gathered |= 1u << band;
+            vec4 end = vec4(colour - colourLost + shaded * w, transmittance - w);
+            float endMoment = moment + w * (t0 + max(bandEnd - t0, 0.0) * spanMeanFraction(part));
+            bandGathered = bandGathered || (spanAlpha > 0.0 && bandEnd > t0);
+            storeBandSegment(pixel, band, bandStart, bandStartMoment, end, endMoment, bandGathered, cosine);
+            bandStart = end;
+            bandStartMoment = endMoment;
+            bandGathered = false;
             bandEnd = bandEndT(++band, cosine);
         }
-        if (STEREO_BANDS && spanAlpha > 0.0) gathered |= 1u << band;
+        if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
         if (spanAlpha > 0.0) {
             precise float w = transmittance * spanAlpha;
             precise vec3 added = shaded * w - colourLost;
@@ -568,10 +578,18 @@ void main() {
     vec4 carried = BLEND == kBlendComposite ? vec4(colour, transmittance)
                    : BLEND == kBlendAverage ? vec4(sum, 0.0, 0.0)
                                             : vec4(running, 0.0, 0.0, 0.0);
-    if (!lastDispatch) storeRayState(outIndex, RayState(carried, depth, k, iterations, flags, moment, gathered));
-    // After the ray's last span, the bands it did not reach end with all it gathered.
-    for (; STEREO_BANDS && lastDispatch && band < params.stereoBandCount; ++band)
-        storeBandEnd(bandBase + uint(band), colour, transmittance, moment);
+    if (!lastDispatch)
+        storeRayState(outIndex, RayState(carried, depth, k, iterations, flags, moment, bandGathered ? 1u : 0u,
+                                         bandStartMoment, bandStart));
+    // After the ray's last span, the bands it did not reach end with all it gathered: the band it ended in holds
+    // the rest, the bands after it nothing.
+    if (STEREO_BANDS && lastDispatch && band < params.stereoBandCount) {
+        storeBandSegment(pixel, band, bandStart, bandStartMoment, vec4(colour, transmittance), moment, bandGathered,
+                         cosine);
+        uvec4 nothing = packBandSegment(BandSegment(vec4(0.0), 0.0, transmittance));
+        for (++band; band < params.stereoBandCount; ++band)
+            segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = nothing;
+    }
 
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.
     float alpha = spanOpacity(depth.x + depth.y);
@@ -579,9 +597,8 @@ void main() {
     if (BLEND == kBlendMIP || BLEND == kBlendMinIP) pixelColour = shownValue(running, kCount > 0u);
     if (BLEND == kBlendAverage) pixelColour = shownValue((sum.x + sum.y) / float(kCount), kCount > 0u);
     // The other blends depend on every sample of the ray (MIP, MinIP, average) or on the surface's hit (iso);
-    // composite carries its depths in its bands (and the bands it gathered anything in).
+    // composite carries its depths in its bands.
     vec2 interval = vec2(kInfinity);
-    if (STEREO_BANDS) interval = vec2(uintBitsToFloat(gathered), 0.0);
     if (BLEND != kBlendComposite && BLEND != kBlendIso && kCount > 0u) interval = vec2(iv.tEntry, iv.tExit);
     if (BLEND == kBlendIso) {
         float tHit = kInfinity;

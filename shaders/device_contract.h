@@ -42,8 +42,9 @@ VR_CONSTANT int kBindingLabelTable = 15;   // storage texel buffer, as the trans
 VR_CONSTANT int kBindingPixelList = 16;     // storage buffer: uint count, then the pixels to cast (x | y << 16),
                                             // read by the list variant (stereo re-casts: stereo_reprojection.h)
 VR_CONSTANT int kBindingGradients = 17;     // R32_UINT: each voxel's stored gradient (gradient_code.h)
-VR_CONSTANT int kBindingStereoBands = 18;   // storage buffer: a stereo left eye's BandEnd per band per pixel of the
-                                            // image, written by the bands variant (stereo_reprojection.h)
+VR_CONSTANT int kBindingStereoBands = 18;   // storage buffer: a stereo left eye's segment of each band of each
+                                            // pixel (uvec4), written by the bands variant (stereo_reprojection.h
+                                            // bandTexel, packBandSegment)
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
@@ -166,8 +167,13 @@ struct RayState {
     uint k;          // the next lattice sample: also the samples the spans so far represent
     uint iterations;
     uint flags;      // kFailed, kCutShort, kIsoInside, kIsoHit
-    float moment;    // composite, a stereo left eye: the first moment of its opacity over t so far (BandEnd)
-    uint bands;      // and the bands it gathered anything in (bit b: band b)
+    // Composite, a stereo left eye (stereo_reprojection.h): the first moment of its opacity over t so far, whether
+    // it gathered anything in its current band, and its record at the current band's near end (the moment, then
+    // the premultiplied colour and transmittance).
+    float moment;
+    uint bandGathered;
+    float bandStartMoment;
+    vec4 bandStart;
 };
 
 // A pixel's result (std430): the colour's four floats' bits, then the samples and the iteration count with its
@@ -177,7 +183,7 @@ struct OutPixel {
     uvec4 colour;
     uvec4 counts;  // x: samples, y: iterations | flags, zw: the float bits of the pixel's contributing depth
                    // interval [t_near, t_far] along its ray (+inf, +inf: nothing; shaders/stereo_reprojection.h);
-                   // composite: +inf, +inf, and a stereo left eye's bands that gathered anything (bit b: band b), 0
+                   // composite: +inf, +inf (a stereo left eye carries its depths in its bands)
 };
 
 #ifdef __cplusplus
@@ -212,8 +218,9 @@ static_assert(offsetof(TilePush, firstDispatch) == 80);
 static_assert(sizeof(TilePush) == 112);
 static_assert(offsetof(RayState, k) == 24);
 static_assert(offsetof(RayState, moment) == 36);
-static_assert(offsetof(RayState, bands) == 40);
-static_assert(sizeof(RayState) == 48);  // std430 rounds the array stride up to the vec4's 16
+static_assert(offsetof(RayState, bandGathered) == 40);
+static_assert(offsetof(RayState, bandStart) == 48);
+static_assert(sizeof(RayState) == 64);  // std430 rounds the array stride up to the vec4's 16
 static_assert(sizeof(OutPixel) == 32);
 }  // namespace vr::device
 #endif

@@ -1,12 +1,12 @@
 // The right eye of a stereo pair from the left eye's pixels (docs/ALGORITHMS.md section 12; the rules:
 // stereo_reprojection.h). One invocation per right pixel, a workgroup per stretch of a row: the parallel form of the
-// scanline pass. The workgroup reprojects the left pixels of its window once, into shared memory; each pixel then
-// gathers, from the left pixels of its row whose disparity could bring them to it, every piece that covers
-// its centre: a pair of neighbours reprojected on both sides of it (a continuous piece, or a gap). Composite does so
-// band by band, front to back, compositing each band's winning piece; the other blends once, from each left
-// pixel's interval, where the span of a wide pixel's disparities covers too. The nearest cover wins (overlaps keep
-// the nearest); a continuous winner gives its interpolated colour, anything else (a gap, a wide pixel, nothing at
-// all, a band the left eye did not see) puts the pixel on the re-cast list.
+// scanline pass. Each pixel gathers, from the left pixels of its row whose disparity could bring them to it, every
+// piece that covers its centre: a pair of neighbours reprojected on both sides of it (a continuous piece, or a gap).
+// Composite does so band by band, front to back, compositing each band's winning piece from the segments the
+// caster stored; the other blends once, from each left pixel's interval (the workgroup reprojects the left pixels
+// of its window once, into shared memory), where the span of a wide pixel's disparities covers too. The nearest
+// cover wins (overlaps keep the nearest); a continuous winner gives its interpolated colour, anything else (a gap,
+// a wide pixel, nothing at all, a band the left eye did not see) puts the pixel on the re-cast list.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -21,7 +21,7 @@ layout(set = 0, binding = kBindingStereoParams, std140) uniform Params { StereoP
 layout(set = 0, binding = kBindingLeftPixels, std430) readonly buffer LeftPixels { OutPixel leftPixel[]; };
 layout(set = 0, binding = kBindingRightPixels, std430) writeonly buffer RightPixels { OutPixel rightPixel[]; };
 layout(set = 0, binding = kBindingRecastList, std430) buffer RecastList { uint recastCount; uint recastPixel[]; };
-layout(set = 0, binding = kBindingLeftBands, std430) readonly buffer LeftBands { BandEnd leftBand[]; };
+layout(set = 0, binding = kBindingLeftBands, rgba32ui) uniform readonly uimageBuffer leftBands;
 
 // The cosine of the angle between the left ray of pixel centre (px, row with v) and the view direction: t to depth.
 float leftCosine(float px, float vSquared) {
@@ -142,108 +142,75 @@ void reprojectIntervals() {
     finish(x, y, reuse, bestColour);
 }
 
-// Composite: band by band. A left pixel's segment of a band, as shared: its colour (premultiplied rgb, alpha) and
-// its disparity with its flags.
-const uint kFaint = 1u, kHidden = 2u, kOutside = 4u, kContent = 8u;
-shared float sharedDisparity[kSharedPixels];
-shared uint sharedFlags[kSharedPixels];
-// Per band: whether any of the workgroup's segments of it has content, is hidden or lies outside the image.
-shared uint sharedBandMatters[kMaxBands];
+// Composite: band by band. Left pixel x's segment of band b as the right eye sees it (the caster stored it: see
+// stereo_reprojection.h bandSegment): its colour (premultiplied rgb, alpha) and where it lands (its opacity-weighted
+// mean disparity, the band's middle when faint); hidden when the ray's transmittance at the band's end is at most
+// 1 - opaqueAlpha (the left eye did not see what lies behind it); outside when x lies outside the image. Read as a
+// texel by each right pixel that needs it, not shared: llvmpipe loads shared memory lane by lane, texels as one
+// gather.
+struct Segment {
+    vec4 colour;
+    float disparity;
+    bool faint, hidden, outside;
+};
 
-// Left pixel x's segment of band b: the difference between what its ray had gathered at the band's near and far
-// ends, composited from a transparent start; where it lands (its opacity-weighted mean disparity, the band's middle
-// when faint); hidden when the ray's transmittance at its end is at most 1 - opaqueAlpha (the left eye did not see
-// what lies behind it). A band the ray gathered nothing in is read from its pixel alone.
-void loadSegment(int x, int y, int b, float vSquared, int slot) {
+Segment segmentAt(int x, int y, int b) {
     int width = params.imageSize.x;
-    float seen = 1.0 - params.opaqueAlpha, d = params.firstDisparity + (float(b) + 0.5) * params.maxSpread;
-    uint flags = kFaint;
-    vec4 colour = vec4(0.0);
-    if (x < 0 || x >= width) {
-        flags |= kOutside;
-    } else {
-        uint pixel = uint(y * width + x), gathered = leftPixel[pixel].counts.z;
-        bool opaque = 1.0 - uintBitsToFloat(leftPixel[pixel].colour.a) <= seen;
-        if ((gathered >> b) == 0u) {
-            if (opaque) flags |= kHidden;  // past all the ray gathered: its transmittance is the pixel's
-        } else if ((gathered >> b & 1u) != 0u || opaque) {
-            uint i = pixel * uint(params.bandCount) + uint(b);
-            BandEnd end = leftBand[i];
-            vec4 start = b > 0 ? leftBand[i - 1u].composite : vec4(0.0, 0.0, 0.0, 1.0);
-            float startMoment = b > 0 ? leftBand[i - 1u].moment : 0.0;
-            colour.a = start.a > 0.0 ? clamp(1.0 - end.composite.a / start.a, 0.0, 1.0) : 0.0;
-            colour.rgb = clamp((end.composite.rgb - start.rgb) / max(start.a, 1e-30), 0.0, 1.0);
-            if (colour.a > 0.0) flags |= kContent;
-            if (colour.a >= params.faintAlpha) {
-                flags &= ~kFaint;
-                float meanT = (end.moment - startMoment) / (start.a - end.composite.a);
-                d = stereoDisparity(params.disparityScale, params.focusInverse,
-                                    meanT * leftCosine(float(x) + 0.5, vSquared));
-            }
-            if (end.composite.a <= seen) flags |= kHidden;
-        }
-    }
-    sharedColour[slot] = colour;
-    sharedDisparity[slot] = d;
-    sharedFlags[slot] = flags;
-    if (flags != kFaint) sharedBandMatters[b] = 1u;
+    uint texel = bandTexel(clamp(x, 0, width - 1), y, b, width, params.imageSize.y);
+    BandSegment t = unpackBandSegment(imageLoad(leftBands, int(texel)));
+    Segment s;
+    s.outside = x < 0 || x >= width;
+    s.colour = s.outside ? vec4(0.0) : t.colour;
+    s.faint = s.colour.a < params.faintAlpha;
+    s.disparity = s.faint ? params.firstDisparity + (float(b) + 0.5) * params.maxSpread : t.disparity;
+    s.hidden = !s.outside && t.transmittance <= 1.0 - params.opaqueAlpha;
+    return s;
 }
 
 void reprojectBands() {
     int width = params.imageSize.x;
     int y = int(gl_WorkGroupID.y);
     int x = int(gl_GlobalInvocationID.x);
-    int groupFirst = int(gl_WorkGroupID.x) * kReprojectGroup;
     float c = float(x) + 0.5;
-    float v = imagePlaneV(float(y) + 0.5, params.imageSize.y, params.halfHeight);
     float bandWidth = params.maxSpread, seen = 1.0 - params.opaqueAlpha;
     vec3 colour = vec3(0.0);
     float transmittance = 1.0;
     bool done = x >= width, reuse = true;
-    for (int b = int(gl_LocalInvocationID.x); b < kMaxBands; b += kReprojectGroup) sharedBandMatters[b] = 0u;
-    for (int b = 0; b < params.bandCount; ++b) {
+    for (int b = 0; b < params.bandCount && !done; ++b) {
         // The pieces (i, i + 1) that could cover c land their left end at or before c and their right end after it:
         // i + 0.5 + d <= c < i + 1.5 + d' with d, d' in the band.
         float near = params.firstDisparity + float(b) * bandWidth;
         int first = int(floor(float(x) - 1.0 - near - bandWidth)) + 1, last = int(floor(float(x) - near));
-        int lo = int(floor(float(groupFirst) - 1.0 - near - bandWidth)) + 1;
-        int hi = int(floor(float(groupFirst + kReprojectGroup - 1) - near)) + 1;
-        barrier();
-        for (int i = int(gl_LocalInvocationID.x); i <= hi - lo; i += kReprojectGroup)
-            loadSegment(lo + i, y, b, v * v, i);
-        barrier();
-        // A band with nothing in it for the whole workgroup adds nothing.
-        if (done || sharedBandMatters[b] == 0u) continue;
         bool found = false, best = false, bestHidden = false, clipped = false, hidden = false;
         float bestKey = kInfinity;
         vec4 bestColour = vec4(0.0);
         int covers = 0;  // pieces that are not faint at both ends
+        Segment a = segmentAt(first, y, b);
         for (int i = first; i <= last; ++i) {
-            vec4 ca = sharedColour[i - lo], cb = sharedColour[i + 1 - lo];
-            float da = sharedDisparity[i - lo], db = sharedDisparity[i + 1 - lo];
-            uint fa = sharedFlags[i - lo], fb = sharedFlags[i + 1 - lo];
-            if (((fa | fb) & kOutside) != 0u) {
+            Segment s = segmentAt(i + 1, y, b);
+            if (a.outside || s.outside) {
                 clipped = true;
-                continue;
+            } else {
+                bool hiddenPiece = a.hidden || s.hidden;
+                hidden = hidden || hiddenPiece;
+                // A faint end lands where its neighbour does (both faint: at the band's middle).
+                float xa = float(i) + 0.5 + (a.faint && !s.faint ? s.disparity : a.disparity);
+                float xb = float(i) + 1.5 + (s.faint && !a.faint ? a.disparity : s.disparity);
+                if (xa <= c && c < xb) {
+                    float key = min(a.faint ? kInfinity : a.disparity, s.faint ? kInfinity : s.disparity);
+                    if (!(a.faint && s.faint)) ++covers;
+                    if (!found || key < bestKey) {
+                        vec4 step = abs(a.colour - s.colour);
+                        float steepest = max(max(step.r, step.g), max(step.b, step.a));
+                        best = continuousSpan(xa, xb, params.maxGap, steepest, params.maxStep);
+                        bestColour = mix(a.colour, s.colour, (c - xa) / (xb - xa));
+                        bestHidden = hiddenPiece;
+                        bestKey = key;
+                    }
+                    found = true;
+                }
             }
-            bool faintA = (fa & kFaint) != 0u, faintB = (fb & kFaint) != 0u;
-            bool hiddenPiece = ((fa | fb) & kHidden) != 0u;
-            hidden = hidden || hiddenPiece;
-            // A faint end lands where its neighbour does (both faint: at the band's middle).
-            float xa = float(i) + 0.5 + (faintA && !faintB ? db : da);
-            float xb = float(i) + 1.5 + (faintB && !faintA ? da : db);
-            if (!(xa <= c && c < xb)) continue;
-            float key = min(faintA ? kInfinity : da, faintB ? kInfinity : db);
-            if (!(faintA && faintB)) ++covers;
-            vec4 step = abs(ca - cb);
-            if (!found || key < bestKey) {
-                float steepest = max(max(step.r, step.g), max(step.b, step.a));
-                best = continuousSpan(xa, xb, params.maxGap, steepest, params.maxStep);
-                bestColour = mix(ca, cb, (c - xa) / (xb - xa));
-                bestHidden = hiddenPiece;
-                bestKey = key;
-            }
-            found = true;
+            a = s;
         }
         if (!found) {
             reuse = !clipped && !hidden;  // nothing of this band lands here, or the left eye could not tell

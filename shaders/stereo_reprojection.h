@@ -19,22 +19,20 @@ VR_CONSTANT int kBindingLeftPixels = 1;    // storage buffer: OutPixel per pixel
 VR_CONSTANT int kBindingRightPixels = 2;   // storage buffer: OutPixel per pixel of the right image (the reprojection)
 VR_CONSTANT int kBindingRecastList = 3;    // storage buffer: the count, then the right pixels to re-cast (the
                                            // casters' kBindingPixelList)
-VR_CONSTANT int kBindingLeftBands = 4;     // storage buffer: BandEnd per band per pixel of the left image (composite;
-                                           // the casters' kBindingStereoBands)
+VR_CONSTANT int kBindingLeftBands = 4;     // storage texel buffer RGBA32UI: a left pixel's segment of each band
+                                           // (composite; the casters' kBindingStereoBands, as texels: bandTexel)
 VR_CONSTANT int kSpecIdBands = 0;          // bool: reproject the left eye's bands (composite), not its intervals
 VR_CONSTANT int kReprojectGroup = 64;      // invocations per workgroup, along a row
 
 // Bands (composite): band b holds the depths whose disparity lies in [first + b width, first + (b + 1) width), the
-// first band also the nearer ones and the last the farther. A left ray records, at the far end of each band, what it
-// has gathered from its start: its premultiplied colour, its transmittance and the first moment of its opacity over
-// its depth t (the sum of each part's opacity weight times its mean t), so that band b's own segment is the
-// difference between the records of bands b - 1 and b. A span that crosses a band's far end is split there: its
-// sigma and colour are constant over it, so the part before t gathers the optical depth sigma (t - t0), and its
-// opacity's moment is its opacity weight times t0 + (t - t0) spanMeanFraction(sigma (t - t0)).
-struct BandEnd {
-    vec4 composite;  // rgb: premultiplied colour, a: transmittance
-    float moment;    // the first moment of the opacity over t
-};
+// first band also the nearer ones and the last the farther. A left ray keeps, at the far end of each band, what it
+// has gathered from its start (a record): its premultiplied colour, its transmittance and the first moment of its
+// opacity over its depth t (the sum of each part's opacity weight times its mean t). Band b's own segment is the
+// difference between the records of bands b - 1 and b: its colour and opacity composited from a transparent start,
+// at its opacity-weighted mean depth; the caster stores it with the ray's transmittance at the band's far end (its
+// texel: packBandSegment). A span that crosses a band's far end is split there: its sigma and colour are constant
+// over it, so the part before t gathers the optical depth sigma (t - t0), and its opacity's moment is its opacity
+// weight times t0 + (t - t0) spanMeanFraction(sigma (t - t0)).
 
 // The most bands a pair takes (more: the eyes are close to the volume; its right eye is cast in full).
 VR_CONSTANT int kMaxBands = 32;
@@ -59,6 +57,12 @@ VR_FUNCTION VR_REAL spanMeanFraction(VR_REAL depth) {
 VR_FUNCTION VR_REAL spanDepthBefore(VR_REAL depth, VR_REAL t0, VR_REAL t1, VR_REAL t) {
     VR_REAL f = (t - t0) / (t1 - t0);
     return depth * (f < VR_REAL(0) ? VR_REAL(0) : f < VR_REAL(1) ? f : VR_REAL(1));
+}
+
+// Where band b's segment of pixel (x, y) lies among the segments: band by band, each band's row by row, so that
+// the reprojection's neighbouring invocations read neighbouring texels.
+VR_FUNCTION uint bandTexel(int x, int y, int b, int width, int height) {
+    return (uint(b) * uint(height) + uint(y)) * uint(width) + uint(x);
 }
 
 // A list entry: a pixel's x and y in 16 bits each (images are at most 16384 wide).
@@ -126,10 +130,44 @@ static_assert(offsetof(StereoParams, disparityScale) == 8);
 static_assert(offsetof(StereoParams, window) == 40);
 static_assert(offsetof(StereoParams, background) == 48);
 static_assert(sizeof(StereoParams) == 80);
-static_assert(sizeof(BandEnd) == 32);
 }  // namespace vr::device
 #else
 ivec2 unpackListPixel(uint p) { return ivec2(int(p & 0xffffu), int(p >> 16)); }
+
+// A left pixel's segment of a band, as one texel (kBindingLeftBands): its premultiplied colour and opacity (16-bit
+// unorm each: they lie in [0, 1]), the disparity of its mean depth (meaningless where its opacity is 0) and the ray's
+// transmittance at the band's far end. The caster stores it as a buffer's uvec4 (llvmpipe stores an image's texel
+// at a higher cost), the reprojection reads it as a texel buffer's texel (llvmpipe loads a buffer lane by lane and
+// word by word, a texel buffer's texels as one gather; it reads five per band per pixel).
+struct BandSegment {
+    vec4 colour;
+    float disparity;
+    float transmittance;
+};
+
+uvec4 packBandSegment(BandSegment s) {
+    return uvec4(packUnorm2x16(s.colour.rg), packUnorm2x16(s.colour.ba), floatBitsToUint(s.disparity),
+                 floatBitsToUint(s.transmittance));
+}
+
+BandSegment unpackBandSegment(uvec4 t) {
+    return BandSegment(vec4(unpackUnorm2x16(t.x), unpackUnorm2x16(t.y)), uintBitsToFloat(t.z), uintBitsToFloat(t.w));
+}
+
+// Band b's segment from the ray's records at its near end (start) and far end (end: rgb premultiplied colour, a
+// transmittance; with the moments of opacity over t); `cosine` turns t into depth along the view direction. A band
+// the ray gathered nothing in has none. Two divisions (llvmpipe divides at a tenth of its multiplications' rate): the
+// disparity of mean depth z = moment / (opacity weight) is scale (1 / focus - weight / moment).
+BandSegment bandSegment(vec4 start, float startMoment, vec4 end, float endMoment, bool gathered, float cosine,
+                        float scale, float focusInverse) {
+    BandSegment s;
+    float inverse = 1.0 / max(start.a, 1e-30);
+    s.colour = clamp(vec4((end.rgb - start.rgb) * inverse, 1.0 - end.a * inverse), 0.0, 1.0);
+    if (!gathered || start.a <= 0.0) s.colour = vec4(0.0);
+    s.disparity = scale * (focusInverse - (start.a - end.a) / ((endMoment - startMoment) * cosine));
+    s.transmittance = end.a;
+    return s;
+}
 #endif
 
 #endif

@@ -66,7 +66,12 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
     const bool composite = settings.blend == Blend::Composite;
     const DepthRange depths = depthRange(pair, volume.grid());
     const Bands bands = composite ? bandsOf(pair, depths) : Bands{};
-    if (!reuse || (composite && bands.count == 0)) {
+    // The bands' segments in one buffer, bound whole as a storage buffer and as a texel buffer.
+    const vk::PhysicalDeviceLimits limits = ctx_.physicalDevice().getProperties().limits;
+    const uint64_t segments = uint64_t(pixels) * uint64_t(bands.count);
+    const bool segmentsFit = segments <= limits.maxTexelBufferElements &&
+                             segments * sizeof(device::uvec4) <= limits.maxStorageBufferRange;
+    if (!reuse || (composite && (bands.count == 0 || !segmentsFit))) {
         out.left = render(volume, pair.left, settings);
         out.right = render(volume, pair.right, settings);
         out.recast.assign(pixels, 1);
@@ -80,7 +85,7 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         HostBuffer right(ctx_, pixels * sizeof(device::OutPixel), B::eStorageBuffer);
         HostBuffer recast(ctx_, (pixels + 1) * sizeof(uint32_t), B::eStorageBuffer);
         std::optional<DeviceBuffer> leftBands;
-        if (composite) leftBands.emplace(ctx_, pixels * bands.count * sizeof(device::BandEnd), B::eStorageBuffer);
+        if (composite) leftBands.emplace(ctx_, pixels * bands.count * sizeof(device::uvec4), kBandSegmentUsage);
         const StereoLeft leftEye{left.data(), leftBands ? &*leftBands : nullptr,
                                  {float(disparityScale(pair)), float(1 / pair.focus), float(bands.first),
                                   float(kMaxSpreadPixels)},

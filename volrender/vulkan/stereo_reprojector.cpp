@@ -6,7 +6,8 @@
 
 namespace vr {
 
-StereoReprojector::StereoReprojector(const VulkanContext& ctx) : ctx_(ctx), timer_(ctx) {
+StereoReprojector::StereoReprojector(const VulkanContext& ctx)
+    : ctx_(ctx), timer_(ctx), unusedBands_(ctx, 16, kBandSegmentUsage) {
     using T = vk::DescriptorType;
     const auto compute = vk::ShaderStageFlagBits::eCompute;
     const std::array<vk::DescriptorSetLayoutBinding, 5> bindings{{
@@ -14,7 +15,7 @@ StereoReprojector::StereoReprojector(const VulkanContext& ctx) : ctx_(ctx), time
         {device::kBindingLeftPixels, T::eStorageBuffer, 1, compute},
         {device::kBindingRightPixels, T::eStorageBuffer, 1, compute},
         {device::kBindingRecastList, T::eStorageBuffer, 1, compute},
-        {device::kBindingLeftBands, T::eStorageBuffer, 1, compute}}};
+        {device::kBindingLeftBands, T::eStorageTexelBuffer, 1, compute}}};
     setLayout_ = vk::raii::DescriptorSetLayout(ctx.device(), vk::DescriptorSetLayoutCreateInfo({}, bindings));
     const vk::DescriptorSetLayout setLayout = *setLayout_;
     layout_ = vk::raii::PipelineLayout(ctx.device(), vk::PipelineLayoutCreateInfo({}, setLayout));
@@ -34,18 +35,22 @@ double StereoReprojector::reproject(const vk::raii::CommandPool& pool, const dev
                                     const HostBuffer& recast) {
     HostBuffer uniform(ctx_, sizeof params, vk::BufferUsageFlagBits::eUniformBuffer);
     std::memcpy(uniform.data(), &params, sizeof params);
-    const std::array<vk::DescriptorPoolSize, 2> sizes{vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1),
-                                                      vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 4)};
+    const std::array<vk::DescriptorPoolSize, 3> sizes{
+        vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 3),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageTexelBuffer, 1)};
     vk::raii::DescriptorPool descriptorPool(
         ctx_.device(), vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, sizes));
     const vk::DescriptorSetLayout setLayout = *setLayout_;
     vk::raii::DescriptorSets sets(ctx_.device(), vk::DescriptorSetAllocateInfo(*descriptorPool, setLayout));
-    // Without bands the left pixels stand in for them, never read.
-    const vk::DescriptorBufferInfo buffers[5] = {{*uniform.buffer(), 0, VK_WHOLE_SIZE},
+    const vk::DescriptorBufferInfo buffers[4] = {{*uniform.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*left.buffer(), 0, VK_WHOLE_SIZE},
                                                  {*right.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*recast.buffer(), 0, VK_WHOLE_SIZE},
-                                                 {*(bands ? bands->buffer() : left.buffer()), 0, VK_WHOLE_SIZE}};
+                                                 {*recast.buffer(), 0, VK_WHOLE_SIZE}};
+    const vk::raii::BufferView segments(
+        ctx_.device(),
+        vk::BufferViewCreateInfo({}, *(bands ? *bands : unusedBands_).buffer(), kBandSegmentFormat, 0, VK_WHOLE_SIZE));
+    const vk::BufferView segmentView = *segments;
     using T = vk::DescriptorType;
     const vk::DescriptorSet set = *sets[0];
     const std::array<vk::WriteDescriptorSet, 5> writes{{
@@ -53,7 +58,7 @@ double StereoReprojector::reproject(const vk::raii::CommandPool& pool, const dev
         {set, device::kBindingLeftPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
         {set, device::kBindingRightPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
         {set, device::kBindingRecastList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
-        {set, device::kBindingLeftBands, 0, 1, T::eStorageBuffer, nullptr, &buffers[4]}}};
+        {set, device::kBindingLeftBands, 0, 1, T::eStorageTexelBuffer, nullptr, nullptr, &segmentView}}};
     ctx_.device().updateDescriptorSets(writes, {});
     submitAndWait(ctx_, pool, [&](const vk::raii::CommandBuffer& cmd) {
         using S = vk::PipelineStageFlagBits;

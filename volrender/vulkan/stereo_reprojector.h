@@ -6,12 +6,18 @@
 
 namespace vr {
 
+// A stereo left eye's band segments: a storage buffer the casters write (uvec4 each), a texel buffer of this format
+// the reprojection reads (shaders/stereo_reprojection.h packBandSegment).
+constexpr vk::Format kBandSegmentFormat = vk::Format::eR32G32B32A32Uint;
+constexpr vk::BufferUsageFlags kBandSegmentUsage =
+    vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eStorageTexelBuffer;
+
 class StereoReprojector {
 public:
     explicit StereoReprojector(const VulkanContext& ctx);
 
-    // Reads the left eye's pixels (device::OutPixel each, row by row) or, for composite, its bands
-    // (device::BandEnd per band per pixel: `bands`), writes the reprojected right eye (OutPixel each) and appends
+    // Reads the left eye's pixels (device::OutPixel each, row by row) or, for composite, its bands' segments
+    // (`bands`: kBandSegmentUsage), writes the reprojected right eye (OutPixel each) and appends
     // the right pixels it cannot vouch for to `recast` (its count, then the packed pixels; the count must start at
     // 0). Returns the device milliseconds it took (0 where the queue has no timestamps).
     double reproject(const vk::raii::CommandPool& pool, const device::StereoParams& params, const HostBuffer& left,
@@ -24,6 +30,7 @@ private:
     vk::raii::PipelineLayout layout_{nullptr};
     vk::raii::ShaderModule shader_{nullptr};
     vk::raii::Pipeline intervals_{nullptr}, bands_{nullptr};  // the shader without and with its bands constant
+    DeviceBuffer unusedBands_;                                // bound without bands
 };
 
 }  // namespace vr

@@ -86,7 +86,7 @@ private:
         std::vector<uint32_t> pixels;
     };
     // A stereo pair's left eye, for the reprojection: every pixel's OutPixel kept, row by row (a whole image of
-    // them), and for composite its bands recorded (device::BandEnd per band per pixel, shaders/stereo_reprojection.h).
+    // them), and for composite its bands' segments (a uvec4 each, shaders/stereo_reprojection.h bandTexel).
     struct StereoLeft {
         void* pixels;
         const DeviceBuffer* bands;  // composite only
