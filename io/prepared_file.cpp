@@ -529,7 +529,10 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
                    {"metadata", metadataJson(p.meta)},
                    {"eacdCode", extentCodeName(code)},
                    {"compression",
-                    {{"codec", "zstd"}, {"filter", kSliceDeltaFilter}, {"level", options.zstdLevel}, {"blockBytes", options.blockBytes}}},
+                    {{"codec", "zstd"},
+                     {"filter", kSliceDeltaFilter},
+                     {"level", options.zstdLevel},
+                     {"blockBytes", options.blockBytes}}},
                    {"chunks", table}};
     if (p.labels)
         header["labelMap"] = {{"type", scalarTypeName(labelType)},
@@ -696,7 +699,8 @@ Header readHeader(const Reader& r) {
     if (codec != "zstd") throw r.fail("bad header: 'compression.codec': unknown codec '" + codec + "' (expected zstd)");
     const auto filter = field<std::string>(r, compression, "filter");
     if (filter != kSliceDeltaFilter)
-        throw r.fail("bad header: 'compression.filter': unknown filter '" + filter + "' (expected " + kSliceDeltaFilter + ")");
+        throw r.fail("bad header: 'compression.filter': unknown filter '" + filter + "' (expected " +
+                     kSliceDeltaFilter + ")");
     json blockBytes = field<json>(r, compression, "blockBytes");
     if (!blockBytes.is_number_unsigned() || blockBytes.get<uint64_t>() < 1 ||
         blockBytes.get<uint64_t>() > kMaxPreparedBlockBytes)

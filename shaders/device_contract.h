@@ -21,8 +21,8 @@ VR_CONSTANT int kBindingOutPixels = 1;      // storage buffer: OutPixel per pixe
 VR_CONSTANT int kBindingRayStates = 2;      // storage buffer: RayState per pixel of the tile
 VR_CONSTANT int kBindingExtentTable = 3;    // uniform: uvec4 per entry of extentDecodeTable() (core/extent_code.h)
 VR_CONSTANT int kExtentTableEntries = 256;
-VR_CONSTANT int kBindingTransferTable = 4;  // storage texel buffer, RGBA32F: an entry of the transfer table (rgb colour,
-                                            // a: extinction sigma; core/scalar_classification.h)
+VR_CONSTANT int kBindingTransferTable = 4;  // storage texel buffer, RGBA32F: a texel per entry of the transfer
+                                            // table (rgb colour, a: extinction sigma; core/scalar_classification.h)
 // Storage images of the scalars in the volume's own type, one binding per format (a storage image is read in the
 // format it declares); the scalar type's specialization constant picks the one the casters read.
 VR_CONSTANT int kBindingScalarsUInt8 = 5;   // R8_UINT

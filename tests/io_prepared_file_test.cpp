@@ -216,8 +216,8 @@ std::vector<char> chunkBytes(const Parts& parts, const std::string& name) {
     const uint64_t block = parts.header["compression"]["blockBytes"].get<uint64_t>();
     if (const uint64_t slice = sliceBytes(parts, name))
         for (uint64_t b = 0; b < bytes.size(); b += block)
-            sliceDeltaDecode(reinterpret_cast<unsigned char*>(bytes.data() + b), std::min<uint64_t>(block, bytes.size() - b),
-                             slice);
+            sliceDeltaDecode(reinterpret_cast<unsigned char*>(bytes.data() + b),
+                             std::min<uint64_t>(block, bytes.size() - b), slice);
     return bytes;
 }
 
@@ -640,9 +640,8 @@ TEST_F(IoPreparedFile, RejectsAnUnknownOrInconsistentExtentCode) {
 
 TEST_F(IoPreparedFile, RejectsEarlierVersions) {
     // Version 1 stored EACD as 3 bytes per octant with no eacdCode, version 2 the classified volume (sigma, colour,
-    // normal) instead of the scalars and the table, version 3 every chunk uncompressed, version 4 no label map, version 5
-    // the chunks' bytes as they are:
-    // refused with the way out, not misread.
+    // normal) instead of the scalars and the table, version 3 every chunk uncompressed, version 4 no label map,
+    // version 5 the chunks' bytes not coded over slices: refused with the way out, not misread.
     for (uint32_t v : {1u, 2u, 3u, 4u, 5u}) {
         std::vector<char> b = readBytes(good);
         std::memcpy(b.data() + 8, &v, 4);
@@ -732,7 +731,8 @@ TEST_F(IoPreparedFile, RejectsAFlippedByteInAChunk) {
 TEST_F(IoPreparedFile, WritesEveryChunkAsIndependentZstdBlocks) {
     const Parts parts = split(good);
     EXPECT_EQ(parts.header["compression"],
-              (json{{"codec", "zstd"}, {"filter", "sliceDelta"}, {"level", kPreparedZstdLevel}, {"blockBytes", kSmallBlock}}));
+              (json{{"codec", "zstd"}, {"filter", "sliceDelta"}, {"level", kPreparedZstdLevel},
+                    {"blockBytes", kSmallBlock}}));
     uint64_t offset = 0;
     for (const json& c : parts.header["chunks"]) {
         const std::string name = c["name"].get<std::string>();
@@ -764,7 +764,8 @@ TEST_F(IoPreparedFile, WritesEveryChunkAsIndependentZstdBlocks) {
     writePrepared(bad, prepared);
     const Parts defaults = split(bad);
     EXPECT_EQ(defaults.header["compression"],
-              (json{{"codec", "zstd"}, {"filter", "sliceDelta"}, {"level", kPreparedZstdLevel}, {"blockBytes", kPreparedBlockBytes}}));
+              (json{{"codec", "zstd"}, {"filter", "sliceDelta"}, {"level", kPreparedZstdLevel},
+                    {"blockBytes", kPreparedBlockBytes}}));
     for (const json& c : defaults.header["chunks"]) EXPECT_EQ(c["blocks"].size(), 1u) << c["name"];
     EXPECT_LT(chunkEntry(defaults.header, "acd0")["blocks"][0]["compressedBytes"].get<uint64_t>(),
               prepared.grid().voxels());
