@@ -13,8 +13,8 @@ namespace vr {
 // for what spans at most kMaxSpreadPixels of disparity (a composite band's width, another blend's narrow interval);
 // neighbours that land more than 1 + kMaxGapPixels apart open a gap, and ones whose colours differ by more than
 // kMaxColourStep (kMaxBandStep between two segments of a band) are detail; a reused piece at least kOpaqueAlpha
-// opaque hides what lies behind it; a band's segment below kFaintAlpha lands where its neighbour's does. A pair needing more than device::kMaxBands bands (the eyes
-// close to the volume) casts its right eye in full.
+// opaque hides what lies behind it; a band's segment below kFaintAlpha lands where its neighbour's does. A pair
+// needing more than device::kMaxBands bands (the eyes close to the volume) casts its right eye in full.
 constexpr double kMaxSpreadPixels = 3;
 constexpr double kMaxGapPixels = 1;
 constexpr double kOpaqueAlpha = 0.98;

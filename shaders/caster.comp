@@ -78,12 +78,15 @@ float bandEndT(int band, float cosine) {
     return bandFarDepth(b.x, b.y, b.z, b.w, band, params.stereoBandCount) / cosine;
 }
 
+void storeSegment(ivec2 pixel, int band, BandSegment s) {
+    segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = packBandSegment(s);
+}
+
 // Band `band`'s segment of `pixel`, from the ray's records at the band's near end (start) and far end.
 void storeBandSegment(ivec2 pixel, int band, vec4 start, float startMoment, vec4 end, float endMoment, bool gathered,
                       float cosine) {
-    BandSegment s = bandSegment(start, startMoment, end, endMoment, gathered, cosine, params.stereoBands.x,
-                                params.stereoBands.y);
-    segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = packBandSegment(s);
+    storeSegment(pixel, band, bandSegment(start, startMoment, end, endMoment, gathered, cosine, params.stereoBands.x,
+                                          params.stereoBands.y));
 }
 
 uvec4 loadField(ivec3 texel) {
@@ -586,9 +589,8 @@ void main() {
     if (STEREO_BANDS && lastDispatch && band < params.stereoBandCount) {
         storeBandSegment(pixel, band, bandStart, bandStartMoment, vec4(colour, transmittance), moment, bandGathered,
                          cosine);
-        uvec4 nothing = packBandSegment(BandSegment(vec4(0.0), 0.0, transmittance));
         for (++band; band < params.stereoBandCount; ++band)
-            segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = nothing;
+            storeSegment(pixel, band, BandSegment(vec4(0.0), 0.0, transmittance));
     }
 
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.

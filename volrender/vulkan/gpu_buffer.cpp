@@ -44,7 +44,8 @@ DeviceBuffer::DeviceBuffer(const VulkanContext& ctx, const vk::raii::CommandPool
 }
 
 TexelTable::TexelTable(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const std::vector<float>& entries)
-    : buffer_(ctx, pool, entries.data(), entries.size() * sizeof(float), vk::BufferUsageFlagBits::eStorageTexelBuffer),
+    : bytes_(entries.size() * sizeof(float)),
+      buffer_(ctx, pool, entries.data(), bytes_, vk::BufferUsageFlagBits::eStorageTexelBuffer),
       view_(ctx.device(),
             vk::BufferViewCreateInfo({}, *buffer_.buffer(), vk::Format::eR32G32B32A32Sfloat, 0, VK_WHOLE_SIZE)) {}
 

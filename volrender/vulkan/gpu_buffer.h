@@ -47,8 +47,10 @@ class TexelTable {
 public:
     TexelTable(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const std::vector<float>& entries);
     const vk::raii::BufferView& view() const { return view_; }
+    std::size_t bytes() const { return bytes_; }
 
 private:
+    std::size_t bytes_;
     DeviceBuffer buffer_;
     vk::raii::BufferView view_{nullptr};
 };

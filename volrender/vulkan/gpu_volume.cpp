@@ -28,9 +28,6 @@ struct WholeImage {
     std::function<void(int slab, std::size_t first, int count, uint8_t* to)> row;
 };
 
-// Bytes of a table's entry: the shader's vec4.
-constexpr std::size_t kTableEntryBytes = 4 * sizeof(float);
-
 // The casters whose fields hold one slab per octant.
 bool usesOctants(Caster c) { return c == Caster::ACD || c == Caster::EACD || c == Caster::Hier; }
 
@@ -131,7 +128,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     };
     tableFits("the transfer table", table.size());
     table_ = std::make_unique<TexelTable>(ctx, pool, table.interleaved());
-    uploads_.push_back({"table", table.size() * kTableEntryBytes, 0});
+    uploads_.push_back({"table", table_->bytes(), 0});
 
     const Vec3i dims = grid_.dims;
     const std::vector<float>& values = prepared.scalars.values;
@@ -146,7 +143,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     if (const std::optional<LabelMap>& labels = prepared.labels) {
         tableFits("the label table", labels->classes.size());
         labelTable_ = std::make_unique<TexelTable>(ctx, pool, labels->classes.interleaved());
-        uploads_.push_back({"label table", labels->classes.size() * kTableEntryBytes, 0});
+        uploads_.push_back({"label table", labelTable_->bytes(), 0});
         labelType_ = labels->type;
         labelLastEntry_ = labels->lastEntry();
         const std::vector<uint16_t>& l = labels->label;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <optional>
 
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/vulkan_renderer.h"
@@ -58,6 +57,25 @@ uint64_t blockOrder(uint32_t pixel) {
 
 }  // namespace
 
+VulkanRenderer::PairBuffers::PairBuffers(const VulkanContext& ctx, std::size_t pixels, std::size_t segments)
+    : pixels(pixels), segments(segments),
+      left(ctx, pixels * sizeof(device::OutPixel), vk::BufferUsageFlagBits::eStorageBuffer),
+      right(ctx, pixels * sizeof(device::OutPixel), vk::BufferUsageFlagBits::eStorageBuffer),
+      recast(ctx, (pixels + 1) * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer) {
+    if (segments > 0) bands.emplace(ctx, segments * sizeof(device::uvec4), kBandSegmentUsage);
+}
+
+VulkanRenderer::PairBuffers& VulkanRenderer::pairBuffers(std::size_t pixels, std::size_t segments) {
+    if (!pair_ || pair_->pixels < pixels || pair_->segments < segments) {
+        // As large as every pair so far has needed, so that pairs of alternating sizes do not make them afresh.
+        const std::size_t p = std::max(pixels, pair_ ? pair_->pixels : 0);
+        const std::size_t s = std::max(segments, pair_ ? pair_->segments : 0);
+        pair_.reset();  // the old ones freed before the larger are allocated
+        pair_.emplace(ctx_, p, s);
+    }
+    return *pair_;
+}
+
 StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoPair& pair,
                                           const RenderSettings& settings, bool reuse) {
     StereoRender out;
@@ -80,13 +98,10 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
     checkRender(volume, pair.left, settings);
     checkRender(volume, pair.right, settings);
     return deviceErrors([&] {
-        using B = vk::BufferUsageFlagBits;
-        HostBuffer left(ctx_, pixels * sizeof(device::OutPixel), B::eStorageBuffer);
-        HostBuffer right(ctx_, pixels * sizeof(device::OutPixel), B::eStorageBuffer);
-        HostBuffer recast(ctx_, (pixels + 1) * sizeof(uint32_t), B::eStorageBuffer);
-        std::optional<DeviceBuffer> leftBands;
-        if (composite) leftBands.emplace(ctx_, pixels * bands.count * sizeof(device::uvec4), kBandSegmentUsage);
-        const StereoLeft leftEye{left.data(), leftBands ? &*leftBands : nullptr,
+        PairBuffers& buffers = pairBuffers(pixels, segments);
+        const HostBuffer &left = buffers.left, &right = buffers.right, &recast = buffers.recast;
+        const DeviceBuffer* leftBands = composite ? &*buffers.bands : nullptr;
+        const StereoLeft leftEye{left.data(), leftBands,
                                  {float(disparityScale(pair)), float(1 / pair.focus), float(bands.first),
                                   float(kMaxSpreadPixels)},
                                  bands.count};
@@ -95,8 +110,7 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         auto* list = static_cast<uint32_t*>(recast.data());
         list[0] = 0;
         out.reprojectMilliseconds = reprojector_->reproject(
-            pool_, reprojection(pair, depths, settings, bands), left, leftBands ? &*leftBands : nullptr, right,
-            recast);
+            pool_, reprojection(pair, depths, settings, bands), left, leftBands, right, recast);
         // Blocks of 8 x 8 pixels in row order, each block's pixels in row order: a workgroup's rays stay as close
         // together as a tile's (the device appended them in any order).
         std::sort(list + 1, list + 1 + list[0], [](uint32_t a, uint32_t b) { return blockOrder(a) < blockOrder(b); });

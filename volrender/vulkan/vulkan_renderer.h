@@ -125,6 +125,16 @@ private:
         const vk::raii::Buffer& written() const { return outOnDevice ? outOnDevice->buffer() : out.buffer(); }
     };
     FrameBuffers& frameBuffers(std::size_t pixels);
+    // What a stereo pair with reuse reads and writes beside the frame's buffers: the left eye's pixels, the
+    // reprojected right eye, the re-cast list and composite's band segments (uvec4 each). Kept and grown as the
+    // frame's are: made afresh, their tens of MB were faulted in by every pair.
+    struct PairBuffers {
+        PairBuffers(const VulkanContext& ctx, std::size_t pixels, std::size_t segments);
+        std::size_t pixels, segments;
+        HostBuffer left, right, recast;
+        std::optional<DeviceBuffer> bands;  // when segments > 0
+    };
+    PairBuffers& pairBuffers(std::size_t pixels, std::size_t segments);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
     auto deviceErrors(Work&& work) -> decltype(work());
@@ -142,6 +152,7 @@ private:
     std::map<Variant, vk::raii::Pipeline> pipelines_;
     std::mutex pipelinesMutex_;  // held while a pipeline is looked up or made
     std::optional<FrameBuffers> frame_;
+    std::optional<PairBuffers> pair_;
     // Bound where a variant reads nothing (the scalar bindings of the other types, the field for primitive, the
     // field bindings of the other formats, the block extrema for every caster but blocks, the label bindings of a
     // volume without labels or of the other label type, the gradients where none are stored): never read.
