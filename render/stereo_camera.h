@@ -6,6 +6,7 @@
 
 #include "core/grid.h"
 #include "render/camera.h"
+#include "shaders/stereo_reprojection.h"
 
 namespace vr {
 
@@ -17,7 +18,7 @@ namespace vr {
 // needing more than device::kMaxBands bands (the eyes close to the volume) casts its right eye in full.
 constexpr double kMaxSpreadPixels = 3;
 constexpr double kMaxGapPixels = 1;
-constexpr double kOpaqueAlpha = 0.98;
+constexpr double kOpaqueAlpha = device::kOpaqueAlpha;
 constexpr double kMaxColourStep = 0.05;
 constexpr double kMaxBandStep = 0.2;
 constexpr double kFaintAlpha = 1.0 / 64;

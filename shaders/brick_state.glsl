@@ -12,12 +12,13 @@ layout(set = 0, binding = kBindingRayStates, std430) buffer RayStates { RayState
 // left eye's variant loads and stores its bands' members (llvmpipe would move them lane by lane).
 RayState loadRayState(uint i) {
     RayState s = RayState(rayState[i].composite, rayState[i].depth, rayState[i].k, rayState[i].iterations,
-                          rayState[i].flags, 0.0, 0u, 0.0, vec4(0.0));
+                          rayState[i].flags, 0.0, 0u, 0.0, vec4(0.0), 0u);
     if (STEREO_BANDS) {
         s.moment = rayState[i].moment;
         s.bandGathered = rayState[i].bandGathered;
         s.bandStartMoment = rayState[i].bandStartMoment;
         s.bandStart = rayState[i].bandStart;
+        s.bandMask = rayState[i].bandMask;
     }
     return s;
 }
@@ -33,6 +34,7 @@ void storeRayState(uint i, RayState s) {
         rayState[i].bandGathered = s.bandGathered;
         rayState[i].bandStartMoment = s.bandStartMoment;
         rayState[i].bandStart = s.bandStart;
+        rayState[i].bandMask = s.bandMask;
     }
 }
 

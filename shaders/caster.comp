@@ -78,15 +78,28 @@ float bandEndT(int band, float cosine) {
     return bandFarDepth(b.x, b.y, b.z, b.w, band, params.stereoBandCount) / cosine;
 }
 
-void storeSegment(ivec2 pixel, int band, BandSegment s) {
-    segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = packBandSegment(s);
+// Stores band `band`'s segment of `pixel`; its bit in the pixel's mask of used bands where it is used (bandUsed).
+uint storeSegment(ivec2 pixel, int band, BandSegment s) {
+    uvec4 texel = packBandSegment(s);
+    segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = texel;
+    return bandUsed(texel) ? 1u << band : 0u;
 }
 
 // Band `band`'s segment of `pixel`, from the ray's records at the band's near end (start) and far end.
-void storeBandSegment(ivec2 pixel, int band, vec4 start, float startMoment, vec4 end, float endMoment, bool gathered,
+uint storeBandSegment(ivec2 pixel, int band, vec4 start, float startMoment, vec4 end, float endMoment, bool gathered,
                       float cosine) {
-    storeSegment(pixel, band, bandSegment(start, startMoment, end, endMoment, gathered, cosine, params.stereoBands.x,
-                                          params.stereoBands.y));
+    return storeSegment(pixel, band, bandSegment(start, startMoment, end, endMoment, gathered, cosine,
+                                                 params.stereoBands.x, params.stereoBands.y));
+}
+
+// The pixel's mask of used bands, in its own word of the texels of itself and the three pixels before it in its row
+// (bandMaskTexel).
+void storeBandMask(ivec2 pixel, uint mask) {
+    uint texel = bandMaskTexel(pixel.x, pixel.y, params.imageSize.x, params.imageSize.y, params.stereoBandCount);
+    segments[texel].x = mask;
+    if (pixel.x >= 1) segments[texel - 1u].y = mask;
+    if (pixel.x >= 2) segments[texel - 2u].z = mask;
+    if (pixel.x >= 3) segments[texel - 3u].w = mask;
 }
 
 uvec4 loadField(ivec3 texel) {
@@ -397,7 +410,7 @@ void main() {
     bool missingOctant = (CASTER == kACD || CASTER == kEACD || CASTER == kHier) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
     RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u,
-                                              0.0, 0u, 0.0, vec4(0.0, 0.0, 0.0, 1.0))
+                                              0.0, 0u, 0.0, vec4(0.0, 0.0, 0.0, 1.0), 0u)
                                    : loadRayState(outIndex);
     vec3 colour = state.composite.rgb;
     // What the colour's float sum has lost so far (Kahan): the primitive caster adds one sample at a time, and
@@ -420,6 +433,7 @@ void main() {
     bool bandGathered = state.bandGathered != 0u;
     vec4 bandStart = state.bandStart;
     float bandStartMoment = state.bandStartMoment;
+    uint bandMask = state.bandMask;
     int band = 0;
     float cosine = dot(direction, params.forward.xyz), bandEnd = kInfinity;
     if (STEREO_BANDS) {
@@ -545,7 +559,7 @@ void main() {
             vec4 end = vec4(colour - colourLost + shaded * w, transmittance - w);
             float endMoment = moment + w * (t0 + max(bandEnd - t0, 0.0) * spanMeanFraction(part));
             bandGathered = bandGathered || (spanAlpha > 0.0 && bandEnd > t0);
-            storeBandSegment(pixel, band, bandStart, bandStartMoment, end, endMoment, bandGathered, cosine);
+            bandMask |= storeBandSegment(pixel, band, bandStart, bandStartMoment, end, endMoment, bandGathered, cosine);
             bandStart = end;
             bandStartMoment = endMoment;
             bandGathered = false;
@@ -583,14 +597,15 @@ void main() {
                                             : vec4(running, 0.0, 0.0, 0.0);
     if (!lastDispatch)
         storeRayState(outIndex, RayState(carried, depth, k, iterations, flags, moment, bandGathered ? 1u : 0u,
-                                         bandStartMoment, bandStart));
+                                         bandStartMoment, bandStart, bandMask));
     // After the ray's last span, the bands it did not reach end with all it gathered: the band it ended in holds
     // the rest, the bands after it nothing.
     if (STEREO_BANDS && lastDispatch && band < params.stereoBandCount) {
-        storeBandSegment(pixel, band, bandStart, bandStartMoment, vec4(colour, transmittance), moment, bandGathered,
-                         cosine);
+        bandMask |= storeBandSegment(pixel, band, bandStart, bandStartMoment, vec4(colour, transmittance), moment,
+                                     bandGathered, cosine);
         for (++band; band < params.stereoBandCount; ++band)
-            storeSegment(pixel, band, BandSegment(vec4(0.0), 0.0, transmittance));
+            bandMask |= storeSegment(pixel, band, BandSegment(vec4(0.0), 0.0, transmittance));
+        storeBandMask(pixel, bandMask);
     }
 
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.

@@ -169,11 +169,12 @@ struct RayState {
     uint flags;      // kFailed, kCutShort, kIsoInside, kIsoHit
     // Composite, a stereo left eye (stereo_reprojection.h): the first moment of its opacity over t so far, whether
     // it gathered anything in its current band, and its record at the current band's near end (the moment, then
-    // the premultiplied colour and transmittance).
+    // the premultiplied colour and transmittance); the mask of the bands so far in which its segment is used.
     float moment;
     uint bandGathered;
     float bandStartMoment;
     vec4 bandStart;
+    uint bandMask;
 };
 
 // A pixel's result (std430): the colour's four floats' bits, then the samples and the iteration count with its
@@ -220,7 +221,8 @@ static_assert(offsetof(RayState, k) == 24);
 static_assert(offsetof(RayState, moment) == 36);
 static_assert(offsetof(RayState, bandGathered) == 40);
 static_assert(offsetof(RayState, bandStart) == 48);
-static_assert(sizeof(RayState) == 64);  // std430 rounds the array stride up to the vec4's 16
+static_assert(offsetof(RayState, bandMask) == 64);
+static_assert(sizeof(RayState) == 80);  // std430 rounds the array stride up to the vec4's 16
 static_assert(sizeof(OutPixel) == 32);
 }  // namespace vr::device
 #endif

@@ -163,8 +163,31 @@ Segment segmentAt(int x, int y, int b) {
     s.colour = s.outside ? vec4(0.0) : t.colour;
     s.faint = s.colour.a < params.faintAlpha;
     s.disparity = s.faint ? params.firstDisparity + (float(b) + 0.5) * params.maxSpread : t.disparity;
-    s.hidden = !s.outside && t.transmittance <= 1.0 - params.opaqueAlpha;
+    s.hidden = !s.outside && segmentHidden(t.transmittance);
     return s;
+}
+
+// The left pixels first .. last whose pieces (i, i + 1) could cover right pixel x's centre c in band b: they land
+// their left end at or before c and their right end after it: i + 0.5 + d <= c < i + 1.5 + d' with d, d' in the band.
+ivec2 bandCandidates(int x, int b) {
+    float near = params.firstDisparity + float(b) * params.maxSpread;
+    return ivec2(int(floor(float(x) - 1.0 - near - params.maxSpread)) + 1, int(floor(float(x) - near)));
+}
+
+// The first band from b on that can add anything to right pixel x: one of its candidates' segments (first .. last
+// + 1) lies outside the image or is used (stereo_reprojection.h bandUsed); the others are skipped, their masks read
+// two texels a band (a band 3 pixels wide has five candidates), not its five segments. A loop: llvmpipe would run a
+// skipped band's code under a mask.
+int nextBand(int x, int y, int b) {
+    int width = params.imageSize.x, height = params.imageSize.y, count = params.bandCount;
+    for (; b < count; ++b) {
+        ivec2 window = bandCandidates(x, b);
+        if (window.x < 0 || window.y + 1 >= width) break;
+        uvec4 lo = imageLoad(leftBands, int(bandMaskTexel(window.x, y, width, height, count)));
+        uvec4 hi = imageLoad(leftBands, int(bandMaskTexel(max(window.y - 2, window.x), y, width, height, count)));
+        if ((((lo.x | lo.y | lo.z | lo.w | hi.x | hi.y | hi.z | hi.w) >> b) & 1u) != 0u) break;
+    }
+    return b;
 }
 
 void reprojectBands() {
@@ -172,15 +195,15 @@ void reprojectBands() {
     int y = int(gl_WorkGroupID.y);
     int x = int(gl_GlobalInvocationID.x);
     float c = float(x) + 0.5;
-    float bandWidth = params.maxSpread, seen = 1.0 - params.opaqueAlpha;
+    float seen = 1.0 - params.opaqueAlpha;
     vec3 colour = vec3(0.0);
     float transmittance = 1.0;
     bool done = x >= width, reuse = true;
-    for (int b = 0; b < params.bandCount && !done; ++b) {
-        // The pieces (i, i + 1) that could cover c land their left end at or before c and their right end after it:
-        // i + 0.5 + d <= c < i + 1.5 + d' with d, d' in the band.
-        float near = params.firstDisparity + float(b) * bandWidth;
-        int first = int(floor(float(x) - 1.0 - near - bandWidth)) + 1, last = int(floor(float(x) - near));
+    for (int b = 0; !done; ++b) {
+        b = nextBand(x, y, b);
+        if (b >= params.bandCount) break;
+        ivec2 window = bandCandidates(x, b);
+        int first = window.x, last = window.y;
         bool found = false, best = false, bestHidden = false, clipped = false, hidden = false;
         float bestKey = kInfinity;
         vec4 bestColour = vec4(0.0);

@@ -34,8 +34,13 @@ VR_CONSTANT int kReprojectGroup = 64;      // invocations per workgroup, along a
 // over it, so the part before t gathers the optical depth sigma (t - t0), and its opacity's moment is its opacity
 // weight times t0 + (t - t0) spanMeanFraction(sigma (t - t0)).
 
-// The most bands a pair takes (more: the eyes are close to the volume; its right eye is cast in full).
+// The most bands a pair takes (more: the eyes are close to the volume; its right eye is cast in full). A left pixel's
+// mask of the bands it was used in (bandUsed) holds one bit per band.
 VR_CONSTANT int kMaxBands = 32;
+
+// A reused piece at least this opaque hides what lies behind it, and a left ray's transmittance at most 1 - it hides
+// what lies behind that point from the left eye (render/stereo_camera.h kOpaqueAlpha).
+VR_CONSTANT VR_REAL kOpaqueAlpha = VR_REAL(0.98);
 
 // The depth (along the view direction) where band b ends: +inf for the last band, and for a band that reaches
 // infinity's disparity.
@@ -63,6 +68,13 @@ VR_FUNCTION VR_REAL spanDepthBefore(VR_REAL depth, VR_REAL t0, VR_REAL t1, VR_RE
 // the reprojection's neighbouring invocations read neighbouring texels.
 VR_FUNCTION uint bandTexel(int x, int y, int b, int width, int height) {
     return (uint(b) * uint(height) + uint(y)) * uint(width) + uint(x);
+}
+
+// Where the mask of the bands pixel (x, y) was used in lies (a plane after the bands' segments): texel x's four
+// words hold the masks of pixels x .. x + 3 of its row, so that two texels hold a band's five candidates for a right
+// pixel (stereo_reproject.comp).
+VR_FUNCTION uint bandMaskTexel(int x, int y, int width, int height, int count) {
+    return bandTexel(x, y, count, width, height);
 }
 
 // A list entry: a pixel's x and y in 16 bits each (images are at most 16384 wide).
@@ -153,6 +165,15 @@ uvec4 packBandSegment(BandSegment s) {
 BandSegment unpackBandSegment(uvec4 t) {
     return BandSegment(vec4(unpackUnorm2x16(t.x), unpackUnorm2x16(t.y)), uintBitsToFloat(t.z), uintBitsToFloat(t.w));
 }
+
+// A segment is hidden when the left ray's transmittance at its band's far end is at most 1 - kOpaqueAlpha.
+bool segmentHidden(float transmittance) { return transmittance <= 1.0 - kOpaqueAlpha; }
+
+// A segment (as its texel) is used when it has content (any colour or opacity) or is hidden. A band whose candidate
+// segments for a right pixel all lie in the image and none of which is used adds nothing to that pixel: they are
+// faint, so each piece lands whole at the band's middle and composites nothing, and none is hidden. The caster keeps
+// a mask of the bands in which each left pixel's segment is used, the reprojection skips the others.
+bool bandUsed(uvec4 t) { return (t.x | t.y) != 0u || segmentHidden(uintBitsToFloat(t.w)); }
 
 // Band b's segment from the ray's records at its near end (start) and far end (end: rgb premultiplied colour, a
 // transmittance; with the moments of opacity over t); `cosine` turns t into depth along the view direction. A band

@@ -84,9 +84,10 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
     const bool composite = settings.blend == Blend::Composite;
     const DepthRange depths = depthRange(pair, volume.grid());
     const Bands bands = composite ? bandsOf(pair, depths) : Bands{};
-    // The bands' segments in one buffer, bound whole as a storage buffer and as a texel buffer.
+    // The bands' segments in one buffer, bound whole as a storage buffer and as a texel buffer, then the plane of
+    // the left pixels' masks of used bands (shaders/stereo_reprojection.h bandMaskTexel).
     const vk::PhysicalDeviceLimits limits = ctx_.physicalDevice().getProperties().limits;
-    const uint64_t segments = uint64_t(pixels) * uint64_t(bands.count);
+    const uint64_t segments = bands.count > 0 ? uint64_t(pixels) * uint64_t(bands.count + 1) : 0;
     const bool segmentsFit = segments <= limits.maxTexelBufferElements &&
                              segments * sizeof(device::uvec4) <= limits.maxStorageBufferRange;
     if (!reuse || (composite && (bands.count == 0 || !segmentsFit))) {
