@@ -102,6 +102,25 @@ void storeBandMask(ivec2 pixel, uint mask) {
     if (pixel.x >= 3) segments[texel - 3u].w = mask;
 }
 
+// Composites a span over [t0, t1) (its shaded colour, opacity and optical depth as a float pair) into the ray's
+// colour (with what its float sum has lost so far: Kahan), transmittance and optical depth, and for a stereo left
+// eye into the first moment of its opacity over t.
+void compositeSpan(vec3 shaded, float spanAlpha, vec2 spanDepth, float t0, float t1, inout vec3 colour,
+                   inout vec3 colourLost, inout float transmittance, inout vec2 depth, inout float moment) {
+    if (spanAlpha > 0.0) {
+        precise float w = transmittance * spanAlpha;
+        precise vec3 added = shaded * w - colourLost;
+        precise vec3 total = colour + added;
+        colourLost = (total - colour) - added;
+        colour = total;
+        if (STEREO_BANDS) moment += w * (t0 + (t1 - t0) * spanMeanFraction(spanDepth.x));
+        depth = addPair(depth, spanDepth);
+        // From the optical depth, not by subtracting w: 1 - 1e-9 is 1 in float, which would keep the weights of
+        // 10^7 samples of opacity 1e-9 at transmittance 1 (0.5 % too much colour in all).
+        transmittance = 1.0 - spanOpacity(depth.x + depth.y);
+    }
+}
+
 uvec4 loadField(ivec3 texel) {
     if (CASTER == kEACD && EACD_CODE == kLog16) return imageLoad(field16, texel);
     if (CASTER == kEACD && EACD_CODE == kExact) return imageLoad(fieldRGBA8, texel);
@@ -451,109 +470,126 @@ void main() {
         for (int i = 0; i < kProbes; ++i, ++iterations)
             running = foldRunning(BLEND, running, scalarAt(samplePosition(g, iv, probeSample(i, kCount))));
     uint blockEnd = 0u;  // blocks: the samples before it lie in a block that could change the result
-    for (uint n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth); k += n) {
-        ivec3 v = sampleVoxel(g, iv, k);
-        if (BRICKED && !inBrick(v)) break;
-        if (++iterations > params.maxIterations) {
-            failed = true;
-            break;
-        }
-        // Blocks, at a new block: the coarsest block that cannot change the result is leapt over without a sample
-        // (average adds its one value n times); else the finest block's samples are taken one by one, without
-        // another lookup.
-        if (CASTER == kBlocks && k >= blockEnd) {
-            int size = 0;
-            float value = 0.0;
-            for (int level = 0; level < kBlockLevels; ++level) {
-                int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
-                if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
-                ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
-                vec2 range = vec2(imageLoad(blockExtrema, ivec3(2 * block.x, block.yz)).r,
-                                  imageLoad(blockExtrema, ivec3(2 * block.x + 1, block.yz)).r);
-                if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
-                    size = 1 << shift;
-                    value = range.x;
+    // A stereo left eye leaves the sample loop at a span that reaches its band's far end, and stores the bands'
+    // segments and composites that span after it: llvmpipe runs a loop's body at least once, so that code in the
+    // sample loop would cost every sample; here it costs once per band end that a SIMD batch of rays reaches.
+    bool crossing = false;  // the span below reaches the band's far end
+    uint n = 1u;
+    vec3 shaded;
+    vec2 spanDepth;
+    float spanAlpha, t0, t1;
+    do {
+        for (n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth); k += n) {
+            ivec3 v = sampleVoxel(g, iv, k);
+            if (BRICKED && !inBrick(v)) break;
+            if (++iterations > params.maxIterations) {
+                failed = true;
+                break;
+            }
+            // Blocks, at a new block: the coarsest block that cannot change the result is leapt over without a sample
+            // (average adds its one value n times); else the finest block's samples are taken one by one, without
+            // another lookup.
+            if (CASTER == kBlocks && k >= blockEnd) {
+                int size = 0;
+                float value = 0.0;
+                for (int level = 0; level < kBlockLevels; ++level) {
+                    int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
+                    if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
+                    ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
+                    vec2 range = vec2(imageLoad(blockExtrema, ivec3(2 * block.x, block.yz)).r,
+                                      imageLoad(blockExtrema, ivec3(2 * block.x + 1, block.yz)).r);
+                    if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
+                        size = 1 << shift;
+                        value = range.x;
+                    }
                 }
+                int edge = size > 0 ? size : kBlockSize;
+                ivec3 ext = ivec3(blockExtent(v.x, octantSign(oct, 0), edge),
+                                  blockExtent(v.y, octantSign(oct, 1), edge),
+                                  blockExtent(v.z, octantSign(oct, 2), edge));
+                BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
+                n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
+                if (size > 0) {
+                    if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
+                    continue;
+                }
+                blockEnd = k + n;
             }
-            int edge = size > 0 ? size : kBlockSize;
-            ivec3 ext = ivec3(blockExtent(v.x, octantSign(oct, 0), edge), blockExtent(v.y, octantSign(oct, 1), edge),
-                              blockExtent(v.z, octantSign(oct, 2), edge));
-            BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
-            n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
-            if (size > 0) {
-                if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
-                continue;
+
+            // The sample's scalar. Composite classifies it (docs/ALGORITHMS.md section 2) and takes its gradient only
+            // where its span is composited and shaded, below: a transparent span needs none.
+            Footprint fp;
+            if (TRILINEAR) fp = footprintAt(samplePosition(g, iv, k));
+            float scalar = TRILINEAR ? footprintScalar(fp) : loadScalar(v);
+            if (BLEND == kBlendIso) {  // the surface lies between the last sample and this one: refined below
+                hit = k > 0u && isoInside(scalar, params.isoValue) != inside;
+                if (hit) break;
+                inside = isoInside(scalar, params.isoValue);
             }
-            blockEnd = k + n;
-        }
+            running = foldRunning(BLEND, running, scalar);
+            vec4 s = BLEND == kBlendComposite ? labelled(classify(scalar), v) : vec4(0.0);  // rgb colour, a: sigma
+            precise float sampleDepth = s.a * params.dt;
 
-        // The sample's scalar. Composite classifies it (docs/ALGORITHMS.md section 2) and takes its gradient only
-        // where its span is composited and shaded, below: a transparent span needs none.
-        Footprint fp;
-        if (TRILINEAR) fp = footprintAt(samplePosition(g, iv, k));
-        float scalar = TRILINEAR ? footprintScalar(fp) : loadScalar(v);
-        if (BLEND == kBlendIso) {  // the surface lies between the last sample and this one: refined below
-            hit = k > 0u && isoInside(scalar, params.isoValue) != inside;
-            if (hit) break;
-            inside = isoInside(scalar, params.isoValue);
-        }
-        running = foldRunning(BLEND, running, scalar);
-        vec4 s = BLEND == kBlendComposite ? labelled(classify(scalar), v) : vec4(0.0);  // rgb colour, a: sigma
-        precise float sampleDepth = s.a * params.dt;
-
-        // What the leap wants without and with the margin of docs/ALGORITHMS.md section 8.
-        float wanted = 1.0, wantedWithMargin = 1.0;
-        VoxelBox box = VoxelBox(v, v);
-        if (CASTER == kPC) {
-            int r = int(loadField(brickTexel(v)).r);
-            wanted = pcLeapSamples(r, g, 0.0);
-            wantedWithMargin = pcLeapSamples(r, g, slack.ball);
-            box = chebyshevBall(v, r);
-        } else if (CASTER == kACD || CASTER == kEACD) {
-            uvec4 f = loadField(fieldTexel(v, slot));
-            // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
-            BoxLeap b = octantBoxLeap(g, iv, k, v, oct, CASTER == kACD ? max(ivec3(1), ivec3(f.r)) : decodeExtents(f),
-                                      slack);
-            wanted = b.wanted;
-            wantedWithMargin = b.wantedWithMargin;
-            box = b.box;
-        } else if (CASTER == kHier) {
-            // The code of v's block in the ray's octant; a mixed block steps one sample, a homogeneous one leaps to
-            // the far faces of its box of blocks.
-            int shift = params.hierBlockShift;
-            uint code = imageLoad(field16, blockTexel(v, slot, shift)).r;
-            if ((code & kHomogeneousBlock) != 0u) {
-                ivec3 blocks = decodeExtents(uvec4(code));
-                ivec3 ext = ivec3(blockBoxExtent(v.x, octantSign(oct, 0), shift, blocks.x),
-                                  blockBoxExtent(v.y, octantSign(oct, 1), shift, blocks.y),
-                                  blockBoxExtent(v.z, octantSign(oct, 2), shift, blocks.z));
+            // What the leap wants without and with the margin of docs/ALGORITHMS.md section 8.
+            float wanted = 1.0, wantedWithMargin = 1.0;
+            VoxelBox box = VoxelBox(v, v);
+            if (CASTER == kPC) {
+                int r = int(loadField(brickTexel(v)).r);
+                wanted = pcLeapSamples(r, g, 0.0);
+                wantedWithMargin = pcLeapSamples(r, g, slack.ball);
+                box = chebyshevBall(v, r);
+            } else if (CASTER == kACD || CASTER == kEACD) {
+                uvec4 f = loadField(fieldTexel(v, slot));
+                // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
+                ivec3 ext = CASTER == kACD ? max(ivec3(1), ivec3(f.r)) : decodeExtents(f);
                 BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
                 wanted = b.wanted;
                 wantedWithMargin = b.wantedWithMargin;
                 box = b.box;
+            } else if (CASTER == kHier) {
+                // The code of v's block in the ray's octant; a mixed block steps one sample, a homogeneous one leaps to
+                // the far faces of its box of blocks.
+                int shift = params.hierBlockShift;
+                uint code = imageLoad(field16, blockTexel(v, slot, shift)).r;
+                if ((code & kHomogeneousBlock) != 0u) {
+                    ivec3 blocks = decodeExtents(uvec4(code));
+                    ivec3 ext = ivec3(blockBoxExtent(v.x, octantSign(oct, 0), shift, blocks.x),
+                                      blockBoxExtent(v.y, octantSign(oct, 1), shift, blocks.y),
+                                      blockBoxExtent(v.z, octantSign(oct, 2), shift, blocks.z));
+                    BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
+                    wanted = b.wanted;
+                    wantedWithMargin = b.wantedWithMargin;
+                    box = b.box;
+                }
             }
-        }
-        // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count; the
-        // blocks caster's samples here are one each.
-        if (CASTER != kPrimitive && CASTER != kBlocks) {
-            float termination = samplesToTermination(depth, sampleDepth);
-            if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
-            n = leapCount(g, iv, k, kCount, min(wanted, termination), min(wantedWithMargin, termination), box);
-        }
-        if (CASTER == kBlocks) n = 1u;
-        if (BLEND == kBlendAverage) sum = addPair(sum, vec2(scalar, 0.0));
-        if (BLEND != kBlendComposite) continue;
+            // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count; the
+            // blocks caster's samples here are one each.
+            if (CASTER != kPrimitive && CASTER != kBlocks) {
+                float termination = samplesToTermination(depth, sampleDepth);
+                if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
+                n = leapCount(g, iv, k, kCount, min(wanted, termination), min(wantedWithMargin, termination), box);
+            }
+            if (CASTER == kBlocks) n = 1u;
+            if (BLEND == kBlendAverage) sum = addPair(sum, vec2(scalar, 0.0));
+            if (BLEND != kBlendComposite) continue;
 
-        // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.
-        vec2 spanDepth = CASTER == kPrimitive ? vec2(sampleDepth, 0.0) : exactProduct(float(n), sampleDepth);
-        float spanAlpha = spanOpacity(spanDepth.x);
-        vec3 shaded = s.rgb;
-        if (SHADING && spanAlpha > 0.0) shaded = shade(s.rgb, sampleNormal(fp, v), toEye, toLight);
+            // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.
+            spanDepth = CASTER == kPrimitive ? vec2(sampleDepth, 0.0) : exactProduct(float(n), sampleDepth);
+            spanAlpha = spanOpacity(spanDepth.x);
+            shaded = s.rgb;
+            if (SHADING && spanAlpha > 0.0) shaded = shade(s.rgb, sampleNormal(fp, v), toEye, toLight);
+            t0 = latticeT(iv, k);
+            t1 = latticeT(iv, k + n);
+            crossing = STEREO_BANDS && t1 > bandEnd;
+            if (crossing) break;
+            if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
+            compositeSpan(shaded, spanAlpha, spanDepth, t0, t1, colour, colourLost, transmittance, depth, moment);
+        }
+        if (!crossing) break;
         // A stereo left eye stores the segments of the bands whose far end the span reaches, from its record
-        // there: what it gathered up to there, the span split where the band ends (in one iteration, however many
-        // samples the span leaps).
-        float t0 = latticeT(iv, k), t1 = latticeT(iv, k + n);
-        while (STEREO_BANDS && t1 > bandEnd) {
+        // there: what it gathered up to there, the span split where the band ends (however many samples the span
+        // leaps).
+        while (t1 > bandEnd) {
             precise float part = spanDepthBefore(spanDepth.x, t0, t1, bandEnd);
             float w = transmittance * spanOpacity(part);
             vec4 end = vec4(colour - colourLost + shaded * w, transmittance - w);
@@ -565,20 +601,11 @@ void main() {
             bandGathered = false;
             bandEnd = bandEndT(++band, cosine);
         }
-        if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
-        if (spanAlpha > 0.0) {
-            precise float w = transmittance * spanAlpha;
-            precise vec3 added = shaded * w - colourLost;
-            precise vec3 total = colour + added;
-            colourLost = (total - colour) - added;
-            colour = total;
-            if (STEREO_BANDS) moment += w * (t0 + (t1 - t0) * spanMeanFraction(spanDepth.x));
-            depth = addPair(depth, spanDepth);
-            // From the optical depth, not by subtracting w: 1 - 1e-9 is 1 in float, which would keep the weights of
-            // 10^7 samples of opacity 1e-9 at transmittance 1 (0.5 % too much colour in all).
-            transmittance = 1.0 - spanOpacity(depth.x + depth.y);
-        }
-    }
+        if (spanAlpha > 0.0) bandGathered = true;
+        compositeSpan(shaded, spanAlpha, spanDepth, t0, t1, colour, colourLost, transmittance, depth, moment);
+        k += n;
+        crossing = false;
+    } while (STEREO_BANDS);
 
     // Some drivers end loops on their own: llvmpipe stops every loop of an invocation once 65535 iterations have run
     // in all of them, which would silently shorten a long ray. A loop whose trip count (2) the compiler cannot
