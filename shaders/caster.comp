@@ -78,11 +78,13 @@ float bandEndT(int band, float cosine) {
     return bandFarDepth(b.x, b.y, b.z, b.w, band, params.stereoBandCount) / cosine;
 }
 
-// Stores band `band`'s segment of `pixel`; its bit in the pixel's mask of used bands where it is used (bandUsed).
+// Stores band `band`'s segment of `pixel` where it is used (bandUsed: the reprojection reads no other); its bit in
+// the pixel's mask of used bands.
 uint storeSegment(ivec2 pixel, int band, BandSegment s) {
     uvec4 texel = packBandSegment(s);
+    if (!bandUsed(texel)) return 0u;
     segments[bandTexel(pixel.x, pixel.y, band, params.imageSize.x, params.imageSize.y)] = texel;
-    return bandUsed(texel) ? 1u << band : 0u;
+    return 1u << band;
 }
 
 // Band `band`'s segment of `pixel`, from the ray's records at the band's near end (start) and far end.
@@ -630,7 +632,8 @@ void main() {
     if (STEREO_BANDS && lastDispatch && band < params.stereoBandCount) {
         bandMask |= storeBandSegment(pixel, band, bandStart, bandStartMoment, vec4(colour, transmittance), moment,
                                      bandGathered, cosine);
-        for (++band; band < params.stereoBandCount; ++band)
+        // Those hold nothing: used only where the ray ended hidden.
+        for (++band; band < params.stereoBandCount && segmentHidden(transmittance); ++band)
             bandMask |= storeSegment(pixel, band, BandSegment(vec4(0.0), 0.0, transmittance));
         storeBandMask(pixel, bandMask);
     }

@@ -154,10 +154,11 @@ struct Segment {
     bool faint, hidden, outside;
 };
 
-Segment segmentAt(int x, int y, int b) {
+Segment segmentAt(int x, int y, int b, bool used) {
     int width = params.imageSize.x;
     uint texel = bandTexel(clamp(x, 0, width - 1), y, b, width, params.imageSize.y);
-    BandSegment t = unpackBandSegment(imageLoad(leftBands, int(texel)));
+    // An unused segment's texel is not stored (the caster leaves what an earlier pair stored there).
+    BandSegment t = used ? unpackBandSegment(imageLoad(leftBands, int(texel))) : BandSegment(vec4(0.0), 0.0, 1.0);
     Segment s;
     s.outside = x < 0 || x >= width;
     s.colour = s.outside ? vec4(0.0) : t.colour;
@@ -174,20 +175,32 @@ ivec2 bandCandidates(int x, int b) {
     return ivec2(int(floor(float(x) - 1.0 - near - params.maxSpread)) + 1, int(floor(float(x) - near)));
 }
 
+// The masks of used bands of left pixels x .. x + 3 of row y (a mask texel).
+uvec4 masksAt(int x, int y) {
+    return imageLoad(leftBands, int(bandMaskTexel(x, y, params.imageSize.x, params.imageSize.y, params.bandCount)));
+}
+
 // The first band from b on that can add anything to right pixel x: one of its candidates' segments (first .. last
 // + 1) lies outside the image or is used (stereo_reprojection.h bandUsed); the others are skipped, their masks read
 // two texels a band (a band 3 pixels wide has five candidates), not its five segments. A loop: llvmpipe would run a
 // skipped band's code under a mask.
 int nextBand(int x, int y, int b) {
-    int width = params.imageSize.x, height = params.imageSize.y, count = params.bandCount;
-    for (; b < count; ++b) {
+    for (; b < params.bandCount; ++b) {
         ivec2 window = bandCandidates(x, b);
-        if (window.x < 0 || window.y + 1 >= width) break;
-        uvec4 lo = imageLoad(leftBands, int(bandMaskTexel(window.x, y, width, height, count)));
-        uvec4 hi = imageLoad(leftBands, int(bandMaskTexel(max(window.y - 2, window.x), y, width, height, count)));
+        if (window.x < 0 || window.y + 1 >= params.imageSize.x) break;
+        uvec4 lo = masksAt(window.x, y), hi = masksAt(max(window.y - 2, window.x), y);
         if ((((lo.x | lo.y | lo.z | lo.w | hi.x | hi.y | hi.z | hi.w) >> b) & 1u) != 0u) break;
     }
     return b;
+}
+
+// Which of the four left pixels from x (moved into the row where the image's edge leaves fewer) are used in band b,
+// as bits counted from `first`.
+uint usedFrom(int x, int y, int b, int first) {
+    int base = clamp(x, 0, max(params.imageSize.x - 4, 0));
+    uvec4 bits = (masksAt(base, y) >> uint(b)) & 1u;
+    uint word = bits.x | (bits.y << 1) | (bits.z << 2) | (bits.w << 3);
+    return base >= first ? word << (base - first) : word >> (first - base);
 }
 
 void reprojectBands() {
@@ -204,13 +217,15 @@ void reprojectBands() {
         if (b >= params.bandCount) break;
         ivec2 window = bandCandidates(x, b);
         int first = window.x, last = window.y;
+        // Which of the candidates are used, as bits from first: an unused one's texel is not read.
+        uint used = usedFrom(first, y, b, first) | usedFrom(last - 2, y, b, first);
         bool found = false, best = false, bestHidden = false, clipped = false, hidden = false;
         float bestKey = kInfinity;
         vec4 bestColour = vec4(0.0);
         int covers = 0;  // pieces that are not faint at both ends
-        Segment a = segmentAt(first, y, b);
+        Segment a = segmentAt(first, y, b, (used & 1u) != 0u);
         for (int i = first; i <= last; ++i) {
-            Segment s = segmentAt(i + 1, y, b);
+            Segment s = segmentAt(i + 1, y, b, ((used >> (i + 1 - first)) & 1u) != 0u);
             if (a.outside || s.outside) {
                 clipped = true;
             } else {

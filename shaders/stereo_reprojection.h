@@ -172,7 +172,8 @@ bool segmentHidden(float transmittance) { return transmittance <= 1.0 - kOpaqueA
 // A segment (as its texel) is used when it has content (any colour or opacity) or is hidden. A band whose candidate
 // segments for a right pixel all lie in the image and none of which is used adds nothing to that pixel: they are
 // faint, so each piece lands whole at the band's middle and composites nothing, and none is hidden. The caster keeps
-// a mask of the bands in which each left pixel's segment is used, the reprojection skips the others.
+// a mask of the bands in which each left pixel's segment is used and stores only those segments; the reprojection
+// skips the bands it does not need and takes an unused segment as nothing, unread.
 bool bandUsed(uvec4 t) { return (t.x | t.y) != 0u || segmentHidden(uintBitsToFloat(t.w)); }
 
 // Band b's segment from the ray's records at its near end (start) and far end (end: rgb premultiplied colour, a
