@@ -509,7 +509,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                              std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
                                              "pass (a bug)");
                 std::memcpy(result.image.pixel(px, py), &o.colour, 4 * sizeof(float));
-                if (left) std::memcpy(static_cast<device::OutPixel*>(left->pixels) + index, &o, sizeof o);
+                if (left && left->pixels)
+                    std::memcpy(static_cast<device::OutPixel*>(left->pixels) + index, &o, sizeof o);
                 result.iterations[index] = iterations;
                 result.samples[index] = o.counts.x;
             }
