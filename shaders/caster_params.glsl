@@ -5,7 +5,11 @@
 
 #include "device_contract.h"
 
-layout(set = 0, binding = kBindingParams, std140) uniform Params { CasterParams P; };
+// A storage buffer, not a uniform block: lavapipe specializes a shader on up to four values of a uniform block that
+// decide branches or are copied into variables used five times or more, and CasterParams holds the view. Each new
+// view then compiled an LLVM variant of its own: 0.2-0.3 s of a one-view render whose Mesa cache had not seen that
+// view. It reads the block once per invocation (copyUniforms), so the frame costs the same.
+layout(set = 0, binding = kBindingParams, std140) readonly buffer Params { CasterParams P; };
 layout(push_constant) uniform Tile { TilePush T; };
 
 // What the casters read, copied once per invocation by copyUniforms() before anything else: llvmpipe (Mesa 22)

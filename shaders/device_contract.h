@@ -16,7 +16,7 @@ namespace vr::device {
 #endif
 
 // Descriptor set 0.
-VR_CONSTANT int kBindingParams = 0;         // uniform: CasterParams
+VR_CONSTANT int kBindingParams = 0;         // storage buffer: CasterParams (caster_params.glsl says why)
 VR_CONSTANT int kBindingOutPixels = 1;      // storage buffer: OutPixel per pixel of the tile
 VR_CONSTANT int kBindingRayStates = 2;      // storage buffer: RayState per pixel of the tile
 VR_CONSTANT int kBindingExtentTable = 3;    // uniform: uvec4 per entry of extentDecodeTable() (core/extent_code.h)

@@ -19,7 +19,7 @@ layout(constant_id = kSpecIdBands) const bool BANDS = false;
 
 layout(set = 0, binding = kBindingStereoParams, std140) uniform Params { StereoParams params; };
 layout(set = 0, binding = kBindingLeftPixels, std430) readonly buffer LeftPixels { OutPixel leftPixel[]; };
-layout(set = 0, binding = kBindingRightPixels, std430) writeonly buffer RightPixels { OutPixel rightPixel[]; };
+layout(set = 0, binding = kBindingRightPixels, std430) writeonly buffer RightPixels { uvec4 rightColour[]; };
 layout(set = 0, binding = kBindingRecastList, std430) buffer RecastList { uint recastCount; uint recastPixel[]; };
 layout(set = 0, binding = kBindingLeftBands, rgba32ui) uniform readonly uimageBuffer leftBands;
 
@@ -64,8 +64,7 @@ shared vec4 sharedPlace[kSharedPixels];  // x, xNear, xFar, depth
 // The right pixel's reprojected colour, or its place on the re-cast list.
 void finish(int x, int y, bool reuse, vec4 colour) {
     uint index = uint(y * params.imageSize.x + x);
-    rightPixel[index].colour = floatBitsToUint(reuse ? colour : vec4(0.0));
-    rightPixel[index].counts = uvec4(0u);
+    rightColour[index] = floatBitsToUint(reuse ? colour : vec4(0.0));
     if (!reuse) recastPixel[atomicAdd(recastCount, 1u)] = packListPixel(x, y);
 }
 

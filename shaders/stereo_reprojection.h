@@ -16,7 +16,7 @@ namespace vr::device {
 // Descriptor set 0 of the reprojection shader.
 VR_CONSTANT int kBindingStereoParams = 0;  // uniform: StereoParams
 VR_CONSTANT int kBindingLeftPixels = 1;    // storage buffer: OutPixel per pixel of the left image, row by row
-VR_CONSTANT int kBindingRightPixels = 2;   // storage buffer: OutPixel per pixel of the right image (the reprojection)
+VR_CONSTANT int kBindingRightPixels = 2;   // storage buffer: the right image's colours (the reprojection), float bits
 VR_CONSTANT int kBindingRecastList = 3;    // storage buffer: the count, then the right pixels to re-cast (the
                                            // casters' kBindingPixelList)
 VR_CONSTANT int kBindingLeftBands = 4;     // storage texel buffer RGBA32UI: a left pixel's segment of each band

@@ -267,7 +267,7 @@ TEST(VulkanUploads, StagedUploadsRenderWhatInPlaceUploadsRender) {
 
 // The casters' pixels written to device memory and copied to the host (a discrete GPU's path, forced here) are
 // the pixels written to host memory, for every caster, on full and partial tiles, for both eyes of a stereo pair
-// (the right eye's re-cast pixels come as a list), and a later, larger image grows the frame's buffers.
+// (the right eye reprojected in device memory, its re-cast pixels as a list), and a later, larger image grows the frame's buffers.
 TEST(VulkanUploads, OutputCopiedFromDeviceMemoryEqualsOutputWrittenToTheHost) {
     VulkanRenderer host(test::vulkanContext(), 20, {}, VulkanRenderer::OutputMemory::Host);
     VulkanRenderer device(test::vulkanContext(), 20, {}, VulkanRenderer::OutputMemory::Device);
@@ -286,12 +286,19 @@ TEST(VulkanUploads, OutputCopiedFromDeviceMemoryEqualsOutputWrittenToTheHost) {
                                        std::nullopt);
     const GpuVolume onHost = host.upload(p, {{Caster::EACD}, kAllOctants});
     const GpuVolume onDevice = device.upload(p, {{Caster::EACD}, kAllOctants});
-    const RenderSettings s = renderSettings(Caster::EACD, true);
-    const StereoRender written = host.renderStereo(onHost, pair, s, true);
-    const StereoRender copied = device.renderStereo(onDevice, pair, s, true);
-    EXPECT_GT(copied.recastFraction, 0);
-    EXPECT_EQ(copied.recast, written.recast);
-    EXPECT_EQ(maxAbsDifference(copied.right.image, written.right.image), 0.0);
+    // Composite reprojects the left eye's bands, MIP its pixels.
+    for (const auto& [caster, blend] :
+         {std::pair{Caster::EACD, Blend::Composite}, std::pair{Caster::Primitive, Blend::MIP}}) {
+        SCOPED_TRACE(casterName(caster));
+        RenderSettings s = renderSettings(caster, true);
+        s.blend = blend;
+        const StereoRender written = host.renderStereo(onHost, pair, s, true);
+        const StereoRender copied = device.renderStereo(onDevice, pair, s, true);
+        EXPECT_GT(copied.recastFraction, 0);
+        EXPECT_LT(copied.recastFraction, 1);
+        EXPECT_EQ(copied.recast, written.recast);
+        EXPECT_EQ(maxAbsDifference(copied.right.image, written.right.image), 0.0);
+    }
     expectNoValidationErrors();
 }
 

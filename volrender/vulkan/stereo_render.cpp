@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <tbb/parallel_for.h>
+
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -60,7 +62,7 @@ uint64_t blockOrder(uint32_t pixel) {
 VulkanRenderer::PairBuffers::PairBuffers(const VulkanContext& ctx, std::size_t pixels, std::size_t segments)
     : pixels(pixels), segments(segments),
       left(ctx, pixels * sizeof(device::OutPixel), vk::BufferUsageFlagBits::eStorageBuffer),
-      right(ctx, pixels * sizeof(device::OutPixel), vk::BufferUsageFlagBits::eStorageBuffer),
+      right(ctx, pixels * sizeof(device::uvec4), vk::BufferUsageFlagBits::eStorageBuffer),
       recast(ctx, (pixels + 1) * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer) {
     if (segments > 0) bands.emplace(ctx, segments * sizeof(device::uvec4), kBandSegmentUsage);
 }
@@ -100,9 +102,9 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
     checkRender(volume, pair.right, settings);
     return deviceErrors([&] {
         PairBuffers& buffers = pairBuffers(pixels, segments);
-        const HostBuffer &left = buffers.left, &right = buffers.right, &recast = buffers.recast;
+        const HostBuffer &right = buffers.right, &recast = buffers.recast;
         const DeviceBuffer* leftBands = composite ? &*buffers.bands : nullptr;
-        const StereoLeft leftEye{left.data(), leftBands,
+        const StereoLeft leftEye{composite ? nullptr : buffers.left.data(), leftBands,
                                  {float(disparityScale(pair)), float(1 / pair.focus), float(bands.first),
                                   float(kMaxSpreadPixels)},
                                  bands.count};
@@ -110,8 +112,8 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         if (!reprojector_) reprojector_ = std::make_unique<StereoReprojector>(ctx_);
         auto* list = static_cast<uint32_t*>(recast.data());
         list[0] = 0;
-        out.reprojectMilliseconds = reprojector_->reproject(
-            pool_, reprojection(pair, depths, settings, bands), left, leftBands, right, recast);
+        out.reprojectMilliseconds = reprojector_->reproject(pool_, reprojection(pair, depths, settings, bands),
+                                                            buffers.left, leftBands, right, recast);
         // Blocks of 8 x 8 pixels in row order, each block's pixels in row order: a workgroup's rays stay as close
         // together as a tile's (the device appended them in any order).
         std::sort(list + 1, list + 1 + list[0], [](uint32_t a, uint32_t b) { return blockOrder(a) < blockOrder(b); });
@@ -120,9 +122,10 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         out.right.deviceMilliseconds += out.reprojectMilliseconds;
         out.recast.assign(pixels, 0);
         for (uint32_t p : recastPixels.pixels) out.recast[std::size_t(p >> 16) * width + (p & 0xffffu)] = 1;
-        const auto* reprojected = static_cast<const device::OutPixel*>(right.data());
-        for (std::size_t i = 0; i < pixels; ++i)
-            if (!out.recast[i]) std::memcpy(&out.right.image.rgba[4 * i], &reprojected[i].colour, 4 * sizeof(float));
+        const auto* reprojected = static_cast<const device::uvec4*>(right.data());
+        tbb::parallel_for(std::size_t(0), pixels, [&](std::size_t i) {
+            if (!out.recast[i]) std::memcpy(&out.right.image.rgba[4 * i], &reprojected[i], 4 * sizeof(float));
+        });
         out.recastFraction = double(recastPixels.pixels.size()) / double(pixels);
         return out;
     });

@@ -182,7 +182,7 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     using T = vk::DescriptorType;
     const auto compute = vk::ShaderStageFlagBits::eCompute;
     std::vector<vk::DescriptorSetLayoutBinding> bindings{
-        {device::kBindingParams, T::eUniformBuffer, 1, compute},
+        {device::kBindingParams, T::eStorageBuffer, 1, compute},
         {device::kBindingOutPixels, T::eStorageBuffer, 1, compute},
         {device::kBindingRayStates, T::eStorageBuffer, 1, compute},
         {device::kBindingExtentTable, T::eUniformBuffer, 1, compute},
@@ -316,7 +316,7 @@ RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera
 
 VulkanRenderer::FrameBuffers::FrameBuffers(const VulkanContext& ctx, std::size_t pixels, bool staged)
     : pixels(pixels),
-      params(ctx, sizeof(device::CasterParams), vk::BufferUsageFlagBits::eUniformBuffer),
+      params(ctx, sizeof(device::CasterParams), vk::BufferUsageFlagBits::eStorageBuffer),
       extentTable(ctx, sizeof(ExtentTable), vk::BufferUsageFlagBits::eUniformBuffer),  // decodes coded EACD
       out(ctx, pixels * sizeof(device::OutPixel),
           vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst),
@@ -361,9 +361,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const std::vector<Brick>& bricks = volume.bricks().bricks();
     const uint32_t brickCount = uint32_t(bricks.size());
     std::array<vk::DescriptorPoolSize, 4> sizes{
-        vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 2 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 11 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 4 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 5 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageTexelBuffer, 2 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
@@ -399,7 +399,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             fields[i] = imageInfo(field && field->format() == kFieldFormats[i] ? *field : *unusedFields_[i]);
         using T = vk::DescriptorType;
         std::vector<vk::WriteDescriptorSet> writes{
-            {set, device::kBindingParams, 0, 1, T::eUniformBuffer, nullptr, &buffers[0]},
+            {set, device::kBindingParams, 0, 1, T::eStorageBuffer, nullptr, &buffers[0]},
             {set, device::kBindingOutPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
             {set, device::kBindingRayStates, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
             {set, device::kBindingExtentTable, 0, 1, T::eUniformBuffer, nullptr, &extentEntries},
@@ -509,7 +509,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                              std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
                                              "pass (a bug)");
                 std::memcpy(result.image.pixel(px, py), &o.colour, 4 * sizeof(float));
-                if (left) std::memcpy(static_cast<device::OutPixel*>(left->pixels) + index, &o, sizeof o);
+                if (left && left->pixels)
+                    std::memcpy(static_cast<device::OutPixel*>(left->pixels) + index, &o, sizeof o);
                 result.iterations[index] = iterations;
                 result.samples[index] = o.counts.x;
             }

@@ -88,7 +88,7 @@ private:
     // A stereo pair's left eye, for the reprojection: every pixel's OutPixel kept, row by row (a whole image of
     // them), and for composite its bands' segments (a uvec4 each, shaders/stereo_reprojection.h bandTexel).
     struct StereoLeft {
-        void* pixels;
+        void* pixels;  // null where the reprojection reads the bands alone (composite)
         const DeviceBuffer* bands;  // composite only
         device::vec4 bandGeometry;  // CasterParams::stereoBands
         int bandCount;
@@ -126,8 +126,8 @@ private:
     };
     FrameBuffers& frameBuffers(std::size_t pixels);
     // What a stereo pair with reuse reads and writes beside the frame's buffers: the left eye's pixels, the
-    // reprojected right eye, the re-cast list and composite's band segments (uvec4 each). Kept and grown as the
-    // frame's are: made afresh, their tens of MB were faulted in by every pair.
+    // reprojected right eye's colours, the re-cast list and composite's band segments (uvec4 each). Kept and grown
+    // as the frame's are: made afresh, their tens of MB were faulted in by every pair.
     struct PairBuffers {
         PairBuffers(const VulkanContext& ctx, std::size_t pixels, std::size_t segments);
         std::size_t pixels, segments;
