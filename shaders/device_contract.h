@@ -47,18 +47,17 @@ VR_CONSTANT int kBindingStereoBands = 18;   // storage buffer: a stereo left eye
                                             // bandTexel, packBandSegment)
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
-VR_CONSTANT int kSpecIdCaster = 0;       // one of the caster ids below
 VR_CONSTANT int kSpecIdTrilinear = 1;    // bool
 VR_CONSTANT int kSpecIdShading = 2;      // bool
 VR_CONSTANT int kSpecIdExtentCode = 3;   // one of the extent codes below
 VR_CONSTANT int kSpecIdBricked = 4;      // bool: false for a volume of one brick (no ray state is carried)
 VR_CONSTANT int kSpecIdPerspective = 5;  // bool: the camera's projection
 VR_CONSTANT int kSpecIdScalarType = 6;   // one of the scalar types below: which scalar image the casters read
-VR_CONSTANT int kSpecIdBlend = 7;        // one of the blends below
 VR_CONSTANT int kSpecIdLabels = 8;       // one of the label types below: which label image the casters read
 VR_CONSTANT int kSpecIdPixelList = 9;    // bool: cast the pixels of the list (kBindingPixelList), not a tile's
 VR_CONSTANT int kSpecIdStoredGradients = 10;  // bool: shade by the stored gradients (kBindingGradients)
 VR_CONSTANT int kSpecIdStereoBands = 11;      // bool: composite, the left eye of a stereo pair: record the bands
+// The casters and the blends below are fixed per module instead (caster.comp's VR_CASTER and VR_BLEND).
 VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4, kHier = 5;
 // The hierarchical EACD's block codes (core/distance_fields.h BlockEACD): log16 extents in blocks, this bit set where
 // the block is homogeneous (0: a mixed block, stepped sample by sample).

@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <vector>
 
-extern const std::vector<uint32_t> caster_spv;         // the four casters (specialization constants)
+// The casters' module for a caster and a blend (shaders/device_contract.h ids; shaders/CMakeLists.txt builds one per
+// pair the renderer accepts), or null for a pair without one.
+const std::vector<uint32_t>* casterModule(int caster, int blend);
 extern const std::vector<uint32_t> numerics_test_spv;  // expm1 / log1p over a buffer, for the tests
 extern const std::vector<uint32_t> stereo_reproject_spv;  // a stereo pair's right eye from its left eye

@@ -5,6 +5,9 @@
 #include <numeric>
 #include <set>
 
+#include "core/errors.h"
+#include "render/render_checks.h"
+#include "shaders/device_contract.h"
 #include "shaders/embedded_shaders.h"
 #include "support/render_cases.h"
 #include "support/views.h"
@@ -40,10 +43,14 @@ std::set<uint32_t> capabilities(const std::vector<uint32_t>& spirv) {
 // enables neither shaderFloat64 nor shaderInt64 (no context does) without a validation error, which the layer
 // reports for a shader using a feature the device did not enable.
 TEST(VulkanValidation, CastersNeedNeitherFloat64NorInt64) {
-    const std::set<uint32_t> used = capabilities(caster_spv);
-    EXPECT_FALSE(used.empty());
-    EXPECT_EQ(used.count(10), 0u) << "the casters declare Float64";
-    EXPECT_EQ(used.count(11), 0u) << "the casters declare Int64";
+    for (int caster = 0; caster <= device::kHier; ++caster)
+        for (int blend = 0; blend <= device::kBlendIso; ++blend)
+            if (const std::vector<uint32_t>* module = casterModule(caster, blend)) {
+                const std::set<uint32_t> used = capabilities(*module);
+                EXPECT_FALSE(used.empty());
+                EXPECT_EQ(used.count(10), 0u) << "caster " << caster << ", blend " << blend << " declares Float64";
+                EXPECT_EQ(used.count(11), 0u) << "caster " << caster << ", blend " << blend << " declares Int64";
+            }
 
     VulkanContext ctx(VulkanOptions{-1, true});
     ASSERT_TRUE(ctx.validationEnabled()) << "VK_LAYER_KHRONOS_validation is not installed";
@@ -67,6 +74,29 @@ TEST(VulkanValidation, CastersNeedNeitherFloat64NorInt64) {
     }
     const auto errors = ctx.validationErrors();
     EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
+}
+
+// Each caster is one module per blend: every pair the renderer accepts has its module, and only those.
+TEST(VulkanValidation, EveryAcceptedCasterAndBlendHasItsModule) {
+    const Caster casters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD, Caster::Blocks, Caster::Hier};
+    const Blend blends[] = {Blend::Composite, Blend::MIP, Blend::MinIP, Blend::Average, Blend::Iso};
+    int accepted = 0;
+    for (const Caster c : casters)
+        for (const Blend b : blends) {
+            RenderSettings s;
+            s.caster = c;
+            s.blend = b;
+            s.isoValue = 0.5;
+            bool accepts = true;
+            try {
+                checkBlend(s);
+            } catch (const InputError&) {
+                accepts = false;
+            }
+            accepted += accepts;
+            EXPECT_EQ(casterModule(int(c), int(b)) != nullptr, accepts) << casterName(c) << " " << blendName(b);
+        }
+    EXPECT_EQ(accepted, 13);
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ constexpr uint32_t kLabelBindings[2] = {device::kBindingLabelsUInt8, device::kBi
 // The uploaded decode table is the shader's array of kExtentTableEntries uvec4.
 static_assert(kExtentTableEntries == device::kExtentTableEntries && sizeof(ExtentTableEntry) == 16);
 
-// The values of the caster's and the extent code's specialization constants.
+// The casters' module ids, and the values of the extent code's specialization constant.
 int deviceCaster(Caster caster) {
     switch (caster) {
         case Caster::Primitive: return device::kPrimitive;
@@ -199,7 +199,6 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     vk::PushConstantRange push(compute, 0, sizeof(device::TilePush));
     vk::DescriptorSetLayout layout = *setLayout_;
     pipelineLayout_ = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, layout, push));
-    shader_ = vk::raii::ShaderModule(device, vk::ShaderModuleCreateInfo({}, caster_spv));
     timer_ = std::make_unique<DeviceTimer>(ctx);
     const uint8_t zeros[8] = {};
     for (int i = 0; i < 4; ++i) {
@@ -240,10 +239,20 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
     std::lock_guard lock(pipelinesMutex_);
     auto it = pipelines_.find(v);
     if (it != pipelines_.end()) return it->second;
+    // The module of the variant's caster and blend, made once.
+    const std::pair module{v.caster, v.blend};
+    auto shader = shaders_.find(module);
+    if (shader == shaders_.end()) {
+        const std::vector<uint32_t>* spirv = casterModule(deviceCaster(v.caster), deviceBlend(v.blend));
+        if (!spirv)
+            throw std::logic_error("no caster module for --caster " + std::string(casterName(v.caster)) +
+                                   " with --blend " + std::string(blendName(v.blend)) +
+                                   " (a bug: checkBlend refuses the pair)");
+        shader = shaders_.emplace(module, vk::raii::ShaderModule(ctx_.device(), vk::ShaderModuleCreateInfo({}, *spirv)))
+                     .first;
+    }
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
-    const std::array<std::pair<int, uint32_t>, 12> constants{{
-        {device::kSpecIdCaster, uint32_t(deviceCaster(v.caster))},
-        {device::kSpecIdBlend, uint32_t(deviceBlend(v.blend))},
+    const std::array<std::pair<int, uint32_t>, 10> constants{{
         {device::kSpecIdTrilinear, v.trilinear ? 1u : 0u},
         {device::kSpecIdShading, v.shading ? 1u : 0u},
         {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(v.eacdCode))},
@@ -262,7 +271,7 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
                                                 sizeof(uint32_t));
     }
     vk::SpecializationInfo spec(entries, vk::ArrayProxyNoTemporaries<const uint32_t>(values));
-    vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *shader_, "main", &spec);
+    vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *shader->second, "main", &spec);
     vk::raii::Pipeline p(ctx_.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *pipelineLayout_));
     return pipelines_.emplace(v, std::move(p)).first->second;
 }
