@@ -370,6 +370,18 @@ vec4 shownValue(float value, bool sampled) {
     return vec4(c.rgb * alpha + params.background.rgb * (1.0 - alpha), alpha);
 }
 
+// Folds a sample's scalar into the blend's running values (blend.h); for the iso-surface, whether the surface lies
+// between the last sample and this one (the side is then left at the last sample's; the hit is refined below).
+bool foldSample(float scalar, uint k, inout float running, inout vec2 sum, inout bool inside) {
+    if (BLEND == kBlendIso) {
+        if (k > 0u && isoInside(scalar, params.isoValue) != inside) return true;
+        inside = isoInside(scalar, params.isoValue);
+    }
+    running = foldRunning(BLEND, running, scalar);
+    if (BLEND == kBlendAverage) sum = addPair(sum, vec2(scalar, 0.0));
+    return false;
+}
+
 // The scalar at grid position p, sampled as the loop samples it.
 float scalarAt(vec3 p) { return TRILINEAR ? footprintScalar(footprintAt(p)) : loadScalar(clampVoxel(floorVoxel(p))); }
 
@@ -471,7 +483,6 @@ void main() {
     if (CASTER == kBlocks && blendProbes(BLEND) && !BRICKED && kCount > 0u)
         for (int i = 0; i < kProbes; ++i, ++iterations)
             running = foldRunning(BLEND, running, scalarAt(samplePosition(g, iv, probeSample(i, kCount))));
-    uint blockEnd = 0u;  // blocks: the samples before it lie in a block that could change the result
     // A stereo left eye leaves the sample loop at a span that reaches its band's far end, and stores the bands'
     // segments and composites that span after it: llvmpipe runs a loop's body at least once, so that code in the
     // sample loop would cost every sample; here it costs once per band end that a SIMD batch of rays reaches.
@@ -480,7 +491,55 @@ void main() {
     vec3 shaded;
     vec2 spanDepth;
     float spanAlpha, t0, t1;
-    do {
+    // The blocks caster (the other blends only): one trip of the outer loop per block, which looks the block up and
+    // leaps over the coarsest block that cannot change the result (average adds its one value n times), or else takes
+    // the finest block's samples one by one in the inner loop, which holds only a sample's code: llvmpipe runs a
+    // loop's body for all lanes of a SIMD batch while any of them needs it, so a lookup in the sample loop cost
+    // nearly every sample. A lookup and the block's first sample are one iteration.
+    if (CASTER == kBlocks) {
+        while (mine && !failed && !hit && k < kCount) {
+            ivec3 v = sampleVoxel(g, iv, k);
+            if (BRICKED && !inBrick(v)) break;
+            if (++iterations > params.maxIterations) {
+                failed = true;
+                break;
+            }
+            int size = 0;  // the edge of the block leapt over; 0: none
+            float value = 0.0;
+            for (int level = 0; level < kBlockLevels; ++level) {
+                int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
+                if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
+                ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
+                vec2 range = vec2(imageLoad(blockExtrema, ivec3(2 * block.x, block.yz)).r,
+                                  imageLoad(blockExtrema, ivec3(2 * block.x + 1, block.yz)).r);
+                if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
+                    size = 1 << shift;
+                    value = range.x;
+                }
+            }
+            int edge = size > 0 ? size : kBlockSize;
+            ivec3 ext = ivec3(blockExtent(v.x, octantSign(oct, 0), edge), blockExtent(v.y, octantSign(oct, 1), edge),
+                              blockExtent(v.z, octantSign(oct, 2), edge));
+            BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
+            n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
+            if (size > 0) {
+                if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
+                k += n;
+                continue;
+            }
+            for (uint blockEnd = k + n;;) {
+                float scalar = TRILINEAR ? footprintScalar(footprintAt(samplePosition(g, iv, k))) : loadScalar(v);
+                hit = foldSample(scalar, k, running, sum, inside);
+                if (hit || ++k >= blockEnd) break;
+                v = sampleVoxel(g, iv, k);
+                if (BRICKED && !inBrick(v)) break;
+                if (++iterations > params.maxIterations) {
+                    failed = true;
+                    break;
+                }
+            }
+        }
+    } else do {
         for (n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth); k += n) {
             ivec3 v = sampleVoxel(g, iv, k);
             if (BRICKED && !inBrick(v)) break;
@@ -488,48 +547,15 @@ void main() {
                 failed = true;
                 break;
             }
-            // Blocks, at a new block: the coarsest block that cannot change the result is leapt over without a sample
-            // (average adds its one value n times); else the finest block's samples are taken one by one, without
-            // another lookup.
-            if (CASTER == kBlocks && k >= blockEnd) {
-                int size = 0;
-                float value = 0.0;
-                for (int level = 0; level < kBlockLevels; ++level) {
-                    int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
-                    if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
-                    ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
-                    vec2 range = vec2(imageLoad(blockExtrema, ivec3(2 * block.x, block.yz)).r,
-                                      imageLoad(blockExtrema, ivec3(2 * block.x + 1, block.yz)).r);
-                    if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
-                        size = 1 << shift;
-                        value = range.x;
-                    }
-                }
-                int edge = size > 0 ? size : kBlockSize;
-                ivec3 ext = ivec3(blockExtent(v.x, octantSign(oct, 0), edge),
-                                  blockExtent(v.y, octantSign(oct, 1), edge),
-                                  blockExtent(v.z, octantSign(oct, 2), edge));
-                BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
-                n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
-                if (size > 0) {
-                    if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
-                    continue;
-                }
-                blockEnd = k + n;
-            }
-
             // The sample's scalar. Composite classifies it (docs/ALGORITHMS.md section 2) and takes its gradient only
             // where its span is composited and shaded, below: a transparent span needs none.
             Footprint fp;
             if (TRILINEAR) fp = footprintAt(samplePosition(g, iv, k));
             float scalar = TRILINEAR ? footprintScalar(fp) : loadScalar(v);
-            if (BLEND == kBlendIso) {  // the surface lies between the last sample and this one: refined below
-                hit = k > 0u && isoInside(scalar, params.isoValue) != inside;
-                if (hit) break;
-                inside = isoInside(scalar, params.isoValue);
-            }
-            running = foldRunning(BLEND, running, scalar);
-            vec4 s = BLEND == kBlendComposite ? labelled(classify(scalar), v) : vec4(0.0);  // rgb colour, a: sigma
+            hit = foldSample(scalar, k, running, sum, inside);
+            if (hit) break;
+            if (BLEND != kBlendComposite) continue;  // the primitive caster: one sample (n stays 1)
+            vec4 s = labelled(classify(scalar), v);  // rgb colour, a: sigma
             precise float sampleDepth = s.a * params.dt;
 
             // What the leap wants without and with the margin of docs/ALGORITHMS.md section 8.
@@ -564,16 +590,12 @@ void main() {
                     box = b.box;
                 }
             }
-            // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count; the
-            // blocks caster's samples here are one each.
-            if (CASTER != kPrimitive && CASTER != kBlocks) {
+            // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count.
+            if (CASTER != kPrimitive) {
                 float termination = samplesToTermination(depth, sampleDepth);
                 if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
                 n = leapCount(g, iv, k, kCount, min(wanted, termination), min(wantedWithMargin, termination), box);
             }
-            if (CASTER == kBlocks) n = 1u;
-            if (BLEND == kBlendAverage) sum = addPair(sum, vec2(scalar, 0.0));
-            if (BLEND != kBlendComposite) continue;
 
             // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.
             spanDepth = CASTER == kPrimitive ? vec2(sampleDepth, 0.0) : exactProduct(float(n), sampleDepth);
