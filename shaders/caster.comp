@@ -56,9 +56,9 @@ layout(set = 0, binding = kBindingScalarsFloat, r32f) uniform readonly image3D s
 layout(set = 0, binding = kBindingField8, r8ui) uniform readonly uimage3D field8;
 layout(set = 0, binding = kBindingField16, r16ui) uniform readonly uimage3D field16;
 layout(set = 0, binding = kBindingFieldRGBA8, rgba8ui) uniform readonly uimage3D fieldRGBA8;
-// Each block's scalar range over the whole volume, lo and hi side by side along x, for the blocks caster
+// Each block's scalar range over the whole volume, lo and hi in one texel, for the blocks caster
 // (render/block_extrema.h).
-layout(set = 0, binding = kBindingBlockExtrema, r32f) uniform readonly image3D blockExtrema;
+layout(set = 0, binding = kBindingBlockExtrema, rg32f) uniform readonly image3D blockExtrema;
 // The transfer table: entry i classifies the scalar tableLo + i step (rgb colour, a: extinction sigma). A texel
 // buffer (volrender/vulkan/gpu_buffer.h TexelTable), as the label table.
 layout(set = 0, binding = kBindingTransferTable, rgba32f) uniform readonly imageBuffer transferTable;
@@ -510,8 +510,7 @@ void main() {
                 int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
                 if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
                 ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
-                vec2 range = vec2(imageLoad(blockExtrema, ivec3(2 * block.x, block.yz)).r,
-                                  imageLoad(blockExtrema, ivec3(2 * block.x + 1, block.yz)).r);
+                vec2 range = imageLoad(blockExtrema, block).rg;
                 if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
                     size = 1 << shift;
                     value = range.x;
