@@ -498,34 +498,40 @@ void main() {
     // nearly every sample. A lookup and the block's first sample are one iteration.
     if (CASTER == kBlocks) {
         while (mine && !failed && !hit && k < kCount) {
-            ivec3 v = sampleVoxel(g, iv, k);
-            if (BRICKED && !inBrick(v)) break;
-            if (++iterations > params.maxIterations) {
-                failed = true;
-                break;
-            }
-            int size = 0;  // the edge of the block leapt over; 0: none
-            float value = 0.0;
-            for (int level = 0; level < kBlockLevels; ++level) {
-                int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
-                if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
-                ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
-                vec2 range = imageLoad(blockExtrema, block).rg;
-                if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
-                    size = 1 << shift;
-                    value = range.x;
+            // Leaps, block after block, until a block that could change the result, which v starts.
+            ivec3 v;
+            bool leaves = false;  // the ray leaves the brick
+            do {
+                v = sampleVoxel(g, iv, k);
+                leaves = BRICKED && !inBrick(v);
+                if (leaves) break;
+                if (++iterations > params.maxIterations) {
+                    failed = true;
+                    break;
                 }
-            }
-            int edge = size > 0 ? size : kBlockSize;
-            ivec3 ext = ivec3(blockExtent(v.x, octantSign(oct, 0), edge), blockExtent(v.y, octantSign(oct, 1), edge),
-                              blockExtent(v.z, octantSign(oct, 2), edge));
-            BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
-            n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
-            if (size > 0) {
+                int size = 0;  // the edge of the block leapt over; 0: none
+                float value = 0.0;
+                for (int level = 0; level < kBlockLevels; ++level) {
+                    int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
+                    if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
+                    ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
+                    vec2 range = imageLoad(blockExtrema, block).rg;
+                    if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
+                        size = 1 << shift;
+                        value = range.x;
+                    }
+                }
+                int edge = size > 0 ? size : kBlockSize;
+                ivec3 ext = ivec3(blockExtent(v.x, octantSign(oct, 0), edge),
+                                  blockExtent(v.y, octantSign(oct, 1), edge),
+                                  blockExtent(v.z, octantSign(oct, 2), edge));
+                BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
+                n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
+                if (size == 0) break;  // the block could change the result: sampled below
                 if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
                 k += n;
-                continue;
-            }
+            } while (k < kCount);
+            if (leaves || failed || k >= kCount) break;
             for (uint blockEnd = k + n;;) {
                 float scalar = TRILINEAR ? footprintScalar(footprintAt(samplePosition(g, iv, k))) : loadScalar(v);
                 hit = foldSample(scalar, k, running, sum, inside);
