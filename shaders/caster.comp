@@ -491,14 +491,15 @@ void main() {
     vec3 shaded;
     vec2 spanDepth;
     float spanAlpha, t0, t1;
-    // The blocks caster (the other blends only): one trip of the outer loop per block, which looks the block up and
-    // leaps over the coarsest block that cannot change the result (average adds its one value n times), or else takes
-    // the finest block's samples one by one in the inner loop, which holds only a sample's code: llvmpipe runs a
-    // loop's body for all lanes of a SIMD batch while any of them needs it, so a lookup in the sample loop cost
-    // nearly every sample. A lookup and the block's first sample are one iteration.
+    // The blocks caster (the other blends only). Each trip of the outer loop leaps block after block in the leap
+    // loop, one lookup each (the coarsest block that cannot change the result; average adds its one value n times),
+    // until a finest block that could change it, whose samples the sample loop then takes one by one to its far faces
+    // (blockEnd). Each loop holds only its own code: llvmpipe runs a loop's body for all lanes of a SIMD batch while
+    // any of them needs it, so a lookup in the sample loop cost nearly every sample, and a sample beside the lookup
+    // every leap. An iteration is a leap or a sample; a sampled block's lookup and first sample are one.
     if (CASTER == kBlocks) {
         while (mine && !failed && !hit && k < kCount) {
-            // Leaps, block after block, until a block that could change the result, which v starts.
+            // Leaps until a block that could change the result, which sample k (voxel v) starts.
             ivec3 v;
             bool leaves = false;  // the ray leaves the brick
             do {
