@@ -14,7 +14,7 @@
 
 namespace vr {
 
-// The levels stacked along z in one image, as the device reads them (two R32F texels per block along x: lo, hi):
+// The levels stacked along z in one image, as the device reads them (one RG32F texel per block: lo, hi):
 // level j's block b at (b.x, b.y, levelZ[j] + b.z) in blocks.
 struct BlockExtrema {
     Vec3i imageDims;

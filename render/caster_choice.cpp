@@ -30,10 +30,10 @@ constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caste
 // and 53 ns per iteration at 2, 17, 75, 268 and 537 MB in one run, 32, 34, 40, 48 and 51 in another: 8 % and 11 %
 // more per doubling beyond 17 MB. 10 %.
 // A blocks MIP iteration over a primitive one (bench/blend_bench, 512x512, trilinear, 2 views, device ms per
-// iteration of whole renders): 2.07 on the teapot, 2.36 on the cranium CT, 2.28 on the head CT in one run; 2.65 on
-// the cranium CT in another. Lavapipe's SIMD lanes of 8 rays run a block's lookups and the sampling whenever any
-// of its rays needs either, so a leap saves less than its iterations suggest.
-constexpr double kBlocksIterationRatio = 2.3;
+// iteration of whole renders, medians of 3 runs): 1.92 on the teapot, 1.44 on the cranium CT, 1.54 on the head CT,
+// since the caster's lookups have a loop of their own (2.8 to 3.2 in the same runs before). Lavapipe's SIMD lanes of
+// 8 rays still run as long as the ray that samples most, so a leap saves less than its iterations suggest.
+constexpr double kBlocksIterationRatio = 1.5;
 // Uploading a field byte (written in place into the image's memory): the bench's median over its rows (0.40-0.45
 // in three runs; 0.58-0.66 when uploads went through a staging copy); a field pays off only when it saves more
 // iterations than its bytes cost. The tie: the probe samples a few hundred rays per direction class, and the

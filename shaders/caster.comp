@@ -59,9 +59,9 @@ layout(set = 0, binding = kBindingScalarsFloat, r32f) uniform readonly image3D s
 layout(set = 0, binding = kBindingField8, r8ui) uniform readonly uimage3D field8;
 layout(set = 0, binding = kBindingField16, r16ui) uniform readonly uimage3D field16;
 layout(set = 0, binding = kBindingFieldRGBA8, rgba8ui) uniform readonly uimage3D fieldRGBA8;
-// Each block's scalar range over the whole volume, lo and hi side by side along x, for the blocks caster
+// Each block's scalar range over the whole volume, lo and hi in one texel, for the blocks caster
 // (render/block_extrema.h).
-layout(set = 0, binding = kBindingBlockExtrema, r32f) uniform readonly image3D blockExtrema;
+layout(set = 0, binding = kBindingBlockExtrema, rg32f) uniform readonly image3D blockExtrema;
 // The transfer table: entry i classifies the scalar tableLo + i step (rgb colour, a: extinction sigma). A texel
 // buffer (volrender/vulkan/gpu_buffer.h TexelTable), as the label table.
 layout(set = 0, binding = kBindingTransferTable, rgba32f) uniform readonly imageBuffer transferTable;
@@ -373,6 +373,18 @@ vec4 shownValue(float value, bool sampled) {
     return vec4(c.rgb * alpha + params.background.rgb * (1.0 - alpha), alpha);
 }
 
+// Folds a sample's scalar into the blend's running values (blend.h); for the iso-surface, whether the surface lies
+// between the last sample and this one (the side is then left at the last sample's; the hit is refined below).
+bool foldSample(float scalar, uint k, inout float running, inout vec2 sum, inout bool inside) {
+    if (BLEND == kBlendIso) {
+        if (k > 0u && isoInside(scalar, params.isoValue) != inside) return true;
+        inside = isoInside(scalar, params.isoValue);
+    }
+    running = foldRunning(BLEND, running, scalar);
+    if (BLEND == kBlendAverage) sum = addPair(sum, vec2(scalar, 0.0));
+    return false;
+}
+
 // The scalar at grid position p, sampled as the loop samples it.
 float scalarAt(vec3 p) { return TRILINEAR ? footprintScalar(footprintAt(p)) : loadScalar(clampVoxel(floorVoxel(p))); }
 
@@ -474,7 +486,6 @@ void main() {
     if (CASTER == kBlocks && blendProbes(BLEND) && !BRICKED && kCount > 0u)
         for (int i = 0; i < kProbes; ++i, ++iterations)
             running = foldRunning(BLEND, running, scalarAt(samplePosition(g, iv, probeSample(i, kCount))));
-    uint blockEnd = 0u;  // blocks: the samples before it lie in a block that could change the result
     // A stereo left eye leaves the sample loop at a span that reaches its band's far end, and stores the bands'
     // segments and composites that span after it: llvmpipe runs a loop's body at least once, so that code in the
     // sample loop would cost every sample; here it costs once per band end that a SIMD batch of rays reaches.
@@ -483,26 +494,32 @@ void main() {
     vec3 shaded;
     vec2 spanDepth;
     float spanAlpha, t0, t1;
-    do {
-        for (n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth); k += n) {
-            ivec3 v = sampleVoxel(g, iv, k);
-            if (BRICKED && !inBrick(v)) break;
-            if (++iterations > params.maxIterations) {
-                failed = true;
-                break;
-            }
-            // Blocks, at a new block: the coarsest block that cannot change the result is leapt over without a sample
-            // (average adds its one value n times); else the finest block's samples are taken one by one, without
-            // another lookup.
-            if (CASTER == kBlocks && k >= blockEnd) {
-                int size = 0;
+    // The blocks caster (the other blends only). Each trip of the outer loop leaps block after block in the leap
+    // loop, one lookup each (the coarsest block that cannot change the result; average adds its one value n times),
+    // until a finest block that could change it, whose samples the sample loop then takes one by one to its far faces
+    // (blockEnd). Each loop holds only its own code: llvmpipe runs a loop's body for all lanes of a SIMD batch while
+    // any of them needs it, so a lookup in the sample loop cost nearly every sample, and a sample beside the lookup
+    // every leap. An iteration is a leap or a sample; a sampled block's lookup and first sample are one.
+    if (CASTER == kBlocks) {
+        while (mine && !failed && !hit && k < kCount) {
+            // Leaps until a block that could change the result, which sample k (voxel v) starts.
+            ivec3 v;
+            bool leaves = false;  // the ray leaves the brick
+            do {
+                v = sampleVoxel(g, iv, k);
+                leaves = BRICKED && !inBrick(v);
+                if (leaves) break;
+                if (++iterations > params.maxIterations) {
+                    failed = true;
+                    break;
+                }
+                int size = 0;  // the edge of the block leapt over; 0: none
                 float value = 0.0;
                 for (int level = 0; level < kBlockLevels; ++level) {
                     int shift = kBlockShift + level;  // shifts, not divisions: llvmpipe divides lane by lane
                     if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
                     ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
-                    vec2 range = vec2(imageLoad(blockExtrema, ivec3(2 * block.x, block.yz)).r,
-                                      imageLoad(blockExtrema, ivec3(2 * block.x + 1, block.yz)).r);
+                    vec2 range = imageLoad(blockExtrema, block).rg;
                     if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
                         size = 1 << shift;
                         value = range.x;
@@ -514,25 +531,40 @@ void main() {
                                   blockExtent(v.z, octantSign(oct, 2), edge));
                 BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
                 n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
-                if (size > 0) {
-                    if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
-                    continue;
+                if (size == 0) break;  // the block could change the result: sampled below
+                if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
+                k += n;
+            } while (k < kCount);
+            if (leaves || failed || k >= kCount) break;
+            for (uint blockEnd = k + n;;) {
+                float scalar = TRILINEAR ? footprintScalar(footprintAt(samplePosition(g, iv, k))) : loadScalar(v);
+                hit = foldSample(scalar, k, running, sum, inside);
+                if (hit || ++k >= blockEnd) break;
+                v = sampleVoxel(g, iv, k);
+                if (BRICKED && !inBrick(v)) break;
+                if (++iterations > params.maxIterations) {
+                    failed = true;
+                    break;
                 }
-                blockEnd = k + n;
             }
-
+        }
+    } else do {
+        for (n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth); k += n) {
+            ivec3 v = sampleVoxel(g, iv, k);
+            if (BRICKED && !inBrick(v)) break;
+            if (++iterations > params.maxIterations) {
+                failed = true;
+                break;
+            }
             // The sample's scalar. Composite classifies it (docs/ALGORITHMS.md section 2) and takes its gradient only
             // where its span is composited and shaded, below: a transparent span needs none.
             Footprint fp;
             if (TRILINEAR) fp = footprintAt(samplePosition(g, iv, k));
             float scalar = TRILINEAR ? footprintScalar(fp) : loadScalar(v);
-            if (BLEND == kBlendIso) {  // the surface lies between the last sample and this one: refined below
-                hit = k > 0u && isoInside(scalar, params.isoValue) != inside;
-                if (hit) break;
-                inside = isoInside(scalar, params.isoValue);
-            }
-            running = foldRunning(BLEND, running, scalar);
-            vec4 s = BLEND == kBlendComposite ? labelled(classify(scalar), v) : vec4(0.0);  // rgb colour, a: sigma
+            hit = foldSample(scalar, k, running, sum, inside);
+            if (hit) break;
+            if (BLEND != kBlendComposite) continue;  // the primitive caster: one sample (n stays 1)
+            vec4 s = labelled(classify(scalar), v);  // rgb colour, a: sigma
             precise float sampleDepth = s.a * params.dt;
 
             // What the leap wants without and with the margin of docs/ALGORITHMS.md section 8.
@@ -567,16 +599,12 @@ void main() {
                     box = b.box;
                 }
             }
-            // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count; the
-            // blocks caster's samples here are one each.
-            if (CASTER != kPrimitive && CASTER != kBlocks) {
+            // The primitive caster steps one sample (n stays 1): it needs no termination count and no leap count.
+            if (CASTER != kPrimitive) {
                 float termination = samplesToTermination(depth, sampleDepth);
                 if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
                 n = leapCount(g, iv, k, kCount, min(wanted, termination), min(wantedWithMargin, termination), box);
             }
-            if (CASTER == kBlocks) n = 1u;
-            if (BLEND == kBlendAverage) sum = addPair(sum, vec2(scalar, 0.0));
-            if (BLEND != kBlendComposite) continue;
 
             // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.
             spanDepth = CASTER == kPrimitive ? vec2(sampleDepth, 0.0) : exactProduct(float(n), sampleDepth);

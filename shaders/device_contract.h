@@ -32,8 +32,8 @@ VR_CONSTANT int kBindingScalarsFloat = 8;   // R32_SFLOAT
 VR_CONSTANT int kBindingField8 = 9;         // storage images of the distance field, one per format: R8 (PC, ACD,
 VR_CONSTANT int kBindingField16 = 10;       // joint8 EACD), R16 (log16 EACD), RGBA8 (exact EACD)
 VR_CONSTANT int kBindingFieldRGBA8 = 11;
-VR_CONSTANT int kBindingBlockExtrema = 12;  // storage image R32F: each block's scalar range (lo, hi side by side
-                                            // along x) for the blocks caster (render/block_extrema.h)
+VR_CONSTANT int kBindingBlockExtrema = 12;  // storage image RG32F: each block's scalar range (lo, hi) for the
+                                            // blocks caster (render/block_extrema.h)
 // A label map's labels, one storage image per format as the scalars', and its table: an RGBA32F texel per label
 // (rgb colour, a: extinction sigma; core/label_map.h).
 VR_CONSTANT int kBindingLabelsUInt8 = 13;   // R8_UINT

@@ -41,7 +41,7 @@ TEST(RenderCasterCalibration, BuiltInIsLavapipesFit) {
     EXPECT_EQ(c.uploadNsPerByte, 0.44);
     EXPECT_EQ(c.tie, 0.05);
     EXPECT_EQ(c.growth, (IterationGrowth{16.8e6, 0.1}));
-    EXPECT_EQ(c.blocksIterationRatio, 2.3);
+    EXPECT_EQ(c.blocksIterationRatio, 1.5);
     EXPECT_NE(c.deviceName.find("llvmpipe"), std::string::npos);
 }
 

@@ -97,6 +97,7 @@ std::size_t formatBytes(vk::Format format) {
         case vk::Format::eR16Sint: return 2;
         case vk::Format::eR32Sfloat: return 4;
         case vk::Format::eR32Uint: return 4;
+        case vk::Format::eR32G32Sfloat: return 8;
         case vk::Format::eR8G8B8A8Uint: return 4;
         default: throw std::logic_error("formatBytes: a volume image format without its size here");
     }

@@ -245,8 +245,8 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     if (std::find(contents.casters.begin(), contents.casters.end(), Caster::Blocks) != contents.casters.end()) {
         const BlockExtrema e = vr::blockExtrema(prepared.scalars);
         const std::size_t bytes = e.range.size() * sizeof(float);
-        const Vec3i texels{2 * e.imageDims.x, e.imageDims.y, e.imageDims.z};  // lo, hi side by side
-        blockExtrema_ = std::make_unique<VolumeImage>(ctx, pool, texels, kBlockExtremaFormat, e.range.data(), bytes);
+        blockExtrema_ =
+            std::make_unique<VolumeImage>(ctx, pool, e.imageDims, kBlockExtremaFormat, e.range.data(), bytes);
         blockLevelZ_ = e.levelZ;
         uploads_.push_back({"blocks", bytes, 0});
     }

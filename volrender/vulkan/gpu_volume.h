@@ -39,9 +39,9 @@ struct BrickBlocks {
 };
 BrickBlocks brickBlocks(const Vec3i& imageLo, const Vec3i& imageDims, int shift);
 
-// The block extrema's format: R32F, a block's lo and hi side by side along x (render/block_extrema.h's texels, two
-// floats each), a format every caster device reads already (float scalars), where RG32F would be one more.
-constexpr vk::Format kBlockExtremaFormat = vk::Format::eR32Sfloat;
+// The block extrema's format: RG32F, a block's lo and hi in one texel (render/block_extrema.h's texels), so that
+// the blocks caster reads a block's range with one image load (llvmpipe gathers each load's lanes).
+constexpr vk::Format kBlockExtremaFormat = vk::Format::eR32G32Sfloat;
 
 // The storage-image format of the scalars of each type: R8_UINT, R16_SINT, R16_UINT, R32_SFLOAT.
 vk::Format scalarFormat(ScalarType type);
