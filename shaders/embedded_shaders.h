@@ -4,7 +4,8 @@
 #include <vector>
 
 // The casters' module for a caster and a blend (shaders/device_contract.h ids; shaders/CMakeLists.txt builds one per
-// pair the renderer accepts), or null for a pair without one.
-const std::vector<uint32_t>* casterModule(int caster, int blend);
+// pair the renderer accepts), plain (composite without labels, stored gradients or stereo bands: caster.comp
+// VR_PLAIN) or full; null for a pair without one.
+const std::vector<uint32_t>* casterModule(int caster, int blend, bool plain);
 extern const std::vector<uint32_t> numerics_test_spv;  // expm1 / log1p over a buffer, for the tests
 extern const std::vector<uint32_t> stereo_reproject_spv;  // a stereo pair's right eye from its left eye

@@ -45,7 +45,9 @@ std::set<uint32_t> capabilities(const std::vector<uint32_t>& spirv) {
 TEST(VulkanValidation, CastersNeedNeitherFloat64NorInt64) {
     for (int caster = 0; caster <= device::kHier; ++caster)
         for (int blend = 0; blend <= device::kBlendIso; ++blend)
-            if (const std::vector<uint32_t>* module = casterModule(caster, blend)) {
+            for (const bool plain : {false, true}) {
+                const std::vector<uint32_t>* module = casterModule(caster, blend, plain);
+                if (!module) continue;
                 const std::set<uint32_t> used = capabilities(*module);
                 EXPECT_FALSE(used.empty());
                 EXPECT_EQ(used.count(10), 0u) << "caster " << caster << ", blend " << blend << " declares Float64";
@@ -76,7 +78,8 @@ TEST(VulkanValidation, CastersNeedNeitherFloat64NorInt64) {
     EXPECT_TRUE(errors.empty()) << errors.size() << " validation errors, first: " << errors.front();
 }
 
-// Each caster is one module per blend: every pair the renderer accepts has its module, and only those.
+// Each caster is one module per blend: every pair the renderer accepts has its module, and only those; composite
+// also a plain one.
 TEST(VulkanValidation, EveryAcceptedCasterAndBlendHasItsModule) {
     const Caster casters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD, Caster::Blocks, Caster::Hier};
     const Blend blends[] = {Blend::Composite, Blend::MIP, Blend::MinIP, Blend::Average, Blend::Iso};
@@ -94,7 +97,9 @@ TEST(VulkanValidation, EveryAcceptedCasterAndBlendHasItsModule) {
                 accepts = false;
             }
             accepted += accepts;
-            EXPECT_EQ(casterModule(int(c), int(b)) != nullptr, accepts) << casterName(c) << " " << blendName(b);
+            EXPECT_EQ(casterModule(int(c), int(b), false) != nullptr, accepts) << casterName(c) << " " << blendName(b);
+            EXPECT_EQ(casterModule(int(c), int(b), true) != nullptr, accepts && b == Blend::Composite)
+                << casterName(c) << " " << blendName(b) << ", plain";
         }
     EXPECT_EQ(accepted, 13);
 }

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include <tbb/parallel_for.h>
@@ -239,11 +240,14 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
     std::lock_guard lock(pipelinesMutex_);
     auto it = pipelines_.find(v);
     if (it != pipelines_.end()) return it->second;
-    // The module of the variant's caster and blend, made once.
-    const std::pair module{v.caster, v.blend};
+    // The module of the variant's caster and blend, plain where the variant needs none of the full one's features,
+    // made once.
+    const bool plain = v.labels == device::kNoLabels && !v.storedGradients && !v.stereoBands &&
+                       v.blend == Blend::Composite;
+    const std::tuple module{v.caster, v.blend, plain};
     auto shader = shaders_.find(module);
     if (shader == shaders_.end()) {
-        const std::vector<uint32_t>* spirv = casterModule(deviceCaster(v.caster), deviceBlend(v.blend));
+        const std::vector<uint32_t>* spirv = casterModule(deviceCaster(v.caster), deviceBlend(v.blend), plain);
         if (!spirv)
             throw std::logic_error("no caster module for --caster " + std::string(casterName(v.caster)) +
                                    " with --blend " + std::string(blendName(v.blend)) +

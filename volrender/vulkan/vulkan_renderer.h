@@ -147,7 +147,8 @@ private:
     vk::raii::CommandPool pool_{nullptr};
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout pipelineLayout_{nullptr};
-    std::map<std::pair<Caster, Blend>, vk::raii::ShaderModule> shaders_;  // made as pipelines need them
+    std::map<std::tuple<Caster, Blend, bool>, vk::raii::ShaderModule> shaders_;  // (caster, blend, plain), made as
+                                                                                 // pipelines need them
     std::unique_ptr<DeviceTimer> timer_;
     std::map<Variant, vk::raii::Pipeline> pipelines_;
     std::mutex pipelinesMutex_;  // held while a pipeline is looked up or made
