@@ -381,6 +381,15 @@ vec4 shownValue(float value, bool sampled) {
     return vec4(c.rgb * alpha + params.background.rgb * (1.0 - alpha), alpha);
 }
 
+// Sample k's voxel v, counted as an iteration; false where the sample lies outside this dispatch's brick (the next
+// brick's pass takes it) or the ray has reached the iteration cap (failed).
+bool enterSample(GridRay g, RayInterval iv, uint k, out ivec3 v, inout uint iterations, inout bool failed) {
+    v = sampleVoxel(g, iv, k);
+    if (BRICKED && !inBrick(v)) return false;
+    failed = ++iterations > params.maxIterations;
+    return !failed;
+}
+
 // Folds a sample's scalar into the blend's running values (blend.h); for the iso-surface, whether the surface lies
 // between the last sample and this one (the side is then left at the last sample's; the hit is refined below).
 bool foldSample(float scalar, uint k, inout float running, inout vec2 sum, inout bool inside) {
@@ -512,15 +521,10 @@ void main() {
         while (mine && !failed && !hit && k < kCount) {
             // Leaps until a block that could change the result, which sample k (voxel v) starts.
             ivec3 v;
-            bool leaves = false;  // the ray leaves the brick
+            bool entered;  // sample k is this dispatch's, and within the iteration cap
             do {
-                v = sampleVoxel(g, iv, k);
-                leaves = BRICKED && !inBrick(v);
-                if (leaves) break;
-                if (++iterations > params.maxIterations) {
-                    failed = true;
-                    break;
-                }
+                entered = enterSample(g, iv, k, v, iterations, failed);
+                if (!entered) break;
                 int size = 0;  // the edge of the block leapt over; 0: none
                 float value = 0.0;
                 for (int level = 0; level < kBlockLevels; ++level) {
@@ -543,27 +547,17 @@ void main() {
                 if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
                 k += n;
             } while (k < kCount);
-            if (leaves || failed || k >= kCount) break;
+            if (!entered || k >= kCount) break;
             for (uint blockEnd = k + n;;) {
                 float scalar = TRILINEAR ? footprintScalar(footprintAt(samplePosition(g, iv, k))) : loadScalar(v);
                 hit = foldSample(scalar, k, running, sum, inside);
-                if (hit || ++k >= blockEnd) break;
-                v = sampleVoxel(g, iv, k);
-                if (BRICKED && !inBrick(v)) break;
-                if (++iterations > params.maxIterations) {
-                    failed = true;
-                    break;
-                }
+                if (hit || ++k >= blockEnd || !enterSample(g, iv, k, v, iterations, failed)) break;
             }
         }
     } else do {
         for (n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth); k += n) {
-            ivec3 v = sampleVoxel(g, iv, k);
-            if (BRICKED && !inBrick(v)) break;
-            if (++iterations > params.maxIterations) {
-                failed = true;
-                break;
-            }
+            ivec3 v;
+            if (!enterSample(g, iv, k, v, iterations, failed)) break;
             // The sample's scalar. Composite classifies it (docs/ALGORITHMS.md section 2) and takes its gradient only
             // where its span is composited and shaded, below: a transparent span needs none.
             Footprint fp;

@@ -137,14 +137,14 @@ void reprojectIntervals() {
     }
     if (x >= width) return;
     int others = nonEmpty - (isinf(bestDepth) ? 0 : 1);
-    bool reuse = found && reuseCover(bestContinuous, bestAlpha, params.opaqueAlpha, others);
+    bool reuse = found && reuseCover(bestContinuous, bestAlpha, kOpaqueAlpha, others);
     finish(x, y, reuse, bestColour);
 }
 
 // Composite: band by band. Left pixel x's segment of band b as the right eye sees it (the caster stored it: see
 // stereo_reprojection.h bandSegment): its colour (premultiplied rgb, alpha) and where it lands (its opacity-weighted
 // mean disparity, the band's middle when faint); hidden when the ray's transmittance at the band's end is at most
-// 1 - opaqueAlpha (the left eye did not see what lies behind it); outside when x lies outside the image. Read as a
+// 1 - kOpaqueAlpha (the left eye did not see what lies behind it); outside when x lies outside the image. Read as a
 // texel by each right pixel that needs it, not shared: llvmpipe loads shared memory lane by lane, texels as one
 // gather.
 struct Segment {
@@ -207,7 +207,7 @@ void reprojectBands() {
     int y = int(gl_WorkGroupID.y);
     int x = int(gl_GlobalInvocationID.x);
     float c = float(x) + 0.5;
-    float seen = 1.0 - params.opaqueAlpha;
+    float seen = 1.0 - kOpaqueAlpha;
     vec3 colour = vec3(0.0);
     float transmittance = 1.0;
     bool done = x >= width, reuse = true;
@@ -252,12 +252,12 @@ void reprojectBands() {
         if (!found) {
             reuse = !clipped && !hidden;  // nothing of this band lands here, or the left eye could not tell
         } else {
-            reuse = reuseCover(best, bestColour.a, params.opaqueAlpha, max(covers - 1, 0));
+            reuse = reuseCover(best, bestColour.a, kOpaqueAlpha, max(covers - 1, 0));
             colour += transmittance * bestColour.rgb;
             transmittance *= 1.0 - bestColour.a;
             reuse = reuse && !(bestHidden && transmittance > seen);
         }
-        // What lies behind a right pixel this opaque adds at most 1 - opaqueAlpha of its colour.
+        // What lies behind a right pixel this opaque adds at most 1 - kOpaqueAlpha of its colour.
         done = !reuse || transmittance <= seen;
     }
     if (x >= width) return;

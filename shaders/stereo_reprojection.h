@@ -89,7 +89,7 @@ struct StereoParams {
     float leftShift;       // the left eye's Camera::shift
     float maxSpread;       // pixels: the widest disparity range over a pixel's interval that one depth stands for
                            // (composite: the bands' width)
-    float opaqueAlpha;     // a reused piece at least this opaque hides what lies behind it
+    float faintAlpha;      // a band's segment below this opacity is faint: it lands where its neighbour's does
     float maxStep;         // the largest colour difference between the two ends of a piece that it interpolates
     float maxGap;          // pixels: neighbours reprojected farther apart than 1 + maxGap open a gap
     ivec2 window;          // right pixel x gathers the left pixels x - window.y .. x - window.x (the disparities'
@@ -97,7 +97,6 @@ struct StereoParams {
     vec4 background;       // rgb: what a composite right pixel shows through its transmittance
     float firstDisparity;  // composite: the first band's near disparity
     int bandCount;         // composite: the number of bands
-    float faintAlpha;      // a band's segment below this opacity is faint: it lands where its neighbour's does
 };
 
 // The disparity in pixels (x in the right image minus x in the left) of a point at depth z along the eyes' common

@@ -36,7 +36,6 @@ device::StereoParams reprojection(const StereoPair& pair, const DepthRange& dept
     p.halfHeight = float(left.halfHeight);
     p.leftShift = float(left.shift);
     p.maxSpread = float(kMaxSpreadPixels);
-    p.opaqueAlpha = float(kOpaqueAlpha);
     p.maxStep = float(settings.blend == Blend::Composite ? kMaxBandStep : kMaxColourStep);
     p.maxGap = float(kMaxGapPixels);
     // The disparities lie between the volume's nearest point's and infinity's; eyes inside the volume search the row.
@@ -59,21 +58,25 @@ uint64_t blockOrder(uint32_t pixel) {
 
 }  // namespace
 
-VulkanRenderer::PairBuffers::PairBuffers(const VulkanContext& ctx, std::size_t pixels, std::size_t segments)
-    : pixels(pixels), segments(segments),
-      left(ctx, pixels * sizeof(device::OutPixel), vk::BufferUsageFlagBits::eStorageBuffer),
+VulkanRenderer::PairBuffers::PairBuffers(const VulkanContext& ctx, std::size_t pixels, std::size_t segments,
+                                         std::size_t leftPixels)
+    : pixels(pixels), segments(segments), leftPixels(leftPixels),
+      left(ctx, std::max<std::size_t>(leftPixels, 1) * sizeof(device::OutPixel),
+           vk::BufferUsageFlagBits::eStorageBuffer),
       right(ctx, pixels * sizeof(device::uvec4), vk::BufferUsageFlagBits::eStorageBuffer),
       recast(ctx, (pixels + 1) * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer) {
     if (segments > 0) bands.emplace(ctx, segments * sizeof(device::uvec4), kBandSegmentUsage);
 }
 
-VulkanRenderer::PairBuffers& VulkanRenderer::pairBuffers(std::size_t pixels, std::size_t segments) {
-    if (!pair_ || pair_->pixels < pixels || pair_->segments < segments) {
+VulkanRenderer::PairBuffers& VulkanRenderer::pairBuffers(std::size_t pixels, std::size_t segments,
+                                                         std::size_t leftPixels) {
+    if (!pair_ || pair_->pixels < pixels || pair_->segments < segments || pair_->leftPixels < leftPixels) {
         // As large as every pair so far has needed, so that pairs of alternating sizes do not make them afresh.
         const std::size_t p = std::max(pixels, pair_ ? pair_->pixels : 0);
         const std::size_t s = std::max(segments, pair_ ? pair_->segments : 0);
+        const std::size_t l = std::max(leftPixels, pair_ ? pair_->leftPixels : 0);
         pair_.reset();  // the old ones freed before the larger are allocated
-        pair_.emplace(ctx_, p, s);
+        pair_.emplace(ctx_, p, s, l);
     }
     return *pair_;
 }
@@ -101,7 +104,8 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
     checkRender(volume, pair.left, settings);
     checkRender(volume, pair.right, settings);
     return deviceErrors([&] {
-        PairBuffers& buffers = pairBuffers(pixels, segments);
+        // Composite reprojects the left eye's bands alone: its pixels stay in the frame's buffers.
+        PairBuffers& buffers = pairBuffers(pixels, segments, composite ? 0 : pixels);
         const HostBuffer &right = buffers.right, &recast = buffers.recast;
         const DeviceBuffer* leftBands = composite ? &*buffers.bands : nullptr;
         const StereoLeft leftEye{composite ? nullptr : buffers.left.data(), leftBands,

@@ -129,12 +129,12 @@ private:
     // reprojected right eye's colours, the re-cast list and composite's band segments (uvec4 each). Kept and grown
     // as the frame's are: made afresh, their tens of MB were faulted in by every pair.
     struct PairBuffers {
-        PairBuffers(const VulkanContext& ctx, std::size_t pixels, std::size_t segments);
-        std::size_t pixels, segments;
-        HostBuffer left, right, recast;
+        PairBuffers(const VulkanContext& ctx, std::size_t pixels, std::size_t segments, std::size_t leftPixels);
+        std::size_t pixels, segments, leftPixels;
+        HostBuffer left, right, recast;  // left: leftPixels, at least 1 (bound, unread, for composite)
         std::optional<DeviceBuffer> bands;  // when segments > 0
     };
-    PairBuffers& pairBuffers(std::size_t pixels, std::size_t segments);
+    PairBuffers& pairBuffers(std::size_t pixels, std::size_t segments, std::size_t leftPixels);
     // Turns Vulkan's out-of-memory and device-lost errors into messages that say what to try.
     template <typename Work>
     auto deviceErrors(Work&& work) -> decltype(work());
