@@ -57,10 +57,8 @@ layout(constant_id = kSpecIdStereoBands) const bool STEREO_BANDS = false;
 #include "extent_code.glsl"
 
 // Storage images (volrender/vulkan/gpu_buffer.h): llvmpipe loads them more cheaply than texelFetch.
-// The scalars in the volume's own type, bound by its format; the other three are unused.
-layout(set = 0, binding = kBindingScalarsUInt8, r8ui) uniform readonly uimage3D scalarsUInt8;
-layout(set = 0, binding = kBindingScalarsUInt16, r16ui) uniform readonly uimage3D scalarsUInt16;
-layout(set = 0, binding = kBindingScalarsInt16, r16i) uniform readonly iimage3D scalarsInt16;
+// The scalars in the volume's own type: integers packed into words, or floats; the other image is unused.
+layout(set = 0, binding = kBindingScalarWords, r32ui) uniform readonly uimage3D scalarWords;
 layout(set = 0, binding = kBindingScalarsFloat, r32f) uniform readonly image3D scalarsFloat;
 // The field, bound by its format: PC (r), ACD (r per octant slab) and joint8 EACD in R8, log16 EACD in R16, exact
 // EACD in RGBA8 (rgb); the other two are unused.
@@ -74,10 +72,8 @@ layout(set = 0, binding = kBindingBlockExtrema, rg32f) uniform readonly image3D 
 // buffer (volrender/vulkan/gpu_buffer.h TexelTable), as the label table.
 layout(set = 0, binding = kBindingTransferTable, rgba32f) uniform readonly imageBuffer transferTable;
 layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels { OutPixel outPixel[]; };
-// The label map's labels in their type (the other image is unused) and its table: entry l for label l (rgb colour,
-// a: extinction sigma).
-layout(set = 0, binding = kBindingLabelsUInt8, r8ui) uniform readonly uimage3D labelsUInt8;
-layout(set = 0, binding = kBindingLabelsUInt16, r16ui) uniform readonly uimage3D labelsUInt16;
+// The label map's labels packed into words, and its table: entry l for label l (rgb colour, a: extinction sigma).
+layout(set = 0, binding = kBindingLabelWords, r32ui) uniform readonly uimage3D labelWords;
 layout(set = 0, binding = kBindingLabelTable, rgba32f) uniform readonly imageBuffer labelTable;
 layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; uint listPixel[]; };
 layout(set = 0, binding = kBindingGradients, r32ui) uniform readonly uimage3D gradients;
@@ -140,13 +136,22 @@ uvec4 loadField(ivec3 texel) {
     return imageLoad(field8, texel);
 }
 
+// Where the integer of `bits` bits at brick texel t lies among an image's words: the word's texel, and the
+// integer's first bit in it (device_contract.h wordShift).
+ivec4 wordOf(ivec3 t, int bits) {
+    int shift = wordShift(bits);
+    return ivec4(t.x >> shift, t.yz, (t.x & ((1 << shift) - 1)) * bits);
+}
+
 // The scalar of a global voxel (exact in float for the integer types).
 float loadScalar(ivec3 v) {
     ivec3 texel = brickTexel(v);
-    if (SCALAR_TYPE == kScalarUInt8) return float(imageLoad(scalarsUInt8, texel).r);
-    if (SCALAR_TYPE == kScalarUInt16) return float(imageLoad(scalarsUInt16, texel).r);
-    if (SCALAR_TYPE == kScalarInt16) return float(imageLoad(scalarsInt16, texel).r);
-    return imageLoad(scalarsFloat, texel).r;
+    if (SCALAR_TYPE == kScalarFloat32) return imageLoad(scalarsFloat, texel).r;
+    int bits = scalarBits(SCALAR_TYPE);
+    ivec4 w = wordOf(texel, bits);
+    uint word = imageLoad(scalarWords, w.xyz).r;
+    return SCALAR_TYPE == kScalarInt16 ? float(bitfieldExtract(int(word), w.w, bits))
+                                       : float(bitfieldExtract(word, w.w, bits));
 }
 
 // Classification of a scalar (docs/ALGORITHMS.md section 2): the transfer table's entries around it, interpolated;
@@ -165,8 +170,9 @@ vec4 classify(float scalar) {
 
 // The label of a global voxel, and its entry in the label table.
 int loadLabel(ivec3 v) {
-    ivec3 texel = brickTexel(v);
-    return int(LABELS == kLabelsUInt8 ? imageLoad(labelsUInt8, texel).r : imageLoad(labelsUInt16, texel).r);
+    int bits = LABELS == kLabelsUInt8 ? 8 : 16;
+    ivec4 w = wordOf(brickTexel(v), bits);
+    return int(bitfieldExtract(imageLoad(labelWords, w.xyz).r, w.w, bits));
 }
 vec4 labelClass(int label) { return imageLoad(labelTable, labelEntry(label, params.labelLastEntry)); }
 

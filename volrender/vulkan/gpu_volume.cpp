@@ -12,6 +12,7 @@
 #include "render/block_extrema.h"
 #include "render/render_checks.h"
 #include "render/stored_gradients.h"
+#include "shaders/device_contract.h"
 
 namespace vr {
 namespace {
@@ -26,6 +27,7 @@ struct WholeImage {
     vk::Format format;
     // Writes `count` texels of slab `slab`, from voxel `first` (a linear index) along x, to `to`.
     std::function<void(int slab, std::size_t first, int count, uint8_t* to)> row;
+    int perTexel = 1;  // voxels along x a texel holds: the row's texels in words of integers (device_contract.h)
 };
 
 // The casters whose fields hold one slab per octant.
@@ -53,23 +55,18 @@ BrickBlocks brickBlocks(const Vec3i& imageLo, const Vec3i& imageDims, int shift)
 }
 
 vk::Format scalarFormat(ScalarType type) {
-    switch (type) {
-        case ScalarType::UInt8: return vk::Format::eR8Uint;
-        case ScalarType::Int16: return vk::Format::eR16Sint;
-        case ScalarType::UInt16: return vk::Format::eR16Uint;
-        case ScalarType::Float32: return vk::Format::eR32Sfloat;
-    }
-    throw std::logic_error("scalarFormat: a scalar type without its image format");
+    return type == ScalarType::Float32 ? vk::Format::eR32Sfloat : kWordFormat;
 }
+
+int scalarsPerTexel(ScalarType type) { return 1 << device::wordShift(int(8 * scalarBytes(type))); }
 
 const std::vector<CasterImageFormat>& casterImageFormats() {
     static const std::vector<CasterImageFormat> formats{
-        {scalarFormat(ScalarType::UInt8), "R8_UINT", "uint8 scalars, PC, ACD and joint8 EACD"},
-        {scalarFormat(ScalarType::Int16), "R16_SINT", "int16 scalars"},
-        {scalarFormat(ScalarType::UInt16), "R16_UINT", "uint16 scalars and log16 EACD"},
+        {kWordFormat, "R32_UINT", "integer scalars and labels, in words, and stored gradients"},
         {scalarFormat(ScalarType::Float32), "R32_SFLOAT", "float32 scalars and the blocks caster's scalar ranges"},
-        {eacdFormat(ExtentCode::Exact), "R8G8B8A8_UINT", "exact EACD"},
-        {kGradientFormat, "R32_UINT", "stored gradients"}};
+        {vk::Format::eR8Uint, "R8_UINT", "PC, ACD and joint8 EACD"},
+        {eacdFormat(ExtentCode::Log16), "R16_UINT", "log16 EACD"},
+        {eacdFormat(ExtentCode::Exact), "R8G8B8A8_UINT", "exact EACD"}};
     return formats;
 }
 
@@ -78,7 +75,7 @@ void requireCasterImageSupport(const std::string& deviceName, const vk::Physical
     if (!features.shaderStorageImageExtendedFormats)
         throw std::runtime_error("the Vulkan device " + deviceName +
                                  " lacks the feature shaderStorageImageExtendedFormats, which the casters need to "
-                                 "read R8_UINT, R16_UINT and R16_SINT storage images");
+                                 "read R8_UINT and R16_UINT storage images");
     for (const CasterImageFormat& f : casterImageFormats())
         if (!(formatProperties(f.format).optimalTilingFeatures & vk::FormatFeatureFlagBits::eStorageImage))
             throw std::runtime_error("the Vulkan device " + deviceName + " cannot use " + f.name +
@@ -139,7 +136,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
         if (narrowScalars(values.data() + first, std::size_t(count), scalarType, to) < std::size_t(count))
             scalarsFit = false;
     };
-    wholes.push_back({&scalars_, "scalars", 1, scalarFormat(scalarType_), scalarRow});
+    wholes.push_back({&scalars_, "scalars", 1, scalarFormat(scalarType_), scalarRow, scalarsPerTexel(scalarType_)});
     if (const std::optional<LabelMap>& labels = prepared.labels) {
         tableFits("the label table", labels->classes.size());
         labelTable_ = std::make_unique<TexelTable>(ctx, pool, labels->classes.interleaved());
@@ -148,11 +145,12 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
         labelLastEntry_ = labels->lastEntry();
         const std::vector<uint16_t>& l = labels->label;
         const bool wide = labelType_ == ScalarType::UInt16;
-        wholes.push_back({&labels_, "label map", 1, wide ? vk::Format::eR16Uint : vk::Format::eR8Uint,
+        wholes.push_back({&labels_, "label map", 1, kWordFormat,
                           [&l, wide](int, std::size_t first, int count, uint8_t* to) {
                               if (wide) std::memcpy(to, l.data() + first, std::size_t(count) * sizeof(uint16_t));
                               else for (int i = 0; i < count; ++i) to[i] = uint8_t(l[first + std::size_t(i)]);
-                          }});
+                          },
+                          1 << device::wordShift(wide ? 16 : 8)});
     }
 
     std::optional<GradientPacker> packer;
@@ -226,16 +224,19 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
         const std::size_t texel = formatBytes(w.format);
         for (std::size_t i = 0; i < bricks.size(); ++i) {
             const Brick& b = bricks[i];
-            const Vec3i extent{b.imageDims.x, b.imageDims.y, b.imageDims.z * w.slabs};
-            const std::size_t bytes = texel * b.imageDims.x * b.imageDims.y * extent.z;
+            const Vec3i extent{(b.imageDims.x + w.perTexel - 1) / w.perTexel, b.imageDims.y, b.imageDims.z * w.slabs};
+            const std::size_t bytes = texel * extent.x * extent.y * extent.z;
             // The brick's box from every slab, stacked along z as the whole image stacks them; slices in parallel.
+            // A row of words ends in zeros where its voxels do not fill the last word.
             auto write = [&](uint8_t* to, std::size_t rowPitch, std::size_t slicePitch) {
                 tbb::parallel_for(0, extent.z, [&](int sz) {
                     const int s = sz / b.imageDims.z, z = b.imageLo.z + sz % b.imageDims.z;
                     uint8_t* slice = to + std::size_t(sz) * slicePitch;
-                    for (int y = 0; y < b.imageDims.y; ++y)
-                        w.row(s, linearIndex(dims, b.imageLo.x, b.imageLo.y + y, z), b.imageDims.x,
-                              slice + y * rowPitch);
+                    for (int y = 0; y < b.imageDims.y; ++y) {
+                        uint8_t* row = slice + y * rowPitch;
+                        if (w.perTexel > 1) std::memset(row + (extent.x - 1) * texel, 0, texel);
+                        w.row(s, linearIndex(dims, b.imageLo.x, b.imageLo.y + y, z), b.imageDims.x, row);
+                    }
                 });
             };
             w.bricks->push_back(std::make_unique<VolumeImage>(ctx, pool, extent, w.format, bytes, write, limits.staged));

@@ -32,6 +32,8 @@ struct GpuVolumeContents {
 };
 
 constexpr vk::Format kGradientFormat = vk::Format::eR32Uint;
+// Integer scalars and labels, packed along x into 32-bit words (shaders/device_contract.h wordShift).
+constexpr vk::Format kWordFormat = vk::Format::eR32Uint;
 // The hier field's blocks of 2^shift voxels that the voxels imageLo .. imageLo + imageDims - 1 of a brick's images
 // touch: the first and their count per axis (shaders/brick_state.glsl blockTexel reads them so).
 struct BrickBlocks {
@@ -43,10 +45,12 @@ BrickBlocks brickBlocks(const Vec3i& imageLo, const Vec3i& imageDims, int shift)
 // the blocks caster reads a block's range with one image load (llvmpipe gathers each load's lanes).
 constexpr vk::Format kBlockExtremaFormat = vk::Format::eR32G32Sfloat;
 
-// The storage-image format of the scalars of each type: R8_UINT, R16_SINT, R16_UINT, R32_SFLOAT.
+// The storage-image format of the scalars of each type: R32_UINT words packing integers along x (device_contract.h
+// wordShift), or R32_SFLOAT; and how many scalars a texel holds along x.
 vk::Format scalarFormat(ScalarType type);
+int scalarsPerTexel(ScalarType type);
 
-// Every format the casters read as a storage image: the scalars' four and the fields' (R8_UINT, R16_UINT,
+// Every format the casters read as a storage image: the scalars' two and the fields' (R8_UINT, R16_UINT,
 // RGBA8_UINT), with their names and what each holds, for messages.
 struct CasterImageFormat {
     vk::Format format;
@@ -74,7 +78,7 @@ struct TablePlacement {
 class GpuVolume {
 public:
     // Uploads the scalars in their own type (scalarFormat), the transfer table (a TexelTable, an entry per texel:
-    // rgb colour, sigma), a label map's labels in their type and its table (as the transfer table) and each
+    // rgb colour, sigma), a label map's labels in their type, packed as integer scalars, and its table (as the transfer table) and each
     // caster's field: PC (R8_UINT), ACD (R8_UINT), EACD (RGBA8_UINT exact, R16_UINT
     // log16, R8_UINT joint8), hier (R16_UINT, one image of the blocks); ACD, EACD and hier hold the octants of the
     // mask stacked along z, slab i holding the i-th octant of the mask. Each image is split into the bricks of one plan that fits every image.

@@ -30,16 +30,11 @@ namespace {
 // The field's image formats, one binding each (a storage image is read in the format it declares).
 constexpr vk::Format kFieldFormats[3] = {vk::Format::eR8Uint, vk::Format::eR16Uint, vk::Format::eR8G8B8A8Uint};
 constexpr uint32_t kFieldBindings[3] = {device::kBindingField8, device::kBindingField16, device::kBindingFieldRGBA8};
-// The scalars' types, in the order of their binding, and their bindings (formats: scalarFormat).
-constexpr ScalarType kScalarTypes[4] = {ScalarType::UInt8, ScalarType::UInt16, ScalarType::Int16, ScalarType::Float32};
-constexpr uint32_t kScalarBindings[4] = {device::kBindingScalarsUInt8, device::kBindingScalarsUInt16,
-                                         device::kBindingScalarsInt16, device::kBindingScalarsFloat};
-// The label images' formats, one binding each, in the order of device::kLabelsUInt8 and kLabelsUInt16.
-constexpr vk::Format kLabelFormats[2] = {vk::Format::eR8Uint, vk::Format::eR16Uint};
-constexpr uint32_t kLabelBindings[2] = {device::kBindingLabelsUInt8, device::kBindingLabelsUInt16};
 
 // The uploaded decode table is the shader's array of kExtentTableEntries uvec4.
 static_assert(kExtentTableEntries == device::kExtentTableEntries && sizeof(ExtentTableEntry) == 16);
+// The unused words image stands in for the stored gradients too.
+static_assert(kGradientFormat == kWordFormat);
 
 // The casters' module ids, and the values of the extent code's specialization constant.
 int deviceCaster(Caster caster) {
@@ -191,31 +186,26 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
         {device::kBindingLabelTable, T::eStorageTexelBuffer, 1, compute},
         {device::kBindingPixelList, T::eStorageBuffer, 1, compute},
         {device::kBindingStereoBands, T::eStorageBuffer, 1, compute}};
-    for (uint32_t binding : kScalarBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
+    bindings.emplace_back(device::kBindingScalarWords, T::eStorageImage, 1, compute);
+    bindings.emplace_back(device::kBindingScalarsFloat, T::eStorageImage, 1, compute);
     for (uint32_t binding : kFieldBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
     bindings.emplace_back(device::kBindingBlockExtrema, T::eStorageImage, 1, compute);
     bindings.emplace_back(device::kBindingGradients, T::eStorageImage, 1, compute);
-    for (uint32_t binding : kLabelBindings) bindings.emplace_back(binding, T::eStorageImage, 1, compute);
+    bindings.emplace_back(device::kBindingLabelWords, T::eStorageImage, 1, compute);
     setLayout_ = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     vk::PushConstantRange push(compute, 0, sizeof(device::TilePush));
     vk::DescriptorSetLayout layout = *setLayout_;
     pipelineLayout_ = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, layout, push));
     timer_ = std::make_unique<DeviceTimer>(ctx);
     const uint8_t zeros[8] = {};
-    for (int i = 0; i < 4; ++i) {
-        const vk::Format format = scalarFormat(kScalarTypes[i]);
-        unusedScalars_[i] = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, format, zeros, formatBytes(format));
-    }
+    unusedWords_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kWordFormat, zeros, formatBytes(kWordFormat));
+    const vk::Format floats = scalarFormat(ScalarType::Float32);
+    unusedFloats_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, floats, zeros, formatBytes(floats));
     for (int i = 0; i < 3; ++i)
         unusedFields_[i] = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kFieldFormats[i], zeros,
                                                          formatBytes(kFieldFormats[i]));
     unusedBlockExtrema_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kBlockExtremaFormat, zeros,
                                                         formatBytes(kBlockExtremaFormat));
-    for (int i = 0; i < 2; ++i)
-        unusedLabels_[i] = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kLabelFormats[i], zeros,
-                                                         formatBytes(kLabelFormats[i]));
-    unusedGradients_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kGradientFormat, zeros,
-                                                     formatBytes(kGradientFormat));
     unusedLabelTable_ = std::make_unique<TexelTable>(ctx, pool_, std::vector<float>(4, 0.f));
 }
 
@@ -400,14 +390,14 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     for (uint32_t b = 0; b < brickCount; ++b) {
         const vk::DescriptorSet set = *sets[b];
         const VolumeImage* field = volume.field(settings.caster, int(b));
-        vk::DescriptorImageInfo scalars[4], fields[3], labels[2];
+        vk::DescriptorImageInfo fields[3];
         const VolumeImage* gradientImage = volume.gradients(int(b));
-        const vk::DescriptorImageInfo gradients = imageInfo(gradientImage ? *gradientImage : *unusedGradients_);
+        const vk::DescriptorImageInfo gradients = imageInfo(gradientImage ? *gradientImage : *unusedWords_);
         const VolumeImage* labelImage = volume.labels(int(b));
-        for (int i = 0; i < 2; ++i)
-            labels[i] = imageInfo(labelImage && labelImage->format() == kLabelFormats[i] ? *labelImage : *unusedLabels_[i]);
-        for (int i = 0; i < 4; ++i)
-            scalars[i] = imageInfo(kScalarTypes[i] == volume.scalarType() ? volume.scalars(int(b)) : *unusedScalars_[i]);
+        const vk::DescriptorImageInfo labels = imageInfo(labelImage ? *labelImage : *unusedWords_);
+        const bool floats = volume.scalarType() == ScalarType::Float32;
+        const vk::DescriptorImageInfo scalarWords = imageInfo(floats ? *unusedWords_ : volume.scalars(int(b)));
+        const vk::DescriptorImageInfo scalarFloats = imageInfo(floats ? volume.scalars(int(b)) : *unusedFloats_);
         for (int i = 0; i < 3; ++i)
             fields[i] = imageInfo(field && field->format() == kFieldFormats[i] ? *field : *unusedFields_[i]);
         using T = vk::DescriptorType;
@@ -420,11 +410,12 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             {set, device::kBindingLabelTable, 0, 1, T::eStorageTexelBuffer, nullptr, nullptr, &labelEntries},
             {set, device::kBindingPixelList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
             {set, device::kBindingStereoBands, 0, 1, T::eStorageBuffer, nullptr, &buffers[4]}};
-        for (int i = 0; i < 4; ++i) writes.emplace_back(set, kScalarBindings[i], 0, 1, T::eStorageImage, &scalars[i]);
+        writes.emplace_back(set, device::kBindingScalarWords, 0, 1, T::eStorageImage, &scalarWords);
+        writes.emplace_back(set, device::kBindingScalarsFloat, 0, 1, T::eStorageImage, &scalarFloats);
         for (int i = 0; i < 3; ++i) writes.emplace_back(set, kFieldBindings[i], 0, 1, T::eStorageImage, &fields[i]);
         writes.emplace_back(set, device::kBindingBlockExtrema, 0, 1, T::eStorageImage, &blockRanges);
         writes.emplace_back(set, device::kBindingGradients, 0, 1, T::eStorageImage, &gradients);
-        for (int i = 0; i < 2; ++i) writes.emplace_back(set, kLabelBindings[i], 0, 1, T::eStorageImage, &labels[i]);
+        writes.emplace_back(set, device::kBindingLabelWords, 0, 1, T::eStorageImage, &labels);
         device.updateDescriptorSets(writes, {});
     }
 

@@ -154,11 +154,10 @@ private:
     std::mutex pipelinesMutex_;  // held while a pipeline is looked up or made
     std::optional<FrameBuffers> frame_;
     std::optional<PairBuffers> pair_;
-    // Bound where a variant reads nothing (the scalar bindings of the other types, the field for primitive, the
-    // field bindings of the other formats, the block extrema for every caster but blocks, the label bindings of a
-    // volume without labels or of the other label type, the gradients where none are stored): never read.
-    std::unique_ptr<VolumeImage> unusedScalars_[4], unusedFields_[3], unusedBlockExtrema_, unusedLabels_[2],
-        unusedGradients_;
+    // Bound where a variant reads nothing (the scalar binding of the other kind, the field for primitive, the field
+    // bindings of the other formats, the block extrema for every caster but blocks, the labels of a volume without
+    // them, the gradients where none are stored): never read. Words serve every R32_UINT binding.
+    std::unique_ptr<VolumeImage> unusedWords_, unusedFloats_, unusedFields_[3], unusedBlockExtrema_;
     std::unique_ptr<TexelTable> unusedLabelTable_;  // bound without a label map
     std::vector<UploadedResource> uploads_;
     std::unique_ptr<StereoReprojector> reprojector_;  // made by the first pair with reuse
