@@ -350,6 +350,12 @@ vec3 sampleNormal(Footprint fp, ivec3 v) {
     return normalOf(TRILINEAR ? footprintGradient(fp) : voxelGradient(v));
 }
 
+// A span's colour as composited: shaded by the normal of its first sample (voxel v, footprint fp) where it shows
+// something.
+vec3 shadedSpan(vec3 colour, float alpha, Footprint fp, ivec3 v, vec3 toEye, vec3 toLight) {
+    return SHADING && alpha > 0.0 ? shade(colour, sampleNormal(fp, v), toEye, toLight) : colour;
+}
+
 // A leap from sample k (voxel v) to the far faces of v's box of extents ext in the ray's octant (ACD, EACD, blocks,
 // hier): the samples it wants without and with the margin of docs/ALGORITHMS.md section 8, and the box.
 struct BoxLeap {
@@ -514,9 +520,12 @@ void main() {
     // sample loop would cost every sample; here it costs once per band end that a SIMD batch of rays reaches.
     bool crossing = false;  // the span below reaches the band's far end
     uint n = 1u;
-    vec3 shaded;
+    vec3 shaded, spanColour;
     vec2 spanDepth;
     float spanAlpha, t0, t1;
+    bool shown = false;  // the primitive caster's sample below shows something: shaded and composited out of its loop
+    ivec3 spanVoxel;
+    Footprint spanFootprint;
     // The blocks caster (the other blends only). Each trip of the outer loop leaps block after block in the leap
     // loop, one lookup each (the coarsest block that cannot change the result; average adds its one value n times),
     // until a finest block that could change it, whose samples the sample loop then takes one by one to its far faces
@@ -617,20 +626,32 @@ void main() {
             // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.
             spanDepth = CASTER == kPrimitive ? vec2(sampleDepth, 0.0) : exactProduct(float(n), sampleDepth);
             spanAlpha = spanOpacity(spanDepth.x);
-            shaded = s.rgb;
-            if (SHADING && spanAlpha > 0.0) shaded = shade(s.rgb, sampleNormal(fp, v), toEye, toLight);
             t0 = latticeT(iv, k);
             t1 = latticeT(iv, k + n);
             crossing = STEREO_BANDS && t1 > bandEnd;
-            if (crossing) break;
+            // The primitive caster shades a sample that shows something out of this loop, below, with a span that
+            // reaches a stereo band's far end: llvmpipe runs both sides of a branch under a mask, so shading here
+            // cost its every transparent sample too (a primitive frame 30 % longer). A leaping caster shades here:
+            // out of the loop, the rays of a SIMD batch wait for each other at their spans, which cost more.
+            shown = CASTER == kPrimitive && spanAlpha > 0.0;
+            if (crossing || shown) {
+                spanColour = s.rgb;
+                spanFootprint = fp;
+                spanVoxel = v;
+                break;
+            }
+            if (CASTER == kPrimitive) continue;  // nothing to composite
+            shaded = shadedSpan(s.rgb, spanAlpha, fp, v, toEye, toLight);
             if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
             compositeSpan(shaded, spanAlpha, spanDepth, t0, t1, colour, colourLost, transmittance, depth, moment);
         }
-        if (!crossing) break;
+        if (!crossing && !shown) break;
+        shown = false;
+        shaded = shadedSpan(spanColour, spanAlpha, spanFootprint, spanVoxel, toEye, toLight);
         // A stereo left eye stores the segments of the bands whose far end the span reaches, from its record
         // there: what it gathered up to there, the span split where the band ends (however many samples the span
         // leaps).
-        while (t1 > bandEnd) {
+        while (STEREO_BANDS && t1 > bandEnd) {
             precise float part = spanDepthBefore(spanDepth.x, t0, t1, bandEnd);
             float w = transmittance * spanOpacity(part);
             vec4 end = vec4(colour - colourLost + shaded * w, transmittance - w);
@@ -642,11 +663,11 @@ void main() {
             bandGathered = false;
             bandEnd = bandEndT(++band, cosine);
         }
-        if (spanAlpha > 0.0) bandGathered = true;
+        if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
         compositeSpan(shaded, spanAlpha, spanDepth, t0, t1, colour, colourLost, transmittance, depth, moment);
         k += n;
         crossing = false;
-    } while (STEREO_BANDS);
+    } while (true);
 
     // Some drivers end loops on their own: llvmpipe stops every loop of an invocation once 65535 iterations have run
     // in all of them, which would silently shorten a long ray. A loop whose trip count (2) the compiler cannot
