@@ -632,7 +632,9 @@ void main() {
             // The primitive caster shades a sample that shows something out of this loop, below, with a span that
             // reaches a stereo band's far end: llvmpipe runs both sides of a branch under a mask, so shading here
             // cost its every transparent sample too (a primitive frame 30 % longer). A leaping caster shades here:
-            // out of the loop, the rays of a SIMD batch wait for each other at their spans, which cost more.
+            // out of the loop, the rays of a SIMD batch wait for each other at their spans, and a stereo left eye
+            // would shade again at every band end, which cost more.
+            if (CASTER != kPrimitive) shaded = shadedSpan(s.rgb, spanAlpha, fp, v, toEye, toLight);
             shown = CASTER == kPrimitive && spanAlpha > 0.0;
             if (crossing || shown) {
                 spanColour = s.rgb;
@@ -641,13 +643,12 @@ void main() {
                 break;
             }
             if (CASTER == kPrimitive) continue;  // nothing to composite
-            shaded = shadedSpan(s.rgb, spanAlpha, fp, v, toEye, toLight);
             if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
             compositeSpan(shaded, spanAlpha, spanDepth, t0, t1, colour, colourLost, transmittance, depth, moment);
         }
         if (!crossing && !shown) break;
         shown = false;
-        shaded = shadedSpan(spanColour, spanAlpha, spanFootprint, spanVoxel, toEye, toLight);
+        if (CASTER == kPrimitive) shaded = shadedSpan(spanColour, spanAlpha, spanFootprint, spanVoxel, toEye, toLight);
         // A stereo left eye stores the segments of the bands whose far end the span reaches, from its record
         // there: what it gathered up to there, the span split where the band ends (however many samples the span
         // leaps).
