@@ -79,10 +79,13 @@ layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList {
 layout(set = 0, binding = kBindingGradients, r32ui) uniform readonly uimage3D gradients;
 layout(set = 0, binding = kBindingStereoBands, std430) writeonly buffer StereoBands { uvec4 segments[]; };
 
-// Where the ray's band `band` ends along it: its far depth over the cosine of the ray's angle to the view direction.
-float bandEndT(int band, float cosine) {
+// Where the ray's band `band` ends along it, as 1 / t (stereo_reprojection.h), and whether t lies beyond it.
+float bandEndInverse(int band, float cosine) {
     vec4 b = params.stereoBands;
-    return bandFarDepth(b.x, b.y, b.z, b.w, band, params.stereoBandCount) / cosine;
+    return bandEndInverse(b.x, b.y, b.z, b.w, cosine, band);
+}
+bool bandEndBeyond(float t, float inverseEnd, int band) {
+    return bandEndBeyond(t, inverseEnd, band, params.stereoBandCount);
 }
 
 // Stores band `band`'s segment of `pixel` where it is used (bandUsed: the reprojection reads no other); its bit in
@@ -500,11 +503,11 @@ void main() {
     float bandStartMoment = state.bandStartMoment;
     uint bandMask = state.bandMask;
     int band = 0;
-    float cosine = dot(direction, params.forward.xyz), bandEnd = kInfinity;
+    float cosine = dot(direction, params.forward.xyz), endInverse = 0.0;
     if (STEREO_BANDS) {
         float tk = latticeT(iv, k);
-        while (k > 0u && band + 1 < params.stereoBandCount && bandEndT(band, cosine) < tk) ++band;
-        bandEnd = bandEndT(band, cosine);
+        while (k > 0u && bandEndBeyond(tk, bandEndInverse(band, cosine), band)) ++band;
+        endInverse = bandEndInverse(band, cosine);
     }
     // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
@@ -628,7 +631,15 @@ void main() {
             spanAlpha = spanOpacity(spanDepth.x);
             t0 = latticeT(iv, k);
             t1 = latticeT(iv, k + n);
-            crossing = STEREO_BANDS && t1 > bandEnd;
+            crossing = STEREO_BANDS && bandEndBeyond(t1, endInverse, band);
+            // A transparent span that ends a band the ray gathered nothing in, and no more, moves on to the next band
+            // here: that band starts with the same record, and this one's segment is unused (unless the ray is hidden:
+            // stereo_reprojection.h bandUsed), so leaving the loop for it only cost the others in the SIMD batch.
+            if (crossing && !bandGathered && !(spanAlpha > 0.0) && !segmentHidden(transmittance) &&
+                !bandEndBeyond(t1, bandEndInverse(band + 1, cosine), band + 1)) {
+                endInverse = bandEndInverse(++band, cosine);
+                crossing = false;
+            }
             // The primitive caster shades a sample that shows something out of this loop, below, with a span that
             // reaches a stereo band's far end: llvmpipe runs both sides of a branch under a mask, so shading here
             // cost its every transparent sample too (a primitive frame 30 % longer). A leaping caster shades here:
@@ -652,7 +663,8 @@ void main() {
         // A stereo left eye stores the segments of the bands whose far end the span reaches, from its record
         // there: what it gathered up to there, the span split where the band ends (however many samples the span
         // leaps).
-        while (STEREO_BANDS && t1 > bandEnd) {
+        while (STEREO_BANDS && bandEndBeyond(t1, endInverse, band)) {
+            float bandEnd = 1.0 / endInverse;
             precise float part = spanDepthBefore(spanDepth.x, t0, t1, bandEnd);
             float w = transmittance * spanOpacity(part);
             vec4 end = vec4(colour - colourLost + shaded * w, transmittance - w);
@@ -662,7 +674,7 @@ void main() {
             bandStart = end;
             bandStartMoment = endMoment;
             bandGathered = false;
-            bandEnd = bandEndT(++band, cosine);
+            endInverse = bandEndInverse(++band, cosine);
         }
         if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
         compositeSpan(shaded, spanAlpha, spanDepth, t0, t1, colour, colourLost, transmittance, depth, moment);

@@ -42,11 +42,18 @@ VR_CONSTANT int kMaxBands = 32;
 // what lies behind that point from the left eye (render/stereo_camera.h kOpaqueAlpha).
 VR_CONSTANT VR_REAL kOpaqueAlpha = VR_REAL(0.98);
 
-// The depth (along the view direction) where band b ends: +inf for the last band, and for a band that reaches
-// infinity's disparity.
-VR_FUNCTION VR_REAL bandFarDepth(VR_REAL scale, VR_REAL focusInverse, VR_REAL first, VR_REAL width, int b, int count) {
-    VR_REAL inverse = focusInverse - (first + VR_REAL(b + 1) * width) / scale;
-    return b + 1 < count && inverse > VR_REAL(0) ? VR_REAL(1) / inverse : kInfinity;
+// Where band b ends along a ray whose direction makes `cosine` with the view direction, as 1 / t: the inverse depth
+// of disparity first + (b + 1) width, times cosine. Linear in b: a ray's next band end is a multiplication and a
+// subtraction away, no division. The last band, and a band that reaches infinity's disparity (inverse <= 0), end
+// nowhere (bandEndBeyond).
+VR_FUNCTION VR_REAL bandEndInverse(VR_REAL scale, VR_REAL focusInverse, VR_REAL first, VR_REAL width, VR_REAL cosine,
+                                   int b) {
+    return cosine * (focusInverse - first / scale) - VR_REAL(b + 1) * (cosine * width / scale);
+}
+
+// Whether t lies beyond band b's end (its inverse end as above) among `count` bands.
+VR_FUNCTION bool bandEndBeyond(VR_REAL t, VR_REAL inverseEnd, int b, int count) {
+    return b + 1 < count && t * inverseEnd > VR_REAL(1);
 }
 
 // Where the opacity of a homogeneous span of optical depth `depth` lies on average, as a fraction of its length from
