@@ -41,6 +41,12 @@ VR_FUNCTION bool blockSkipped(int blend, VR_REAL lo, VR_REAL hi, VR_REAL running
     return false;
 }
 
+// MIP and MinIP: the running value has reached a scalar beyond which the transfer table classifies every value
+// alike (render/flat_table_ends.h), so no later sample can change the pixel and the ray ends.
+VR_FUNCTION bool runningSettled(int blend, VR_REAL running, VR_REAL flatAbove, VR_REAL flatBelow) {
+    return (blend == kBlendMIP && running >= flatAbove) || (blend == kBlendMinIP && running <= flatBelow);
+}
+
 // The running value after a scalar: MIP's largest, MinIP's smallest (the other blends keep none).
 VR_FUNCTION VR_REAL foldRunning(int blend, VR_REAL running, VR_REAL scalar) {
     if (blend == kBlendMIP) return scalar > running ? scalar : running;

@@ -417,6 +417,9 @@ bool foldSample(float scalar, uint k, inout float running, inout vec2 sum, inout
     return false;
 }
 
+// MIP and MinIP: no later sample can change what the ray shows (blend.h runningSettled).
+bool settled(float running) { return runningSettled(BLEND, running, params.flatAbove, params.flatBelow); }
+
 // The scalar at grid position p, sampled as the loop samples it.
 float scalarAt(vec3 p) { return TRILINEAR ? footprintScalar(footprintAt(p)) : loadScalar(clampVoxel(floorVoxel(p))); }
 
@@ -536,7 +539,7 @@ void main() {
     // any of them needs it, so a lookup in the sample loop cost nearly every sample, and a sample beside the lookup
     // every leap. An iteration is a leap or a sample; a sampled block's lookup and first sample are one.
     if (CASTER == kBlocks) {
-        while (mine && !failed && !hit && k < kCount) {
+        while (mine && !failed && !hit && k < kCount && !settled(running)) {
             // Leaps until a block that could change the result, which sample k (voxel v) starts.
             ivec3 v;
             bool entered;  // sample k is this dispatch's, and within the iteration cap
@@ -569,11 +572,12 @@ void main() {
             for (uint blockEnd = k + n;;) {
                 float scalar = TRILINEAR ? footprintScalar(footprintAt(samplePosition(g, iv, k))) : loadScalar(v);
                 hit = foldSample(scalar, k, running, sum, inside);
-                if (hit || ++k >= blockEnd || !enterSample(g, iv, k, v, iterations, failed)) break;
+                if (hit || ++k >= blockEnd || settled(running) || !enterSample(g, iv, k, v, iterations, failed)) break;
             }
         }
     } else do {
-        for (n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth); k += n) {
+        for (n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth) && !settled(running);
+             k += n) {
             ivec3 v;
             if (!enterSample(g, iv, k, v, iterations, failed)) break;
             // The sample's scalar. Composite classifies it (docs/ALGORITHMS.md section 2) and takes its gradient only
@@ -681,6 +685,9 @@ void main() {
         k += n;
         crossing = false;
     } while (true);
+
+    // A settled ray represents the rest of its samples, as a leap over a block that cannot change it does.
+    if (settled(running)) k = kCount;
 
     // Some drivers end loops on their own: llvmpipe stops every loop of an invocation once 65535 iterations have run
     // in all of them, which would silently shorten a long ray. A loop whose trip count (2) the compiler cannot

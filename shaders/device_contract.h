@@ -128,6 +128,8 @@ struct CasterParams {
     float isoValue;       // Blend::Iso's scalar
     float opacityLength;  // the length over which the TF gives its opacity (ScalarClassification::referenceStep):
                           // MIP, MinIP and average show the TF's opacity at their value as alpha
+    float flatAbove;      // MIP and MinIP end a ray whose running value reaches these (render/flat_table_ends.h)
+    float flatBelow;
     ivec4 blockLevelZ;    // the blocks caster: the first z texel of each level of blocks (render/block_extrema.h)
     // What clips every ray (render/ray_setup.h RayClip), in grid coordinates: the crop box's faces (0 and dims
     // without a crop) and the planes, xyz: n, w: c, keeping dot(n, p) >= c (shaders/clip_planes.h).
@@ -206,6 +208,8 @@ static_assert(offsetof(CasterParams, tableLastEntry) == 248);
 static_assert(offsetof(CasterParams, flatGradient) == 252);
 static_assert(offsetof(CasterParams, isoValue) == 256);
 static_assert(offsetof(CasterParams, opacityLength) == 260);
+static_assert(offsetof(CasterParams, flatAbove) == 264);
+static_assert(offsetof(CasterParams, flatBelow) == 268);
 static_assert(offsetof(CasterParams, blockLevelZ) == 272);
 static_assert(offsetof(CasterParams, cropLo) == 288);
 static_assert(offsetof(CasterParams, clipPlanes) == 320);

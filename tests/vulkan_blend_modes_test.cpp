@@ -3,8 +3,13 @@
 // value from brick to brick.
 #include <gtest/gtest.h>
 
+#include <numeric>
+
 #include "core/errors.h"
+#include "datasets/phantoms.h"
+#include "preprocess/classify/transfer_choice.h"
 #include "support/blend_cases.h"
+#include "support/prepare.h"
 #include "support/views.h"
 #include "support/vulkan.h"
 
@@ -41,6 +46,31 @@ TEST(VulkanBlendModes, GreyWindowIsLinearAndOpaque) {
 
 TEST(VulkanBlendModes, OppositeViewsAreMirrorImages) {
     reportValidated("mirror images", test::oppositeViewsMirror(kVulkan, kDevice));
+}
+
+// A window whose grey no longer changes above the engine's metal (200, 255) and below its air (0): MIP and MinIP end
+// a ray once its value is there (render/flat_table_ends.h). The image is the CPU reference's, which never ends a ray
+// early, and the rays take fewer iterations than under a window that changes over every value.
+TEST(VulkanBlendModes, RaysEndWhereTheWindowNoLongerChanges) {
+    const Volume volume = enginePhantom({31, 27, 23});
+    const auto prepared = [&](double window, double level) {
+        return test::prepareVolume(volume, windowLevelTransferFunction(window, level, nullptr), {0, 0, false, false}, 0);
+    };
+    const PreparedVolume flat = prepared(100, 100), ramp = prepared(1000, 100);  // grey 50..150 and -400..600
+    const auto total = [](const std::vector<uint32_t>& v) { return std::accumulate(v.begin(), v.end(), 0.0); };
+    for (Blend blend : {Blend::MIP, Blend::MinIP})
+        for (Caster caster : {Caster::Primitive, Caster::Blocks})
+            for (bool trilinear : {false, true}) {
+                const std::string what = std::string(blendName(blend)) + " " + std::string(casterName(caster)) +
+                                         (trilinear ? " trilinear" : "");
+                const Camera camera = Camera::fit(flat.grid(), test::orbitView(30, 20, 24, 20));
+                RenderSettings s = test::blendSettings(blend, caster, trilinear, 0);
+                s.opaqueValues = true;
+                const RenderResult ended = kVulkan(flat, camera, s), reference = test::kCpuReference(flat, camera, s);
+                EXPECT_LE(maxAbsDifference(ended.image, reference.image), 1e-5) << what;
+                EXPECT_EQ(ended.samples, reference.samples) << what;  // an ended ray represents the rest of its samples
+                EXPECT_LT(total(ended.iterations), 0.8 * total(kVulkan(ramp, camera, s).iterations)) << what;
+            }
 }
 
 TEST(VulkanBlendModes, BrickedVolumeRendersTheWholeVolumesImage) {

@@ -113,7 +113,8 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     // The table first: a device whose texel buffers cannot hold it is refused before any image is made.
     const ScalarClassification& classification = prepared.classification;
     const TransferTable& table = classification.table;
-    placement_ = {table.lo, table.step, table.size(), classification.flatGradient, classification.referenceStep};
+    placement_ = {table.lo, table.step, table.size(), classification.flatGradient, classification.referenceStep,
+                  flatTableEnds(table)};
     vk::DeviceSize maxEntries = ctx.physicalDevice().getProperties().limits.maxTexelBufferElements;
     if (limits.maxTableEntries > 0) maxEntries = std::min(maxEntries, limits.maxTableEntries);
     const auto tableFits = [&](const std::string& what, std::size_t entries) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/prepared_volume.h"
+#include "render/flat_table_ends.h"
 #include "render/render_settings.h"
 #include "shaders/blend.h"
 #include "volrender/vulkan/brick_grid.h"
@@ -73,15 +74,17 @@ struct TablePlacement {
     std::size_t entries = 0;
     double flatGradient = 0;
     double referenceStep = 1;
+    FlatTableEnds flat;  // where MIP and MinIP rays end
 };
 
 class GpuVolume {
 public:
     // Uploads the scalars in their own type (scalarFormat), the transfer table (a TexelTable, an entry per texel:
-    // rgb colour, sigma), a label map's labels in their type, packed as integer scalars, and its table (as the transfer table) and each
-    // caster's field: PC (R8_UINT), ACD (R8_UINT), EACD (RGBA8_UINT exact, R16_UINT
-    // log16, R8_UINT joint8), hier (R16_UINT, one image of the blocks); ACD, EACD and hier hold the octants of the
-    // mask stacked along z, slab i holding the i-th octant of the mask. Each image is split into the bricks of one plan that fits every image.
+    // rgb colour, sigma), a label map's labels in their type, packed as integer scalars, and its table (as the
+    // transfer table) and each caster's field: PC (R8_UINT), ACD (R8_UINT), EACD (RGBA8_UINT exact, R16_UINT log16,
+    // R8_UINT joint8), hier (R16_UINT, one image of the blocks); ACD, EACD and hier hold the octants of the mask
+    // stacked along z, slab i holding the i-th octant of the mask. Each image is split into the bricks of one plan
+    // that fits every image.
     // Throws InputError when the prepared volume lacks a field asked for, its scalars do not fit their type, or
     // a table has more entries than the device's texel buffers hold (maxTexelBufferElements).
     GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool, const PreparedVolume& prepared,
