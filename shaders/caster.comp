@@ -572,7 +572,8 @@ void main() {
             for (uint blockEnd = k + n;;) {
                 float scalar = TRILINEAR ? footprintScalar(footprintAt(samplePosition(g, iv, k))) : loadScalar(v);
                 hit = foldSample(scalar, k, running, sum, inside);
-                if (hit || ++k >= blockEnd || settled(running) || !enterSample(g, iv, k, v, iterations, failed)) break;
+                if (hit || ++k >= blockEnd || settled(running)) break;
+                if (!enterSample(g, iv, k, v, iterations, failed)) break;
             }
         }
     } else do {
@@ -663,7 +664,8 @@ void main() {
         }
         if (!crossing && !shown) break;
         shown = false;
-        if (CASTER == kPrimitive) shaded = shadedSpan(spanColour, spanAlpha, spanFootprint, spanVoxel, toEye, toLight);
+        if (CASTER == kPrimitive)
+            shaded = shadedSpan(spanColour, spanAlpha, spanFootprint, spanVoxel, toEye, toLight);
         // A stereo left eye stores the segments of the bands whose far end the span reaches, from its record
         // there: what it gathered up to there, the span split where the band ends (however many samples the span
         // leaps).

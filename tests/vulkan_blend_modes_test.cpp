@@ -54,7 +54,8 @@ TEST(VulkanBlendModes, OppositeViewsAreMirrorImages) {
 TEST(VulkanBlendModes, RaysEndWhereTheWindowNoLongerChanges) {
     const Volume volume = enginePhantom({31, 27, 23});
     const auto prepared = [&](double window, double level) {
-        return test::prepareVolume(volume, windowLevelTransferFunction(window, level, nullptr), {0, 0, false, false}, 0);
+        const TransferFunction tf = windowLevelTransferFunction(window, level, nullptr);
+        return test::prepareVolume(volume, tf, {0, 0, false, false}, 0);
     };
     const PreparedVolume flat = prepared(100, 100), ramp = prepared(1000, 100);  // grey 50..150 and -400..600
     const auto total = [](const std::vector<uint32_t>& v) { return std::accumulate(v.begin(), v.end(), 0.0); };
