@@ -214,7 +214,8 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     const int hierShift = f.hier.blockShift, hierEdge = 1 << hierShift;
     bricks_ = planBricks(dims, zSlabs, [&](const Vec3i& brick) {
         for (const WholeImage& w : wholes)
-            if (!imageFits(ctx, {brick.x, brick.y, brick.z * w.slabs}, w.format, limits)) return false;
+            if (!imageFits(ctx, {(brick.x + w.perTexel - 1) / w.perTexel, brick.y, brick.z * w.slabs}, w.format, limits))
+                return false;
         const Vec3i blocks{(brick.x + 2 * hierEdge - 2) >> hierShift, (brick.y + 2 * hierEdge - 2) >> hierShift,
                            (brick.z + 2 * hierEdge - 2) >> hierShift};
         return !hasHier || imageFits(ctx, {blocks.x, blocks.y, blocks.z * int(octantOfSlot.size())},
