@@ -55,13 +55,13 @@ int scalarsPerTexel(ScalarType type);
 // RGBA8_UINT), with their names and what each holds, for messages.
 struct CasterImageFormat {
     vk::Format format;
-    const char* name;   // "R16_SINT"
+    const char* name;   // "R32_UINT"
     const char* holds;  // "int16 scalars"
 };
 const std::vector<CasterImageFormat>& casterImageFormats();
 
 // Throws std::runtime_error naming what the device `deviceName` lacks of what the casters read: the feature
-// shaderStorageImageExtendedFormats (R8_UINT, R16_UINT and R16_SINT storage images) and, for every format of
+// shaderStorageImageExtendedFormats (R8_UINT and R16_UINT storage images) and, for every format of
 // casterImageFormats(), VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT with optimal tiling. The device's answers come as
 // arguments, so that tests can ask it of devices that lack them.
 void requireCasterImageSupport(const std::string& deviceName, const vk::PhysicalDeviceFeatures& features,
