@@ -56,7 +56,7 @@ int scalarsPerTexel(ScalarType type);
 struct CasterImageFormat {
     vk::Format format;
     const char* name;   // "R32_UINT"
-    const char* holds;  // "int16 scalars"
+    const char* holds;  // "integer scalars and labels, in words, and stored gradients"
 };
 const std::vector<CasterImageFormat>& casterImageFormats();
 
