@@ -24,8 +24,9 @@ struct UploadedResource {
 };
 
 // What one upload holds besides the scalars and the transfer table, which every render reads: the fields of these
-// casters (none for primitive; the block extrema for blocks) and the ACD / EACD octants of the mask (viewOctants of every camera it will render).
-// Shading by central differences needs nothing more; shading by stored gradients needs them uploaded.
+// casters (none for primitive; the block extrema for blocks) and the ACD / EACD octants of the mask (viewOctants of
+// every camera it will render). Shading by central differences needs nothing more; shading by stored gradients needs
+// them uploaded.
 struct GpuVolumeContents {
     std::vector<Caster> casters;
     unsigned octants = 0;
