@@ -68,8 +68,8 @@ VR_CONSTANT int kScalarUInt8 = 0, kScalarInt16 = 1, kScalarUInt16 = 2, kScalarFl
 // The label map's type: none, or its labels in 8 or 16 bits.
 VR_CONSTANT int kNoLabels = 0, kLabelsUInt8 = 1, kLabelsUInt16 = 2;
 // How many integers of `bits` bits a 32-bit word packs along x, as a shift: 4 of 8 bits, 2 of 16, 1 of 32.
-// llvmpipe gathers 32-bit texels in one instruction: a frame with the scalars in words takes 22-25 % less time than
-// with R8 or R16 texels, and the same bytes.
+// llvmpipe loads a 32-bit texel faster than an 8- or 16-bit one: on lavapipe a frame with the scalars in words takes
+// 22-25 % less time than with R8 or R16 texels, in the same bytes (docs/BENCH.md).
 VR_FUNCTION int wordShift(int bits) { return bits == 8 ? 2 : bits == 16 ? 1 : 0; }
 VR_FUNCTION int scalarBits(int scalarType) {
     return scalarType == kScalarUInt8 ? 8 : scalarType == kScalarFloat32 ? 32 : 16;
