@@ -79,11 +79,7 @@ layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList {
 layout(set = 0, binding = kBindingGradients, r32ui) uniform readonly uimage3D gradients;
 layout(set = 0, binding = kBindingStereoBands, std430) writeonly buffer StereoBands { uvec4 segments[]; };
 
-// Where the ray's band `band` ends along it, as 1 / t (stereo_reprojection.h), and whether t lies beyond it.
-float bandEndInverse(int band, float cosine) {
-    vec4 b = params.stereoBands;
-    return bandEndInverse(b.x, b.y, b.z, b.w, cosine, band);
-}
+// Whether t lies beyond the ray's band `band`, whose end is inverseEnd as 1 / t (stereo_reprojection.h).
 bool bandEndBeyond(float t, float inverseEnd, int band) {
     return bandEndBeyond(t, inverseEnd, band, params.stereoBandCount);
 }
@@ -506,11 +502,14 @@ void main() {
     float bandStartMoment = state.bandStartMoment;
     uint bandMask = state.bandMask;
     int band = 0;
-    float cosine = dot(direction, params.forward.xyz), endInverse = 0.0;
+    float cosine = dot(direction, params.forward.xyz), endInverse = 0.0, bandOrigin = 0.0, perBand = 0.0;
     if (STEREO_BANDS) {
         float tk = latticeT(iv, k);
-        while (k > 0u && bandEndBeyond(tk, bandEndInverse(band, cosine), band)) ++band;
-        endInverse = bandEndInverse(band, cosine);
+        vec4 b = params.stereoBands;
+        bandOrigin = bandEndOrigin(b.x, b.y, b.z, cosine);
+        perBand = bandEndPerBand(b.x, b.w, cosine);
+        while (k > 0u && bandEndBeyond(tk, bandEndInverse(bandOrigin, perBand, band), band)) ++band;
+        endInverse = bandEndInverse(bandOrigin, perBand, band);
     }
     // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
@@ -641,8 +640,8 @@ void main() {
             // here: that band starts with the same record, and this one's segment is unused (unless the ray is hidden:
             // stereo_reprojection.h bandUsed), so leaving the loop for it only cost the others in the SIMD batch.
             if (crossing && !bandGathered && !(spanAlpha > 0.0) && !segmentHidden(transmittance) &&
-                !bandEndBeyond(t1, bandEndInverse(band + 1, cosine), band + 1)) {
-                endInverse = bandEndInverse(++band, cosine);
+                !bandEndBeyond(t1, bandEndInverse(bandOrigin, perBand, band + 1), band + 1)) {
+                endInverse = bandEndInverse(bandOrigin, perBand, ++band);
                 crossing = false;
             }
             // The primitive caster shades a sample that shows something out of this loop, below, with a span that
@@ -680,7 +679,7 @@ void main() {
             bandStart = end;
             bandStartMoment = endMoment;
             bandGathered = false;
-            endInverse = bandEndInverse(++band, cosine);
+            endInverse = bandEndInverse(bandOrigin, perBand, ++band);
         }
         if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
         compositeSpan(shaded, spanAlpha, spanDepth, t0, t1, colour, colourLost, transmittance, depth, moment);

@@ -43,13 +43,15 @@ VR_CONSTANT int kMaxBands = 32;
 VR_CONSTANT VR_REAL kOpaqueAlpha = VR_REAL(0.98);
 
 // Where band b ends along a ray whose direction makes `cosine` with the view direction, as 1 / t: the inverse depth
-// of disparity first + (b + 1) width, times cosine. Linear in b: a ray's next band end is a multiplication and a
-// subtraction away, no division. The last band, and a band that reaches infinity's disparity (inverse <= 0), end
-// nowhere (bandEndBeyond).
-VR_FUNCTION VR_REAL bandEndInverse(VR_REAL scale, VR_REAL focusInverse, VR_REAL first, VR_REAL width, VR_REAL cosine,
-                                   int b) {
-    return cosine * (focusInverse - first / scale) - VR_REAL(b + 1) * (cosine * width / scale);
+// of disparity first + (b + 1) width, times cosine. Linear in b, origin - (b + 1) perBand, with the ray's origin
+// cosine (focusInverse - first / scale) and perBand cosine width / scale taken once: a ray's next band end is a
+// multiplication and a subtraction away, no division. The last band, and a band that reaches infinity's disparity
+// (inverse <= 0), end nowhere (bandEndBeyond).
+VR_FUNCTION VR_REAL bandEndOrigin(VR_REAL scale, VR_REAL focusInverse, VR_REAL first, VR_REAL cosine) {
+    return cosine * (focusInverse - first / scale);
 }
+VR_FUNCTION VR_REAL bandEndPerBand(VR_REAL scale, VR_REAL width, VR_REAL cosine) { return cosine * width / scale; }
+VR_FUNCTION VR_REAL bandEndInverse(VR_REAL origin, VR_REAL perBand, int b) { return origin - VR_REAL(b + 1) * perBand; }
 
 // Whether t lies beyond band b's end (its inverse end as above) among `count` bands.
 VR_FUNCTION bool bandEndBeyond(VR_REAL t, VR_REAL inverseEnd, int b, int count) {

@@ -28,6 +28,11 @@ struct WholeImage {
     // Writes `count` texels of slab `slab`, from voxel `first` (a linear index) along x, to `to`.
     std::function<void(int slab, std::size_t first, int count, uint8_t* to)> row;
     int perTexel = 1;  // voxels along x a texel holds: the row's texels in words of integers (device_contract.h)
+
+    // The texels of a box of `voxels`: its rows in texels, its slabs stacked along z.
+    Vec3i extent(const Vec3i& voxels) const {
+        return {(voxels.x + perTexel - 1) / perTexel, voxels.y, voxels.z * slabs};
+    }
 };
 
 // The casters whose fields hold one slab per octant.
@@ -151,7 +156,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
                               if (wide) std::memcpy(to, l.data() + first, std::size_t(count) * sizeof(uint16_t));
                               else for (int i = 0; i < count; ++i) to[i] = uint8_t(l[first + std::size_t(i)]);
                           },
-                          1 << device::wordShift(wide ? 16 : 8)});
+                          scalarsPerTexel(labelType_)});
     }
 
     std::optional<GradientPacker> packer;
@@ -214,8 +219,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     const int hierShift = f.hier.blockShift, hierEdge = 1 << hierShift;
     bricks_ = planBricks(dims, zSlabs, [&](const Vec3i& brick) {
         for (const WholeImage& w : wholes)
-            if (!imageFits(ctx, {(brick.x + w.perTexel - 1) / w.perTexel, brick.y, brick.z * w.slabs}, w.format, limits))
-                return false;
+            if (!imageFits(ctx, w.extent(brick), w.format, limits)) return false;
         const Vec3i blocks{(brick.x + 2 * hierEdge - 2) >> hierShift, (brick.y + 2 * hierEdge - 2) >> hierShift,
                            (brick.z + 2 * hierEdge - 2) >> hierShift};
         return !hasHier || imageFits(ctx, {blocks.x, blocks.y, blocks.z * int(octantOfSlot.size())},
@@ -226,7 +230,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
         const std::size_t texel = formatBytes(w.format);
         for (std::size_t i = 0; i < bricks.size(); ++i) {
             const Brick& b = bricks[i];
-            const Vec3i extent{(b.imageDims.x + w.perTexel - 1) / w.perTexel, b.imageDims.y, b.imageDims.z * w.slabs};
+            const Vec3i extent = w.extent(b.imageDims);
             const std::size_t bytes = texel * extent.x * extent.y * extent.z;
             // The brick's box from every slab, stacked along z as the whole image stacks them; slices in parallel.
             // A row of words ends in zeros where its voxels do not fill the last word.

@@ -200,7 +200,8 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     pipelineLayout_ = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, layout, push));
     timer_ = std::make_unique<DeviceTimer>(ctx);
     const uint8_t zeros[8] = {};
-    unusedWords_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kWordFormat, zeros, formatBytes(kWordFormat));
+    unusedWords_ =
+        std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, kWordFormat, zeros, formatBytes(kWordFormat));
     const vk::Format floats = scalarFormat(ScalarType::Float32);
     unusedFloats_ = std::make_unique<VolumeImage>(ctx, pool_, Vec3i{1, 1, 1}, floats, zeros, formatBytes(floats));
     for (int i = 0; i < 3; ++i)
