@@ -36,6 +36,9 @@ struct CasterDemand {
     // The volume's scalars on the device (voxels x their type's bytes), which every iteration samples: beyond the
     // caches an iteration costs more (iterationScale). 0 when unknown: priced as a volume the caches hold.
     double scalarBytes = 0;
+    // Milliseconds the first view waits for the device from the choice on (deviceWaitMs), during which a field
+    // builds on the side for free: a volume prepared in the same process as the render. 0: no such wait.
+    double deviceWaitMs = 0;
 
     void addView(const Camera& camera) {
         octants |= viewOctants(camera);
@@ -77,6 +80,12 @@ struct ProbedIterations {
     std::optional<double> hier;
 };
 
+// What the first view of a one-command render waits for from now, beside which a field builds: what is left of the
+// device's start (its driver's libraries, the instance and the device), `sinceOpeningMs` after it began, unless it
+// is `open`, then the caster's pipeline, made once the caster is chosen. Measured on lavapipe on this project's
+// 2-core machine (caster_choice.cpp); a GPU's driver starts more slowly, so the choice then errs toward building.
+double deviceWaitMs(double sinceOpeningMs, bool open);
+
 // Whether the hier field, built at a cost per voxel measured on this project's 2-core machine (caster_choice.cpp),
 // can pay for itself: the views cast without a field (primitiveIterations per pixel) cost more than its build.
 bool hierMayPay(double primitiveIterations, const CasterDemand& demand, std::size_t voxels,
@@ -87,7 +96,9 @@ bool hierMayPay(double primitiveIterations, const CasterDemand& demand, std::siz
 // and its field, priced per voxel as measured on this project's 2-core machine, plus its views at hier's iterations
 // times the ratio of EACD's to hier's measured on the shared CTs; without a hier probe its views are not priced,
 // so that EACD is taken only where no render of it could lose). Hier iterations are priced as EACD's (the same
-// work: a field fetch, a decode, a box exit). More cores build faster, so the rule then errs toward building.
+// work: a field fetch, a decode, a box exit). More cores build faster, so the rule then errs toward building. With
+// its views priced, EACD's build costs only the part of it that outlasts the demand's deviceWaitMs. (The hier field
+// is built only where it may pay without that wait, so that a primitive render builds nothing.)
 CasterChoice chooseBeforeBuilding(const ProbedIterations& iterations, const CasterDemand& demand, std::size_t voxels,
                                   const CasterCalibration& calibration = builtInCalibration());
 

@@ -244,6 +244,39 @@ TEST(RenderCasterChoice, BeforeBuildingHierWinsUnlessAnOrbitIsLong) {
     EXPECT_EQ(chooseBeforeBuilding({100, 10.0}, d, voxels, calibration).caster, Caster::EACD);
 }
 
+// A small volume rendered in the process that prepares it: EACD's build, beside the device's start, costs only what
+// outlasts it, so EACD's fewer iterations win a single view; without the wait, hier does.
+TEST(RenderCasterChoice, BeforeBuildingAFieldBuiltWhileTheDeviceStartsCostsOnlyWhatOutlastsIt) {
+    const CasterCalibration calibration{40, {10, 15, 17, 20}, 0.4, 0.05, "device", "", "", {}};
+    CasterDemand d = ortho();
+    d.pixels = 512 * 512;
+    const std::size_t voxels = 64 * 64 * 96;  // EACD: 47 ms to build at 120 ns per voxel
+    // One view: hier 512^2 x (40 + 33 x 20) ns = 184 ms; EACD 0.8 x 33 iterations: 149 ms and its build.
+    const ProbedIterations it{100, 33.0};
+    EXPECT_EQ(chooseBeforeBuilding(it, d, voxels, calibration).caster, Caster::Hier);
+    d.deviceWaitMs = 40;
+    const CasterChoice c = chooseBeforeBuilding(it, d, voxels, calibration);
+    EXPECT_EQ(c.caster, Caster::EACD);
+    EXPECT_NE(c.reason.find("47 ms to build (40 ms of it while the device starts)"), std::string::npos) << c.reason;
+    // A wait longer than the build leaves none of it to pay. Without a hier probe EACD's views are not priced, and
+    // its whole build counts; the hier field is built to probe only where it pays without the wait.
+    d.deviceWaitMs = 100;
+    EXPECT_NE(chooseBeforeBuilding(it, d, voxels, calibration).reason.find("(47 ms of it"), std::string::npos);
+    EXPECT_EQ(chooseBeforeBuilding({100, {}}, d, voxels, calibration).caster, Caster::EACD);  // 273 ms > 47 ms
+    EXPECT_EQ(chooseBeforeBuilding({10, {}}, d, voxels, calibration).caster, Caster::Primitive);  // 37 ms < 47 ms
+    d.pixels = 48 * 40;  // 0.1 ms of views against the hier field's 2.4 ms, which the wait does not excuse
+    EXPECT_FALSE(hierMayPay(1, d, voxels, calibration));
+}
+
+// What a one-command render waits for: the rest of the device's start while it opens, and a pipeline either way.
+TEST(RenderCasterChoice, TheDeviceWaitIsTheRestOfItsStartAndAPipeline) {
+    const double pipeline = deviceWaitMs(0, true);
+    EXPECT_GT(pipeline, 0);
+    EXPECT_EQ(deviceWaitMs(1e6, false), pipeline);
+    EXPECT_GT(deviceWaitMs(0, false), pipeline);
+    EXPECT_GT(deviceWaitMs(1, false), deviceWaitMs(10, false));
+}
+
 // The same volume and views: primitive while the scalars fit the caches (its frame costs less than building even
 // the hier field, so that the field is not built to probe it), hier once they outgrow them and every iteration
 // costs twice as much, which hier's fewer iterations save.

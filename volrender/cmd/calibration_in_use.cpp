@@ -45,6 +45,11 @@ CalibrationInUse calibrationInUse(const std::string& explicitPath, const std::op
     }
 }
 
+bool calibrationReadsFile(const std::string& explicitPath) {
+    const std::optional<fs::path> user = userCalibrationPath();
+    return !explicitPath.empty() || (user && fs::exists(*user));
+}
+
 nlohmann::json calibrationStatistics(const CalibrationInUse& calibration) {
     nlohmann::json stats = casterCalibrationJson(calibration.constants);
     stats.erase("format");

@@ -25,6 +25,10 @@ std::optional<std::filesystem::path> userCalibrationPath();
 // measures) any device's file is taken.
 CalibrationInUse calibrationInUse(const std::string& explicitPath, const std::optional<std::string>& deviceName);
 
+// Whether calibrationInUse reads a file (--calibration, or the per-user file that exists), whose device it checks
+// against the rendering device's name: without one the built-in constants need no device to choose by.
+bool calibrationReadsFile(const std::string& explicitPath);
+
 // The --stats object: the source, the device it was measured on and the constants.
 nlohmann::json calibrationStatistics(const CalibrationInUse& calibration);
 

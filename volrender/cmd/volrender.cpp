@@ -292,7 +292,7 @@ vr::CasterChoice autoCaster(const Flags& f, const vr::PreparedHeader& header, vr
 class OpeningDevice {
 public:
     explicit OpeningDevice(int deviceIndex)
-        : opening_(std::async(std::launch::async, [deviceIndex] {
+        : start_(std::chrono::steady_clock::now()), opening_(std::async(std::launch::async, [deviceIndex] {
               auto d = std::make_shared<Opened>();
               d->context = std::make_unique<vr::VulkanContext>(vr::VulkanOptions{deviceIndex, false});
               d->renderer = std::make_unique<vr::VulkanRenderer>(*d->context);
@@ -323,23 +323,39 @@ public:
     }
     void chose(vr::Caster caster) { chosen_ = int(caster); }
 
+    // What the first view waits for from now (vr::deviceWaitMs): the rest of the device's start, then a pipeline.
+    double waitMs() const {
+        const std::chrono::duration<double, std::milli> since = std::chrono::steady_clock::now() - start_;
+        return vr::deviceWaitMs(since.count(),
+                                opening_.wait_for(std::chrono::seconds(0)) == std::future_status::ready);
+    }
+
 private:
     struct Opened {
         std::unique_ptr<vr::VulkanContext> context;
         std::unique_ptr<vr::VulkanRenderer> renderer;
     };
+    std::chrono::steady_clock::time_point start_;
     std::shared_future<std::shared_ptr<Opened>> opening_;
     std::atomic<int> chosen_{-1};  // the caster, once known
     std::future<void> preparing_;  // joined before the device closes
 };
 
+// The name of the device that --caster auto chooses for, where the calibration it reads must have been measured
+// on it; else none, and no wait for the device to open: the choice's fields then build while it does.
+std::optional<std::string> deviceToCalibrate(const Flags& f, OpeningDevice& device) {
+    if (!vr::calibrationReadsFile(f.calibration)) return std::nullopt;
+    return device.context().info().name;
+}
+
 // --caster auto for a volume prepared here, once it is classified and before any field over voxel regions is built:
 // the primitive caster, hier (its field built here to probe it, where it can pay) or EACD, whichever the views and
-// the builds cost least (priced with the constants of `device`, on which the render will run).
+// the builds cost least (priced with the constants of the device, on which the render will run; a build beside
+// the device's start costs only what outlasts it).
 vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& view, const vr::RenderSettings& s,
                                         vr::StagedPreparation& staged, vr::PrepareOptions options,
-                                        const std::vector<vr::Camera>& cameras, const std::string& device) {
-    const vr::CalibrationInUse calibration = vr::calibrationInUse(f.calibration, device);
+                                        const std::vector<vr::Camera>& cameras, OpeningDevice& device) {
+    const vr::CalibrationInUse calibration = vr::calibrationInUse(f.calibration, deviceToCalibrate(f, device));
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (const vr::Camera& camera : cameras) d.addView(camera);
     vr::RenderSettings probe = s;
@@ -349,11 +365,13 @@ vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& vi
     vr::ProbedIterations it{vr::probeIterations(classified, cameras, probe), {}};
     const std::size_t voxels = classified.grid().voxels();
     // A label map, not the scalars, would decide what a block holds: hier does not take one.
+    d.deviceWaitMs = device.waitMs();
     if (!classified.labels && vr::hierMayPay(it.primitive, d, voxels, calibration.constants)) {
         options.fields = vr::kFieldHier;
         probe.caster = vr::Caster::Hier;
         it.hier = vr::probeIterations(staged.prepare(options), cameras, probe);
     }
+    d.deviceWaitMs = device.waitMs();
     return vr::chooseBeforeBuilding(it, d, voxels, calibration.constants);
 }
 
@@ -397,16 +415,17 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     // a guess's first (a CPU device takes 0.1-0.2 s over one).
     const bool composite = s.blend == vr::Blend::Composite;
     const bool makeAhead = device && f.volume.labels.empty();
-    if (makeAhead && (composite || !chooseHere))  // auto takes hier for most CTs, else the primitive caster
-        device->preparePipelines(
-            chooseHere ? std::vector{vr::Caster::Hier, vr::Caster::Primitive} : std::vector{s.caster}, s,
-            cameras.front().projection, staged.volume().sourceType);
+    // Auto takes hier for most CTs, else the primitive caster or, for a small volume, EACD; chosen before the device
+    // has opened (the usual case), its pipeline alone is made.
+    if (makeAhead && (composite || !chooseHere))
+        device->preparePipelines(chooseHere ? std::vector{vr::Caster::Hier, vr::Caster::Primitive, vr::Caster::EACD}
+                                            : std::vector{s.caster},
+                                 s, cameras.front().projection, staged.volume().sourceType);
     if (chooseHere) {
-        const std::string name = device->context().info().name;
         const vr::CasterChoice c =
-            composite ? autoCasterBeforeFields(f, view, s, staged, options, cameras, name)
+            composite ? autoCasterBeforeFields(f, view, s, staged, options, cameras, *device)
                       : autoBlendCaster(staged.prepare(options, vr::PrepStage::Classify), view, s, cameras,
-                                        vr::calibrationInUse(f.calibration, name).constants);
+                                        vr::calibrationInUse(f.calibration, deviceToCalibrate(f, *device)).constants);
         s.caster = c.caster;
         choice = c.reason;
         device->chose(s.caster);
