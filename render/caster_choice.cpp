@@ -21,31 +21,32 @@ constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caste
 
 // Lavapipe on this project's 2-core machine: least squares of device ms = pixels x (rayNs + iterations x
 // iterationNs) over bench/auto_caster_bench's 136 renders (34 rows x 4 casters: the shared datasets and the
-// phantoms, T = 0 and 0.02/10, 256x256, 4 views). A leaping iteration adds a field fetch, a box exit and the
-// leap's bounds check to the sample; EACD also decodes its extents. Kept after later shader changes made every
-// iteration cheaper (primitive 2.8x, EACD 1.2x): they still pick within 10 % on 33 of 34 rows, where a fit to
-// the faster shaders (ray 27; 5, 9, 11, 13) picks so on 29-30. Those rows' scalars are 16 MB or less; beyond, an
-// iteration's time grows as the scalars outgrow the caches: bench/auto_caster_bench --growth-sizes on the cranium CT
-// resampled from 2 MB to 537 MB of scalars (primitive renders, the machine loaded by builds) gave 36, 38, 42, 49
-// and 53 ns per iteration at 2, 17, 75, 268 and 537 MB in one run, 32, 34, 40, 48 and 51 in another: 8 % and 11 %
-// more per doubling beyond 17 MB. 10 %.
+// phantoms, T = 0 and 0.02/10, 256x256, 4 views), refitted after the scalars went into 32-bit words and the primitive
+// caster shaded out of its loop: ray 44 ns; primitive 12, PC 14, ACD 15, EACD 17 ns an iteration. A leaping
+// iteration adds a field fetch, a box exit and the leap's bounds check to the sample; EACD also decodes its extents.
+// With them auto picks within 10 % of the fastest fixed caster on all 34 rows (worst 1.02x), the constants before it
+// on 28 (worst 1.56x: primitive on the noise phantom, ACD on the teapot where EACD was faster). Those rows'
+// scalars are 16 MB or less; beyond, an iteration's time grows as the scalars outgrow the caches:
+// bench/auto_caster_bench --growth-sizes on the cranium CT resampled to 17, 134, 268 and 537 MB of scalars
+// (primitive renders) gave 5 % more per doubling beyond 17 MB (8 % and 11 % in two runs on a loaded machine before).
 // A blocks MIP iteration over a primitive one (bench/blend_bench, 512x512, trilinear, 2 views, device ms per
-// iteration of whole renders, medians of 3 runs): 1.92 on the teapot, 1.44 on the cranium CT, 1.54 on the head CT,
-// since the caster's lookups have a loop of their own (2.8 to 3.2 in the same runs before). Lavapipe's SIMD lanes of
-// 8 rays still run as long as the ray that samples most, so a leap saves less than its iterations suggest.
-constexpr double kBlocksIterationRatio = 1.5;
-// Uploading a field byte (written in place into the image's memory): the bench's median over its rows (0.40-0.45
-// in three runs; 0.58-0.66 when uploads went through a staging copy); a field pays off only when it saves more
-// iterations than its bytes cost. The tie: the probe samples a few hundred rays per direction class, and the
-// constants are not finer than 5 %.
-const CasterCalibration kBuiltIn{38,
-                                 {11, 15, 17, 20},
-                                 0.44,
+// iteration of whole renders, the machine quiet): 2.17 on the teapot, 1.58 on the cranium CT, 1.65 on the head CT,
+// since the caster's lookups have a loop of their own (2.8 to 3.2 before). Lavapipe's SIMD lanes of 8 rays still
+// run as long as the ray that samples most, so a leap saves less than its iterations suggest. (auto_caster_bench's
+// 17 scenes at 256x256 give a median of 2.71: at that size a frame has fewer rays to share a batch's longest.)
+constexpr double kBlocksIterationRatio = 1.65;
+// Uploading a field byte (written in place into the image's memory): the bench's median over its rows at the refit
+// (0.40-0.45 in three runs before it; 0.58-0.66 when uploads went through a staging copy); a field pays off only
+// when it saves more iterations than its bytes cost. The tie: the probe samples a few hundred rays per direction
+// class, and the constants are not finer than 5 %.
+const CasterCalibration kBuiltIn{44,
+                                 {12, 14, 15, 17},
+                                 0.14,
                                  0.05,
                                  "llvmpipe (LLVM 15.0.6, 256 bits)",
                                  "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)",
-                                 "2026-11-21",
-                                 {16.8e6, 0.1},
+                                 "2026-11-27",
+                                 {16.8e6, 0.05},
                                  kBlocksIterationRatio};
 
 // Segmentation (post-classified, trilinear, with normals) and EACD's field in one octant, per voxel, on this
@@ -238,8 +239,8 @@ CasterChoice chooseBeforeBuilding(const ProbedIterations& it, const CasterDemand
     at += std::snprintf(reason + at, sizeof reason - std::size_t(at), "EACD's field alone would take %.0f ms to build",
                         buildMs);
     if (it.hier && d.deviceWaitMs > 0)
-        at += std::snprintf(reason + at, sizeof reason - std::size_t(at), " (%.0f ms of it while the device starts)",
-                            std::min(buildMs, d.deviceWaitMs));
+        at += std::snprintf(reason + at, sizeof reason - std::size_t(at),
+                            " (%.0f ms of it while the device gets ready)", std::min(buildMs, d.deviceWaitMs));
     std::snprintf(reason + at, sizeof reason - std::size_t(at), "%s",
                   scaleNote(iterationScale(calibration.growth, d.scalarBytes), d).c_str());
     const Caster best = primitiveMs <= std::min(hierMs, eacdMs) ? Caster::Primitive

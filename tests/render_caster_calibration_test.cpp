@@ -36,12 +36,12 @@ TEST(RenderCasterCalibration, FileRoundTrip) {
 
 TEST(RenderCasterCalibration, BuiltInIsLavapipesFit) {
     const CasterCalibration& c = builtInCalibration();
-    EXPECT_EQ(c.rayNs, 38);
-    EXPECT_EQ(c.iterationNs, (std::array<double, 4>{11, 15, 17, 20}));
-    EXPECT_EQ(c.uploadNsPerByte, 0.44);
+    EXPECT_EQ(c.rayNs, 44);
+    EXPECT_EQ(c.iterationNs, (std::array<double, 4>{12, 14, 15, 17}));
+    EXPECT_EQ(c.uploadNsPerByte, 0.14);
     EXPECT_EQ(c.tie, 0.05);
-    EXPECT_EQ(c.growth, (IterationGrowth{16.8e6, 0.1}));
-    EXPECT_EQ(c.blocksIterationRatio, 1.5);
+    EXPECT_EQ(c.growth, (IterationGrowth{16.8e6, 0.05}));
+    EXPECT_EQ(c.blocksIterationRatio, 1.65);
     EXPECT_NE(c.deviceName.find("llvmpipe"), std::string::npos);
 }
 

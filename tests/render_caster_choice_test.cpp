@@ -257,7 +257,7 @@ TEST(RenderCasterChoice, BeforeBuildingAFieldBuiltWhileTheDeviceStartsCostsOnlyW
     d.deviceWaitMs = 40;
     const CasterChoice c = chooseBeforeBuilding(it, d, voxels, calibration);
     EXPECT_EQ(c.caster, Caster::EACD);
-    EXPECT_NE(c.reason.find("47 ms to build (40 ms of it while the device starts)"), std::string::npos) << c.reason;
+    EXPECT_NE(c.reason.find("47 ms to build (40 ms of it while the device gets ready)"), std::string::npos) << c.reason;
     // A wait longer than the build leaves none of it to pay. Without a hier probe EACD's views are not priced, and
     // its whole build counts; the hier field is built to probe only where it pays without the wait.
     d.deviceWaitMs = 100;
