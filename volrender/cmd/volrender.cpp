@@ -311,11 +311,13 @@ public:
         preparing_ = std::async(std::launch::async, [this, opening = opening_, casters, settings, projection,
                                                       type]() mutable {
             try {
+                // The device first: a choice made while it opens skips every other caster's pipeline.
+                vr::VulkanRenderer& renderer = *opening.get()->renderer;
                 for (vr::Caster caster : casters) {
                     const int chosen = chosen_;
                     if (chosen >= 0 && chosen != int(caster)) continue;
                     settings.caster = caster;
-                    opening.get()->renderer->preparePipeline(settings, projection, type);
+                    renderer.preparePipeline(settings, projection, type);
                 }
             } catch (const std::exception&) {
             }
