@@ -305,6 +305,7 @@ bool hasFieldOf(const PreparedVolume& p, Caster c) {
         case Caster::ACD: return p.fields.hasACD();
         case Caster::EACD: return p.fields.hasEACD();
         case Caster::Blocks: return true;  // built from the scalars
+        case Caster::Hier: return !p.fields.hier.empty();
     }
     return false;
 }
