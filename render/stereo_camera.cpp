@@ -1,5 +1,7 @@
 #include "render/stereo_camera.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -49,6 +51,8 @@ StereoPair stereoPair(const Camera& centre, const GridGeometry& grid, double sep
     pair.right.shift = centre.shift - separation / (2 * pair.focus);
     return pair;
 }
+
+double maxSpreadPixels(int height) { return kMaxSpreadPixels * std::clamp(height / 512.0, 1.0, 8.0); }
 
 double disparityScale(const StereoPair& pair) {
     const Camera& c = pair.left;

@@ -181,14 +181,15 @@ uvec4 masksAt(int x, int y) {
 
 // The first band from b on that can add anything to right pixel x: one of its candidates' segments (first .. last
 // + 1) lies outside the image or is used (stereo_reprojection.h bandUsed); the others are skipped, their masks read
-// two texels a band (a band 3 pixels wide has five candidates), not its five segments. A loop: llvmpipe would run a
-// skipped band's code under a mask.
+// a texel per four candidates (two for a band 3 pixels wide, which has five), not their segments. A loop: llvmpipe
+// would run a skipped band's code under a mask.
 int nextBand(int x, int y, int b) {
     for (; b < params.bandCount; ++b) {
         ivec2 window = bandCandidates(x, b);
         if (window.x < 0 || window.y + 1 >= params.imageSize.x) break;
-        uvec4 lo = masksAt(window.x, y), hi = masksAt(max(window.y - 2, window.x), y);
-        if ((((lo.x | lo.y | lo.z | lo.w | hi.x | hi.y | hi.z | hi.w) >> b) & 1u) != 0u) break;
+        uvec4 masks = masksAt(max(window.y - 2, window.x), y);
+        for (int base = window.x; base < window.y - 2; base += 4) masks |= masksAt(base, y);
+        if ((((masks.x | masks.y | masks.z | masks.w) >> b) & 1u) != 0u) break;
     }
     return b;
 }
@@ -217,7 +218,8 @@ void reprojectBands() {
         ivec2 window = bandCandidates(x, b);
         int first = window.x, last = window.y;
         // Which of the candidates are used, as bits from first: an unused one's texel is not read.
-        uint used = usedFrom(first, y, b, first) | usedFrom(last - 2, y, b, first);
+        uint used = usedFrom(last - 2, y, b, first);
+        for (int base = first; base < last - 2; base += 4) used |= usedFrom(base, y, b, first);
         bool found = false, best = false, bestHidden = false, clipped = false, hidden = false;
         float bestKey = kInfinity;
         vec4 bestColour = vec4(0.0);

@@ -80,8 +80,8 @@ VR_FUNCTION uint bandTexel(int x, int y, int b, int width, int height) {
 }
 
 // Where the mask of the bands pixel (x, y) was used in lies (a plane after the bands' segments): texel x's four
-// words hold the masks of pixels x .. x + 3 of its row, so that two texels hold a band's five candidates for a right
-// pixel (stereo_reproject.comp).
+// words hold the masks of pixels x .. x + 3 of its row, so that a texel holds four of a band's candidates for a right
+// pixel (two texels the five of a band 3 pixels wide: stereo_reproject.comp).
 VR_FUNCTION uint bandMaskTexel(int x, int y, int width, int height, int count) {
     return bandTexel(x, y, count, width, height);
 }

@@ -72,6 +72,16 @@ TEST(RenderStereoCamera, DisparityIsWhereTheEyesSeeAPoint) {
     EXPECT_LT(disparityAt(p, 30), 0);  // in front of the focus: crossed
 }
 
+// One depth stands for the same angle of disparity in every image: 3 pixels up to 512 rows, as many more pixels as
+// rows beyond, up to 24 (a band's candidates in one 32-bit mask).
+TEST(RenderStereoCamera, TheSpreadOneDepthStandsForGrowsWithTheRows) {
+    EXPECT_EQ(maxSpreadPixels(48), kMaxSpreadPixels);
+    EXPECT_EQ(maxSpreadPixels(512), kMaxSpreadPixels);
+    EXPECT_EQ(maxSpreadPixels(1024), 2 * kMaxSpreadPixels);
+    EXPECT_EQ(maxSpreadPixels(2048), 4 * kMaxSpreadPixels);
+    EXPECT_EQ(maxSpreadPixels(16384), 8 * kMaxSpreadPixels);
+}
+
 TEST(RenderStereoCamera, DepthRangeBoundsTheVolume) {
     const StereoPair p = pairAt(10, 10, 4, std::nullopt);
     const auto [nearest, farthest] = depthRange(p, kGrid);

@@ -120,10 +120,10 @@ const PreparedVolume& twoColourSlab() {
     return p;
 }
 
-StereoPair slabPair(int width, int height) {
+StereoPair slabPair(int width, int height, double separation = kSeparation) {
     const PreparedVolume& p = twoColourSlab();
     const Camera centre = Camera::fit(p.grid(), test::orbitView(0, 0, width, height, Projection::Perspective));
-    return stereoPair(centre, p.grid(), kSeparation, std::nullopt);
+    return stereoPair(centre, p.grid(), separation, std::nullopt);
 }
 
 // The disparities of the slab's near and far faces along the view direction.
@@ -153,6 +153,25 @@ TEST(VulkanStereo, TranslucentSlabIsReused) {
         EXPECT_GT(slabReused, slab * 3 / 4) << casterName(caster);
         expectPairsAgree(reused, full, 0.01, std::string(casterName(caster)));
     }
+    test::expectNoValidationErrors();
+}
+
+// A tall image's bands take as wide an angle of disparity as a 512-pixel image's (maxSpreadPixels: 7.5 pixels at
+// 1280, ten candidates a band, read from three mask texels): the slab is still reused, and agrees with its full
+// render.
+TEST(VulkanStereo, TallImagesBandsSpanTheSameAngle) {
+    const StereoPair pair = slabPair(256, 1280, 4 * kSeparation);  // the eyes farther apart: the view is narrow
+    ASSERT_EQ(maxSpreadPixels(pair.left.height), 2.5 * kMaxSpreadPixels);
+    ASSERT_GT(slabSpread(pair), 2 * maxSpreadPixels(pair.left.height));  // rays over several bands
+    VulkanRenderer& renderer = test::vulkanRenderer(16);
+    const GpuVolume volume = renderer.upload(twoColourSlab(), {{Caster::EACD}, kAllOctants});
+    const auto [full, reused] = fullAndReused(renderer, volume, pair, Caster::EACD);
+    int slab = 0, slabReused = 0;
+    for (std::size_t i = 0; i < reused.recast.size(); ++i)
+        if (full.right.image.rgba[4 * i + 3] > 0.3f) ++slab, slabReused += !reused.recast[i];
+    ASSERT_GT(slab, int(reused.recast.size() / 32));  // a narrow view: the slab fills a twentieth of it
+    EXPECT_GT(slabReused, slab * 3 / 4);
+    expectPairsAgree(reused, full, 0.01, "256 x 1280");
     test::expectNoValidationErrors();
 }
 

@@ -12,7 +12,7 @@
 namespace vr {
 namespace {
 
-// The composite bands of a pair: kMaxSpreadPixels wide from the disparity of the volume's nearest point to its
+// The composite bands of a pair: maxSpreadPixels wide from the disparity of the volume's nearest point to its
 // farthest's (none where that takes more than device::kMaxBands).
 struct Bands {
     double first = 0;
@@ -22,7 +22,7 @@ struct Bands {
 Bands bandsOf(const StereoPair& pair, const DepthRange& depths) {
     if (depths.nearest <= 0) return {};
     const double first = disparityAt(pair, depths.nearest);
-    const double count = std::ceil((disparityAt(pair, depths.farthest) - first) / kMaxSpreadPixels);
+    const double count = std::ceil((disparityAt(pair, depths.farthest) - first) / maxSpreadPixels(pair.left.height));
     return count <= device::kMaxBands ? Bands{first, std::max(1, int(count))} : Bands{};
 }
 
@@ -35,7 +35,7 @@ device::StereoParams reprojection(const StereoPair& pair, const DepthRange& dept
     p.focusInverse = float(1 / pair.focus);
     p.halfHeight = float(left.halfHeight);
     p.leftShift = float(left.shift);
-    p.maxSpread = float(kMaxSpreadPixels);
+    p.maxSpread = float(maxSpreadPixels(left.height));
     p.maxStep = float(settings.blend == Blend::Composite ? kMaxBandStep : kMaxColourStep);
     p.maxGap = float(kMaxGapPixels);
     // The disparities lie between the volume's nearest point's and infinity's; eyes inside the volume search the row.
@@ -110,7 +110,7 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         const DeviceBuffer* leftBands = composite ? &*buffers.bands : nullptr;
         const StereoLeft leftEye{composite ? nullptr : buffers.left.data(), leftBands,
                                  {float(disparityScale(pair)), float(1 / pair.focus), float(bands.first),
-                                  float(kMaxSpreadPixels)},
+                                  float(maxSpreadPixels(height))},
                                  bands.count};
         out.left = renderOnDevice(volume, pair.left, settings, nullptr, &leftEye);
         if (!reprojector_) reprojector_ = std::make_unique<StereoReprojector>(ctx_);
