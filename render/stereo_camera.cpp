@@ -1,7 +1,6 @@
 #include "render/stereo_camera.h"
 
 #include <algorithm>
-
 #include <cmath>
 #include <cstdio>
 #include <string>

@@ -367,7 +367,6 @@ vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& vi
     vr::ProbedIterations it{vr::probeIterations(classified, cameras, probe), {}};
     const std::size_t voxels = classified.grid().voxels();
     // A label map, not the scalars, would decide what a block holds: hier does not take one.
-    d.deviceWaitMs = device.waitMs();
     if (!classified.labels && vr::hierMayPay(it.primitive, d, voxels, calibration.constants)) {
         options.fields = vr::kFieldHier;
         probe.caster = vr::Caster::Hier;
