@@ -65,6 +65,7 @@ long long fieldBytes(const DistanceFields& f, Caster c) {
         case Caster::ACD: return (long long)(f.acd[0].size() * kOctants);
         case Caster::EACD: return (long long)(f.eacd[0].bytes() * kOctants);
         case Caster::Blocks: return 0;  // built at render time from the scalars
+        case Caster::Hier: return (long long)f.hier.bytes();
     }
     return 0;
 }
