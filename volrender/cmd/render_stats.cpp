@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <numeric>
 
+#include "render/count_percentile.h"
+
 namespace vr {
 
 nlohmann::json viewStatistics(const RenderResult& result, const std::vector<UploadedResource>& uploads) {
-    std::vector<uint32_t> sorted = result.iterations;
-    std::sort(sorted.begin(), sorted.end());
-    const double rays = double(std::max<std::size_t>(1, sorted.size()));
-    const double iterations = std::accumulate(sorted.begin(), sorted.end(), 0.0);
+    const std::vector<uint32_t>& counts = result.iterations;
+    const double rays = double(std::max<std::size_t>(1, counts.size()));
+    const double iterations = std::accumulate(counts.begin(), counts.end(), 0.0);
     const double samples = std::accumulate(result.samples.begin(), result.samples.end(), 0.0);
     nlohmann::json uploaded = nlohmann::json::object();
     std::size_t total = 0;
@@ -21,8 +22,8 @@ nlohmann::json viewStatistics(const RenderResult& result, const std::vector<Uplo
             {"wallMs", result.wallMilliseconds},
             {"iterationsPerRay",
              {{"mean", iterations / rays},
-              {"p95", sorted.empty() ? 0u : sorted[std::min(sorted.size() - 1, std::size_t(0.95 * sorted.size()))]},
-              {"max", sorted.empty() ? 0u : sorted.back()}}},
+              {"p95", countPercentile(counts, 0.95)},
+              {"max", counts.empty() ? 0u : *std::max_element(counts.begin(), counts.end())}}},
             {"samplesRepresented", {{"total", samples}, {"meanPerRay", samples / rays}}},
             {"uploadedBytes", uploaded},
             {"uploadedBytesTotal", total}};
