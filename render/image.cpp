@@ -2,8 +2,13 @@
 // .exr holds the linear float RGBA the renderer produced.
 #include "render/image.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -39,11 +44,48 @@ InputError unknownFormat(const fs::path& path) {
 
 bool isImageFormat(const fs::path& path) { return formatOf(path) != ImageFormat::Other; }
 
+unsigned char srgbByteByPower(float linear) {
+    if (!(linear > 0)) return 0;  // NaN too (lround of NaN is unspecified)
+    return (unsigned char)std::lround(255 * srgbEncode(linear));
+}
+
+namespace {
+
+// The smallest float at which srgbByteByPower reaches k, for k = 1 .. 255: found once, by bisection over the bit
+// patterns of the floats in [0, 1], which order as their values.
+const std::array<float, 255>& srgbSteps() {
+    static const std::array<float, 255> steps = [] {
+        std::array<float, 255> s{};
+        const uint32_t one = std::bit_cast<uint32_t>(1.0f);
+        for (int k = 1; k <= 255; ++k) {
+            uint32_t lo = 0, hi = one;
+            while (lo < hi) {
+                const uint32_t mid = lo + (hi - lo) / 2;
+                if (srgbByteByPower(std::bit_cast<float>(mid)) >= k) hi = mid;
+                else lo = mid + 1;
+            }
+            s[std::size_t(k - 1)] = std::bit_cast<float>(lo);
+        }
+        return s;
+    }();
+    return steps;
+}
+
+}  // namespace
+
+unsigned char srgbByte(float linear) {
+    if (!(linear > 0)) return 0;
+    const std::array<float, 255>& steps = srgbSteps();
+    return (unsigned char)(std::upper_bound(steps.begin(), steps.end(), linear) - steps.begin());
+}
+
 std::vector<unsigned char> srgbBytes(const Image& image) {
     std::vector<unsigned char> bytes(std::size_t(image.width) * image.height * 3);
-    for (std::size_t p = 0; p < bytes.size() / 3; ++p)
-        for (int c = 0; c < 3; ++c)
-            bytes[p * 3 + c] = (unsigned char)std::lround(255 * srgbEncode(image.rgba[p * 4 + c]));
+    tbb::parallel_for(0, image.height, [&](int y) {
+        const std::size_t first = std::size_t(y) * image.width, last = first + image.width;
+        for (std::size_t p = first; p < last; ++p)
+            for (int c = 0; c < 3; ++c) bytes[p * 3 + c] = srgbByte(image.rgba[p * 4 + c]);
+    });
     return bytes;
 }
 

@@ -2,6 +2,7 @@
 // unreadable files are refused by name.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -51,6 +52,27 @@ TEST(RenderImage, ExrRoundTripIsExact) {
     ASSERT_EQ(back.height, 23);
     EXPECT_EQ(maxAbsDifference(img, back), 0.0);
     EXPECT_EQ(filesIn(dir), 1u);  // no temporary left behind
+}
+
+// The code by search equals the code by the curve: on every 64th float in [0, 1], on the floats around each step, and
+// on the values the clamp and NaN decide.
+TEST(RenderImage, SrgbBytesBySearchAreTheCurves) {
+    const uint32_t one = std::bit_cast<uint32_t>(1.0f);
+    for (uint32_t bits = 0; bits <= one; bits += 64) {
+        const float x = std::bit_cast<float>(bits);
+        ASSERT_EQ(srgbByte(x), srgbByteByPower(x)) << x;
+    }
+    for (int k = 1; k <= 255; ++k) {  // the first float of each code, and its neighbours
+        uint32_t bits = 0;
+        while (srgbByte(std::bit_cast<float>(bits)) < k) bits += 1u << 12;
+        for (uint32_t b = bits > (1u << 12) ? bits - (1u << 12) : 0; b <= bits; ++b)
+            ASSERT_EQ(srgbByte(std::bit_cast<float>(b)), srgbByteByPower(std::bit_cast<float>(b))) << k;
+    }
+    for (float x : {-1.0f, -0.0f, 1e-40f, 1.0f, 1.5f, std::numeric_limits<float>::infinity(),
+                    -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()})
+        EXPECT_EQ(srgbByte(x), srgbByteByPower(x)) << x;
+    EXPECT_EQ(srgbByte(0.5f), 188);
+    EXPECT_EQ(srgbByte(std::numeric_limits<float>::quiet_NaN()), 0);
 }
 
 TEST(RenderImage, PngIsClampedSrgbOverTheBackground) {
