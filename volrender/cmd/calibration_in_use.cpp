@@ -26,6 +26,13 @@ CasterCalibration readForDevice(const fs::path& path, const std::optional<std::s
     return c;
 }
 
+// The file calibrationInUse reads: --calibration's, else the per-user file where it exists; none.
+std::optional<fs::path> calibrationFile(const std::string& explicitPath) {
+    if (!explicitPath.empty()) return fs::path(explicitPath);
+    std::optional<fs::path> user = userCalibrationPath();
+    return user && fs::exists(*user) ? user : std::nullopt;
+}
+
 }  // namespace
 
 std::optional<fs::path> userCalibrationPath() {
@@ -35,20 +42,17 @@ std::optional<fs::path> userCalibrationPath() {
 }
 
 CalibrationInUse calibrationInUse(const std::string& explicitPath, const std::optional<std::string>& deviceName) {
-    if (!explicitPath.empty()) return {readForDevice(explicitPath, deviceName), explicitPath, ""};
-    const std::optional<fs::path> user = userCalibrationPath();
-    if (!user || !fs::exists(*user)) return {builtInCalibration(), "built-in", ""};
-    try {
-        return {readForDevice(*user, deviceName), user->string(), ""};
+    const std::optional<fs::path> file = calibrationFile(explicitPath);
+    if (!file) return {builtInCalibration(), "built-in", ""};
+    if (!explicitPath.empty()) return {readForDevice(*file, deviceName), explicitPath, ""};
+    try {  // the per-user file, passed over where it does not fit this device
+        return {readForDevice(*file, deviceName), file->string(), ""};
     } catch (const InputError& e) {
         return {builtInCalibration(), "built-in", std::string(e.what()) + ": using the built-in constants"};
     }
 }
 
-bool calibrationReadsFile(const std::string& explicitPath) {
-    const std::optional<fs::path> user = userCalibrationPath();
-    return !explicitPath.empty() || (user && fs::exists(*user));
-}
+bool calibrationReadsFile(const std::string& explicitPath) { return calibrationFile(explicitPath).has_value(); }
 
 nlohmann::json calibrationStatistics(const CalibrationInUse& calibration) {
     nlohmann::json stats = casterCalibrationJson(calibration.constants);
