@@ -47,6 +47,13 @@ VR_FUNCTION bool runningSettled(int blend, VR_REAL running, VR_REAL flatAbove, V
     return (blend == kBlendMIP && running >= flatAbove) || (blend == kBlendMinIP && running <= flatBelow);
 }
 
+// MIP and MinIP: the running value before the ray's first sample. Every value below flatBelow shows as flatBelow
+// does (render/flat_table_ends.h), so MIP starts there, not at -inf, and MinIP at flatAbove: the pixel is the same,
+// and a block that lies wholly in the flat run (noisy air under a TF transparent there) is leapt over.
+VR_FUNCTION VR_REAL initialRunning(int blend, VR_REAL flatAbove, VR_REAL flatBelow) {
+    return blend == kBlendMIP ? flatBelow : flatAbove;
+}
+
 // The running value after a scalar: MIP's largest, MinIP's smallest (the other blends keep none).
 VR_FUNCTION VR_REAL foldRunning(int blend, VR_REAL running, VR_REAL scalar) {
     if (blend == kBlendMIP) return scalar > running ? scalar : running;

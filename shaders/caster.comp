@@ -377,8 +377,7 @@ int levelZ(int level) {
 
 // A ray's state before its first sample: nothing composited, or the blend's running value before any scalar.
 vec4 initialComposite() {
-    if (BLEND == kBlendMIP) return vec4(-kInfinity);
-    if (BLEND == kBlendMinIP) return vec4(kInfinity);
+    if (BLEND == kBlendMIP || BLEND == kBlendMinIP) return vec4(initialRunning(BLEND, params.flatAbove, params.flatBelow));
     if (BLEND == kBlendAverage) return vec4(0.0);
     return vec4(vec3(0.0), 1.0);
 }
@@ -541,6 +540,7 @@ void main() {
         while (mine && !failed && !hit && k < kCount && !settled(running)) {
             // Leaps until a block that could change the result, which sample k (voxel v) starts.
             ivec3 v;
+            vec2 finest;   // the finest block's scalar range at sample k
             bool entered;  // sample k is this dispatch's, and within the iteration cap
             do {
                 entered = enterSample(g, iv, k, v, iterations, failed);
@@ -552,6 +552,7 @@ void main() {
                     if (size != (level == 0 ? 0 : 1 << (shift - 1))) break;  // the finer block could not be leapt
                     ivec3 block = ivec3(v.xy >> shift, levelZ(level) + (v.z >> shift));
                     vec2 range = imageLoad(blockExtrema, block).rg;
+                    if (level == 0) finest = range;
                     if (blockSkipped(BLEND, range.x, range.y, running, params.isoValue, inside)) {
                         size = 1 << shift;
                         value = range.x;
@@ -572,6 +573,12 @@ void main() {
                 float scalar = TRILINEAR ? footprintScalar(footprintAt(samplePosition(g, iv, k))) : loadScalar(v);
                 hit = foldSample(scalar, k, running, sum, inside);
                 if (hit || ++k >= blockEnd || settled(running)) break;
+                // MIP and MinIP: once the running value passes the block's range, its other samples cannot change
+                // it, and the ray leaps to the block's far faces (the leap's lookup was this block's).
+                if (blockSkipped(BLEND, finest.x, finest.y, running, params.isoValue, inside)) {
+                    k = blockEnd;
+                    break;
+                }
                 if (!enterSample(g, iv, k, v, iterations, failed)) break;
             }
         }

@@ -128,7 +128,7 @@ struct CasterParams {
     float isoValue;       // Blend::Iso's scalar
     float opacityLength;  // the length over which the TF gives its opacity (ScalarClassification::referenceStep):
                           // MIP, MinIP and average show the TF's opacity at their value as alpha
-    float flatAbove;      // MIP and MinIP end a ray whose running value reaches these (render/flat_table_ends.h)
+    float flatAbove;      // MIP and MinIP start and end their running value at these (render/flat_table_ends.h)
     float flatBelow;
     ivec4 blockLevelZ;    // the blocks caster: the first z texel of each level of blocks (render/block_extrema.h)
     // What clips every ray (render/ray_setup.h RayClip), in grid coordinates: the crop box's faces (0 and dims

@@ -119,7 +119,7 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     const ScalarClassification& classification = prepared.classification;
     const TransferTable& table = classification.table;
     placement_ = {table.lo, table.step, table.size(), classification.flatGradient, classification.referenceStep,
-                  flatTableEnds(table)};
+                  flatTableEnds(table, false), flatTableEnds(table, true)};
     vk::DeviceSize maxEntries = ctx.physicalDevice().getProperties().limits.maxTexelBufferElements;
     if (limits.maxTableEntries > 0) maxEntries = std::min(maxEntries, limits.maxTableEntries);
     const auto tableFits = [&](const std::string& what, std::size_t entries) {

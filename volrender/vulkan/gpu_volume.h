@@ -75,7 +75,8 @@ struct TablePlacement {
     std::size_t entries = 0;
     double flatGradient = 0;
     double referenceStep = 1;
-    FlatTableEnds flat;  // where MIP and MinIP rays end
+    // Where MIP and MinIP rays start and end: shown through the entries' opacity, and opaque (a grey window).
+    FlatTableEnds flat, opaqueFlat;
 };
 
 class GpuVolume {

@@ -141,8 +141,9 @@ device::CasterParams makeParams(const GpuVolume& volume, const Camera& camera, c
     p.flatGradient = float(table.flatGradient);
     p.isoValue = float(s.isoValue);
     p.opacityLength = float(table.referenceStep);
-    p.flatAbove = float(table.flat.above);
-    p.flatBelow = float(table.flat.below);
+    const FlatTableEnds& flat = s.opaqueValues ? table.opaqueFlat : table.flat;
+    p.flatAbove = float(flat.above);
+    p.flatBelow = float(flat.below);
     static_assert(device::kBlockLevels == 4, "blockLevelZ holds an ivec4");
     const std::array<int, device::kBlockLevels>& levelZ = volume.blockLevelZ();
     p.blockLevelZ = {levelZ[0], levelZ[1], levelZ[2], levelZ[3]};
