@@ -186,8 +186,8 @@ CasterChoice chooseCaster(const std::optional<RayProbe>& probe, const FieldBytes
         if (e.cost <= tie && e.bytes < best->bytes) best = &e;
 
     // Every candidate's iterations per pixel and cost relative to the primitive caster's, so a choice can be checked.
-    std::string reason = "estimated iterations per pixel and cost relative to primitive (" + std::to_string(d.views.size()) +
-                         " view(s) sharing the upload):";
+    std::string reason = "estimated iterations per pixel and cost relative to primitive (" +
+                         std::to_string(d.views.size()) + " view(s) sharing the upload):";
     for (const Estimate& e : estimates) {
         char part[96];
         std::snprintf(part, sizeof part, " %s %.1f, %.3f;", casterName(e.caster).data(), e.iterations,

@@ -365,7 +365,8 @@ struct BoxLeap {
 BoxLeap octantBoxLeap(GridRay g, RayInterval iv, uint k, ivec3 v, int oct, ivec3 ext, LeapSlack slack) {
     vec3 exits = boxExitsT(g, v, oct, ext);
     float t = latticeT(iv, k);
-    return BoxLeap(boxLeapSamples(exits, vec3(0.0), t), boxLeapSamples(exits, slack.boxExit, t), octantBox(v, oct, ext));
+    return BoxLeap(boxLeapSamples(exits, vec3(0.0), t), boxLeapSamples(exits, slack.boxExit, t),
+                   octantBox(v, oct, ext));
 }
 
 // The first z texel of a level in the block extrema image. Selected, not indexed: an index into the uniforms' copy
@@ -377,7 +378,8 @@ int levelZ(int level) {
 
 // A ray's state before its first sample: nothing composited, or the blend's running value before any scalar.
 vec4 initialComposite() {
-    if (BLEND == kBlendMIP || BLEND == kBlendMinIP) return vec4(initialRunning(BLEND, params.flatAbove, params.flatBelow));
+    if (BLEND == kBlendMIP || BLEND == kBlendMinIP)
+        return vec4(initialRunning(BLEND, params.flatAbove, params.flatBelow));
     if (BLEND == kBlendAverage) return vec4(0.0);
     return vec4(vec3(0.0), 1.0);
 }
@@ -434,8 +436,8 @@ vec3 isoSurface(GridRay g, RayInterval iv, uint k, vec3 toEye, vec3 toLight, out
     vec3 p = rayAt(g, t);
     vec3 colour = classify(params.isoValue).rgb;
     if (!SHADING) return colour;
-    return shade(colour, normalOf(TRILINEAR ? footprintGradient(footprintAt(p)) : voxelGradient(clampVoxel(floorVoxel(p)))),
-                 toEye, toLight);
+    vec3 gradient = TRILINEAR ? footprintGradient(footprintAt(p)) : voxelGradient(clampVoxel(floorVoxel(p)));
+    return shade(colour, normalOf(gradient), toEye, toLight);
 }
 
 void main() {

@@ -171,7 +171,8 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
     if (f.input.empty()) throw vr::InputError("no volume or prepared volume given (see --help)");
     if (f.output.empty()) throw vr::InputError("no output image given: -o IMAGE");
     if (!fs::exists(f.input)) throw vr::fileError(f.input, "no such file");
-    const bool raw = !f.volume.dims.empty() || !f.volume.type.empty() || !f.volume.spacing.empty() || f.volume.bigEndian;
+    const bool raw =
+        !f.volume.dims.empty() || !f.volume.type.empty() || !f.volume.spacing.empty() || f.volume.bigEndian;
     const bool prepared = vr::isPreparedFile(f.input);
     if (prepared) {
         if (!f.volume.transfer.empty() || raw)
@@ -614,8 +615,10 @@ int run(const Flags& f) {
         }
         const vr::StereoPair pair = vr::stereoPair(camera, prepared.grid(), *f.stereo.separation, f.stereo.focus);
         if (!renderer)
-            return RenderedView{{vr::renderCpu(prepared, pair.left, settings), vr::renderCpu(prepared, pair.right, settings)},
-                                {}, {{"recastFraction", 1.0}, {"reprojectMs", 0.0}, {"focus", pair.focus}}};
+            return RenderedView{
+                {vr::renderCpu(prepared, pair.left, settings), vr::renderCpu(prepared, pair.right, settings)},
+                {},
+                {{"recastFraction", 1.0}, {"reprojectMs", 0.0}, {"focus", pair.focus}}};
         vr::StereoRender stereo = renderer->renderStereo(*uploaded, pair, settings, reuse);
         return RenderedView{{std::move(stereo.left), std::move(stereo.right)}, renderer->lastUploads(),
                             {{"recastFraction", stereo.recastFraction}, {"reprojectMs", stereo.reprojectMilliseconds},
