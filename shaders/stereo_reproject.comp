@@ -179,17 +179,25 @@ uvec4 masksAt(int x, int y) {
     return imageLoad(leftBands, int(bandMaskTexel(x, y, params.imageSize.x, params.imageSize.y, params.bandCount)));
 }
 
+// The bands that any candidate of right pixel x (of any band: the last band's first .. the first band's last + 1)
+// is used in (stereo_reprojection.h bandUsed): their masks OR'ed, a texel per four candidates.
+uint bandsUsedNear(int x, int y) {
+    int width = params.imageSize.x;
+    int lo = clamp(bandCandidates(x, params.bandCount - 1).x, 0, width - 1);
+    int hi = clamp(bandCandidates(x, 0).y + 1, 0, width - 1);
+    uvec4 masks = uvec4(0u);
+    for (int base = lo; base <= hi; base += 4) masks |= masksAt(clamp(base, 0, max(width - 4, 0)), y);
+    return masks.x | masks.y | masks.z | masks.w;
+}
+
 // The first band from b on that can add anything to right pixel x: one of its candidates' segments (first .. last
-// + 1) lies outside the image or is used (stereo_reprojection.h bandUsed); the others are skipped, their masks read
-// a texel per four candidates (two for a band 3 pixels wide, which has five), not their segments. A loop: llvmpipe
-// would run a skipped band's code under a mask.
-int nextBand(int x, int y, int b) {
+// + 1) lies outside the image, or is used by some candidate of x (`near`, bandsUsedNear). A band none of whose own
+// candidates is used adds nothing, as if skipped (stereo_reprojection.h bandUsed), so the superset only costs a
+// band's work. A loop: llvmpipe would run a skipped band's code under a mask.
+int nextBand(int x, int b, uint near) {
     for (; b < params.bandCount; ++b) {
         ivec2 window = bandCandidates(x, b);
-        if (window.x < 0 || window.y + 1 >= params.imageSize.x) break;
-        uvec4 masks = masksAt(max(window.y - 2, window.x), y);
-        for (int base = window.x; base < window.y - 2; base += 4) masks |= masksAt(base, y);
-        if ((((masks.x | masks.y | masks.z | masks.w) >> b) & 1u) != 0u) break;
+        if (window.x < 0 || window.y + 1 >= params.imageSize.x || ((near >> b) & 1u) != 0u) break;
     }
     return b;
 }
@@ -212,8 +220,9 @@ void reprojectBands() {
     vec3 colour = vec3(0.0);
     float transmittance = 1.0;
     bool done = x >= width, reuse = true;
+    uint near = done ? 0u : bandsUsedNear(x, y);
     for (int b = 0; !done; ++b) {
-        b = nextBand(x, y, b);
+        b = nextBand(x, b, near);
         if (b >= params.bandCount) break;
         ivec2 window = bandCandidates(x, b);
         int first = window.x, last = window.y;
