@@ -77,27 +77,38 @@ TEST(VulkanBlendModes, RaysEndWhereTheWindowNoLongerChanges) {
 // Noisy air under a transfer function transparent there, whose colour still ramps (as CT presets' do), around a
 // cube of metal: MIP starts its maximum where the table stops changing what it shows (render/flat_table_ends.h), so
 // the blocks caster leaps the air whole from the start, where the noise would raise a maximum from -inf block after
-// block. The image is the CPU reference's, which starts at -inf.
+// block. MinIP likewise, with the air above the cube's value and transparent at the table's top. The image is the
+// CPU reference's, which starts at -inf (+inf).
 TEST(VulkanBlendModes, TransparentNoiseIsLeaptFromTheStart) {
-    Volume volume = noisePhantom({32, 32, 32}, 7, 0, 60);
-    for (int z = 12; z < 20; ++z)
-        for (int y = 12; y < 20; ++y)
-            for (int x = 12; x < 20; ++x) volume.values[linearIndex(volume.grid.dims, x, y, z)] = 200;
-    TransferFunction tf;
-    tf.opacity = {{0, 0}, {100, 0}, {255, 1}};
-    tf.colour = {{0, 0, 0, 0}, {255, 1, 1, 1}};
-    const PreparedVolume prepared = test::prepareVolume(volume, tf, {0, 0, false, false}, 0);
+    struct Case {
+        Blend blend;
+        int noiseLow, noiseHigh;
+        float cube;
+        std::vector<TransferFunction::OpacityPoint> opacity;
+    };
+    const Case cases[] = {{Blend::MIP, 0, 60, 200, {{0, 0}, {100, 0}, {255, 1}}},
+                          {Blend::MinIP, 195, 255, 20, {{0, 1}, {150, 0}, {255, 0}}}};
     const auto total = [](const std::vector<uint32_t>& v) { return std::accumulate(v.begin(), v.end(), 0.0); };
-    for (bool trilinear : {false, true}) {
-        const std::string what = trilinear ? "trilinear" : "nearest";
-        const Camera camera = Camera::fit(prepared.grid(), test::orbitView(30, 20, 24, 20));
-        const RenderSettings blocks = test::blendSettings(Blend::MIP, Caster::Blocks, trilinear, 0);
-        const RenderResult leapt = kVulkan(prepared, camera, blocks);
-        const RenderResult reference = test::kCpuReference(prepared, camera, blocks);
-        EXPECT_LE(maxAbsDifference(leapt.image, reference.image), 1e-5) << what;
-        EXPECT_EQ(leapt.samples, reference.samples) << what;
-        const RenderSettings primitive = test::blendSettings(Blend::MIP, Caster::Primitive, trilinear, 0);
-        EXPECT_LT(total(leapt.iterations), 0.25 * total(kVulkan(prepared, camera, primitive).iterations)) << what;
+    for (const Case& c : cases) {
+        Volume volume = noisePhantom({32, 32, 32}, 7, c.noiseLow, c.noiseHigh);
+        for (int z = 12; z < 20; ++z)
+            for (int y = 12; y < 20; ++y)
+                for (int x = 12; x < 20; ++x) volume.values[linearIndex(volume.grid.dims, x, y, z)] = c.cube;
+        TransferFunction tf;
+        tf.opacity = c.opacity;
+        tf.colour = {{0, 0, 0, 0}, {255, 1, 1, 1}};
+        const PreparedVolume prepared = test::prepareVolume(volume, tf, {0, 0, false, false}, 0);
+        for (bool trilinear : {false, true}) {
+            const std::string what = std::string(blendName(c.blend)) + (trilinear ? " trilinear" : " nearest");
+            const Camera camera = Camera::fit(prepared.grid(), test::orbitView(30, 20, 24, 20));
+            const RenderSettings blocks = test::blendSettings(c.blend, Caster::Blocks, trilinear, 0);
+            const RenderResult leapt = kVulkan(prepared, camera, blocks);
+            const RenderResult reference = test::kCpuReference(prepared, camera, blocks);
+            EXPECT_LE(maxAbsDifference(leapt.image, reference.image), 1e-5) << what;
+            EXPECT_EQ(leapt.samples, reference.samples) << what;
+            const RenderSettings primitive = test::blendSettings(c.blend, Caster::Primitive, trilinear, 0);
+            EXPECT_LT(total(leapt.iterations), 0.25 * total(kVulkan(prepared, camera, primitive).iterations)) << what;
+        }
     }
 }
 
