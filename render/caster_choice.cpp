@@ -30,11 +30,12 @@ constexpr Caster kCasters[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caste
 // bench/auto_caster_bench --growth-sizes on the cranium CT resampled to 17, 134, 268 and 537 MB of scalars
 // (primitive renders) gave 5 % more per doubling beyond 17 MB (8 % and 11 % in two runs on a loaded machine before).
 // A blocks MIP iteration over a primitive one (bench/blend_bench, 512x512, trilinear, 2 views, device ms per
-// iteration of whole renders, the machine quiet): 2.17 on the teapot, 1.58 on the cranium CT, 1.65 on the head CT,
-// since the caster's lookups have a loop of their own (2.8 to 3.2 before). Lavapipe's SIMD lanes of 8 rays still
-// run as long as the ray that samples most, so a leap saves less than its iterations suggest. (auto_caster_bench's
-// 17 scenes at 256x256 give a median of 2.71: at that size a frame has fewer rays to share a batch's longest.)
-constexpr double kBlocksIterationRatio = 1.65;
+// iteration of whole renders, the machine quiet, two runs): 2.52-2.62 on the teapot, 2.41-2.45 on the cranium CT,
+// 2.23 on the head CT, since MIP starts where the table stops changing what it shows (1.58-2.17 before: the air's
+// blocks, cheap to leap, are leapt in fewer iterations, and each ray's fixed cost spreads over fewer). Lavapipe's
+// SIMD lanes of 8 rays still run as long as the ray that samples most, so a leap saves less than its iterations
+// suggest.
+constexpr double kBlocksIterationRatio = 2.4;
 // Uploading a field byte (written in place into the image's memory): the bench's median over its rows at the refit
 // (0.40-0.45 in three runs before it; 0.58-0.66 when uploads went through a staging copy); a field pays off only
 // when it saves more iterations than its bytes cost. The tie: the probe samples a few hundred rays per direction

@@ -19,6 +19,7 @@
 #include "core/errors.h"
 #include "core/gradient.h"
 #include "render/block_extrema.h"
+#include "render/flat_table_ends.h"
 #include "render/ray_setup.h"
 #include "render/render_checks.h"
 #include "render/span.h"
@@ -200,6 +201,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const double iso = settings.isoValue;
     const std::optional<BlockExtrema> blocks =
         settings.caster == Caster::Blocks ? std::optional(blockExtrema(prepared.scalars)) : std::nullopt;
+    const FlatTableEnds flat = flatTableEnds(prepared.classification.table, settings.opaqueValues);
     // ACD and EACD may hold only the octants some views need (volrender's one-command path).
     const unsigned heldOctants = settings.caster == Caster::ACD    ? fields.acdOctants()
                                  : settings.caster == Caster::EACD ? fields.eacdOctants()
@@ -224,9 +226,14 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         const Vec3d toLight = light ? *light : toEye;
 
         Accumulator acc;
-        // The other blends' running values: the largest or smallest scalar, the sum, the iso-surface's side.
+        // The other blends' running values: the largest or smallest scalar, the sum, the iso-surface's side. The
+        // blocks caster starts MIP and MinIP where the table stops changing what they show, as the device's casters
+        // do (shaders/blend.h initialRunning), so that auto's probe counts their iterations; the primitive caster,
+        // the plain definition, at -inf and +inf: the images are the same.
         double running = blend == Blend::MinIP ? std::numeric_limits<double>::infinity()
                                                : -std::numeric_limits<double>::infinity();
+        if (blocks && device::blendProbes(deviceBlend))
+            running = device::initialRunning(deviceBlend, flat.above, flat.below);
         double sum = 0;
         bool inside = false, hit = false;
         long long iterations = 0;
@@ -237,6 +244,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                 running = device::foldRunning(deviceBlend, running, sampler.scalar(g.at(t), sampleVoxel(g, t, clip)));
             }
         int64_t blockEnd = 0;  // blocks: the samples before it lie in a block that could change the result
+        double finestLo = 0, finestHi = 0;  // that block's scalar range
         int64_t k = 0;  // the next lattice sample: also the samples the spans so far represent
         for (int64_t n = 1; k < kCount && acc.alpha < settings.ert; k += n) {
             if (++iterations > settings.maxIterationsPerRay)
@@ -268,6 +276,8 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     continue;
                 }
                 blockEnd = k + n;
+                finestLo = blocks->lo(0, v);
+                finestHi = blocks->hi(0, v);
             }
             const double scalar = sampler.scalar(g.at(t), v);
             if (blend == Blend::Iso) {  // the surface lies between the last sample and this one: refined below
@@ -276,6 +286,12 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                 inside = device::isoInside(scalar, iso);
             }
             running = device::foldRunning(deviceBlend, running, scalar);
+            // MIP and MinIP: once the running value passes the sampled block's range, the ray leaps to its end.
+            if (blocks && device::blendProbes(deviceBlend) && k + 1 < blockEnd &&
+                device::blockSkipped(deviceBlend, finestLo, finestHi, running, iso, inside)) {
+                n = blockEnd - k;
+                continue;
+            }
             const SampleValue s = blend == Blend::Composite ? sampler.classified(scalar, v) : SampleValue{};
 
             double wanted = 1;

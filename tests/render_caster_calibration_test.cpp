@@ -41,7 +41,7 @@ TEST(RenderCasterCalibration, BuiltInIsLavapipesFit) {
     EXPECT_EQ(c.uploadNsPerByte, 0.14);
     EXPECT_EQ(c.tie, 0.05);
     EXPECT_EQ(c.growth, (IterationGrowth{16.8e6, 0.05}));
-    EXPECT_EQ(c.blocksIterationRatio, 1.65);
+    EXPECT_EQ(c.blocksIterationRatio, 2.4);
     EXPECT_NE(c.deviceName.find("llvmpipe"), std::string::npos);
 }
 
