@@ -232,13 +232,13 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         // the plain definition, at -inf and +inf: the images are the same.
         double running = blend == Blend::MinIP ? std::numeric_limits<double>::infinity()
                                                : -std::numeric_limits<double>::infinity();
-        if (blocks && device::blendProbes(deviceBlend))
+        if (blocks && device::keepsExtreme(deviceBlend))
             running = device::initialRunning(deviceBlend, flat.above, flat.below);
         double sum = 0;
         bool inside = false, hit = false;
         long long iterations = 0;
         // MIP and MinIP with blocks: the running value starts at the probe samples (shaders/blend.h).
-        if (blocks && device::blendProbes(deviceBlend) && kCount > 0 && kCount <= INT32_MAX)
+        if (blocks && device::keepsExtreme(deviceBlend) && kCount > 0 && kCount <= INT32_MAX)
             for (int i = 0; i < device::kProbes; ++i, ++iterations) {
                 const double t = latticeT(iv, dt, device::probeSample(i, device::uint(kCount)));
                 running = device::foldRunning(deviceBlend, running, sampler.scalar(g.at(t), sampleVoxel(g, t, clip)));
@@ -287,7 +287,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             }
             running = device::foldRunning(deviceBlend, running, scalar);
             // MIP and MinIP: once the running value passes the sampled block's range, the ray leaps to its end.
-            if (blocks && device::blendProbes(deviceBlend) && k + 1 < blockEnd &&
+            if (blocks && device::keepsExtreme(deviceBlend) && k + 1 < blockEnd &&
                 device::blockSkipped(deviceBlend, finestLo, finestHi, running, iso, inside)) {
                 n = blockEnd - k;
                 continue;

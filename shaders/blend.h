@@ -61,12 +61,14 @@ VR_FUNCTION VR_REAL foldRunning(int blend, VR_REAL running, VR_REAL scalar) {
     return running;
 }
 
-// MIP and MinIP with the blocks caster start their running value at kProbes samples of the ray, at lattice indices
-// i kCount / (kProbes + 1): a value the result reaches (it is a sample's), so that a block that cannot pass it is
-// leapt over from the start (air before the first structure). The result, the running value, is the primitive
-// caster's exactly: the largest sample is sampled, or lies in a block that could not pass a value the ray has.
+// MIP and MinIP: the blends that keep a running extreme (they start, probe, settle and end a sampled block early).
+VR_FUNCTION bool keepsExtreme(int blend) { return blend == kBlendMIP || blend == kBlendMinIP; }
+
+// MIP and MinIP with the blocks caster fold kProbes samples of the ray into their starting value, at lattice indices
+// i kCount / (kProbes + 1): values the ray has, so that a block that cannot pass them is leapt over from the start.
+// The result, the running value, is the primitive caster's exactly: the largest sample is sampled, or lies in a
+// block that could not pass the running value.
 VR_CONSTANT int kProbes = 3;
-VR_FUNCTION bool blendProbes(int blend) { return blend == kBlendMIP || blend == kBlendMinIP; }
 VR_FUNCTION uint probeSample(int i, uint kCount) { return uint(i + 1) * kCount / uint(kProbes + 1); }
 
 // The box extent along one axis, from voxel v >= 0 to the far face of its block of `size` voxels (a power of two) in

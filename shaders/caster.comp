@@ -378,8 +378,7 @@ int levelZ(int level) {
 
 // A ray's state before its first sample: nothing composited, or the blend's running value before any scalar.
 vec4 initialComposite() {
-    if (BLEND == kBlendMIP || BLEND == kBlendMinIP)
-        return vec4(initialRunning(BLEND, params.flatAbove, params.flatBelow));
+    if (keepsExtreme(BLEND)) return vec4(initialRunning(BLEND, params.flatAbove, params.flatBelow));
     if (BLEND == kBlendAverage) return vec4(0.0);
     return vec4(vec3(0.0), 1.0);
 }
@@ -518,7 +517,7 @@ void main() {
     if (!mine && !firstDispatch && !lastDispatch) return;
     // MIP and MinIP with blocks: the running value starts at the probe samples (blend.h), which a volume of one brick
     // holds (a bricked one starts without).
-    if (CASTER == kBlocks && blendProbes(BLEND) && !BRICKED && kCount > 0u)
+    if (CASTER == kBlocks && keepsExtreme(BLEND) && !BRICKED && kCount > 0u)
         for (int i = 0; i < kProbes; ++i, ++iterations)
             running = foldRunning(BLEND, running, scalarAt(samplePosition(g, iv, probeSample(i, kCount))));
     // A stereo left eye leaves the sample loop at a span that reaches its band's far end, and stores the bands'

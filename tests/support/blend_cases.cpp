@@ -129,7 +129,7 @@ std::pair<double, double> expectBlocksEqualPrimitive(const RenderFn& render, con
     EXPECT_LE(maxAbsDifference(primitive.image, blocks.image), tolerance) << what;
     EXPECT_EQ(primitive.samples, blocks.samples) << what;
     // Each iteration stands for one sample or more; MIP and MinIP add their probes.
-    const uint32_t probes = device::blendProbes(int(s.blend)) ? device::kProbes : 0;
+    const uint32_t probes = device::keepsExtreme(int(s.blend)) ? device::kProbes : 0;
     std::size_t worse = 0;
     for (std::size_t i = 0; i < blocks.iterations.size(); ++i)
         worse += blocks.iterations[i] > primitive.iterations[i] + probes;
