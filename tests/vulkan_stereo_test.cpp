@@ -71,7 +71,9 @@ double expectPairsAgree(const StereoRender& reused, const StereoRender& full, do
             EXPECT_EQ(reused.right.iterations[i], 0u) << what;
         }
     }
-    if (reusedCount > 0) EXPECT_LE(reusedError / double(reusedCount), reusedMean) << what;
+    if (reusedCount > 0) {
+        EXPECT_LE(reusedError / double(reusedCount), reusedMean) << what;
+    }
     EXPECT_DOUBLE_EQ(reused.recastFraction, double(recast) / double(reused.recast.size())) << what;
     return reused.recastFraction;
 }
