@@ -438,17 +438,22 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
 
     // The tiles of the image, or the list's chunks of a tile's pixels each (its first entry in tileOrigin.x).
     std::vector<device::TilePush> tiles;
+    const auto addTile = [&tiles](device::ivec2 origin, device::ivec2 size) {
+        device::TilePush t{};  // the brick's fields are set per dispatch
+        t.tileOrigin = origin;
+        t.tileSize = size;
+        tiles.push_back(t);
+    };
     if (list) {
         const int count = int(list->pixels.size());
         for (int first = 0; first < count; first += int(tilePixels)) {
             const int rows = (std::min(int(tilePixels), count - first) + tileSize_ - 1) / tileSize_;
-            tiles.push_back({{first, 0}, {tileSize_, rows}});
+            addTile({first, 0}, {tileSize_, rows});
         }
     } else {
         for (int y0 = 0; y0 < camera.height; y0 += tileSize_)
             for (int x0 = 0; x0 < camera.width; x0 += tileSize_)
-                tiles.push_back({{x0, y0},
-                                 {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)}});
+                addTile({x0, y0}, {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)});
     }
     for (device::TilePush tile : tiles) {
         const int groupRows = (tile.tileSize.y + device::kWorkgroupSize - 1) / device::kWorkgroupSize;
