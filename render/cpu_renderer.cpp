@@ -91,7 +91,8 @@ public:
         const std::size_t i = linearIndex(scalars_.grid.dims, v.x, v.y, v.z);
         const std::size_t l = device::labelClassOf(*labels_, i);
         const double ls = labels_->classes.sigma[l];
-        for (int a = 0; a < 3; ++a) s.colour[a] = device::labelledChannel(s.sigma, s.colour[a], ls, labels_->classes.colour[l][a]);
+        for (int a = 0; a < 3; ++a)
+            s.colour[a] = device::labelledChannel(s.sigma, s.colour[a], ls, labels_->classes.colour[l][a]);
         s.sigma = device::labelledSigma(s.sigma, ls);
         return s;
     }
@@ -261,7 +262,8 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                 int size = 0;
                 double value = 0;
                 // Fine to coarse: a block contains its finer ones, so it can be leapt only where they can.
-                for (int level = 0; level < device::kBlockLevels && size == (level == 0 ? 0 : device::kBlockSize << (level - 1));
+                for (int level = 0;
+                     level < device::kBlockLevels && size == (level == 0 ? 0 : device::kBlockSize << (level - 1));
                      ++level)
                     if (device::blockSkipped(deviceBlend, blocks->lo(level, v), blocks->hi(level, v), running, iso,
                                              inside)) {
@@ -362,7 +364,8 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                            settings.background, alpha);
         if (blend == Blend::Iso) {
             alpha = hit ? 1 : 0;
-            c = hit ? isoSurface(sampler, g, clip, iv, dt, k, iso, settings.shading, toEye, toLight) : settings.background;
+            c = hit ? isoSurface(sampler, g, clip, iv, dt, k, iso, settings.shading, toEye, toLight)
+                    : settings.background;
         }
         const std::size_t p = std::size_t(py) * camera.width + px;
         float* out = result.image.pixel(px, py);
