@@ -9,6 +9,7 @@ namespace vr {
 
 nlohmann::json viewStatistics(const RenderResult& result, const std::vector<UploadedResource>& uploads) {
     const std::vector<uint32_t>& counts = result.iterations;
+    const std::vector<uint32_t> percentiles = countPercentiles(counts, {0.95, 1.0});
     const double rays = double(std::max<std::size_t>(1, counts.size()));
     const double iterations = std::accumulate(counts.begin(), counts.end(), 0.0);
     const double samples = std::accumulate(result.samples.begin(), result.samples.end(), 0.0);
@@ -22,8 +23,8 @@ nlohmann::json viewStatistics(const RenderResult& result, const std::vector<Uplo
             {"wallMs", result.wallMilliseconds},
             {"iterationsPerRay",
              {{"mean", iterations / rays},
-              {"p95", countPercentile(counts, 0.95)},
-              {"max", counts.empty() ? 0u : *std::max_element(counts.begin(), counts.end())}}},
+              {"p95", percentiles[0]},
+              {"max", percentiles[1]}}},
             {"samplesRepresented", {{"total", samples}, {"meanPerRay", samples / rays}}},
             {"uploadedBytes", uploaded},
             {"uploadedBytesTotal", total}};
