@@ -202,7 +202,9 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const double iso = settings.isoValue;
     const std::optional<BlockExtrema> blocks =
         settings.caster == Caster::Blocks ? std::optional(blockExtrema(prepared.scalars)) : std::nullopt;
-    const FlatTableEnds flat = flatTableEnds(prepared.classification.table, settings.opaqueValues);
+    const FlatTableEnds flat = blocks && device::keepsExtreme(deviceBlend)
+                                   ? flatTableEnds(prepared.classification.table, settings.opaqueValues)
+                                   : FlatTableEnds{};
     // ACD and EACD may hold only the octants some views need (volrender's one-command path).
     const unsigned heldOctants = settings.caster == Caster::ACD    ? fields.acdOctants()
                                  : settings.caster == Caster::EACD ? fields.eacdOctants()

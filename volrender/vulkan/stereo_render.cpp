@@ -12,18 +12,25 @@
 namespace vr {
 namespace {
 
-// The composite bands of a pair: maxSpreadPixels wide from the disparity of the volume's nearest point to its
+// The disparity one depth stands for in a pair (maxSpreadPixels: a composite band's width, another blend's narrow
+// interval) and, for composite, the bands of that width from the disparity of the volume's nearest point to its
 // farthest's (none where that takes more than device::kMaxBands).
 struct Bands {
+    double width = 0;
     double first = 0;
     int count = 0;
 };
 
-Bands bandsOf(const StereoPair& pair, const DepthRange& depths) {
-    if (depths.nearest <= 0) return {};
+Bands bandsOf(const StereoPair& pair, const DepthRange& depths, bool composite) {
+    Bands b{maxSpreadPixels(pair.left.height)};
+    if (!composite || depths.nearest <= 0) return b;
     const double first = disparityAt(pair, depths.nearest);
-    const double count = std::ceil((disparityAt(pair, depths.farthest) - first) / maxSpreadPixels(pair.left.height));
-    return count <= device::kMaxBands ? Bands{first, std::max(1, int(count))} : Bands{};
+    const double count = std::ceil((disparityAt(pair, depths.farthest) - first) / b.width);
+    if (count <= device::kMaxBands) {
+        b.first = first;
+        b.count = std::max(1, int(count));
+    }
+    return b;
 }
 
 device::StereoParams reprojection(const StereoPair& pair, const DepthRange& depths, const RenderSettings& settings,
@@ -35,7 +42,7 @@ device::StereoParams reprojection(const StereoPair& pair, const DepthRange& dept
     p.focusInverse = float(1 / pair.focus);
     p.halfHeight = float(left.halfHeight);
     p.leftShift = float(left.shift);
-    p.maxSpread = float(maxSpreadPixels(left.height));
+    p.maxSpread = float(bands.width);
     p.maxStep = float(settings.blend == Blend::Composite ? kMaxBandStep : kMaxColourStep);
     p.maxGap = float(kMaxGapPixels);
     // The disparities lie between the volume's nearest point's and infinity's; eyes inside the volume search the row.
@@ -88,7 +95,7 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
     const std::size_t pixels = std::size_t(width) * height;
     const bool composite = settings.blend == Blend::Composite;
     const DepthRange depths = depthRange(pair, volume.grid());
-    const Bands bands = composite ? bandsOf(pair, depths) : Bands{};
+    const Bands bands = bandsOf(pair, depths, composite);
     // The bands' segments in one buffer, bound whole as a storage buffer and as a texel buffer, then the plane of
     // the left pixels' masks of used bands (shaders/stereo_reprojection.h bandMaskTexel).
     const vk::PhysicalDeviceLimits limits = ctx_.physicalDevice().getProperties().limits;
@@ -110,7 +117,7 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         const DeviceBuffer* leftBands = composite ? &*buffers.bands : nullptr;
         const StereoLeft leftEye{composite ? nullptr : buffers.left.data(), leftBands,
                                  {float(disparityScale(pair)), float(1 / pair.focus), float(bands.first),
-                                  float(maxSpreadPixels(height))},
+                                  float(bands.width)},
                                  bands.count};
         out.left = renderOnDevice(volume, pair.left, settings, nullptr, &leftEye);
         if (!reprojector_) reprojector_ = std::make_unique<StereoReprojector>(ctx_);
