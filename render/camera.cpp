@@ -3,11 +3,11 @@
 #include "render/camera.h"
 
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <string>
 
 #include "core/errors.h"
+#include "core/number_text.h"
 #include "shaders/ray_math.h"
 
 namespace vr {
@@ -37,12 +37,6 @@ static Vec3d turned(const Vec3d& v, const Vec3d& k, double deg) {
     return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
 }
 
-// As a flag gives them: 0.5, not 0.500000; 0, not -0.
-static std::string numberText(double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x + 0.0);
-    return text;
-}
 static std::string vectorText(const Vec3d& v) {
     return numberText(v.x) + "," + numberText(v.y) + "," + numberText(v.z);
 }

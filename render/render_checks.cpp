@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/number_text.h"
 #include "render/ray_setup.h"
 #include "shaders/device_contract.h"
 
@@ -122,11 +123,11 @@ void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& seg
     checkClipPlanes(s.clipPlanes);
     if (s.crop) checkCrop(grid, *s.crop);
     if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
-        throw InputError("--step " + std::to_string(s.stepVoxels) + ": the step must be a positive number of voxels");
+        throw InputError("--step " + numberText(s.stepVoxels) + ": the step must be a positive number of voxels");
     requireLatticeFits(grid, s.stepVoxels);  // first: an absurd spacing is named as such, not as a tiny step
     requireSamplesWithinCap(grid, s);
     if (!(s.ert > 0 && s.ert <= 1))
-        throw InputError("--ert " + std::to_string(s.ert) + ": early ray termination must be in (0, 1]");
+        throw InputError("--ert " + numberText(s.ert) + ": early ray termination must be in (0, 1]");
     if (s.lightDirection && !(length(*s.lightDirection) > 0 && std::isfinite(length(*s.lightDirection))))
         throw InputError("--light: the light direction must be a finite non-zero vector");
     checkBlend(s);

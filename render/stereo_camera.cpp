@@ -2,19 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "core/errors.h"
+#include "core/number_text.h"
 #include "shaders/stereo_reprojection.h"
 
 namespace vr {
-
-static std::string numberText(double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x);
-    return text;
-}
 
 void checkStereo(double separation, std::optional<double> focus, Projection projection) {
     if (!(separation > 0) || !std::isfinite(separation))

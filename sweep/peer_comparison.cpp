@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "core/errors.h"
+#include "core/number_text.h"
 #include "sweep/metrics/image_error.h"
 
 namespace vr {
@@ -30,7 +31,7 @@ json comparePeer(const json& peer, const std::map<double, Image>& references, co
     for (const json& view : peer.value("views", json::array())) {
         const Image* reference = referenceAt(references, view.value("azimuth_deg", -1.0));
         if (!reference) {
-            problem = "no reference view at azimuth " + std::to_string(view.value("azimuth_deg", -1.0));
+            problem = "no reference view at azimuth " + numberText(view.value("azimuth_deg", -1.0));
             continue;
         }
         fs::path path = view.value("image", "");

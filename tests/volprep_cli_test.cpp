@@ -254,7 +254,7 @@ TEST(VolprepCli, BadInputFailsClearlyAndWritesNothing) {
     };
     for (const Case& c : std::vector<Case>{
              {in + " -o " + q(out), "At least 1 option from [--tf,--window,--level] is required"},
-             {in + tf + " --to -1 -o " + q(out), "--to must be a finite number >= 0"},
+             {in + tf + " --to -1e-9 -o " + q(out), "--to must be a finite number >= 0, got -1e-09"},
              {in + tf + " --ta nan -o " + q(out), "--ta must be a finite number >= 0"},
              {in + tf + " --fields pc,octree -o " + q(out), "octree not in {pc,acd,eacd}"},
              {in + tf + " --eacd-code log12 -o " + q(out), "log12 not in {log16,joint8,exact}"},

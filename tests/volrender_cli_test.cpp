@@ -106,13 +106,13 @@ void expectRejected(const std::string& args, const std::string& mentions) {
 TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
     const fs::path dir = test::scratchDir("volrender_cli_bad");
     const std::string in = q(preparedHead()), out = " -o " + q(dir / "x.png");
-    expectRejected(in + out + " --step 0", "--step");
+    expectRejected(in + out + " --step 0", "--step 0: the step must be");
     expectRejected(in + out + " --step nan", "--step");
     expectRejected(in + out + " --size 0x0", "--size");
     expectRejected(in + out + " --size 100000x100000", "--size");
     expectRejected(in + out + " --size banana", "--size");
     expectRejected(in + out + " --caster fast", "unknown caster");
-    expectRejected(in + out + " --ert 0", "--ert");
+    expectRejected(in + out + " --ert 0", "--ert 0: must be in (0, 1]");
     expectRejected(in + out + " --projection fisheye", "--projection");
     expectRejected(in + out + " --light 0,0,0", "--light");
     expectRejected(in + " -o " + q(dir / "missing" / "x.png"), "does not exist");

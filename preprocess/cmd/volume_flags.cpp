@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/errors.h"
+#include "core/number_text.h"
 #include "preprocess/classify/transfer_presets.h"
 #include "preprocess/load/load_labels.h"
 
@@ -56,9 +57,9 @@ CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
 
 void checkThresholds(const VolumeFlags& f) {
     if (!(f.to >= 0) || !std::isfinite(f.to))
-        throw InputError("--to must be a finite number >= 0, got " + std::to_string(f.to));
+        throw InputError("--to must be a finite number >= 0, got " + numberText(f.to));
     if (!(f.ta >= 0) || !std::isfinite(f.ta))
-        throw InputError("--ta must be a finite number >= 0 (degrees), got " + std::to_string(f.ta));
+        throw InputError("--ta must be a finite number >= 0 (degrees), got " + numberText(f.ta));
 }
 
 RawOptions rawOptionsFrom(const VolumeFlags& f) {
