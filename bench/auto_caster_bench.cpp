@@ -35,8 +35,9 @@ using namespace vr;
 
 constexpr double kTarget = 1.10;  // auto within 10 % of the fastest fixed caster
 constexpr int kRowsToFit = 10;
-// The clinical-size CT of the whole-process benchmark and sizes on the way to it.
-const std::string kDefaultGrowthSizes = "256x256x128,512x512x256,512x512x512,512x512x1024";  // 5 unknowns: fewer rows leave the ray's ns ill-determined
+// The clinical-size CT of the whole-process benchmark and sizes on the way to it (5 unknowns: fewer rows leave the
+// ray's ns ill-determined).
+const std::string kDefaultGrowthSizes = "256x256x128,512x512x256,512x512x512,512x512x1024";
 const Caster kFixed[] = {Caster::Primitive, Caster::PC, Caster::ACD, Caster::EACD};
 
 struct Scene {
@@ -461,9 +462,9 @@ int main(int argc, char** argv) {
                    "write the fit, the upload rate and the device as a calibration file for volrender "
                    "--calibration (needs 10 rows or more)");
     app.add_option("--growth-sizes", growthSizes,
-                   "sizes XxYxZ, smallest first, of the cranium CT resampled with noise, primitive renders only: how an "
-                   "iteration's time grows with the scalars' bytes (a calibration's iterationGrowth; 3 or more; "
-                   "with --write-calibration the default is " + kDefaultGrowthSizes + ")")
+                   "sizes XxYxZ, smallest first, of the cranium CT resampled with noise, primitive renders only: "
+                   "how an iteration's time grows with the scalars' bytes (a calibration's iterationGrowth; 3 or "
+                   "more; with --write-calibration the default is " + kDefaultGrowthSizes + ")")
         ->delimiter(',');
     app.add_flag("--growth-only", growthOnly, "only the --growth-sizes table: no dataset rows, no calibration");
     CLI11_PARSE(app, argc, argv);

@@ -66,7 +66,9 @@ int main(int argc, char** argv) {
     int size = 512, views = 4, device = -1;
     double step = 0.5;
     bool nearest = false;
-    app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->delimiter(',')->capture_default_str();
+    app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")
+        ->delimiter(',')
+        ->capture_default_str();
     app.add_option("--size", size, "image width = height")->capture_default_str();
     app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 0: vr_peers' views)")
         ->capture_default_str();

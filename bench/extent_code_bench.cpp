@@ -176,11 +176,12 @@ int main(int argc, char** argv) {
                 for (ExtentCode code : kCodes) {
                     const CodeRun& r = runs[int(code)];
                     const CodeRun &e = runs[int(ExtentCode::Exact)], &l = runs[int(ExtentCode::Log16)];
-                    std::printf("| %s | %g, %g | %s | %.0f | %.2f | %.3f | %.3f | %.1f | %.3f | %.3f | %.2f (%.2f) | %.1f |\n",
+                    std::printf("| %s | %g, %g | %s | %.0f | %.2f | %.3f | %.3f | %.1f | %.3f | %.3f | %.2f (%.2f) "
+                                "| %.1f |\n",
                                 row->file.c_str(), settingTo, settingTa, std::string(extentCodeName(code)).c_str(),
                                 r.deviceBytesPerVoxel, r.iterations, r.iterations / e.iterations,
-                                r.iterations / l.iterations, r.deviceMs, r.deviceMs / e.deviceMs, r.deviceMs / l.deviceMs,
-                                r.orbit.seconds, r.orbit.cpuSeconds, r.worstPsnr);
+                                r.iterations / l.iterations, r.deviceMs, r.deviceMs / e.deviceMs,
+                                r.deviceMs / l.deviceMs, r.orbit.seconds, r.orbit.cpuSeconds, r.worstPsnr);
                     std::fflush(stdout);
                     ++rowsPrinted;
                 }

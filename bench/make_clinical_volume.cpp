@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
     fs::path outDir = ".";
     double noise = 20;
     unsigned seed = 1;
-    app.add_option("--from", from, "raw dataset of MANIFEST.tsv to resample (its file name or the start of it)")->capture_default_str();
+    app.add_option("--from", from, "raw dataset of MANIFEST.tsv to resample (its file name or the start of it)")
+        ->capture_default_str();
     app.add_option("--dims", dimsText, "size of the volume written, XxYxZ")->capture_default_str();
     app.add_option("--noise", noise, "standard deviation of the Gaussian noise, in the volume's units")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
@@ -43,7 +44,8 @@ int main(int argc, char** argv) {
         const vr::Volume v =
             vr::bench::withNoise(vr::bench::resample(vr::loadVolume(vr::test::datasetsDir() / entry.file, raw), dims),
                                  noise, seed);
-        const fs::path path = outDir / (name + "_" + dimsText + "_" + std::string(vr::scalarTypeName(v.sourceType)) + ".raw");
+        const fs::path path =
+            outDir / (name + "_" + dimsText + "_" + std::string(vr::scalarTypeName(v.sourceType)) + ".raw");
         std::vector<unsigned char> bytes(v.values.size() * vr::scalarBytes(v.sourceType));
         vr::narrowScalars(v.values.data(), v.values.size(), v.sourceType, bytes.data());
         vr::writeFileAtomically(path, [&](std::ostream& out) {

@@ -170,9 +170,9 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
         double ours = mib(b["scalars"].get<double>() + b["table"].get<double>() + b["labels"].get<double>());
         double dense = mib(r.statistics["voxels"].get<double>() * sizeof(float));
         double read = median(r.wall.at("core read")), vdbRead = median(r.wall.at("vdb read"));
-        std::printf("| %s | %.1f | %.3f (%.3f) | %.0f | %.1f (%.1f) | %.3f (%.3f) | %.3f (%.3f) | %.0f |\n", r.name.c_str(),
-                    ours, read, median(r.cpu.at("core read")), ours / read, dense, mib(double(r.vdbBytes)),
-                    median(r.wall.at("vdb write")), median(r.cpu.at("vdb write")), vdbRead,
+        std::printf("| %s | %.1f | %.3f (%.3f) | %.0f | %.1f (%.1f) | %.3f (%.3f) | %.3f (%.3f) | %.0f |\n",
+                    r.name.c_str(), ours, read, median(r.cpu.at("core read")), ours / read, dense,
+                    mib(double(r.vdbBytes)), median(r.wall.at("vdb write")), median(r.cpu.at("vdb write")), vdbRead,
                     median(r.cpu.at("vdb read")), dense / vdbRead);
     }
 
@@ -199,7 +199,8 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
                     all / write / 1e6, double(r.fileBytes) / write / 1e6);
     }
 
-    std::printf("\nRegions and mean leaps in voxels (ACD edge: the same in every octant; EACD extents x,y,z of octant 0):\n\n"
+    std::printf("\nRegions and mean leaps in voxels (ACD edge: the same in every octant; EACD extents x,y,z of "
+                "octant 0):\n\n"
                 "| dataset | regions | mean region size | PC radius | ACD edge | EACD extents |\n"
                 "|---|---:|---:|---:|---:|---|\n");
     for (const auto& r : results) {
@@ -215,7 +216,8 @@ void printTables(const std::vector<DatasetResult>& results, const vr::PrepareOpt
         if (l.contains("eacdMeanExtent")) {
             const nlohmann::json& e = l["eacdMeanExtent"][0];
             char text[64];
-            std::snprintf(text, sizeof(text), "%.2f, %.2f, %.2f", e[0].get<double>(), e[1].get<double>(), e[2].get<double>());
+            std::snprintf(text, sizeof(text), "%.2f, %.2f, %.2f", e[0].get<double>(), e[1].get<double>(),
+                          e[2].get<double>());
             extents = text;
         }
         std::printf("| %s | %u | %.1f | %s | %s | %s |\n", r.name.c_str(), s["regions"].get<uint32_t>(),
@@ -243,7 +245,9 @@ int main(int argc, char** argv) {
     bool nearest = false;
     app.add_flag("--nearest", nearest, "regions for nearest sampling only (default: trilinear, as volprep makes)");
     app.add_flag("--no-normals", noNormals, "no gradients (T_a ignored)");
-    app.add_option("--runs", runs, "runs per dataset (the median is printed)")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--runs", runs, "runs per dataset (the median is printed)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     app.add_option("--scratch", scratch, "folder for the prepared files")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
     options.segmentation.trilinear = !nearest;

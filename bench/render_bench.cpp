@@ -81,11 +81,13 @@ int main(int argc, char** argv) {
     try {
         VulkanContext ctx(VulkanOptions{device, false});
         VulkanRenderer renderer(ctx, tile);
-        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, %s, %s, ERT 0.99, tiles of %d px.\n\n",
+        std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, %s, %s, ERT 0.99, tiles of %d "
+                    "px.\n\n",
                     ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear",
                     noShading ? "unshaded" : "Phong headlight", renderer.tileSize());
-        std::printf("| dataset | T_o, T_a | caster | gradients | upload ms (MB) | median device ms | x primitive (time) | "
-                    "iterations/ray | x primitive (iterations) | PSNR vs primitive T=0, worst view (dB) |\n");
+        std::printf("| dataset | T_o, T_a | caster | gradients | upload ms (MB) | median device ms | "
+                    "x primitive (time) | iterations/ray | x primitive (iterations) | "
+                    "PSNR vs primitive T=0, worst view (dB) |\n");
         std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : datasets) {
             const ManifestRow row = manifestRow(dir, name);

@@ -55,7 +55,9 @@ Volume resample(const Volume& v, Vec3i dims) {
             for (int y = 0; y < dims.y; ++y)
                 for (int x = 0; x < dims.x; ++x) {
                     const Tap &a = tx[x], &b = ty[y], &c = tz[z];
-                    const auto line = [&](int j, int k) { return v.at(a.lo, j, k) * (1 - a.w) + v.at(a.hi, j, k) * a.w; };
+                    const auto line = [&](int j, int k) {
+                        return v.at(a.lo, j, k) * (1 - a.w) + v.at(a.hi, j, k) * a.w;
+                    };
                     const auto plane = [&](int k) { return line(b.lo, k) * (1 - b.w) + line(b.hi, k) * b.w; };
                     const double f = plane(c.lo) * (1 - c.w) + plane(c.hi) * c.w;
                     out.values[linearIndex(dims, x, y, z)] = float(integer ? std::round(f) : f);

@@ -108,7 +108,8 @@ SizeResult benchSize(const std::string& name, vr::Volume volume, const vr::Prepa
     r.peakBytes = double(vr::peakResidentBytes());
     std::fprintf(stderr, "%s %d^3:", name.c_str(), r.edge);  // the figures so far, should a long run be cut short
     for (const auto& s : kScenarios)
-        std::fprintf(stderr, " %s %.3f s (%.3f CPU s)", s.c_str(), median(r.wall[s]["total"]), median(r.cpu[s]["total"]));
+        std::fprintf(stderr, " %s %.3f s (%.3f CPU s)", s.c_str(), median(r.wall[s]["total"]),
+                     median(r.cpu[s]["total"]));
     std::fprintf(stderr, "\n");
     return r;
 }
@@ -163,7 +164,8 @@ void printTable(const char* title, const std::vector<SizeResult>& results,
         const double voxels = std::pow(double(r.edge), 3);
         const auto& full = (r.*times).at("full");
         std::printf("| %s | %d | %.0f | %u |", r.volume.c_str(), r.edge, voxels, r.regions);
-        for (const auto& s : kStages) std::printf(full.count(s) ? " %.3f |" : " - |", full.count(s) ? median(full.at(s)) : 0);
+        for (const auto& s : kStages)
+            std::printf(full.count(s) ? " %.3f |" : " - |", full.count(s) ? median(full.at(s)) : 0);
         for (const auto& s : kScenarios) {
             const double t = median((r.*times).at(s).at("total"));
             std::printf(" %.3f | %.1f |", t, 1e9 * t / voxels);

@@ -44,7 +44,8 @@ void fixBlockChecksums(std::string& bytes) {
     const uint64_t h = headerBytes(bytes);
     if (h == 0) return;
     const uint64_t dataStart = kPreamble + h + 4;
-    nlohmann::json header = nlohmann::json::parse(bytes.data() + kPreamble, bytes.data() + kPreamble + h, nullptr, false);
+    nlohmann::json header =
+        nlohmann::json::parse(bytes.data() + kPreamble, bytes.data() + kPreamble + h, nullptr, false);
     if (header.is_discarded() || !header.is_object() || !header.contains("chunks") || !header["chunks"].is_array())
         return;
     for (nlohmann::json& chunk : header["chunks"]) {
@@ -55,7 +56,8 @@ void fixBlockChecksums(std::string& bytes) {
         if (at > bytes.size()) continue;
         at += dataStart;
         for (nlohmann::json& block : chunk["blocks"]) {
-            if (!block.is_object() || !block.contains("compressedBytes") || !block["compressedBytes"].is_number_unsigned())
+            if (!block.is_object() || !block.contains("compressedBytes") ||
+                !block["compressedBytes"].is_number_unsigned())
                 break;
             const uint64_t n = block["compressedBytes"].get<uint64_t>();
             if (at > bytes.size() || n > bytes.size() - at) break;
@@ -88,13 +90,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const vr::TransferTable& table = p.classification.table;
         if (p.scalars.values.size() != voxels || p.regions.label.size() != voxels)
             vr::fuzz::finding("readPrepared returned arrays that do not fit the grid");
-        if (table.sigma.size() != table.colour.size() || table.size() < 1 || table.size() > vr::kMaxTransferTableEntries)
+        if (table.sigma.size() != table.colour.size() || table.size() < 1 ||
+            table.size() > vr::kMaxTransferTableEntries)
             vr::fuzz::finding("readPrepared returned a transfer table of a bad size");
         if (!(table.step > 0) || !(p.classification.referenceStep > 0) || !(p.classification.flatGradient >= 0))
             vr::fuzz::finding("readPrepared returned a classification that cannot be rendered");
         if (!std::all_of(p.scalars.values.begin(), p.scalars.values.end(), [](float v) { return std::isfinite(v); }))
             vr::fuzz::finding("readPrepared returned a scalar that is not finite");
-        if (std::any_of(p.regions.label.begin(), p.regions.label.end(), [&](uint32_t l) { return l >= p.regions.count; }))
+        if (std::any_of(p.regions.label.begin(), p.regions.label.end(),
+                        [&](uint32_t l) { return l >= p.regions.count; }))
             vr::fuzz::finding("readPrepared returned a label beyond the region count");
     } catch (const vr::InputError&) {
     }

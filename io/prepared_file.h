@@ -38,8 +38,9 @@ constexpr std::size_t kMaxTransferTableEntries = std::size_t(1) << 20;
 void writePrepared(const std::filesystem::path& path, const PreparedVolume& prepared,
                    const PreparedWriteOptions& options = {});
 
-// Reads the scalars, the transfer table, the region labels, the label map where the file has one and only the distance fields in `fields` (a FieldKind mask):
-// a render loads what its caster uses. Throws InputError for a foreign, truncated or inconsistent file.
+// Reads the scalars, the transfer table, the region labels, the label map where the file has one and only the
+// distance fields in `fields` (a FieldKind mask): a render loads what its caster uses. Throws InputError for a
+// foreign, truncated or inconsistent file.
 PreparedVolume readPrepared(const std::filesystem::path& path, unsigned fields = kFieldPC | kFieldACD | kFieldEACD);
 
 // One chunk as the chunk table describes it: its bytes in memory and in the file (compressed).

@@ -69,16 +69,20 @@ std::string decodeBlock(const char* frame, const BlockEntry& b, char* to, const 
                         std::size_t blocks) {
     const std::string block = " block " + std::to_string(k) + " of " + std::to_string(blocks);
     const std::string where = "chunk '" + chunk + "'" + block;
-    if (crc32Of(frame, b.stored) != b.crc) return "chunk '" + chunk + "' checksum mismatch in" + block + " (file is corrupted)";
+    if (crc32Of(frame, b.stored) != b.crc)
+        return "chunk '" + chunk + "' checksum mismatch in" + block + " (file is corrupted)";
     const std::size_t frameBytes = ZSTD_findFrameCompressedSize(frame, b.stored);
-    if (ZSTD_isError(frameBytes)) return where + " cannot be decompressed (zstd: " + ZSTD_getErrorName(frameBytes) + ")";
+    if (ZSTD_isError(frameBytes))
+        return where + " cannot be decompressed (zstd: " + ZSTD_getErrorName(frameBytes) + ")";
     if (frameBytes != b.stored)
-        return where + " holds " + std::to_string(b.stored) + " bytes but its zstd frame takes " + std::to_string(frameBytes);
+        return where + " holds " + std::to_string(b.stored) + " bytes but its zstd frame takes " +
+               std::to_string(frameBytes);
     const unsigned long long content = ZSTD_getFrameContentSize(frame, b.stored);
     if (content == ZSTD_CONTENTSIZE_UNKNOWN || content == ZSTD_CONTENTSIZE_ERROR)
         return where + " does not state its decompressed size";
     if (content != b.bytes)
-        return where + " decompresses to " + std::to_string(content) + " bytes but should hold " + std::to_string(b.bytes);
+        return where + " decompresses to " + std::to_string(content) + " bytes but should hold " +
+               std::to_string(b.bytes);
     const std::size_t got = ZSTD_decompress(to, b.bytes, frame, b.stored);
     if (ZSTD_isError(got)) return where + " cannot be decompressed (zstd: " + ZSTD_getErrorName(got) + ")";
     if (got != b.bytes)
@@ -158,8 +162,9 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
     auto wantOctants = [&](const std::string& prefix, const char* label, auto& arrays) {
         for (int o = 0; o < kOctants; ++o) {
             std::string name = prefix + std::to_string(o);
-            if (!has(name)) throw r.fail(std::string("has no ") + label + " distance field for octant " + std::to_string(o) +
-                                         " (prepare it with volprep --fields)");
+            if (!has(name))
+                throw r.fail(std::string("has no ") + label + " distance field for octant " + std::to_string(o) +
+                             " (prepare it with volprep --fields)");
             want(name, arrays[o]);
         }
     };
@@ -223,7 +228,8 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
     uint32_t maxLabel = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, label.size()), uint32_t(0),
         [&](const tbb::blocked_range<std::size_t>& b, uint32_t m) {
-            return std::max(m, *std::max_element(label.begin() + std::ptrdiff_t(b.begin()), label.begin() + std::ptrdiff_t(b.end())));
+            return std::max(m, *std::max_element(label.begin() + std::ptrdiff_t(b.begin()),
+                                                 label.begin() + std::ptrdiff_t(b.end())));
         },
         [](uint32_t a, uint32_t b) { return std::max(a, b); });
     if (maxLabel >= p.regions.count)

@@ -206,7 +206,9 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
                          {"blocks", stored}});
     }
     json header = {{"grid",
-                    {{"dims", {g.dims.x, g.dims.y, g.dims.z}}, {"spacing", vec3Json(g.spacing)}, {"origin", vec3Json(g.origin)}}},
+                    {{"dims", {g.dims.x, g.dims.y, g.dims.z}},
+                     {"spacing", vec3Json(g.spacing)},
+                     {"origin", vec3Json(g.origin)}}},
                    {"scalarType", scalarTypeName(scalarType)},
                    {"referenceStep", p.classification.referenceStep},
                    {"flatGradient", p.classification.flatGradient},

@@ -64,7 +64,8 @@ ScalarType scalarTypeField(const Reader& r, const json& header) {
     const auto name = field<std::string>(r, header, "scalarType");
     for (ScalarType t : kScalarTypes)
         if (scalarTypeName(t) == name) return t;
-    throw r.fail("bad header: 'scalarType': unknown scalar type '" + name + "' (expected uint8, int16, uint16 or float32)");
+    throw r.fail("bad header: 'scalarType': unknown scalar type '" + name +
+                 "' (expected uint8, int16, uint16 or float32)");
 }
 
 }  // namespace
@@ -157,7 +158,8 @@ Header readHeader(const Reader& r) {
     c.table.lo = numberField(r, tf, "lo", "transferTable.lo", isFinite, "a finite number");
     c.table.step = numberField(r, tf, "step", "transferTable.step", isPositive, "a finite number > 0");
     json entries = field<json>(r, tf, "entries");
-    if (!entries.is_number_unsigned() || entries.get<uint64_t>() < 1 || entries.get<uint64_t>() > kMaxTransferTableEntries)
+    if (!entries.is_number_unsigned() || entries.get<uint64_t>() < 1 ||
+        entries.get<uint64_t>() > kMaxTransferTableEntries)
         throw r.fail("bad header: 'transferTable.entries' must be an integer from 1 to " +
                      std::to_string(kMaxTransferTableEntries));
     h.tableEntries = entries.get<std::size_t>();

@@ -71,7 +71,8 @@ fuzz_target() {
   # Fork mode keeps fuzzing past a finding (each is saved), so that one known bug does not end the run; new inputs
   # go to the (scratch) corpus.
   fuzz "$build"/fuzz/fuzz_"$t" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
-    -max_total_time="$seconds" -max_len=65536 -artifact_prefix="$work/artifacts/" "$work/corpus" >"$work/log" 2>&1 || true
+    -max_total_time="$seconds" -max_len=65536 -artifact_prefix="$work/artifacts/" "$work/corpus" \
+    >"$work/log" 2>&1 || true
   # Fork mode may blame an input for what another did: a finding is an input that fails again on its own.
   rm -rf "$build"/findings/"$t"
   for input in "$work"/artifacts/*; do
@@ -93,7 +94,8 @@ fuzz_target() {
     echo 1 >"$scratch/$t.seeds_failed"
   fi
   after=($(coverage "$t" "$work/corpus" "$work/corpus.log"))
-  local cov="${before[0]:-?}+$((${after[0]:-0} - ${before[0]:-0}))" ft="${before[1]:-?}+$((${after[1]:-0} - ${before[1]:-0}))"
+  local cov="${before[0]:-?}+$((${after[0]:-0} - ${before[0]:-0}))"
+  local ft="${before[1]:-?}+$((${after[1]:-0} - ${before[1]:-0}))"
   printf '%-18s %12s %8s %12s %12s %6s -> %-6s %s\n' "$t" "${executions:-?}" "$(($(date +%s) - began))" "$cov" "$ft" \
     "$seeds" "$(ls "$work/corpus" | wc -l)" "$( ((found)) && echo "$found: $build/findings/$t/" || echo 0)" \
     >"$scratch/$t.row"

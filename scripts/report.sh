@@ -48,8 +48,8 @@ timings=""
 # shares the machine. The builtin `times` must run in this shell (a subshell would report its own children).
 cpu_now() {
   times >"$out/.times"
-  cpu=$(awk 'NR == 2 { s = 0; for (i = 1; i <= 2; ++i) { split($i, t, /[ms]/); s += t[1] * 60 + t[2] } printf "%.0f", s }' \
-    "$out/.times")
+  cpu=$(awk 'NR == 2 { s = 0; for (i = 1; i <= 2; ++i) { split($i, t, /[ms]/); s += t[1] * 60 + t[2] }
+                      printf "%.0f", s }' "$out/.times")
 }
 
 wanted() {  # wanted NAME: whether ONLY is empty or NAME starts with one of its prefixes

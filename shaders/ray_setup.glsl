@@ -1,8 +1,8 @@
 // Ray setup shared by every caster, in float (docs/ALGORITHMS.md section 8): shaders/ray_math.h's math on the
-// casters' parameters and GLSL types, as render/ray_setup.h and Camera::ray() put it in double. Every caster computes a sample's position from its lattice index with one expression
-// (samplePosition), so at thresholds 0 they all fetch the same voxels; a leap counts only samples that lie in its
-// box as that expression rounds them. `precise` forbids fused multiply-adds, which would let the compiler round one
-// call site differently from another.
+// casters' parameters and GLSL types, as render/ray_setup.h and Camera::ray() put it in double. Every caster computes
+// a sample's position from its lattice index with one expression (samplePosition), so at thresholds 0 they all fetch
+// the same voxels; a leap counts only samples that lie in its box as that expression rounds them. `precise` forbids
+// fused multiply-adds, which would let the compiler round one call site differently from another.
 #ifndef VR_RAY_SETUP_GLSL
 #define VR_RAY_SETUP_GLSL
 

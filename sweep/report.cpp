@@ -105,8 +105,8 @@ void bestSettings(std::ostream& md, const std::vector<SweepRow>& rows) {
             md << " It runs " << fmt("%.1fx", fewer) << " fewer iterations per ray than the primitive caster ("
                << fmt("%.1f", primitive->iterationsMean) << " -> " << fmt("%.1f", eacd->iterationsMean)
                << "), and each costs the device time of " << fmt("%.2f", fewer / speedUp(*eacd))
-               << " primitive samples; " << kTargetSpeedUp << "x would need at most " << fmt("%.2f", fewer / kTargetSpeedUp)
-               << ".";
+               << " primitive samples; " << kTargetSpeedUp << "x would need at most "
+               << fmt("%.2f", fewer / kTargetSpeedUp) << ".";
         }
         md << "\n";
     }

@@ -28,7 +28,8 @@ TEST(ClassifyVolume, GradientOfALinearRampIsInPhysicalUnits) {
                 EXPECT_NEAR(g.z, expected.z, 1e-12);
             }
     // Central, not one-sided, in the interior: f = x^2 gives 2x / h exactly.
-    const Volume q = test::volumeOf({6, 1, 1}, {0.25, 1, 1}, ScalarType::Float32, [](int x, int, int) { return x * x; });
+    const Volume q =
+        test::volumeOf({6, 1, 1}, {0.25, 1, 1}, ScalarType::Float32, [](int x, int, int) { return x * x; });
     EXPECT_DOUBLE_EQ(centralGradient(q, 2, 0, 0).x, (9.0 - 1.0) / 0.5);
     EXPECT_DOUBLE_EQ(centralGradient(q, 0, 0, 0).x, 1.0 / 0.25);
     EXPECT_DOUBLE_EQ(centralGradient(q, 5, 0, 0).x, (25.0 - 16.0) / 0.25);
@@ -51,7 +52,8 @@ TEST(ClassifyVolume, NormalsAreTheNormalisedCentralGradientBitForBit) {
     std::mt19937 rng(9);
     std::uniform_int_distribution<int> values(0, 255);
     for (Vec3i dims : {Vec3i{7, 6, 5}, Vec3i{1, 4, 3}, Vec3i{2, 1, 6}, Vec3i{5, 2, 1}, Vec3i{1, 1, 4}}) {
-        const Volume v = test::volumeOf(dims, {0.7, 1.3, 2.1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
+        const Volume v =
+            test::volumeOf(dims, {0.7, 1.3, 2.1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
         ClassifyParams params;
         params.transferFunction = test::linearTransferFunction(0, 255);
         const ClassifiedVolume c = classify(v, params);
@@ -72,8 +74,10 @@ TEST(ClassifyVolume, NormalsAreTheNormalisedCentralGradientBitForBit) {
 TEST(ClassifyVolume, IntoAUsedVolumeEqualsAFreshOne) {
     std::mt19937 rng(4);
     std::uniform_int_distribution<int> values(0, 255);
-    const Volume big = test::volumeOf({9, 8, 7}, {1, 1, 1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
-    const Volume small = test::volumeOf({4, 5, 3}, {0.5, 1, 2}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
+    const Volume big =
+        test::volumeOf({9, 8, 7}, {1, 1, 1}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
+    const Volume small =
+        test::volumeOf({4, 5, 3}, {0.5, 1, 2}, ScalarType::UInt8, [&](int, int, int) { return values(rng); });
     ClassifyParams params;
     params.transferFunction = test::linearTransferFunction(10, 200);
     ClassifiedVolume reused = classify(big, params);
@@ -93,7 +97,8 @@ TEST(ClassifyVolume, IntoAUsedVolumeEqualsAFreshOne) {
 // The table the renderers look samples up in: an entry per integer from the smallest to the largest voxel of an
 // integer volume, sigma converted from the TF's opacity per dt0, and the flat length from the value range.
 TEST(ClassifyVolume, ScalarClassificationTabulatesTheTransferFunction) {
-    const Volume v = test::volumeOf({5, 2, 2}, {2, 1, 0.5}, ScalarType::Int16, [](int x, int, int) { return 10 * x - 3; });
+    const Volume v =
+        test::volumeOf({5, 2, 2}, {2, 1, 0.5}, ScalarType::Int16, [](int x, int, int) { return 10 * x - 3; });
     ClassifyParams params;
     params.transferFunction = test::linearTransferFunction(0, 40);
     const ScalarClassification c = scalarClassification(v, params);
@@ -185,7 +190,8 @@ TEST(ClassifyVolume, OpacityAndColourFollowTheTransferFunctionPerReferenceStep) 
     }
     // Float volumes use an interpolated table over their range.
     std::uniform_real_distribution<double> real(0, 1000);
-    const Volume f = test::volumeOf({8, 8, 8}, {1, 1, 1}, ScalarType::Float32, [&](int, int, int) { return real(rng); });
+    const Volume f =
+        test::volumeOf({8, 8, 8}, {1, 1, 1}, ScalarType::Float32, [&](int, int, int) { return real(rng); });
     TransferFunction tf;
     tf.opacity = {{0, 0}, {300, 0.2, 0.3, 0.4}, {800, 0.9}, {1000, 0.1}};
     params.transferFunction = tf;

@@ -265,9 +265,11 @@ TEST(FieldsBuild, AnOctantMaskBuildsThoseOctantsOnly) {
         EXPECT_EQ(withPC.eacdOctants(), mask);
         // Consuming the regions (their labels freed once the runs are made) builds the same fields: every run the
         // octants read was made before the labels went.
-        for (unsigned kinds : {unsigned(kFieldEACD), kFieldACD | kFieldEACD, kFieldPC | kFieldEACD, unsigned(kFieldPC)}) {
+        for (unsigned kinds :
+             {unsigned(kFieldEACD), kFieldACD | kFieldEACD, kFieldPC | kFieldEACD, unsigned(kFieldPC)}) {
             Regions copy = r;
-            const DistanceFields consumed = buildFields(std::move(copy), kinds, ExtentCode::Log16, [](FieldKind) {}, mask);
+            const DistanceFields consumed =
+                buildFields(std::move(copy), kinds, ExtentCode::Log16, [](FieldKind) {}, mask);
             const DistanceFields kept = buildFields(r, kinds, ExtentCode::Log16, [](FieldKind) {}, mask);
             EXPECT_EQ(consumed.pc, kept.pc) << kinds;
             for (int o = 0; o < kOctants; ++o) {

@@ -193,10 +193,12 @@ std::vector<char> storedBytes(const Parts& parts, const std::string& name) {
     std::vector<char> bytes;
     for (const std::vector<char>& frame : storedBlocks(parts, name)) {
         const unsigned long long n = ZSTD_getFrameContentSize(frame.data(), frame.size());
-        if (n == ZSTD_CONTENTSIZE_UNKNOWN || n == ZSTD_CONTENTSIZE_ERROR) throw std::runtime_error("frame without size");
+        if (n == ZSTD_CONTENTSIZE_UNKNOWN || n == ZSTD_CONTENTSIZE_ERROR)
+            throw std::runtime_error("frame without size");
         const std::size_t at = bytes.size();
         bytes.resize(at + n);
-        if (ZSTD_decompress(bytes.data() + at, n, frame.data(), frame.size()) != n) throw std::runtime_error("bad frame");
+        if (ZSTD_decompress(bytes.data() + at, n, frame.data(), frame.size()) != n)
+            throw std::runtime_error("bad frame");
     }
     return bytes;
 }
@@ -272,7 +274,8 @@ std::vector<char> bytesOf(const std::vector<T>& v) {
 }
 
 // readPrepared must throw an InputError naming the file and containing `problem`.
-void expectRejected(const fs::path& p, const std::string& problem, unsigned fields = kFieldPC | kFieldACD | kFieldEACD) {
+void expectRejected(const fs::path& p, const std::string& problem,
+                    unsigned fields = kFieldPC | kFieldACD | kFieldEACD) {
     try {
         readPrepared(p, fields);
         ADD_FAILURE() << "read of " << p << " succeeded; expected: " << problem;
@@ -775,7 +778,8 @@ TEST_F(IoPreparedFile, WritesEveryChunkAsIndependentZstdBlocks) {
 // EACD code.
 TEST_F(IoPreparedFile, RoundTripsAtEveryBlockSizeAndLevel) {
     for (ExtentCode code : {ExtentCode::Exact, ExtentCode::Log16, ExtentCode::Joint8}) {
-        PreparedVolume p = samplePrepared({13, 7, 5}, code == ExtentCode::Joint8 ? ScalarType::Float32 : ScalarType::UInt16);
+        PreparedVolume p =
+            samplePrepared({13, 7, 5}, code == ExtentCode::Joint8 ? ScalarType::Float32 : ScalarType::UInt16);
         quantiseEACD(p.fields, code);
         struct Options {
             std::size_t block;
@@ -837,7 +841,8 @@ TEST_F(IoPreparedFile, ReadsChunksOfSeveralBlocksAtTheDefaultSize) {
     }
     std::vector<char> b = readBytes(bad);
     const json labels = chunkEntry(parts.header, "labels");
-    b[dataStart(bad) + labels["offset"].get<uint64_t>() + labels["blocks"][0]["compressedBytes"].get<uint64_t>() + 7] ^= 4;
+    b[dataStart(bad) + labels["offset"].get<uint64_t>() +
+      labels["blocks"][0]["compressedBytes"].get<uint64_t>() + 7] ^= 4;
     const fs::path damaged = dir / "damaged.vprep";
     writeBytes(damaged, b);
     expectRejected(damaged, "chunk 'labels' checksum mismatch in block 1 of 2 (file is corrupted)", 0);
@@ -909,7 +914,8 @@ TEST_F(IoPreparedFile, RejectsBlocksWhoseSizesLie) {
     blocks[3] = compress(plain.data(), kSmallBlock);
     withBlocks(blocks, "chunk 'labels' block 3 of 4 decompresses to 512 bytes but should hold 284");
     // One block too few or too many for 1820 bytes in blocks of 512.
-    withBlocks({frames[0], frames[1], frames[2]}, "chunk 'labels' has 3 blocks but 1820 bytes in blocks of 512 bytes make 4");
+    withBlocks({frames[0], frames[1], frames[2]},
+               "chunk 'labels' has 3 blocks but 1820 bytes in blocks of 512 bytes make 4");
     withBlocks({frames[0], frames[1], frames[2], frames[3], frames[3]},
                "chunk 'labels' has 5 blocks but 1820 bytes in blocks of 512 bytes make 4");
 
@@ -917,9 +923,10 @@ TEST_F(IoPreparedFile, RejectsBlocksWhoseSizesLie) {
     const std::string bound = std::to_string(ZSTD_compressBound(kSmallBlock));
     for (uint64_t stored : {uint64_t(0), ZSTD_compressBound(kSmallBlock) + 1, uint64_t(1) << 40}) {
         SCOPED_TRACE(stored);
-        expectEditedHeaderRejected([&](json& h) { chunkEntryToEdit(h, "labels")["blocks"][1]["compressedBytes"] = stored; },
-                                   "chunk 'labels' block 1 of 4 holds " + std::to_string(stored) +
-                                       " compressed bytes (a zstd frame of 512 bytes takes 1 to " + bound + ")");
+        expectEditedHeaderRejected(
+            [&](json& h) { chunkEntryToEdit(h, "labels")["blocks"][1]["compressedBytes"] = stored; },
+            "chunk 'labels' block 1 of 4 holds " + std::to_string(stored) +
+                " compressed bytes (a zstd frame of 512 bytes takes 1 to " + bound + ")");
     }
     // Blocks said to reach past the end of the file.
     expectEditedHeaderRejected(
@@ -949,12 +956,14 @@ TEST_F(IoPreparedFile, RejectsABadCompressionHeader) {
                                "bad header: missing or invalid 'blockBytes'");
     expectEditedHeaderRejected([](json& h) { h["compression"]["codec"] = "lz4"; },
                                "bad header: 'compression.codec': unknown codec 'lz4' (expected zstd)");
-    expectEditedHeaderRejected([](json& h) { h["compression"]["codec"] = 1; }, "bad header: missing or invalid 'codec'");
+    expectEditedHeaderRejected([](json& h) { h["compression"]["codec"] = 1; },
+                               "bad header: missing or invalid 'codec'");
     expectEditedHeaderRejected([](json& h) { h["compression"]["filter"] = "shuffle"; },
                                "bad header: 'compression.filter': unknown filter 'shuffle' (expected sliceDelta)");
     expectEditedHeaderRejected([](json& h) { h["compression"].erase("filter"); },
                                "bad header: missing or invalid 'filter'");
-    expectEditedHeaderRejected([](json& h) { h["compression"] = "zstd"; }, "bad header: missing or invalid 'compression'");
+    expectEditedHeaderRejected([](json& h) { h["compression"] = "zstd"; },
+                               "bad header: missing or invalid 'compression'");
     expectEditedHeaderRejected([](json& h) { h.erase("compression"); }, "bad header: missing or invalid 'compression'");
     // The level is informative: the reader needs none.
     Parts parts = split(good);
@@ -1000,7 +1009,8 @@ TEST_F(IoPreparedFile, RejectsABadSpacingOrOrigin) {
 TEST_F(IoPreparedFile, RejectsABadChunkTable) {
     expectEditedHeaderRejected([](json& h) { h["chunks"][0]["type"] = "float64"; },
                                "chunk 'scalars' should be 1 x int16");
-    expectEditedHeaderRejected([](json& h) { h["chunks"][1]["type"] = "uint8"; }, "chunk 'table' should be 4 x float32");
+    expectEditedHeaderRejected([](json& h) { h["chunks"][1]["type"] = "uint8"; },
+                               "chunk 'table' should be 4 x float32");
     expectEditedHeaderRejected([](json& h) { h["chunks"][1]["components"] = 3; },
                                "chunk 'table' should be 4 x float32");
     expectEditedHeaderRejected([](json& h) { h["chunks"][1]["name"] = "scalars"; }, "chunk 'scalars' appears twice");
@@ -1071,7 +1081,8 @@ TEST_F(IoPreparedFile, RejectsBadClassificationNumbers) {
                                            {"transferTable.entries", 37.5, entries},
                                            {"transferTable.entries", -37, entries},
                                            {"transferTable.entries", "37", entries},
-                                           {"transferTable.entries", nullptr, "bad header: missing or invalid 'entries'"}}) {
+                                           {"transferTable.entries", nullptr,
+                                            "bad header: missing or invalid 'entries'"}}) {
         SCOPED_TRACE(c.key + " = " + c.value.dump());
         expectEditedHeaderRejected(
             [&](json& h) {
@@ -1217,7 +1228,8 @@ TEST_F(IoPreparedFile, RefusesToWriteArraysOrNumbersThatDoNotFit) {
             "'transferTable.step' must be a finite number > 0");
     refused([](PreparedVolume& p) { p.classification.table.lo = std::numeric_limits<double>::infinity(); },
             "'transferTable.lo' must be a finite number");
-    refused([](PreparedVolume& p) { p.classification.flatGradient = -1; }, "'flatGradient' must be a finite number >= 0");
+    refused([](PreparedVolume& p) { p.classification.flatGradient = -1; },
+            "'flatGradient' must be a finite number >= 0");
     refused([](PreparedVolume& p) { p.classification.referenceStep = 0; },
             "'referenceStep' must be a finite number > 0");
     refused([](PreparedVolume& p) { p.classification.table.sigma[3] = -0.25f; },
@@ -1282,7 +1294,8 @@ namespace {
 LabelMap sampleLabels(const PreparedVolume& p, ScalarType type) {
     LabelMap m;
     const int count = type == ScalarType::UInt8 ? 200 : 701;
-    for (std::size_t i = 0; i < p.scalars.values.size(); ++i) m.label.push_back(uint16_t((i * 37) % std::size_t(count)));
+    for (std::size_t i = 0; i < p.scalars.values.size(); ++i)
+        m.label.push_back(uint16_t((i * 37) % std::size_t(count)));
     m.type = type;
     for (int l = 0; l < count; ++l) {
         m.classes.sigma.push_back(l == 0 ? 0.0f : float(l) / 7.0f);

@@ -38,7 +38,8 @@ void expectInputError(const fs::path& path, const std::vector<std::string>& word
     } catch (const InputError& e) {
         const std::string message = e.what();
         EXPECT_NE(message.find(path.string()), std::string::npos) << "message does not name the file: " << message;
-        for (const std::string& w : words) EXPECT_NE(message.find(w), std::string::npos) << "no '" << w << "' in: " << message;
+        for (const std::string& w : words)
+            EXPECT_NE(message.find(w), std::string::npos) << "no '" << w << "' in: " << message;
     }
 }
 
@@ -292,7 +293,8 @@ TEST(LoadBadInput, GarbageVtkFiles) {
     expectInputError(dir / "garbage.vti", {"garbage.vti"});
     writeText(dir / "binary.vti", std::string(200, '\x01'));
     expectInputError(dir / "binary.vti", {"binary.vti"});
-    writeText(dir / "garbage.vtk", "# vtk DataFile Version 3.0\nnot really\nASCII\nDATASET POLYDATA\nPOINTS 1 float\n0 0 0\n");
+    writeText(dir / "garbage.vtk",
+              "# vtk DataFile Version 3.0\nnot really\nASCII\nDATASET POLYDATA\nPOINTS 1 float\n0 0 0\n");
     expectInputError(dir / "garbage.vtk", {"garbage.vtk"});
 }
 

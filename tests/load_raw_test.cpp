@@ -81,7 +81,8 @@ std::vector<unsigned char> bytesOf(const std::vector<T>& values, bool bigEndian)
 }
 
 void writeFile(const fs::path& path, const std::vector<unsigned char>& bytes) {
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 void writeGzip(const fs::path& path, const std::vector<unsigned char>& bytes) {
@@ -100,7 +101,8 @@ std::vector<T> pattern() {
             v[i] = T(i) * 1.25f - 30.5f;
         else
             v[i] = T(double(std::numeric_limits<T>::min()) +
-                     double(i) / 59.0 * (double(std::numeric_limits<T>::max()) - double(std::numeric_limits<T>::min())));
+                     double(i) / 59.0 *
+                         (double(std::numeric_limits<T>::max()) - double(std::numeric_limits<T>::min())));
     }
     return v;
 }

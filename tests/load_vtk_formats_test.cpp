@@ -76,7 +76,8 @@ TEST(LoadVtkFormats, MetaImageRoundTripsEveryType) {
     for (const Case& c : {Case{VTK_UNSIGNED_CHAR, ScalarType::UInt8, 4, 3}, Case{VTK_SHORT, ScalarType::Int16, -500, 7},
                           Case{VTK_UNSIGNED_SHORT, ScalarType::UInt16, 1000, 1},
                           Case{VTK_FLOAT, ScalarType::Float32, 0.125, -2.5},
-                          Case{VTK_DOUBLE, ScalarType::Float32, 0.5, -1}, Case{VTK_INT, ScalarType::Float32, -100000, 3}}) {
+                          Case{VTK_DOUBLE, ScalarType::Float32, 0.5, -1},
+                          Case{VTK_INT, ScalarType::Float32, -100000, 3}}) {
         for (const char* ext : {".mhd", ".mha"}) {
             SCOPED_TRACE(std::string(vtkImageScalarTypeNameMacro(c.vtkType)) + ext);
             auto image = smallImage(c.vtkType, c.scale, c.offset);

@@ -98,9 +98,10 @@ TEST(RenderClipping, LeapingCastersEqualPrimitive) {
         std::string name;
         Volume volume;
         TransferFunction tf;
-    } volumes[] = {{"shells", shellsPhantom({40, 36, 24}, {1, 1, 2}), test::datasetTransferFunction("cranium_ct.tf.json")},
-                   {"engine", enginePhantom({48, 40, 36}, {0.8, 0.8, 1.2}), test::datasetTransferFunction("mri.tf.json")},
-                   {head.file, test::centralBlock(test::loadDataset(head), 48), test::datasetTransferFunction(head.tf)}};
+    } volumes[] = {
+        {"shells", shellsPhantom({40, 36, 24}, {1, 1, 2}), test::datasetTransferFunction("cranium_ct.tf.json")},
+        {"engine", enginePhantom({48, 40, 36}, {0.8, 0.8, 1.2}), test::datasetTransferFunction("mri.tf.json")},
+        {head.file, test::centralBlock(test::loadDataset(head), 48), test::datasetTransferFunction(head.tf)}};
     for (const auto& v : volumes) {
         const PreparedVolume p = test::prepareVolume(v.volume, v.tf, {0, 0, true, false});
         for (const ViewParams& view : {test::orbitView(0, 0, 40, 32), test::orbitView(37, 23, 40, 32),
@@ -178,8 +179,8 @@ TEST(RenderClipping, WhatIsCutAwayShowsTheBackground) {
 }
 
 TEST(RenderClipping, BadPlanesAndCropsAreRefused) {
-    const PreparedVolume p =
-        test::prepareVolume(constantPhantom({8, 8, 8}, 200), test::datasetTransferFunction("mri.tf.json"), {0, 0, true, false});
+    const PreparedVolume p = test::prepareVolume(constantPhantom({8, 8, 8}, 200),
+                                                 test::datasetTransferFunction("mri.tf.json"), {0, 0, true, false});
     const Camera cam = Camera::fit(p.grid(), test::orbitView(0, 0, 8, 8));
     auto refusal = [&](const RenderSettings& s) {
         try {
@@ -200,8 +201,8 @@ TEST(RenderClipping, BadPlanesAndCropsAreRefused) {
     s.clipPlanes.resize(6);
     EXPECT_EQ(refusal(s), "rendered");
     s.clipPlanes.clear();
-    for (const CropBox& bad : {CropBox{{0, 0, 0}, {8, 7, 7}}, CropBox{{-1, 0, 0}, {7, 7, 7}}, CropBox{{0, 5, 0}, {7, 4, 7}},
-                               CropBox{{9, 9, 9}, {12, 12, 12}}}) {
+    for (const CropBox& bad : {CropBox{{0, 0, 0}, {8, 7, 7}}, CropBox{{-1, 0, 0}, {7, 7, 7}},
+                               CropBox{{0, 5, 0}, {7, 4, 7}}, CropBox{{9, 9, 9}, {12, 12, 12}}}) {
         s.crop = bad;
         EXPECT_NE(refusal(s).find("--crop"), std::string::npos) << refusal(s);
     }

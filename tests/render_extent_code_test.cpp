@@ -31,7 +31,8 @@ std::array<double, 3> expectEveryCodeEqualsPrimitive(const PreparedVolume& exact
                                                      const std::string& what) {
     std::array<double, 3> mean{};
     for (const ViewParams& v : {view(Projection::Orthographic, 0, 0, 40), view(Projection::Orthographic, 37, 23, 40),
-                                view(Projection::Orthographic, -130, -50, 40), view(Projection::Perspective, 25, 35, 40)}) {
+                                view(Projection::Orthographic, -130, -50, 40),
+                                view(Projection::Perspective, 25, 35, 40)}) {
         const Camera camera = Camera::fit(exact.grid(), v);
         s.caster = Caster::Primitive;
         const RenderResult primitive = renderCpu(exact, camera, s);
@@ -40,7 +41,8 @@ std::array<double, 3> expectEveryCodeEqualsPrimitive(const PreparedVolume& exact
             PreparedVolume p = exact;
             quantiseEACD(p.fields, code);
             const RenderResult r = renderCpu(p, camera, s);
-            const std::string where = what + " " + std::string(extentCodeName(code)) + " az " + std::to_string(v.azimuthDeg);
+            const std::string where =
+                what + " " + std::string(extentCodeName(code)) + " az " + std::to_string(v.azimuthDeg);
             EXPECT_LT(maxAbsDifference(primitive.image, r.image), 1e-6) << where;
             std::size_t worse = 0;
             for (std::size_t i = 0; i < r.iterations.size(); ++i) worse += r.iterations[i] > primitive.iterations[i];
@@ -62,10 +64,11 @@ TEST(RenderExtentCode, EveryCodeRendersThePrimitiveImageOnPhantoms) {
         Volume volume;
         std::string tf;
     };
-    for (const Phantom& ph : std::vector<Phantom>{{"shells", shellsPhantom({40, 36, 24}, {1, 1, 2}), "cranium_ct.tf.json"},
-                                                  {"engine", enginePhantom({48, 40, 36}, {0.8, 0.8, 1.2}), "mri.tf.json"},
-                                                  {"ramp", rampPhantom({32, 30, 28}, 1), "mri.tf.json"},
-                                                  {"noise", noisePhantom({24, 25, 26}, 7), "mri.tf.json"}}) {
+    for (const Phantom& ph :
+         std::vector<Phantom>{{"shells", shellsPhantom({40, 36, 24}, {1, 1, 2}), "cranium_ct.tf.json"},
+                              {"engine", enginePhantom({48, 40, 36}, {0.8, 0.8, 1.2}), "mri.tf.json"},
+                              {"ramp", rampPhantom({32, 30, 28}, 1), "mri.tf.json"},
+                              {"noise", noisePhantom({24, 25, 26}, 7), "mri.tf.json"}}) {
         for (bool trilinear : {false, true}) {
             RenderSettings s;
             s.trilinear = trilinear;

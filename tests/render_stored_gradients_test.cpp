@@ -39,7 +39,8 @@ TEST(RenderStoredGradients, EachComponentWithinHalfAUnitOfAFinePrecision) {
         const Vec3d g{mantissa(rng) * scale, mantissa(rng) * scale * (i % 3 == 0 ? 1e-3 : 1), mantissa(rng) * scale};
         const std::uint32_t code = packer.pack(g);
         const Vec3d back = device::unpackGradient(code, packer.base());
-        const double unit = unitOf(code, packer.base()), longest = std::max({std::abs(g.x), std::abs(g.y), std::abs(g.z)});
+        const double unit = unitOf(code, packer.base());
+        const double longest = std::max({std::abs(g.x), std::abs(g.y), std::abs(g.z)});
         for (int a = 0; a < 3; ++a) ASSERT_LE(std::abs(back[a] - g[a]), unit / 2) << i;
         // The least exponent that holds the longest component: its unit is at most 1/127.75 of it, so the
         // direction is off by at most about 2 / 255 radians.

@@ -208,8 +208,9 @@ TEST(VolprepCli, HelpDescribesEveryFlag) {
     fs::path dir = test::scratchDir("volprep_help");
     Outcome r = volprep("--help");
     EXPECT_EQ(r.status, 0);
-    for (const char* flag : {"--output", "--tf", "--window", "--level", "--list-presets", "--to", "--ta", "--fields", "--trilinear", "--nearest", "--no-normals",
-                             "--eacd-code", "--dims", "--type", "--spacing", "--big-endian"})
+    for (const char* flag : {"--output", "--tf", "--window", "--level", "--list-presets", "--to", "--ta", "--fields",
+                             "--trilinear", "--nearest", "--no-normals", "--eacd-code", "--dims", "--type", "--spacing",
+                             "--big-endian"})
         EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
 }
 
@@ -231,7 +232,8 @@ TEST(VolprepCli, PresetsByNameAndWindowLevel) {
     };
     for (const Case& c : std::vector<Case>{{" --tf mr-default", "MR-Default"},
                                            {" --window 2000 --level 1000", "window 2000 level 1000"},
-                                           {" --tf CT-Bone --window 1000 --level 1500", "CT-Bone, window 1000 level 1500"},
+                                           {" --tf CT-Bone --window 1000 --level 1500",
+                                            "CT-Bone, window 1000 level 1500"},
                                            {" --window 100 --level 0 --tf " + q(test::datasetsDir() / e.tf),
                                             "ct-headsq, window 100 level 0"}}) {
         const Outcome r = volprep(in + q(dir / "p.vprep") + c.flags);
@@ -262,7 +264,8 @@ TEST(VolprepCli, BadInputFailsClearlyAndWritesNothing) {
              {in + " --tf " + q(dir / "none.json") + " -o " + q(out), "none.json"},
              {q(dir / "absent.raw") + tf + " -o " + q(out), "absent.raw"},
              {q(garbage) + tf + " -o " + q(out), garbage.string()},
-             {in + tf + " -o " + q(dir / "missing" / "out.vprep"), "folder " + (dir / "missing").string() + " does not exist"},
+             {in + tf + " -o " + q(dir / "missing" / "out.vprep"),
+              "folder " + (dir / "missing").string() + " does not exist"},
              {in + tf + " -o " + q(dir), "it is a folder"},
              {in + tf, "--output is required"},
          }) {

@@ -56,8 +56,9 @@ TEST(VolprepFaults, AbsurdSpacingThresholdsAndDimsAreRefused) {
     const fs::path anonymous = dir / "anonymous.bin";
     std::ofstream(anonymous, std::ios::binary) << std::string(64, 'a');
     for (const char* dims : {"0x4x4", "4x4x-4", "100000x100000x100000", "65537x1x1"})
-        expectRefused(shellQuote(anonymous) + kTf + " --type uint8 --dims " + dims + " -o " + shellQuote(dir / "x.vprep"),
-                      "anonymous.bin");
+        expectRefused(
+            shellQuote(anonymous) + kTf + " --type uint8 --dims " + dims + " -o " + shellQuote(dir / "x.vprep"),
+            "anonymous.bin");
     EXPECT_FALSE(fs::exists(dir / "x.vprep"));
 }
 
@@ -112,9 +113,10 @@ TEST(VolprepFaults, KilledWhileWritingLeavesThePreviousFile) {
     const fs::path big = dir / "shells_160x160x160_int16.raw";
     ASSERT_TRUE(fs::exists(big));
     const bool killed = test::killWhileWriting(
-        test::volprepExecutable(), {big.string(), "--tf", (test::datasetsDir() / "cranium_ct.tf.json").string(), "--fields", "pc", "-o",
-         out.string()}, dir,
-        ".shells.tmp", 120);
+        test::volprepExecutable(),
+        {big.string(), "--tf", (test::datasetsDir() / "cranium_ct.tf.json").string(), "--fields", "pc", "-o",
+         out.string()},
+        dir, ".shells.tmp", 120);
     EXPECT_TRUE(killed) << "volprep ended before its temporary file appeared";
     EXPECT_EQ(test::slurp(out), before);
     EXPECT_EQ(readPrepared(out).grid().dims, (Vec3i{8, 6, 5}));

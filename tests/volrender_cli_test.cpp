@@ -171,7 +171,8 @@ TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {
     EXPECT_EQ(maxAbsDifference(readImage(dir / "one.exr"), readImage(dir / "file.exr")), 0.0f);
 
     expectRejected(volume + view + " -o " + q(dir / "x.png"), "needs --tf");
-    expectRejected(q(dir / "head.vprep") + tf + " -o " + q(dir / "x.png"), "a prepared file holds its transfer function");
+    expectRejected(q(dir / "head.vprep") + tf + " -o " + q(dir / "x.png"),
+                   "a prepared file holds its transfer function");
     expectRejected(volume + tf + " --to -1 -o " + q(dir / "x.png"), "--to");
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }

@@ -44,7 +44,8 @@ void expectRefused(const std::string& args, const std::string& mentions, const s
 
 TEST(VolrenderFaults, AbsurdStepsAreRefusedOrRenderedNeverHung) {
     const fs::path dir = test::scratchDir("volrender_faults_step");
-    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
+    const std::string in =
+        shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
     // 1e-9: a valid number, but a ray would take more samples than the iteration cap.
     for (const char* step : {"0", "-0", "-1", "nan", "inf", "-inf", "1e-300", "1e-30", "1e-9"})
         for (const char* where : {" --cpu", ""}) expectRefused(in + where + " --step " + step, "--step");
@@ -72,12 +73,15 @@ TEST(VolrenderFaults, ImpossibleSizesAreRefused) {
 // zoom that is no magnification, a focal point far off the volume; every refusal names its flag.
 TEST(VolrenderFaults, BadCameraFlagsAreRefused) {
     const fs::path dir = test::scratchDir("volrender_faults_camera");
-    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --cpu --no-shading --size 8x8";
+    const std::string in =
+        shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --cpu --no-shading --size 8x8";
     for (const char* up : {"1,2", "1,2,3,4", "a,b,c", "1,,2", "nan,0,1", "0,inf,0", "0,0,0", "0,0,1", "0,0,-3",
                            "1e-12,0,1"})
         expectRefused(in + " --up " + up, "--up");
-    expectRefused(in + " --elevation 90 --up 0,1,0", std::vector<std::string>{"--up", "parallel to the view direction"});
-    for (const char* zoom : {"0", "-2", "nan", "inf", "1e-9", "1e9", "two"}) expectRefused(in + " --zoom " + zoom, "--zoom");
+    expectRefused(in + " --elevation 90 --up 0,1,0",
+                  std::vector<std::string>{"--up", "parallel to the view direction"});
+    for (const char* zoom : {"0", "-2", "nan", "inf", "1e-9", "1e9", "two"})
+        expectRefused(in + " --zoom " + zoom, "--zoom");
     expectRefused(in + " --projection persp --fov 60 --zoom 0.3", std::vector<std::string>{"--zoom", "--fov"});
     for (const char* centre : {"1,2", "x,y,z", "nan,0,0", "0,0,-inf", "1e12,0,0"})
         expectRefused(in + " --center " + centre, "--center");
@@ -92,14 +96,15 @@ TEST(VolrenderFaults, BadCameraFlagsAreRefused) {
 // outside the grid (12 x 10 x 8 voxels); every refusal names its flag, and a good clipping renders.
 TEST(VolrenderFaults, BadClippingFlagsAreRefused) {
     const fs::path dir = test::scratchDir("volrender_faults_clip");
-    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --cpu --no-shading --size 8x8";
+    const std::string in =
+        shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --cpu --no-shading --size 8x8";
     for (const char* plane : {"1,2,3", "1,2,3,4,5", "a,b,c,d", "1,,2,3", "0,0,0,1", "nan,0,1,0", "0,1,0,inf", "1,0,0,"})
         expectRefused(in + " --clip " + plane, "--clip");
     std::string seven;
     for (int i = 0; i < 7; ++i) seven += " --clip 0,0,1," + std::to_string(i);
     expectRefused(in + seven, std::vector<std::string>{"--clip", "at most 6"});
-    for (const char* crop : {"0,5,0,5,0", "0,5,0,5,0,5,0", "0,5.5,0,5,0,5", "a,5,0,5,0,5", "0,12,0,5,0,5", "-1,5,0,5,0,5",
-                             "0,5,0,9,3,2", "20,30,0,5,0,5", "0,1e30,0,5,0,5"})
+    for (const char* crop : {"0,5,0,5,0", "0,5,0,5,0,5,0", "0,5.5,0,5,0,5", "a,5,0,5,0,5", "0,12,0,5,0,5",
+                             "-1,5,0,5,0,5", "0,5,0,9,3,2", "20,30,0,5,0,5", "0,1e30,0,5,0,5"})
         expectRefused(in + " --crop " + crop, "--crop");
     EXPECT_FALSE(fs::exists(dir / "x.png"));
     const test::CliOutcome clipped = volrender(in + " --clip 1,0,0,4 --clip 0,1,1,5 --crop 0,11,2,7,0,3");
@@ -109,7 +114,8 @@ TEST(VolrenderFaults, BadClippingFlagsAreRefused) {
 
 TEST(VolrenderFaults, BlendFlagsThatDoNotFitAreRefused) {
     const fs::path dir = test::scratchDir("volrender_faults_blend");
-    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
+    const std::string in =
+        shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
     for (const char* where : {" --cpu", ""}) {
         const std::string run = in + where;
         expectRefused(run + " --iso 100", std::vector<std::string>{"--iso", "--blend iso"});
@@ -259,7 +265,8 @@ TEST(VolrenderFaults, MissingAndDamagedPreparedFilesAreRefused) {
 TEST(VolrenderFaults, NoVulkanDriverIsAClearErrorAndTheCpuStillRenders) {
     const fs::path dir = test::scratchDir("volrender_faults_nodevice");
     const std::string env = "VK_ICD_FILENAMES=/nonexistent/no_icd.json VK_DRIVER_FILES=/nonexistent/no_icd.json";
-    const std::string in = shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
+    const std::string in =
+        shellQuote(preparedBlock()) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
     expectRefused(in, "Vulkan", env);
     expectRefused("--list-devices", "Vulkan", env);
     EXPECT_FALSE(fs::exists(dir / "x.png"));

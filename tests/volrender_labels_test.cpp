@@ -39,7 +39,8 @@ const Head& head() {
         h.colours = h.dir / "head_colours.txt";
         std::ofstream(h.colours) << "# index name r g b a\n0 background 0 0 0 0\n1 skin 230 160 140 40\n"
                                     "2 bone 250 245 230 255\n";
-        h.flags = " --tf " + q(test::datasetsDir() / e.tf) + " --spacing 3.2,3.2,1.5 --to 0 --ta 0 --size 40x40 --elevation 20";
+        h.flags = " --tf " + q(test::datasetsDir() / e.tf) +
+                  " --spacing 3.2,3.2,1.5 --to 0 --ta 0 --size 40x40 --elevation 20";
         return h;
     }();
     return h;
@@ -69,7 +70,8 @@ TEST(VolrenderLabels, RendersAVtkLabelMapHereAndThroughVolprep) {
     EXPECT_LT(maxAbsDifference(readImage(fromFile), readImage(here)), 2.0 / 255);
 
     const std::string again = q(prepared) + " --labels " + q(h.labels) + " -o " + q(h.dir / "again.png");
-    test::expectRefusal(test::runVolrender(again), "volrender", again, {"prepared file holds its label map", "--labels"});
+    test::expectRefusal(test::runVolrender(again), "volrender", again,
+                        {"prepared file holds its label map", "--labels"});
     // The hier caster's blocks are classified by the scalars alone: a label map is refused, here and from a file.
     for (const std::string& hier : {q(h.volume) + h.flags + labelled + " --caster hier -o " + q(h.dir / "hier.png"),
                                     q(prepared) + " --size 40x40 --caster hier -o " + q(h.dir / "hier.png")})

@@ -22,7 +22,8 @@ using test::shellQuote;
 const fs::path& preparedBlocks() {
     const GridGeometry grid{{16, 12, 10}, {1, 1, 1.5}, {0, 0, 0}};
     static const fs::path path = test::writtenSynthetic("volrender_movies_prepared", grid, 1.0, [](const Vec3i& v) {
-        if (v.x >= 2 && v.x < 6 && v.y >= 2 && v.y < 5 && v.z >= 2 && v.z < 8) return test::VoxelClass{0.6, {1, 0.1, 0.1}};
+        if (v.x >= 2 && v.x < 6 && v.y >= 2 && v.y < 5 && v.z >= 2 && v.z < 8)
+            return test::VoxelClass{0.6, {1, 0.1, 0.1}};
         if (v.x >= 10 && v.x < 14 && v.y >= 6 && v.y < 10 && v.z >= 1 && v.z < 4)
             return test::VoxelClass{0.6, {0.1, 1, 0.2}};
         if (v.x >= 4 && v.x < 12 && v.y >= 8 && v.y < 11 && v.z >= 6 && v.z < 9)
@@ -122,7 +123,8 @@ TEST(VolrenderMovies, OneViewIsAMovieOfOneFrameAndHeatMapsMayBeMoviesToo) {
     const std::string one = shellQuote(preparedBlocks()) + " --cpu --no-shading --nearest --caster eacd --size 48x32";
     ASSERT_EQ(test::runVolrender(one + " -o " + shellQuote(dir / "still.gif")).status, 0);
     EXPECT_EQ(test::readMovieFrames(dir / "still.gif").rgb.size(), 1u);
-    const test::CliOutcome heat = test::runVolrender(orbit(dir / "x.png") + " --heatmap " + shellQuote(dir / "heat.mp4"));
+    const test::CliOutcome heat =
+        test::runVolrender(orbit(dir / "x.png") + " --heatmap " + shellQuote(dir / "heat.mp4"));
     ASSERT_EQ(heat.status, 0) << heat.err;
     EXPECT_EQ(test::readMovieFrames(dir / "heat.mp4").rgb.size(), std::size_t(kViews));
     EXPECT_TRUE(fs::exists(dir / "x_005.png"));
@@ -137,7 +139,8 @@ TEST(VolrenderMovies, WrongFormatsAndFlagsAreRefused) {
     expectRefused(in + shellQuote(dir / "orbit.mp4") + " --size 33x20", {"-o", "even width and height", "33x20"});
     expectRefused(in + shellQuote(dir / "orbit.MP4") + " --size 32x21", {"even width and height"});
     expectRefused(in + shellQuote(dir / "orbit.png") + " --fps 30", {"--fps 30", "for a movie"});
-    for (const char* fps : {"0", "-5", "61"}) expectRefused(in + shellQuote(dir / "orbit.gif") + " --fps " + fps, {"--fps"});
+    for (const char* fps : {"0", "-5", "61"})
+        expectRefused(in + shellQuote(dir / "orbit.gif") + " --fps " + fps, {"--fps"});
     EXPECT_TRUE(fs::is_empty(dir));
 }
 

@@ -124,13 +124,15 @@ TEST(VulkanBlendModes, BrickedVolumeRendersTheWholeVolumesImage) {
                 const RenderSettings s = test::blendSettings(blend, caster, true, v.isoValue);
                 const RenderResult whole = kVulkan(v.prepared, camera, s);
                 const RenderResult split = bricked().render(v.prepared, camera, s);
-                EXPECT_LE(maxAbsDifference(whole.image, split.image), 1e-5) << blendName(blend) << " " << casterName(caster);
+                EXPECT_LE(maxAbsDifference(whole.image, split.image), 1e-5)
+                    << blendName(blend) << " " << casterName(caster);
                 EXPECT_EQ(whole.samples, split.samples) << blendName(blend) << " " << casterName(caster);
             }
     // The iso-surface is refined between two samples, which one brick's images may not both hold.
     const Camera camera = Camera::fit(v.prepared.grid(), test::orbitView(0, 0, 8, 8));
-    EXPECT_THROW(bricked().render(v.prepared, camera, test::blendSettings(Blend::Iso, Caster::Blocks, true, v.isoValue)),
-                 InputError);
+    EXPECT_THROW(
+        bricked().render(v.prepared, camera, test::blendSettings(Blend::Iso, Caster::Blocks, true, v.isoValue)),
+        InputError);
     test::expectNoValidationErrors();
 }
 

@@ -70,8 +70,8 @@ TEST(VulkanClipping, IsoSurfaceBlocksEqualPrimitive) {
 TEST(VulkanClipping, BrickedVolumes) {
     // At least three bricks along every axis, as in tests/vulkan_uploads_test.cpp.
     static VulkanRenderer bricked(test::vulkanContext(), 32, ImageLimits{.maxDimension = 40, .minBricks = {3, 3, 3}});
-    const PreparedVolume engine = test::prepareVolume(enginePhantom({40, 32, 24}),
-                                                      test::datasetTransferFunction("mri.tf.json"), {0, 0, true, false});
+    const PreparedVolume engine = test::prepareVolume(
+        enginePhantom({40, 32, 24}), test::datasetTransferFunction("mri.tf.json"), {0, 0, true, false});
     expectClippedRendersAgree("engine in bricks", engine, bricked);
     test::expectNoValidationErrors();
 }

@@ -33,8 +33,8 @@ std::vector<float> expm1OnDevice(const VulkanContext& ctx, const std::vector<flo
     vk::raii::Pipeline pipeline(device, nullptr,
                                 vk::ComputePipelineCreateInfo({}, {{}, compute, *shader, "main"}, *layout));
     vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 2);
-    vk::raii::DescriptorPool pool(device,
-                                  vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, size));
+    vk::raii::DescriptorPool pool(
+        device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, size));
     vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo(*pool, layoutHandle));
     const vk::DescriptorBufferInfo infos[2] = {{*in.buffer(), 0, VK_WHOLE_SIZE}, {*out.buffer(), 0, VK_WHOLE_SIZE}};
     std::vector<vk::WriteDescriptorSet> writes;

@@ -183,7 +183,8 @@ TEST(VulkanStereo, LeapSplitAcrossBandsEqualsSteppedSamples) {
     const StereoPair pair = slabPair(64, 48);
     VulkanRenderer& renderer = test::vulkanRenderer(16);
     const GpuVolume volume = renderer.upload(twoColourSlab(), {{Caster::Primitive, Caster::EACD}, kAllOctants});
-    const StereoRender stepped = renderer.renderStereo(volume, pair, test::renderSettings(Caster::Primitive, false), true);
+    const StereoRender stepped =
+        renderer.renderStereo(volume, pair, test::renderSettings(Caster::Primitive, false), true);
     const StereoRender leapt = renderer.renderStereo(volume, pair, test::renderSettings(Caster::EACD, false), true);
     // The leaps are real: EACD takes far fewer iterations than samples.
     std::uint64_t samples = 0, iterations = 0;

@@ -74,7 +74,8 @@ TEST(VulkanUploads, ARenderUploadsOnlyWhatItReads) {
     ASSERT_GT(p.classification.table.size(), 1u);
 
     whole().render(p, ortho, renderSettings(Caster::Primitive, false));
-    EXPECT_EQ(bytesByName(whole().lastUploads()), (Bytes{{"scalars", voxels * 2}, {"table", p.classification.table.size() * 16}}));
+    EXPECT_EQ(bytesByName(whole().lastUploads()),
+              (Bytes{{"scalars", voxels * 2}, {"table", p.classification.table.size() * 16}}));
     whole().render(p, ortho, renderSettings(Caster::Primitive, true));  // shading reads the same scalars
     EXPECT_EQ(bytesByName(whole().lastUploads()), always(p));
     whole().render(p, ortho, renderSettings(Caster::PC, false));
@@ -267,7 +268,8 @@ TEST(VulkanUploads, StagedUploadsRenderWhatInPlaceUploadsRender) {
 
 // The casters' pixels written to device memory and copied to the host (a discrete GPU's path, forced here) are
 // the pixels written to host memory, for every caster, on full and partial tiles, for both eyes of a stereo pair
-// (the right eye reprojected in device memory, its re-cast pixels as a list), and a later, larger image grows the frame's buffers.
+// (the right eye reprojected in device memory, its re-cast pixels as a list), and a later, larger image grows the
+// frame's buffers.
 TEST(VulkanUploads, OutputCopiedFromDeviceMemoryEqualsOutputWrittenToTheHost) {
     VulkanRenderer host(test::vulkanContext(), 20, {}, VulkanRenderer::OutputMemory::Host);
     VulkanRenderer device(test::vulkanContext(), 20, {}, VulkanRenderer::OutputMemory::Device);
@@ -442,10 +444,11 @@ TEST(VulkanUploadsInBricks, SplitRendersEqualUnsplitOnSyntheticVolumes) {
     const PreparedVolume slabs = test::syntheticPrepared({{2, 3, 60}, {1, 1, 1}, {0, 0, 0}}, 1.0, [](const Vec3i& v) {
         return test::VoxelClass{v.z % 2 ? 0.02 : 1e-4, {1, 0.2, 0}};
     });
-    const PreparedVolume noise = test::syntheticPrepared({{13, 7, 11}, {1, 2.5, 0.7}, {-3, 0, 2}}, 0.7, [](const Vec3i& v) {
-        const unsigned h = unsigned(v.x * 73856093 ^ v.y * 19349663 ^ v.z * 83492791) % 100;
-        return test::VoxelClass{h < 10 ? 0.0 : h > 90 ? 1.0 : h / 100.0, {h / 100.0, 0.5, 1 - h / 100.0}};
-    });
+    const PreparedVolume noise =
+        test::syntheticPrepared({{13, 7, 11}, {1, 2.5, 0.7}, {-3, 0, 2}}, 0.7, [](const Vec3i& v) {
+            const unsigned h = unsigned(v.x * 73856093 ^ v.y * 19349663 ^ v.z * 83492791) % 100;
+            return test::VoxelClass{h < 10 ? 0.0 : h > 90 ? 1.0 : h / 100.0, {h / 100.0, 0.5, 1 - h / 100.0}};
+        });
     for (const PreparedVolume* p : {&slabs, &noise}) {
         const GridGeometry& g = p->grid();
         const std::vector<Camera> cameras{

@@ -92,8 +92,9 @@ PeerRun runVdbRenderPeer(const PeerScene& scene, const fs::path& outDir) {
         // Pure emission-absorption in white: scattering 1 with no absorption makes the albedo 1, and a shadow step
         // beyond the volume leaves every shadow ray empty (no self-shadowing). The cutoff ends rays where
         // 3 T^2 < cutoff, i.e. at our early ray termination, and skips densities below it.
-        cmd << "vdb_render " << vdb << ' ' << exr << " -camera ortho -frame " << 2 * cam.halfHeight * cam.width / cam.height
-            << " -translate " << triple(cam.eye) << " -lookat " << triple(g.centre()) << " -up " << triple(cam.up)
+        cmd << "vdb_render " << vdb << ' ' << exr << " -camera ortho -frame "
+            << 2 * cam.halfHeight * cam.width / cam.height << " -translate " << triple(cam.eye) << " -lookat "
+            << triple(g.centre()) << " -up " << triple(cam.up)
             << " -res " << cam.width << 'x' << cam.height << " -step " << scene.options.stepVoxels
             << " -absorb 0,0,0 -scatter 1,1,1 -light 0,0,1,1,1,1 -shadowstep 1e30 -cutoff "
             << 3 * (1 - ert) * (1 - ert) << " -cpus " << scene.options.threads << " -compression none -v";

@@ -27,7 +27,8 @@ template <class ArrayT>
 vtkSmartPointer<vtkDataArray> scalarArray(const Volume& v) {
     auto a = vtkSmartPointer<ArrayT>::New();
     a->SetNumberOfTuples(vtkIdType(v.values.size()));
-    for (std::size_t i = 0; i < v.values.size(); ++i) a->SetValue(vtkIdType(i), typename ArrayT::ValueType(v.values[i]));
+    for (std::size_t i = 0; i < v.values.size(); ++i)
+        a->SetValue(vtkIdType(i), typename ArrayT::ValueType(v.values[i]));
     return a;
 }
 

@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
     int threads = 2;
     app.add_option("volume", volumePath, "volume file (any format volrender reads, e.g. NAME_XxYxZ_TYPE.raw.gz)")
         ->required();
-    app.add_option("--tf", tfPath, "a built-in preset's name or a ParaView transfer function preset (JSON)")->required();
+    app.add_option("--tf", tfPath, "a built-in preset's name or a ParaView transfer function preset (JSON)")
+        ->required();
     app.add_option("--spacing", spacing, "voxel size x,y,z for raw volumes")->delimiter(',')->expected(3);
     app.add_option("--size", size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--azimuth", azimuth, "camera turn about the up axis, degrees")->capture_default_str();

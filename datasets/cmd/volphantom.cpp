@@ -22,7 +22,8 @@ void writeAs(std::ostream& out, const std::vector<float>& values) {
             converted[i] = values[i];
         } else {
             double v = std::round(double(values[i]));
-            converted[i] = T(std::clamp(v, double(std::numeric_limits<T>::min()), double(std::numeric_limits<T>::max())));
+            converted[i] =
+                T(std::clamp(v, double(std::numeric_limits<T>::min()), double(std::numeric_limits<T>::max())));
         }
     }
     out.write(reinterpret_cast<const char*>(converted.data()), std::streamsize(converted.size() * sizeof(T)));
@@ -56,7 +57,8 @@ int main(int argc, char** argv) {
         ->delimiter(',')
         ->expected(3)
         ->capture_default_str();
-    app.add_option("--type", typeName, "voxel type written: uint8, int16, uint16, float32 (default: the phantom's own)");
+    app.add_option("--type", typeName,
+                   "voxel type written: uint8, int16, uint16, float32 (default: the phantom's own)");
     app.add_option("--axis", axis, "ramp axis: 0, 1 or 2")->check(CLI::Range(0, 2))->capture_default_str();
     app.add_option("--seed", seed, "noise seed")->capture_default_str();
     return vr::runTool("volphantom", app, argc, argv, [&] {

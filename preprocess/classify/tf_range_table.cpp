@@ -23,7 +23,8 @@ TfExtremes combined(const TfExtremes& a, const TfExtremes& b) {
 
 TfRangeTable::TfRangeTable(SampledTransferFunction table) : table_(std::move(table)) {
     const std::size_t n = table_.opacity.size();
-    if (n == 0 || n > 65536) throw std::invalid_argument("TfRangeTable: " + std::to_string(n) + " entries, not 1..65536");
+    if (n == 0 || n > 65536)
+        throw std::invalid_argument("TfRangeTable: " + std::to_string(n) + " entries, not 1..65536");
     constexpr float kInf = std::numeric_limits<float>::infinity();
     std::vector<TfExtremes> single(n);
     for (std::size_t i = 0; i < n; ++i) {

@@ -73,7 +73,9 @@ ACDFields buildACDs(const Regions& regions) {
     return buildACDs(runs);
 }
 
-DistanceFields buildFields(const Regions& regions, unsigned kinds) { return buildFields(regions, kinds, [](FieldKind) {}); }
+DistanceFields buildFields(const Regions& regions, unsigned kinds) {
+    return buildFields(regions, kinds, [](FieldKind) {});
+}
 
 DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::function<void(FieldKind)>& done) {
     return buildFields(regions, kinds, ExtentCode::Exact, done);

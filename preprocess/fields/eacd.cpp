@@ -121,9 +121,9 @@ std::array<ExtentField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& ac
     for (int o = 0; o < kOctants; ++o)
         if (octants >> o & 1u) sizing[o].run([&, o] { out[o] = ExtentField(code, acd[o].size()); });
     // One octant at a time: 7 bytes of working memory per voxel, 2 of them the runs along x copied for the walks
-    // (0.9 GB at 512^3, where the footprint makes fresh pages dear; 6 and 1 for a single octant). (Batches of two opposite octants took as long,
-    // with twice the memory; batches of four, sharing each table by two octants, too: what the tables saved,
-    // mapping the memory cost.)
+    // (0.9 GB at 512^3, where the footprint makes fresh pages dear; 6 and 1 for a single octant). (Batches of two
+    // opposite octants took as long, with twice the memory; batches of four, sharing each table by two octants, too:
+    // what the tables saved, mapping the memory cost.)
     OctantState state(runs, octants);
     for (int o = 0; o < kOctants; ++o) {
         if (!(octants >> o & 1u)) continue;

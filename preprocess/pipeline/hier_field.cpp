@@ -38,7 +38,8 @@ BlockEACD buildHierarchicalEACD(const PreparedVolume& classified, const Segmenta
     std::vector<EntryRange> ranges(voxelCount(scalarRanges.blocks));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ranges.size()), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i < r.end(); ++i)
-            ranges[i] = {spread.entryBelow(scalarRanges.range[2 * i]), spread.entryAbove(scalarRanges.range[2 * i + 1])};
+            ranges[i] = {spread.entryBelow(scalarRanges.range[2 * i]),
+                         spread.entryAbove(scalarRanges.range[2 * i + 1])};
     });
     const BlockRegions regions = segmentBlocks(scalarRanges.blocks, ranges, spread, params);
     return buildBlockEACD(regions.regions, regions.homogeneous, blockShift, octants);

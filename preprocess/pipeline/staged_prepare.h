@@ -96,7 +96,8 @@ private:
     std::vector<StageTime> lastStages_;
 };
 
-// Every stage once over `volume`, with the statistics and the ray probe: the prepared volume as volprep writes it (StagedPreparation for the stages' times).
+// Every stage once over `volume`, with the statistics and the ray probe: the prepared volume as volprep writes it
+// (StagedPreparation for the stages' times).
 PreparedVolume prepare(Volume volume, const PrepareOptions& options);
 
 }  // namespace vr

@@ -28,7 +28,8 @@ std::size_t preparationBytes(const GridGeometry& grid, const PrepareOptions& opt
             segment += options.segmentation.angleThresholdDeg == 0 ? 12 : 4;
     }
     std::size_t fields = 0;
-    if (options.fields & kRegionFields) fields += 6;  // axial runs, one byte per axis and sign (an upper bound: those read)
+    // Axial runs, one byte per axis and sign (an upper bound: those read).
+    if (options.fields & kRegionFields) fields += 6;
     if (options.fields & (kFieldACD | kFieldEACD | kFieldPC))
         fields += (options.fields & kFieldPC) ? kOctants : octants;  // ACD, kept or built for PC and EACD
     if (options.fields & kFieldPC) fields += 1;

@@ -90,7 +90,8 @@ uint32_t growRegions(const Vec3i& d, const std::vector<EntryRange>& ranges, cons
 }
 
 void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const SegmentationParams& params,
-                               const std::vector<float>& scalars, const ClassificationSpread& spread, Regions& regions) {
+                               const std::vector<float>& scalars, const ClassificationSpread& spread,
+                               Regions& regions) {
     const Vec3i d = voxels.grid().dims;
     const std::size_t n = voxelCount(d);
     if (n >= kBorderCell)

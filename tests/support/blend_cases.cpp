@@ -39,9 +39,12 @@ Volume floatNoise() {
 
 // The first `count` of: a diagonal, a perspective view, views along -z, -x and +y, and a diagonal in another octant.
 std::vector<ViewParams> blendViews(int size, std::size_t count) {
-    std::vector<ViewParams> views{orbitView(37, 23, size, size),  orbitView(25, 35, size, size, Projection::Perspective),
-                                  orbitView(0, 0, size, size),    orbitView(90, 0, size, size),
-                                  orbitView(0, -90, size, size),  orbitView(-130, -50, size, size)};
+    std::vector<ViewParams> views{orbitView(37, 23, size, size),
+                                  orbitView(25, 35, size, size, Projection::Perspective),
+                                  orbitView(0, 0, size, size),
+                                  orbitView(90, 0, size, size),
+                                  orbitView(0, -90, size, size),
+                                  orbitView(-130, -50, size, size)};
     views.resize(std::min(count, views.size()));
     return views;
 }
@@ -95,7 +98,8 @@ BruteForce bruteForce(const PreparedVolume& p, const Camera& camera, int px, int
     const double dt = s.stepVoxels * p.grid().smallestSpacing();
     const int64_t count = latticeCount(iv, dt);
     std::vector<double> values;
-    for (int64_t k = 0; k < count; ++k) values.push_back(bruteScalar(p.scalars, g.at(latticeT(iv, dt, k)), s.trilinear));
+    for (int64_t k = 0; k < count; ++k)
+        values.push_back(bruteScalar(p.scalars, g.at(latticeT(iv, dt, k)), s.trilinear));
     BruteForce b;
     b.samples = uint64_t(count);
     if (values.empty()) return b;
@@ -181,9 +185,9 @@ CaseCount blocksEqualPrimitive(const RenderFn& render, const BlendCaseOptions& o
             for (bool trilinear : {false, true})
                 for (const ViewParams& view : blendViews(24, options.views)) {
                     const RenderSettings s = blendSettings(blend, Caster::Primitive, trilinear, v.isoValue);
-                    const auto [p, b] = expectBlocksEqualPrimitive(render, v.prepared, Camera::fit(v.prepared.grid(), view), s,
-                                                                   options.equal,
-                                                                   where(v.name, blend, trilinear, viewText(view)), n);
+                    const auto [p, b] =
+                        expectBlocksEqualPrimitive(render, v.prepared, Camera::fit(v.prepared.grid(), view), s,
+                                                   options.equal, where(v.name, blend, trilinear, viewText(view)), n);
                     primitive += p;
                     blocks += b;
                 }
@@ -249,7 +253,8 @@ CaseCount axisMipIsColumnMaximum(const RenderFn& render, const BlendCaseOptions&
                             largest = std::max(largest, double(volume.at(column.x, column.y, column.z)));
                         }
                         const std::array<double, 4> want = shown(p, largest);
-                        for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(r.image.pixel(px, py)[c] - want[c]));
+                        for (int c = 0; c < 4; ++c)
+                            worst = std::max(worst, std::abs(r.image.pixel(px, py)[c] - want[c]));
                         ++n.rays;
                         ++n.hits;
                     }
@@ -280,7 +285,8 @@ CaseCount oppositeViewsMirror(const RenderFn& render, const BlendCaseOptions& op
                         ++n.rays;
                         n.hits += a.samples[std::size_t(py) * front.width + px] > 0;
                     }
-                EXPECT_LE(worst, options.equal) << blendText(blend) << " axis " << axis << (trilinear ? " trilinear" : " nearest");
+                EXPECT_LE(worst, options.equal)
+                    << blendText(blend) << " axis " << axis << (trilinear ? " trilinear" : " nearest");
             }
     return n;
 }
@@ -312,9 +318,10 @@ CaseCount greyWindowIsLinear(const RenderFn& render, const BlendCaseOptions& opt
                     // Opaque: the window's grey, linear in the value. Else the ramp's opacity weighs the same grey,
                     // over a black background: its square.
                     const double grey = std::clamp((value - lo) / window, 0.0, 1.0);
-                    const double shown = opaque ? grey : grey * opacityFromExtinction(
-                                                                    device::lookUpTable(p.classification.table, value).sigma,
-                                                                    p.classification.referenceStep);
+                    const double shown =
+                        opaque ? grey
+                               : grey * opacityFromExtinction(device::lookUpTable(p.classification.table, value).sigma,
+                                                              p.classification.referenceStep);
                     for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(r.image.pixel(px, py)[c] - shown));
                     if (opaque) worst = std::max(worst, std::abs(r.image.pixel(px, py)[3] - 1.0));
                     ++n.rays;

@@ -28,8 +28,8 @@ RenderSettings blendSettings(Blend blend, Caster caster, bool trilinear, double 
 
 // What a renderer is asked: how far its images may lie apart where they should be equal (images hold float; the
 // CPU reference's double sums of average agree to rounding, the device's float pairs to about 1e-7; the device
-// classifies in float), and how many of the views (a diagonal, a perspective, then views along the axes and another diagonal)
-// it renders (the device compiles a pipeline per variant).
+// classifies in float), and how many of the views (a diagonal, a perspective, then views along the axes and another
+// diagonal) it renders (the device compiles a pipeline per variant).
 struct BlendCaseOptions {
     double equal = 1e-7;
     std::size_t views = 6;

@@ -25,7 +25,8 @@ struct CliOutcome {
 };
 
 // Runs `environment executable args` through the shell (args quoted by the caller), capturing stdout and stderr.
-CliOutcome runCli(const std::filesystem::path& executable, const std::string& args, const std::string& environment = "");
+CliOutcome runCli(const std::filesystem::path& executable, const std::string& args,
+                  const std::string& environment = "");
 
 // runCli on the built volprep / volrender, failing the test (non-fatally) when that executable is not built.
 CliOutcome runVolprep(const std::string& args, const std::string& environment = "");

@@ -50,7 +50,8 @@ Frames readMovieFrames(const fs::path& path) {
                                          frame->width, frame->height, AV_PIX_FMT_RGB24,
                                          SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT, nullptr, nullptr,
                                          nullptr);
-            const int* matrix = sws_getCoefficients(frame->colorspace == AVCOL_SPC_BT709 ? SWS_CS_ITU709 : SWS_CS_DEFAULT);
+            const int* matrix =
+                sws_getCoefficients(frame->colorspace == AVCOL_SPC_BT709 ? SWS_CS_ITU709 : SWS_CS_DEFAULT);
             sws_setColorspaceDetails(toRgb, matrix, frame->color_range == AVCOL_RANGE_JPEG, matrix, 1, 0, 1 << 16,
                                      1 << 16);
             std::vector<unsigned char> rgb(std::size_t(frame->width) * frame->height * 3);

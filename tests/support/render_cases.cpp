@@ -196,7 +196,8 @@ CaseCount spanOpacityGrid(const RenderFn& render, const CaseOptions& options) {
         while (1.0 + double(samples) * dt < 2.0) ++samples;
         EXPECT_LE(std::abs(samples - n), 1);
         for (const double alpha : {0.0, 1e-12, 1e-9, 1e-6, 1e-3, 0.5, 1 - 1e-7, 1.0}) {
-            const PreparedVolume p = syntheticPrepared(grid, dt, [&](const Vec3i&) { return VoxelClass{alpha, colour}; });
+            const PreparedVolume p =
+                syntheticPrepared(grid, dt, [&](const Vec3i&) { return VoxelClass{alpha, colour}; });
             const double want = alpha == 1 ? 1.0 : -std::expm1(double(samples) * std::log1p(-alpha));
             for (Caster c : kCasters) {
                 const bool stepsEverySample = c == Caster::Primitive || c == Caster::PC;  // pc is 0 in one voxel
@@ -220,7 +221,8 @@ CaseCount spanOpacityGrid(const RenderFn& render, const CaseOptions& options) {
                     EXPECT_LT(relativeError(got, want), 1e-4) << what << ": got " << got << ", want " << want;
                 }
                 for (int ch = 0; ch < 3; ++ch)
-                    EXPECT_LT(relativeError(r.image.pixel(0, 0)[ch], colour[ch] * want), 1e-4) << what << " channel " << ch;
+                    EXPECT_LT(relativeError(r.image.pixel(0, 0)[ch], colour[ch] * want), 1e-4)
+                        << what << " channel " << ch;
                 if (want < 0.5) {  // A cannot round to 1 early
                     EXPECT_LE(std::abs(int64_t(r.samples[0]) - samples), options.floatLattice ? 1 : 0) << what;
                 }
@@ -421,8 +423,8 @@ std::vector<NamedCamera> latticeCameras(const Vec3i& dims) {
     };
     const std::vector<Dir> dirs{{{0, 0, -1}, {1, 0, 0}},  {{0, 0, 1}, {1, 0, 0}},  {{1, 0, 0}, {0, 0, 1}},
                                 {{0, -1, 0}, {1, 0, 0}},  {{1, 1, 0}, {0, 0, 1}},  {{-1, 1, 0}, {0, 0, 1}},
-                                {{1, 0, -1}, {0, 1, 0}},  {{0, -1, -1}, {1, 0, 0}}, {{1, 1, 1}, normalize(Vec3d{1, -1, 0})},
-                                {{-1, 1, -1}, normalize(Vec3d{1, 1, 0})}};
+                                {{1, 0, -1}, {0, 1, 0}},  {{0, -1, -1}, {1, 0, 0}},
+                                {{1, 1, 1}, normalize(Vec3d{1, -1, 0})}, {{-1, 1, -1}, normalize(Vec3d{1, 1, 0})}};
     const int reach = std::max({dims.x, dims.y, dims.z}) + 2;
     const int size = 2 * reach + 1;
     const Vec3i centre{dims.x / 2, dims.y / 2, dims.z / 2};
@@ -528,7 +530,8 @@ CaseCount transparentOpaqueAndCappedRegions(const RenderFn& render) {
                     const RenderResult& r = o[int(k)];
                     const bool hit = c[0].samples[i] > 0;
                     EXPECT_EQ(r.iterations[i], hit ? 1u : 0u) << what << " opaque " << casterText(k) << " pixel " << i;
-                    EXPECT_NEAR(r.image.rgba[i * 4 + 3], hit ? first : 0.0, 1e-7) << what << " opaque " << casterText(k);
+                    EXPECT_NEAR(r.image.rgba[i * 4 + 3], hit ? first : 0.0, 1e-7)
+                        << what << " opaque " << casterText(k);
                     if (hit && cam.step >= 1) {
                         EXPECT_EQ(r.image.rgba[i * 4 + 3], 1.0f) << what << " opaque";
                     }
@@ -544,7 +547,8 @@ CaseCount transparentOpaqueAndCappedRegions(const RenderFn& render) {
     // ceil(700 / (e - 1)) + 1 going down, where an edge of 1 leaves one sample per fetch: primitive's 1400.
     for (const Vec3i dims : {Vec3i{3, 3, 700}, Vec3i{1, 1, 700}}) {
         const GridGeometry grid{dims, {1, 1, 1}, {0, 0, 0}};
-        const PreparedVolume clear = syntheticPrepared(grid, 1.0, [](const Vec3i&) { return VoxelClass{0, {1, 1, 1}}; });
+        const PreparedVolume clear =
+            syntheticPrepared(grid, 1.0, [](const Vec3i&) { return VoxelClass{0, {1, 1, 1}}; });
         for (const bool downward : {true, false})
             for (int x = 0; x < dims.x; ++x)
                 for (int y = 0; y < dims.y; ++y) {

@@ -66,7 +66,8 @@ std::string FrameOutput::name(int view) const {
 
 void FrameOutput::add(int view, const std::vector<Image>& images) {
     if (!layout_) return outputs_.front().add(view, images.front());
-    if (*layout_ != StereoLayout::Separate) return outputs_.front().add(view, composePair(images[0], images[1], *layout_));
+    if (*layout_ != StereoLayout::Separate)
+        return outputs_.front().add(view, composePair(images[0], images[1], *layout_));
     outputs_[0].add(view, images[0]);
     outputs_[1].add(view, images[1]);
 }

@@ -22,8 +22,8 @@ void DeviceTimer::stop(const vk::raii::CommandBuffer& cmd) const {
 
 double DeviceTimer::milliseconds() const {
     if (periodNs_ == 0) return 0;
-    auto [status, stamps] = queries_.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t),
-                                                          vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+    auto [status, stamps] = queries_.getResults<uint64_t>(
+        0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t), vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
     (void)status;
     return double((stamps[1] - stamps[0]) & mask_) * periodNs_ * 1e-6;
 }

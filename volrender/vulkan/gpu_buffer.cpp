@@ -123,8 +123,8 @@ bool imageFits(const VulkanContext& ctx, const Vec3i& extent, vk::Format format,
     const vk::raii::Image probe(ctx.device(), volumeImageInfo(extent, format, tiling));
     const vk::MemoryRequirements req = probe.getMemoryRequirements();
     const auto props = gpu.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceMaintenance3Properties>();
-    vk::DeviceSize maxBytes =
-        std::min(props.get<vk::PhysicalDeviceMaintenance3Properties>().maxMemoryAllocationSize, format3d.maxResourceSize);
+    vk::DeviceSize maxBytes = std::min(props.get<vk::PhysicalDeviceMaintenance3Properties>().maxMemoryAllocationSize,
+                                       format3d.maxResourceSize);
     const auto memory = gpu.getMemoryProperties();
     const uint32_t type = ctx.memoryType(req.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal);
     maxBytes = std::min(maxBytes, memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size);

@@ -109,7 +109,8 @@ private:
 // Records commands into a fresh one-time command buffer, submits it and waits for it.
 template <typename Record>
 void submitAndWait(const VulkanContext& ctx, const vk::raii::CommandPool& pool, Record&& record) {
-    vk::raii::CommandBuffers cmds(ctx.device(), vk::CommandBufferAllocateInfo(*pool, vk::CommandBufferLevel::ePrimary, 1));
+    vk::raii::CommandBuffers cmds(ctx.device(),
+                                  vk::CommandBufferAllocateInfo(*pool, vk::CommandBufferLevel::ePrimary, 1));
     vk::raii::CommandBuffer& cmd = cmds[0];
     cmd.begin(vk::CommandBufferBeginInfo(vk::CommandBufferUsageFlagBits::eOneTimeSubmit));
     record(cmd);

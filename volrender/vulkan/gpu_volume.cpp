@@ -245,7 +245,8 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
                     }
                 });
             };
-            w.bricks->push_back(std::make_unique<VolumeImage>(ctx, pool, extent, w.format, bytes, write, limits.staged));
+            w.bricks->push_back(
+                std::make_unique<VolumeImage>(ctx, pool, extent, w.format, bytes, write, limits.staged));
             uploads_.push_back({w.name, bytes, int(i)});
         }
     }
