@@ -519,8 +519,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                 if (iterations & device::kFailed)
                     throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) +
                                              " caster: the ray at pixel (" + std::to_string(px) + ", " +
-                                             std::to_string(py) + ") hit the iteration cap, needed an octant not uploaded or was left in no brick "
-                                             "pass (a bug)");
+                                             std::to_string(py) +
+                                             ") hit the iteration cap, needed an octant not uploaded or was left in "
+                                             "no brick pass (a bug)");
                 std::memcpy(result.image.pixel(px, py), &o.colour, 4 * sizeof(float));
                 if (left && left->pixels)
                     std::memcpy(static_cast<device::OutPixel*>(left->pixels) + index, &o, sizeof o);

@@ -65,9 +65,9 @@ public:
                               bool reuse);
 
     // Makes, ahead of any render, the pipeline that a render of a one-brick volume of scalars of `type`, without a
-    // label map, with `settings` in `projection` (and an EACD in the default code) takes: volrender makes it while the volume is still being prepared
-    // (a CPU device takes longer to make a pipeline than to render a small CT). Safe beside a render on another
-    // thread: a render that needs a pipeline being made waits for it.
+    // label map, with `settings` in `projection` (and an EACD in the default code) takes: volrender makes it while the
+    // volume is still being prepared (a CPU device takes longer to make a pipeline than to render a small CT). Safe
+    // beside a render on another thread: a render that needs a pipeline being made waits for it.
     void preparePipeline(const RenderSettings& settings, Projection projection, ScalarType type);
 
     ~VulkanRenderer();
@@ -169,7 +169,8 @@ auto VulkanRenderer::deviceErrors(Work&& work) -> decltype(work()) {
         return work();
     } catch (const vk::OutOfDeviceMemoryError&) {
         throw std::runtime_error("the Vulkan device " + ctx_.info().name +
-                                 " ran out of memory (try a smaller volume, --caster primitive or an orthographic view)");
+                                 " ran out of memory (try a smaller volume, --caster primitive or an orthographic "
+                                 "view)");
     } catch (const vk::OutOfHostMemoryError&) {
         throw std::runtime_error("the Vulkan driver ran out of host memory");
     } catch (const vk::DeviceLostError&) {
