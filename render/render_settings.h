@@ -40,8 +40,8 @@ struct ViewParams {
     // VTK's camera calls after the fit, in this order: SetViewUp + OrthogonalizeViewUp (empty: +y turned by the
     // elevation), SetFocalPoint (world; empty: the volume centre), Zoom (> 1 magnifies), then Azimuth by orbitDeg
     // about the view-up: the turn of a view of an orbit.
-    std::optional<Vec3d> up;
-    std::optional<Vec3d> centre;
+    std::optional<Vec3d> up{};
+    std::optional<Vec3d> centre{};
     double zoom = 1;
     double orbitDeg = 0;
 };

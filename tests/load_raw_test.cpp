@@ -158,7 +158,7 @@ TEST(LoadRaw, NameGivesDimsAndTypeAndFlagsOverrideIt) {
 
 // Stages compare the options a volume was loaded with to decide whether to load it again.
 TEST(LoadRaw, OptionsCompareByEveryField) {
-    const RawOptions options{Vec3i{4, 4, 2}, ScalarType::UInt16, Vec3d{1, 1, 2}, false};
+    const RawOptions options{Vec3i{4, 4, 2}, ScalarType::UInt16, Vec3d{1, 1, 2}, false, ""};
     EXPECT_TRUE(options == options);
     EXPECT_TRUE(RawOptions{} == RawOptions{});
     RawOptions other = options;

@@ -59,7 +59,9 @@ TEST(RenderStereoCamera, DisparityIsWhereTheEyesSeeAPoint) {
                 const Projected l = project(p.left, point), r = project(p.right, point);
                 EXPECT_NEAR(l.y, r.y, 1e-9);
                 EXPECT_NEAR(r.x - l.x, disparityAt(p, depth), 1e-9) << depth;
-                if (depth == 60) EXPECT_NEAR(r.x - l.x, 0, 1e-9);
+                if (depth == 60) {
+                    EXPECT_NEAR(r.x - l.x, 0, 1e-9);
+                }
                 for (const auto& [camera, seen] : {std::pair{p.left, l}, std::pair{p.right, r}}) {
                     const Ray ray = camera.ray(seen.x, seen.y);
                     const Vec3d toPoint = point - ray.origin;

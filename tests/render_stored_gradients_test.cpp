@@ -44,7 +44,9 @@ TEST(RenderStoredGradients, EachComponentWithinHalfAUnitOfAFinePrecision) {
         for (int a = 0; a < 3; ++a) ASSERT_LE(std::abs(back[a] - g[a]), unit / 2) << i;
         // The least exponent that holds the longest component: its unit is at most 1/127.75 of it, so the
         // direction is off by at most about 2 / 255 radians.
-        if ((code >> 27) > 0) ASSERT_LE(unit, longest / 127.75) << i;
+        if ((code >> 27) > 0) {
+            ASSERT_LE(unit, longest / 127.75) << i;
+        }
         ASSERT_LE(length(back - g), 2.0 / 255 * length(g) + 1e-300) << i;
     }
 }
