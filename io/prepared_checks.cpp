@@ -6,7 +6,7 @@
 
 namespace vr::prepared_detail {
 
-std::string numberText(double v) {
+std::string floatText(double v) {
     std::ostringstream s;
     s.precision(std::numeric_limits<float>::max_digits10);
     s << v;
@@ -17,7 +17,7 @@ std::optional<std::string> tableEntryProblem(const TransferTable& t) {
     for (std::size_t i = 0; i < t.size(); ++i) {
         const auto& c = t.colour[i];
         if (!(std::isfinite(t.sigma[i]) && t.sigma[i] >= 0))
-            return "transfer table entry " + std::to_string(i) + " has sigma " + numberText(t.sigma[i]) +
+            return "transfer table entry " + std::to_string(i) + " has sigma " + floatText(t.sigma[i]) +
                    " (must be finite and >= 0)";
         if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !std::isfinite(c[2]))
             return "transfer table entry " + std::to_string(i) + " has a colour that is not finite";

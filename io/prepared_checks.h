@@ -8,8 +8,8 @@
 
 namespace vr::prepared_detail {
 
-// A number as the messages show it: every digit a float needs.
-std::string numberText(double v);
+// A stored value as the messages show it: every digit a float needs (core/number_text.h rounds a flag to 6).
+std::string floatText(double v);
 
 // What is wrong with a table's entries (a renderer takes exp(-sigma L) and blends the colours), if anything.
 std::optional<std::string> tableEntryProblem(const TransferTable& t);

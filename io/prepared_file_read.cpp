@@ -209,7 +209,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
         // Loaders refuse a volume with a non-finite voxel; a renderer's table lookup relies on it.
         const std::size_t bad = firstWhere(values.size(), [&](std::size_t i) { return !std::isfinite(values[i]); });
         if (bad < values.size())
-            throw r.fail("scalars hold " + numberText(values[bad]) + " at voxel " + std::to_string(bad) +
+            throw r.fail("scalars hold " + floatText(values[bad]) + " at voxel " + std::to_string(bad) +
                          " (must be finite)");
     }
     splitTable(entries, p.classification.table);

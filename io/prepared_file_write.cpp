@@ -121,7 +121,7 @@ void writePrepared(const fs::path& path, const PreparedVolume& p, const Prepared
     const TransferTable& tf = p.classification.table;
     std::vector<char> scalars;
     if (const std::size_t bad = encodeScalars(p.scalars.values, scalarType, scalars); bad < p.scalars.values.size())
-        throw fileError(path.string(), "cannot write: scalar " + numberText(p.scalars.values[bad]) + " at voxel " +
+        throw fileError(path.string(), "cannot write: scalar " + floatText(p.scalars.values[bad]) + " at voxel " +
                                            std::to_string(bad) + " is not a " +
                                            std::string(scalarTypeName(scalarType)) + " value");
     const std::vector<float> entries = tf.interleaved();
