@@ -11,7 +11,6 @@
 #include <numeric>
 
 #include "bench_checks.h"
-#include "core/errors.h"
 #include "core/extent_code.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/staged_prepare.h"
@@ -119,17 +118,14 @@ int main(int argc, char** argv) {
                     "PSNR vs exact, worst view (dB) |\n");
         std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : datasets) {
-            const auto rows = test::rawManifest();
-            const auto row = std::find_if(rows.begin(), rows.end(),
-                                          [&](const test::DatasetEntry& e) { return e.file.rfind(name, 0) == 0; });
-            if (row == rows.end()) throw InputError("no raw dataset starting with '" + name + "' in the manifest");
+            const test::DatasetEntry dataset = test::rawDataset(name);
             RawOptions raw;
-            raw.spacing = row->spacing;
+            raw.spacing = dataset.spacing;
             PrepareOptions options;
-            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / row->tf);
+            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / dataset.tf);
             options.fields = kFieldEACD;
             options.eacdCode = ExtentCode::Exact;
-            StagedPreparation staged(loadVolume(test::datasetsDir() / row->file, raw));
+            StagedPreparation staged(loadVolume(test::datasetsDir() / dataset.file, raw));
             std::vector<Camera> cameras;
             unsigned octants = 0;
             for (int v = 0; v < views; ++v) {
@@ -169,7 +165,7 @@ int main(int argc, char** argv) {
                     run.orbit = clock.stop("orbit");
                     run.deviceMs = median(ms);
                     checkIterationsMatchCpu(checks,
-                                            row->file + " " + std::to_string(settingTo) + ", " +
+                                            dataset.file + " " + std::to_string(settingTo) + ", " +
                                                 std::to_string(settingTa) + " " + std::string(extentCodeName(code)),
                                             renderer, volume, p, cameras[0], s);
                 }
@@ -178,14 +174,14 @@ int main(int argc, char** argv) {
                     const CodeRun &e = runs[int(ExtentCode::Exact)], &l = runs[int(ExtentCode::Log16)];
                     std::printf("| %s | %g, %g | %s | %.0f | %.2f | %.3f | %.3f | %.1f | %.3f | %.3f | %.2f (%.2f) "
                                 "| %.1f |\n",
-                                row->file.c_str(), settingTo, settingTa, std::string(extentCodeName(code)).c_str(),
+                                dataset.file.c_str(), settingTo, settingTa, std::string(extentCodeName(code)).c_str(),
                                 r.deviceBytesPerVoxel, r.iterations, r.iterations / e.iterations,
                                 r.iterations / l.iterations, r.deviceMs, r.deviceMs / e.deviceMs,
                                 r.deviceMs / l.deviceMs, r.orbit.seconds, r.orbit.cpuSeconds, r.worstPsnr);
                     std::fflush(stdout);
                     ++rowsPrinted;
                 }
-                checkSetting(checks, row->file + " at " + std::to_string(settingTo) + ", " + std::to_string(settingTa),
+                checkSetting(checks, dataset.file + " at " + std::to_string(settingTo) + ", " + std::to_string(settingTa),
                              runs, octants, settingTo == 0 && settingTa == 0);
             }
         }

@@ -10,18 +10,16 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
-#include <fstream>
 #include <optional>
 #include <random>
-#include <sstream>
 #include <string>
 
 #include "io/crc32.h"
-#include "core/errors.h"
 #include "preprocess/classify/classify.h"
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/load/load_volume.h"
 #include "preprocess/segment/segment.h"
+#include "support/datasets.h"
 
 namespace {
 
@@ -71,21 +69,10 @@ Regions blockyVolume(Vec3i dims) {
     return r;
 }
 
-// The TF named for `file` in the datasets' MANIFEST.tsv (first column the file, last the TF).
-std::filesystem::path manifestTF(const std::filesystem::path& dir, const std::string& file) {
-    std::ifstream manifest(dir / "MANIFEST.tsv");
-    for (std::string line; std::getline(manifest, line);) {
-        if (line.rfind(file + "\t", 0) != 0) continue;
-        return dir / line.substr(line.rfind('\t') + 1);
-    }
-    throw InputError(file + ": not in " + (dir / "MANIFEST.tsv").string());
-}
-
 Regions datasetRegions(const std::string& file) {
-    const std::filesystem::path dir = VR_DATASETS_DIR;
     ClassifyParams classify;
-    classify.transferFunction = loadTransferFunction(manifestTF(dir, file));
-    return segment(vr::classify(loadVolume(dir / file), classify), SegmentationParams{});
+    classify.transferFunction = loadTransferFunction(test::datasetsDir() / test::dataset(file).tf);
+    return segment(vr::classify(loadVolume(test::datasetsDir() / file), classify), SegmentationParams{});
 }
 
 // Times f() `repeat` times and keeps the fastest (wall and CPU), for a machine shared with others.

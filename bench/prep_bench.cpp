@@ -80,12 +80,6 @@ std::uintmax_t vdbRoundTrip(const std::vector<float>& scalars, vr::Vec3i dims, c
     return bytes;
 }
 
-vr::test::DatasetEntry findDataset(const std::string& file) {
-    for (const auto& e : vr::test::manifest())
-        if (e.file == file) return e;
-    throw vr::InputError(file + ": not in " + (vr::test::datasetsDir() / "MANIFEST.tsv").string());
-}
-
 // Every stage as volprep runs them, the write included.
 void prepareFile(const fs::path& input, const vr::RawOptions& raw, const vr::PrepareOptions& options,
                  const fs::path& out, DatasetResult& result) {
@@ -101,7 +95,7 @@ void prepareFile(const fs::path& input, const vr::RawOptions& raw, const vr::Pre
 }
 
 DatasetResult benchDataset(const std::string& file, const vr::PrepareOptions& base, int runs, const fs::path& scratch) {
-    vr::test::DatasetEntry e = findDataset(file);
+    vr::test::DatasetEntry e = vr::test::dataset(file);
     vr::RawOptions raw;
     raw.spacing = e.spacing;
     vr::PrepareOptions options = base;

@@ -7,51 +7,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <map>
 #include <numeric>
-#include <sstream>
 
 #include "preprocess/pipeline/staged_prepare.h"
+#include "support/datasets.h"
 #include "sweep/metrics/rmse.h"
 #include "sweep/order_statistics.h"
 #include "render/view_octants.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
-namespace {
-namespace fs = std::filesystem;
 using namespace vr;
-
-struct ManifestRow {
-    std::string file, tf;
-    RawOptions raw;
-};
-
-// The row of MANIFEST.tsv whose file name starts with `prefix` (dims, type and spacing parsed from it).
-ManifestRow manifestRow(const fs::path& dir, const std::string& prefix) {
-    std::ifstream in(dir / "MANIFEST.tsv");
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line)) {
-        std::vector<std::string> col;
-        std::stringstream ss(line);
-        for (std::string c; std::getline(ss, c, '\t');) col.push_back(c);
-        if (col.size() < 9 || col[0].rfind(prefix, 0) != 0 || col[0].find(".raw") == std::string::npos) continue;
-        ManifestRow row{col[0], col[8], {}};
-        Vec3i dims;
-        std::istringstream(col[1]) >> dims.x >> dims.y >> dims.z;
-        row.raw.dims = dims;
-        row.raw.type = parseScalarType(col[2].substr(0, col[2].find(' ')));
-        Vec3d spacing{1, 1, 1};
-        std::istringstream sp(col[3]);
-        if (!(sp >> spacing.x >> spacing.y >> spacing.z)) spacing = {1, 1, 1};  // "unknown (approx. 1 1 1)"
-        row.raw.spacing = spacing;
-        return row;
-    }
-    throw std::runtime_error("no raw dataset starting with '" + prefix + "' in " + (dir / "MANIFEST.tsv").string());
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Vulkan caster benchmark: device time and iterations per ray of primitive, PC, ACD and EACD"};
@@ -61,7 +26,6 @@ int main(int argc, char** argv) {
     bool nearest = false, noShading = false;
     int tile = VulkanRenderer::kAutoTile;
     std::vector<std::string> gradientSources{"on-the-fly"};
-    std::string dir = VR_DATASETS_DIR;
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->capture_default_str();
     app.add_option("--size", size, "image width = height")->capture_default_str();
     app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 20)")->capture_default_str();
@@ -75,7 +39,6 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--gradients", gradientSources, "what shading takes its normals from, each in turn: on-the-fly, "
                    "stored")->capture_default_str();
-    app.add_option("--data", dir, "datasets folder")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
     try {
@@ -90,10 +53,12 @@ int main(int argc, char** argv) {
                     "PSNR vs primitive T=0, worst view (dB) |\n");
         std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : datasets) {
-            const ManifestRow row = manifestRow(dir, name);
+            const test::DatasetEntry e = test::rawDataset(name);
+            RawOptions raw;
+            raw.spacing = e.spacing;
             PrepareOptions options;
-            options.classify.transferFunction = loadTransferFunction(fs::path(dir) / row.tf);
-            StagedPreparation staged(loadVolume(fs::path(dir) / row.file, row.raw));
+            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
+            StagedPreparation staged(loadVolume(test::datasetsDir() / e.file, raw));
             std::vector<Image> reference;  // primitive at thresholds 0, per view
             for (auto [settingTo, settingTa] : {std::pair{0.0, 0.0}, std::pair{to, ta}}) {
                 options.segmentation = {settingTo, settingTa, !noShading, !nearest};
@@ -138,7 +103,7 @@ int main(int argc, char** argv) {
                     if (c == Caster::Primitive && source == gradientSources.front())
                         primitiveMs = t, primitiveIterations = iterations;
                     std::printf("| %s | %g, %g | %s | %s | %.1f (%.1f) | %.1f | %.2f | %.1f | %.2f | %.1f |\n",
-                                row.file.c_str(), settingTo, settingTa, std::string(casterName(c)).c_str(),
+                                e.file.c_str(), settingTo, settingTa, std::string(casterName(c)).c_str(),
                                 source.c_str(), uploadMs,
                                 double(volume.uploadedBytes()) / 1e6, t, primitiveMs / t, iterations,
                                 primitiveIterations / iterations, *std::min_element(psnrs.begin(), psnrs.end()));

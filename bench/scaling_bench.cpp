@@ -186,12 +186,6 @@ void printPeakMemory(const std::vector<SizeResult>& results) {
     std::printf("\n");
 }
 
-vr::test::DatasetEntry findDataset(const std::string& file) {
-    for (const auto& e : vr::test::rawManifest())
-        if (e.file == file) return e;
-    throw vr::InputError(file + ": not a raw dataset of " + (vr::test::datasetsDir() / "MANIFEST.tsv").string());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -223,7 +217,7 @@ int main(int argc, char** argv) {
     vr::bench::Checks checks("scaling_bench");
     try {
         const fs::path dir = vr::test::datasetsDir();
-        const vr::test::DatasetEntry entry = findDataset(real);
+        const vr::test::DatasetEntry entry = vr::test::dataset(real);
         vr::RawOptions raw;
         raw.dims = entry.dims;
         raw.type = entry.type;

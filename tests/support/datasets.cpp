@@ -60,6 +60,12 @@ DatasetEntry rawDataset(const std::string& prefix) {
     throw std::runtime_error("no raw dataset named " + prefix + "... in " + (datasetsDir() / "MANIFEST.tsv").string());
 }
 
+DatasetEntry dataset(const std::string& file) {
+    for (const DatasetEntry& e : manifest())
+        if (e.file == file) return e;
+    throw std::runtime_error(file + ": not in " + (datasetsDir() / "MANIFEST.tsv").string());
+}
+
 fs::path scratchDir(const std::string& name) {
     // One folder per process: CTest runs the cases of one executable as parallel processes, and a folder
     // shared between them would be wiped by one while another writes into it.

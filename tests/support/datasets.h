@@ -29,6 +29,9 @@ std::vector<DatasetEntry> rawManifest();  // only the .raw.gz rows
 // there is none.
 DatasetEntry rawDataset(const std::string& prefix);
 
+// The row of the dataset named `file` exactly; throws naming the file when there is none.
+DatasetEntry dataset(const std::string& file);
+
 // A fresh empty folder under the build tree for one test's outputs (unique to this process).
 std::filesystem::path scratchDir(const std::string& name);
 
