@@ -25,6 +25,7 @@
 #include "resampled_volume.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
+#include "support/load_dataset.h"
 #include "sweep/order_statistics.h"
 #include "render/caster_choice.h"
 #include "volrender/vulkan/vulkan_renderer.h"
@@ -375,13 +376,9 @@ IterationGrowth fitGrowth(const std::vector<SizeSample>& samples) {
 IterationGrowth measureGrowth(bench::Checks& checks, VulkanRenderer& renderer, const std::vector<Vec3i>& sizes,
                               const std::vector<ViewParams>& views, int repeats, double step, double rayNs) {
     const test::DatasetEntry e = test::rawDataset("cranium_ct");
-    RawOptions raw;
-    raw.dims = e.dims;
-    raw.type = e.type;
-    raw.spacing = e.spacing;
-    const Volume source = loadVolume(test::datasetsDir() / e.file, raw);
+    const Volume source = test::loadDataset(e);
     PrepareOptions options;
-    options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
+    options.classify.transferFunction = test::datasetTransferFunction(e.tf);
     options.fields = 0;
     std::printf("\nThe primitive caster's time per iteration against the scalars' bytes: %s resampled (noise of 20), "
                 "the same views, ns per iteration = (device ns per pixel - ray %.0f) / iterations per pixel.\n\n"

@@ -14,6 +14,7 @@
 #include "preprocess/pipeline/staged_prepare.h"
 #include "render/view_octants.h"
 #include "support/datasets.h"
+#include "support/load_dataset.h"
 #include "sweep/order_statistics.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -91,13 +92,9 @@ int main(int argc, char** argv) {
         for (const std::string& name : datasets) {
             const test::DatasetEntry e = test::rawDataset(name);
             PrepareOptions options;
-            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
+            options.classify.transferFunction = test::datasetTransferFunction(e.tf);
             options.fields = 0;  // neither caster reads a field
-            RawOptions raw;
-            raw.dims = e.dims;
-            raw.type = e.type;
-            raw.spacing = e.spacing;
-            const PreparedVolume p = prepare(loadVolume(test::datasetsDir() / e.file, raw), options);
+            const PreparedVolume p = prepare(test::loadDataset(e), options);
             std::vector<Camera> cameras;
             for (int i = 0; i < views; ++i) {
                 ViewParams v;

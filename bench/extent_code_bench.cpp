@@ -15,6 +15,7 @@
 #include "preprocess/fields/build_fields.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
+#include "support/load_dataset.h"
 #include "sweep/metrics/rmse.h"
 #include "sweep/order_statistics.h"
 #include "render/cpu_renderer.h"
@@ -119,13 +120,11 @@ int main(int argc, char** argv) {
         std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : datasets) {
             const test::DatasetEntry dataset = test::rawDataset(name);
-            RawOptions raw;
-            raw.spacing = dataset.spacing;
             PrepareOptions options;
-            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / dataset.tf);
+            options.classify.transferFunction = test::datasetTransferFunction(dataset.tf);
             options.fields = kFieldEACD;
             options.eacdCode = ExtentCode::Exact;
-            StagedPreparation staged(loadVolume(test::datasetsDir() / dataset.file, raw));
+            StagedPreparation staged(test::loadDataset(dataset));
             std::vector<Camera> cameras;
             unsigned octants = 0;
             for (int v = 0; v < views; ++v) {

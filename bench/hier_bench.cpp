@@ -16,6 +16,7 @@
 #include "render/view_octants.h"
 #include "resampled_volume.h"
 #include "support/datasets.h"
+#include "support/load_dataset.h"
 #include "sweep/order_statistics.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -28,14 +29,6 @@ struct Source {
     Volume volume;
     std::string tf;
 };
-
-Volume loadEntry(const test::DatasetEntry& e) {
-    RawOptions raw;
-    raw.dims = e.dims;
-    raw.type = e.type;
-    raw.spacing = e.spacing;
-    return loadVolume(test::datasetsDir() / e.file, raw);
-}
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -93,14 +86,14 @@ int main(int argc, char** argv) {
         std::vector<Source> sources;
         for (const std::string& name : datasets) {
             const test::DatasetEntry e = test::rawDataset(name);
-            sources.push_back({e.file, loadEntry(e), e.tf});
+            sources.push_back({e.file, test::loadDataset(e), e.tf});
         }
         if (!clinical.empty()) {
             Vec3i dims;
             if (std::sscanf(clinical.c_str(), "%dx%dx%d", &dims.x, &dims.y, &dims.z) != 3)
                 throw InputError("--clinical: expected XxYxZ, got " + clinical);
             const test::DatasetEntry e = test::rawDataset("cranium_ct");
-            Volume ct = bench::withNoise(bench::resample(loadEntry(e), dims), 20, 1);
+            Volume ct = bench::withNoise(bench::resample(test::loadDataset(e), dims), 20, 1);
             sources.push_back({"clinical_ct_" + clinical, std::move(ct), e.tf});
         }
         VulkanContext ctx(VulkanOptions{device, false});
@@ -120,7 +113,7 @@ int main(int argc, char** argv) {
             unsigned octants = 0;
             for (const Camera& camera : cameras) octants |= viewOctants(camera);
             PrepareOptions options;
-            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / src.tf);
+            options.classify.transferFunction = test::datasetTransferFunction(src.tf);
             options.segmentation = {to, ta, true, true};
             options.octants = octants;
             options.keepRegions = false;

@@ -12,6 +12,7 @@
 #include "preprocess/load/load_volume.h"
 #include "resampled_volume.h"
 #include "support/datasets.h"
+#include "support/load_dataset.h"
 
 namespace fs = std::filesystem;
 
@@ -37,13 +38,8 @@ int main(int argc, char** argv) {
             dims.y < 1 || dims.z < 1 || dims.x > 4096 || dims.y > 4096 || dims.z > 4096)
             throw vr::InputError("--dims: expected XxYxZ with each edge in 1..4096, got " + dimsText);
         const vr::test::DatasetEntry entry = vr::test::rawDataset(from);
-        vr::RawOptions raw;
-        raw.dims = entry.dims;
-        raw.type = entry.type;
-        raw.spacing = entry.spacing;
         const vr::Volume v =
-            vr::bench::withNoise(vr::bench::resample(vr::loadVolume(vr::test::datasetsDir() / entry.file, raw), dims),
-                                 noise, seed);
+            vr::bench::withNoise(vr::bench::resample(vr::test::loadDataset(entry), dims), noise, seed);
         const fs::path path =
             outDir / (name + "_" + dimsText + "_" + std::string(vr::scalarTypeName(v.sourceType)) + ".raw");
         std::vector<unsigned char> bytes(v.values.size() * vr::scalarBytes(v.sourceType));

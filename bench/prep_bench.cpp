@@ -14,6 +14,7 @@
 #include "io/prepared_file.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
+#include "support/load_dataset.h"
 #include "sweep/order_statistics.h"
 
 namespace {
@@ -99,7 +100,7 @@ DatasetResult benchDataset(const std::string& file, const vr::PrepareOptions& ba
     vr::RawOptions raw;
     raw.spacing = e.spacing;
     vr::PrepareOptions options = base;
-    options.classify.transferFunction = vr::loadTransferFunction(vr::test::datasetsDir() / e.tf);
+    options.classify.transferFunction = vr::test::datasetTransferFunction(e.tf);
     fs::path out = scratch / (file + ".vprep");
     DatasetResult result{file, {}, {}, {}, 0, 0, {}};
     for (int run = 0; run < runs; ++run) {

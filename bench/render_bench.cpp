@@ -11,6 +11,7 @@
 
 #include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
+#include "support/load_dataset.h"
 #include "sweep/metrics/rmse.h"
 #include "sweep/order_statistics.h"
 #include "render/view_octants.h"
@@ -54,11 +55,9 @@ int main(int argc, char** argv) {
         std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : datasets) {
             const test::DatasetEntry e = test::rawDataset(name);
-            RawOptions raw;
-            raw.spacing = e.spacing;
             PrepareOptions options;
-            options.classify.transferFunction = loadTransferFunction(test::datasetsDir() / e.tf);
-            StagedPreparation staged(loadVolume(test::datasetsDir() / e.file, raw));
+            options.classify.transferFunction = test::datasetTransferFunction(e.tf);
+            StagedPreparation staged(test::loadDataset(e));
             std::vector<Image> reference;  // primitive at thresholds 0, per view
             for (auto [settingTo, settingTa] : {std::pair{0.0, 0.0}, std::pair{to, ta}}) {
                 options.segmentation = {settingTo, settingTa, !noShading, !nearest};

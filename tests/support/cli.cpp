@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -96,6 +97,9 @@ bool killWhileWriting(const fs::path& executable, const std::vector<std::string>
     const int spawned = posix_spawn(&pid, cargv[0], &actions, nullptr, cargv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (spawned != 0) return false;
+    // The child at the lowest priority: on a machine busy with other tests, this poll must still run while the
+    // child writes, or it sees the file only once renamed.
+    ::setpriority(PRIO_PROCESS, id_t(pid), 19);
 
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
     bool killed = false;

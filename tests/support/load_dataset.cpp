@@ -1,17 +1,11 @@
 #include "support/load_dataset.h"
 
-#include <stdexcept>
-
 namespace vr::test {
 
 RawOptions manifestRawOptions(const std::string& file) {
-    for (const DatasetEntry& e : manifest()) {
-        if (e.file != file) continue;
-        RawOptions raw;
-        raw.spacing = e.spacing;
-        return raw;
-    }
-    throw std::invalid_argument(file + ": not in MANIFEST.tsv");
+    RawOptions raw;
+    raw.spacing = dataset(file).spacing;
+    return raw;
 }
 
 Volume loadDataset(const DatasetEntry& entry) {
