@@ -121,7 +121,7 @@ void compositeSpan(vec3 shaded, float spanAlpha, vec2 spanDepth, float t0, float
         precise vec3 total = colour + added;
         colourLost = (total - colour) - added;
         colour = total;
-        if (STEREO_BANDS) moment += w * (t0 + (t1 - t0) * spanMeanFraction(spanDepth.x));
+        if (STEREO_BANDS) moment += w * (t0 + (t1 - t0) * spanMeanFraction(spanDepth.x, spanAlpha));
         depth = addPair(depth, spanDepth);
         // From the optical depth, not by subtracting w: 1 - 1e-9 is 1 in float, which would keep the weights of
         // 10^7 samples of opacity 1e-9 at transmittance 1 (0.5 % too much colour in all).
@@ -681,9 +681,10 @@ void main() {
         while (STEREO_BANDS && bandEndBeyond(t1, endInverse, band)) {
             float bandEnd = 1.0 / endInverse;
             precise float part = spanDepthBefore(spanDepth.x, t0, t1, bandEnd);
-            float w = transmittance * spanOpacity(part);
+            float partAlpha = spanOpacity(part);
+            float w = transmittance * partAlpha;
             vec4 end = vec4(colour - colourLost + shaded * w, transmittance - w);
-            float endMoment = moment + w * (t0 + max(bandEnd - t0, 0.0) * spanMeanFraction(part));
+            float endMoment = moment + w * (t0 + max(bandEnd - t0, 0.0) * spanMeanFraction(part, partAlpha));
             bandGathered = bandGathered || (spanAlpha > 0.0 && bandEnd > t0);
             bandMask |= storeBandSegment(pixel, band, bandStart, bandStartMoment, end, endMoment, bandGathered, cosine);
             bandStart = end;

@@ -58,12 +58,14 @@ VR_FUNCTION bool bandEndBeyond(VR_REAL t, VR_REAL inverseEnd, int b, int count) 
     return b + 1 < count && t * inverseEnd > VR_REAL(1);
 }
 
-// Where the opacity of a homogeneous span of optical depth `depth` lies on average, as a fraction of its length from
-// its start: 1 / depth - 1 / (e^depth - 1), from 1/2 for a faint span (its series below depth 1/64) down to
-// 1 / depth for a dense one. Exact for a span of constant sigma, so that a leap's moment is the sum of its samples'.
-VR_FUNCTION VR_REAL spanMeanFraction(VR_REAL depth) {
+// Where the opacity of a homogeneous span of optical depth `depth` and opacity `opacity` (1 - e^-depth, which the
+// caller has) lies on average, as a fraction of its length from its start: 1 / depth - 1 / (e^depth - 1), from 1/2
+// for a faint span (its series below depth 1/64) down to 1 / depth for a dense one. 1 / (e^depth - 1) is
+// (1 - opacity) / opacity: no second exponential. Exact for a span of constant sigma, so that a leap's moment is the
+// sum of its samples'.
+VR_FUNCTION VR_REAL spanMeanFraction(VR_REAL depth, VR_REAL opacity) {
     if (depth < VR_REAL(1) / VR_REAL(64)) return VR_REAL(0.5) - depth / VR_REAL(12);
-    return VR_REAL(1) / depth - VR_REAL(1) / vrExpm1(depth);
+    return VR_REAL(1) / depth - (VR_REAL(1) - opacity) / opacity;
 }
 
 // The part of a span [t0, t1) of optical depth `depth` that lies before t: its optical depth (sigma is constant over
