@@ -202,9 +202,10 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     const double iso = settings.isoValue;
     const std::optional<BlockExtrema> blocks =
         settings.caster == Caster::Blocks ? std::optional(blockExtrema(prepared.scalars)) : std::nullopt;
-    const FlatTableEnds flat = blocks && device::keepsExtreme(deviceBlend)
-                                   ? flatTableEnds(prepared.classification.table, settings.opaqueValues)
-                                   : FlatTableEnds{};
+    // MIP and MinIP with blocks start, probe and end a sampled block as the device's casters do (shaders/blend.h).
+    const bool extremeBlocks = blocks && device::keepsExtreme(deviceBlend);
+    const FlatTableEnds flat =
+        extremeBlocks ? flatTableEnds(prepared.classification.table, settings.opaqueValues) : FlatTableEnds{};
     // ACD and EACD may hold only the octants some views need (volrender's one-command path).
     const unsigned heldOctants = settings.caster == Caster::ACD    ? fields.acdOctants()
                                  : settings.caster == Caster::EACD ? fields.eacdOctants()
@@ -235,13 +236,13 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
         // the plain definition, at -inf and +inf: the images are the same.
         double running = blend == Blend::MinIP ? std::numeric_limits<double>::infinity()
                                                : -std::numeric_limits<double>::infinity();
-        if (blocks && device::keepsExtreme(deviceBlend))
+        if (extremeBlocks)
             running = device::initialRunning(deviceBlend, flat.above, flat.below);
         double sum = 0;
         bool inside = false, hit = false;
         long long iterations = 0;
         // MIP and MinIP with blocks: the running value starts at the probe samples (shaders/blend.h).
-        if (blocks && device::keepsExtreme(deviceBlend) && kCount > 0 && kCount <= INT32_MAX)
+        if (extremeBlocks && kCount > 0 && kCount <= INT32_MAX)
             for (int i = 0; i < device::kProbes; ++i, ++iterations) {
                 const double t = latticeT(iv, dt, device::probeSample(i, device::uint(kCount)));
                 running = device::foldRunning(deviceBlend, running, sampler.scalar(g.at(t), sampleVoxel(g, t, clip)));
@@ -291,7 +292,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             }
             running = device::foldRunning(deviceBlend, running, scalar);
             // MIP and MinIP: once the running value passes the sampled block's range, the ray leaps to its end.
-            if (blocks && device::keepsExtreme(deviceBlend) && k + 1 < blockEnd &&
+            if (extremeBlocks && k + 1 < blockEnd &&
                 device::blockSkipped(deviceBlend, finestLo, finestHi, running, iso, inside)) {
                 n = blockEnd - k;
                 continue;

@@ -119,15 +119,19 @@ void checkCrop(const GridGeometry& grid, const CropBox& crop) {
     }
 }
 
+void checkStepAndTermination(double stepVoxels, double ert) {
+    if (!(stepVoxels > 0) || !std::isfinite(stepVoxels))
+        throw InputError("--step " + numberText(stepVoxels) + ": the step must be a positive finite number of voxels");
+    if (!(ert > 0 && ert <= 1))
+        throw InputError("--ert " + numberText(ert) + ": must be in (0, 1], the opacity at which a ray ends");
+}
+
 void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& segmentation, const RenderSettings& s) {
     checkClipPlanes(s.clipPlanes);
     if (s.crop) checkCrop(grid, *s.crop);
-    if (!(s.stepVoxels > 0) || !std::isfinite(s.stepVoxels))
-        throw InputError("--step " + numberText(s.stepVoxels) + ": the step must be a positive number of voxels");
+    checkStepAndTermination(s.stepVoxels, s.ert);
     requireLatticeFits(grid, s.stepVoxels);  // first: an absurd spacing is named as such, not as a tiny step
     requireSamplesWithinCap(grid, s);
-    if (!(s.ert > 0 && s.ert <= 1))
-        throw InputError("--ert " + numberText(s.ert) + ": early ray termination must be in (0, 1]");
     if (s.lightDirection && !(length(*s.lightDirection) > 0 && std::isfinite(length(*s.lightDirection))))
         throw InputError("--light: the light direction must be a finite non-zero vector");
     checkBlend(s);

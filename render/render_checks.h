@@ -14,6 +14,10 @@ void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& set
 // of failing the render with the cap's error, which is meant for runaway casters.
 void requireSamplesWithinCap(const GridGeometry& grid, const RenderSettings& settings);
 
+// Throws InputError naming --step (not a positive finite number of voxels) or --ert (outside (0, 1]). Needs no
+// volume: volrender checks them before reading one.
+void checkStepAndTermination(double stepVoxels, double ert);
+
 // Throws InputError naming --clip: more than device::kMaxClipPlanes planes, a zero or non-finite normal, a
 // non-finite offset. Needs no volume.
 void checkClipPlanes(const std::vector<ClipPlane>& planes);

@@ -2,17 +2,15 @@
 
 namespace vr::test {
 
-RawOptions manifestRawOptions(const std::string& file) {
+static RawOptions rawOptionsOf(const DatasetEntry& entry) {
     RawOptions raw;
-    raw.spacing = dataset(file).spacing;
+    raw.spacing = entry.spacing;
     return raw;
 }
 
-Volume loadDataset(const DatasetEntry& entry) {
-    RawOptions raw;
-    raw.spacing = entry.spacing;
-    return loadVolume(datasetsDir() / entry.file, raw);
-}
+RawOptions manifestRawOptions(const std::string& file) { return rawOptionsOf(dataset(file)); }
+
+Volume loadDataset(const DatasetEntry& entry) { return loadVolume(datasetsDir() / entry.file, rawOptionsOf(entry)); }
 
 Volume loadDataset(const std::string& prefix) { return loadDataset(rawDataset(prefix)); }
 

@@ -19,7 +19,6 @@
 #include "tools/progress.h"
 #include "tools/tool_main.h"
 #include "core/errors.h"
-#include "core/number_text.h"
 #include "io/prepared_file.h"
 #include "preprocess/cmd/volume_flags.h"
 #include "preprocess/pipeline/hier_field.h"
@@ -194,9 +193,7 @@ bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
         throw vr::InputError("--size '" + f.size + "': expected WIDTHxHEIGHT, e.g. 512x512");
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
         throw vr::InputError("--size " + f.size + ": width and height must be in 1..16384");
-    if (!(f.step > 0) || !std::isfinite(f.step))
-        throw vr::InputError("--step " + vr::numberText(f.step) + ": the step must be a positive finite number");
-    if (!(f.ert > 0 && f.ert <= 1)) throw vr::InputError("--ert " + vr::numberText(f.ert) + ": must be in (0, 1]");
+    vr::checkStepAndTermination(f.step, f.ert);
     if (f.views < 1 || f.views > 3600) throw vr::InputError("--views must be in 1..3600");
     view = vr::viewParams(f.camera, int(w), int(h));
     vr::checkStereoFlags(f.stereo, view.projection, f.cpu);
