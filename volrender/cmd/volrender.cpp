@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 
+#include "tools/heap_reuse.h"
 #include "tools/peak_resident.h"
 #include "tools/progress.h"
 #include "tools/tool_main.h"
@@ -622,6 +623,7 @@ int run(const Flags& f) {
             std::printf("upload: %.2f ms, %.1f MB in %zu brick(s)\n", uploadStats["milliseconds"].get<double>(),
                         double(uploaded->uploadedBytes()) / 1e6, uploaded->bricks().bricks().size());
     }
+    vr::keepViewBlocksInTheHeap();
     const bool reuse = vr::stereoReuse(f.stereo, f.cpu);
     const nlohmann::json viewStats = renderViews(f, f.views, view.width, view.height, settings.caster, [&](int i) {
         const vr::Camera& camera = cameras[i];
