@@ -5,14 +5,12 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
-#include <future>
 #include <memory>
 #include <optional>
 
@@ -28,6 +26,7 @@
 #include "volrender/cmd/camera_flags.h"
 #include "volrender/cmd/clip_flags.h"
 #include "volrender/cmd/heatmap.h"
+#include "volrender/cmd/opening_device.h"
 #include "render/caster_choice.h"
 #include "volrender/cmd/process_timeline.h"
 #include "volrender/cmd/render_stats.h"
@@ -289,68 +288,9 @@ vr::CasterChoice autoCaster(const Flags& f, const vr::PreparedHeader& header, vr
     return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
 }
 
-// The Vulkan device and its renderer, opened on a thread of their own while the volume loads: a CPU device's start
-// (its driver's libraries, the instance, the device) takes as long as loading and classifying a small CT.
-class OpeningDevice {
-public:
-    explicit OpeningDevice(int deviceIndex)
-        : start_(std::chrono::steady_clock::now()), opening_(std::async(std::launch::async, [deviceIndex] {
-              auto d = std::make_shared<Opened>();
-              d->context = std::make_unique<vr::VulkanContext>(vr::VulkanOptions{deviceIndex, false});
-              vr::markMilestone("deviceOpened");
-              d->renderer = std::make_unique<vr::VulkanRenderer>(*d->context);
-              vr::markMilestone("rendererMade");
-              return d;
-          })) {}
-    // Wait for it to open; rethrow why it could not.
-    vr::VulkanContext& context() { return *opening_.get()->context; }
-    vr::VulkanRenderer& renderer() { return *opening_.get()->renderer; }
-
-    // Makes the pipelines of renders with `settings` by each of `casters` in turn (VulkanRenderer::preparePipeline),
-    // on a thread of their own once the device is open, while the volume is still being prepared: a CPU device
-    // takes about as long to make one as to render a small CT. Once chose() names the caster, the others are
-    // skipped. A pipeline that cannot be made is left to the render, which says why.
-    void preparePipelines(std::vector<vr::Caster> casters, vr::RenderSettings settings, vr::Projection projection,
-                          vr::ScalarType type) {
-        preparing_ = std::async(std::launch::async, [this, opening = opening_, casters, settings, projection,
-                                                      type]() mutable {
-            try {
-                // The device first: a choice made while it opens skips every other caster's pipeline.
-                vr::VulkanRenderer& renderer = *opening.get()->renderer;
-                for (vr::Caster caster : casters) {
-                    const int chosen = chosen_;
-                    if (chosen >= 0 && chosen != int(caster)) continue;
-                    settings.caster = caster;
-                    renderer.preparePipeline(settings, projection, type);
-                    vr::markMilestone("pipelineMade");
-                }
-            } catch (const std::exception&) {
-            }
-        });
-    }
-    void chose(vr::Caster caster) { chosen_ = int(caster); }
-
-    // What the first view waits for from now (vr::deviceWaitMs): the rest of the device's start, then a pipeline.
-    double waitMs() const {
-        const std::chrono::duration<double, std::milli> since = std::chrono::steady_clock::now() - start_;
-        return vr::deviceWaitMs(since.count(),
-                                opening_.wait_for(std::chrono::seconds(0)) == std::future_status::ready);
-    }
-
-private:
-    struct Opened {
-        std::unique_ptr<vr::VulkanContext> context;
-        std::unique_ptr<vr::VulkanRenderer> renderer;
-    };
-    std::chrono::steady_clock::time_point start_;
-    std::shared_future<std::shared_ptr<Opened>> opening_;
-    std::atomic<int> chosen_{-1};  // the caster, once known
-    std::future<void> preparing_;  // joined before the device closes
-};
-
 // The name of the device that --caster auto chooses for, where the calibration it reads must have been measured
 // on it; else none, and no wait for the device to open: the choice's fields then build while it does.
-std::optional<std::string> deviceToCalibrate(const Flags& f, OpeningDevice& device) {
+std::optional<std::string> deviceToCalibrate(const Flags& f, vr::OpeningDevice& device) {
     if (!vr::calibrationReadsFile(f.calibration)) return std::nullopt;
     return device.context().info().name;
 }
@@ -361,7 +301,7 @@ std::optional<std::string> deviceToCalibrate(const Flags& f, OpeningDevice& devi
 // the device's start costs only what outlasts it).
 vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& view, const vr::RenderSettings& s,
                                         vr::StagedPreparation& staged, vr::PrepareOptions options,
-                                        const std::vector<vr::Camera>& cameras, OpeningDevice& device) {
+                                        const std::vector<vr::Camera>& cameras, vr::OpeningDevice& device) {
     const vr::CalibrationInUse calibration = vr::calibrationInUse(f.calibration, deviceToCalibrate(f, device));
     vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
     for (const vr::Camera& camera : cameras) d.addView(camera);
@@ -407,7 +347,7 @@ vr::CasterChoice autoBlendCaster(const vr::PreparedVolume& classified, const vr:
 // caster for the device between classifying and segmenting (a primitive, hier or blocks render segments nothing) and
 // says why in `choice`.
 vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr::RenderSettings& s,
-                                 OpeningDevice* device, bool chooseHere, std::string& choice,
+                                 vr::OpeningDevice* device, bool chooseHere, std::string& choice,
                                  std::vector<vr::StageTime>& stages) {
     vr::PrepareOptions options = vr::prepareOptionsFrom(f.volume, !s.trilinear, !s.shading);
     options.fields = fieldsFor(s.caster);
@@ -562,7 +502,7 @@ int run(const Flags& f) {
         settings.caster = vr::Caster::EACD;
         choice = "the CPU reference has no calibration to weigh the casters: EACD, which leaps furthest";
     }
-    std::optional<OpeningDevice> device;
+    std::optional<vr::OpeningDevice> device;
     if (!f.cpu) device.emplace(f.device);
     std::vector<vr::StageTime> stages;  // of preparing the volume here
     std::optional<vr::PreparedVolume> preparedHere;
