@@ -1,7 +1,6 @@
 // volrender: renders a prepared volume (volprep's output), or a volume it prepares in the same process, with one of
 // the casters, on a Vulkan device or with the CPU reference; writes the image, optionally an iteration heat
 // map and statistics.
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -32,6 +31,7 @@
 #include "volrender/cmd/render_stats.h"
 #include "volrender/cmd/stereo_flags.h"
 #include "volrender/cmd/stereo_output.h"
+#include "volrender/cmd/volrender_flags.h"
 #include "render/cpu_renderer.h"
 #include "render/render_checks.h"
 #include "render/view_octants.h"
@@ -52,179 +52,7 @@ constexpr vr::ToolText kText{
     "whose right eye reuses the left eye's pixels. Runs on a Vulkan device (or --cpu).",
     "Exit status: 0 done, 1 bad input or device failure, 2 bad command line."};
 
-namespace fs = std::filesystem;
-
-struct Flags {
-    std::string input, output, caster = "auto", size = "512x512";
-    vr::VolumeFlags volume;  // for a volume prepared here
-    vr::CameraFlags camera;
-    vr::ClipFlags clip;
-    vr::StereoFlags stereo;
-    double step = 0.5, ert = 0.99;
-    std::vector<double> light, background{0, 0, 0};
-    bool noShading = false, trilinear = true, nearest = false, listDevices = false, cpu = false, quiet = false;
-    bool jitter = false;
-    std::string stats, heatmap, calibration, blend = "composite", gradients = "on-the-fly";
-    std::optional<double> iso;
-    int views = 1, device = -1;
-    std::optional<int> fps;
-};
-
-void addFlags(CLI::App& app, Flags& f) {
-    app.add_option("input", f.input,
-                   "prepared volume written by volprep, or a volume to prepare here (raw, NRRD, MetaImage, NIfTI, "
-                   "VTI/VTK, VDB or a DICOM folder, as volprep reads them; needs --tf or --window/--level)");
-    vr::addVolumeFlags(app, f.volume);
-    app.add_option("-o,--output", f.output, "image to write: .png (8-bit sRGB) or .exr (float RGBA); or a movie "
-                                            "of the views: .gif (256 colours a frame) or .mp4 (H.264)");
-    app.add_option("--caster", f.caster, "primitive, pc, acd, eacd, hier, blocks, or auto (composite: chosen from the "
-                                         "file's ray probe and the views by a cost model, see --calibration; a "
-                                         "volume prepared here: primitive, hier or EACD, whichever its views and "
-                                         "the field's build cost least; the other blends: primitive or blocks, "
-                                         "whichever the views probed cost least)")
-        ->capture_default_str();
-    app.add_option("--blend", f.blend, "what a ray shows: composite (front-to-back compositing of the classified "
-                                       "samples), mip or minip (the largest or smallest scalar), average (the mean "
-                                       "scalar), each in its transfer-function colour at its opacity (opaque with "
-                                       "--window/--level: a grey window), or iso (the first crossing of --iso, shaded "
-                                       "in its colour)")->capture_default_str();
-    app.add_option("--iso", f.iso, "the iso-surface's scalar value (--blend iso)");
-    app.add_option("--calibration", f.calibration,
-                   "the auto caster's cost constants, as auto_caster_bench --write-calibration measures them on a "
-                   "device (default: $XDG_CONFIG_HOME/volrender/calibration.json, else "
-                   "~/.config/volrender/calibration.json, when measured on the device rendering; else built-in "
-                   "constants measured on lavapipe with 2 cores)");
-    app.add_option("--size", f.size, "image size WIDTHxHEIGHT (1..16384 each)")->capture_default_str();
-    vr::addCameraFlags(app, f.camera);
-    vr::addClipFlags(app, f.clip);
-    vr::addStereoFlags(app, f.stereo);
-    app.add_option("--step", f.step, "sampling step in voxels of the smallest spacing")->capture_default_str();
-    app.add_option("--ert", f.ert, "early ray termination opacity, (0, 1]")->capture_default_str();
-    app.add_option("--light", f.light, "direction toward a directional light x,y,z (default: headlight)")
-        ->delimiter(',')->expected(3);
-    app.add_flag("--no-shading", f.noShading, "emission-absorption only (no gradients are taken)");
-    app.add_option("--gradients", f.gradients, "what shading takes its normals from: on-the-fly (central differences "
-                   "at each shaded sample, nothing stored) or stored (each voxel's gradient in 4 more bytes per voxel "
-                   "on the device: faster per frame on CPU devices, not on GPUs)")->capture_default_str();
-    auto* trilinear = app.add_flag("--trilinear", f.trilinear,
-                                   "trilinear sampling, the scalar interpolated then classified; the default");
-    app.add_flag("--nearest", f.nearest, "nearest-voxel sampling instead of trilinear")->excludes(trilinear);
-    app.add_flag("--jitter", f.jitter, "start each ray's samples a per-pixel fraction of a step late: fine noise "
-                                       "instead of the wood-grain rings of a lattice shared by every ray");
-    app.add_option("--background", f.background, "background colour r,g,b")->delimiter(',')->expected(3);
-    app.add_option("--stats", f.stats, "write timings, iterations per ray and uploaded bytes as JSON");
-    app.add_option("--heatmap", f.heatmap, "write the iterations per pixel as a colour-mapped PNG (or a movie, as -o)");
-    app.add_option("--views", f.views, "render an orbit of N views 360/N degrees apart about the view-up into "
-                                       "NAME_000.EXT ..., or into the frames of a movie -o NAME.gif / NAME.mp4")
-        ->capture_default_str();
-    app.add_option("--fps", f.fps, "frames per second of a movie, 1..60 (default 25)");
-    app.add_flag("--list-devices", f.listDevices, "list the Vulkan devices and exit");
-    app.add_option("--device", f.device, "Vulkan device index (see --list-devices; default: first discrete GPU)");
-    app.add_flag("--cpu", f.cpu, "render with the CPU reference instead of Vulkan");
-    app.add_flag("-q,--quiet", f.quiet, "no progress bars and no report of the stages, the choice and the views: "
-                                        "errors only");
-}
-
-void checkWritable(const std::string& path, const char* flag) {
-    const fs::path out(path);
-    const fs::path folder = out.parent_path().empty() ? fs::path(".") : out.parent_path();
-    if (!fs::is_directory(folder))
-        throw vr::fileError(path, std::string("cannot write ") + flag + ": folder " + folder.string() +
-                                      " does not exist");
-    if (::access(folder.c_str(), W_OK) != 0)
-        throw vr::fileError(path, std::string("cannot write ") + flag + ": folder " + folder.string() +
-                                      " is not writable");
-    if (fs::is_directory(out)) throw vr::fileError(path, std::string("cannot write ") + flag + ": it is a folder");
-}
-
-// A stereo pair's layout; none for a single view.
-std::optional<vr::StereoLayout> layoutOf(const Flags& f) {
-    if (!f.stereo.separation) return std::nullopt;
-    return vr::stereoLayout(f.stereo);
-}
-
-// The outputs' formats, and --fps only where a movie is written.
-void checkMovieFlags(const Flags& f, const vr::ViewParams& view) {
-    const auto [width, height] = vr::frameSize(view.width, view.height, layoutOf(f));
-    vr::checkViewOutput(f.output, "-o", width, height);
-    if (!f.heatmap.empty()) vr::checkViewOutput(f.heatmap, "--heatmap", width, height);
-    if (!f.fps) return;
-    if (!vr::movieFormat(f.output) && !vr::movieFormat(f.heatmap))
-        throw vr::InputError("--fps " + std::to_string(*f.fps) + ": a frame rate is for a movie (-o or --heatmap "
-                             "NAME.gif or NAME.mp4), and " + f.output + " is an image");
-    if (*f.fps < 1 || *f.fps > 60) throw vr::InputError("--fps " + std::to_string(*f.fps) + ": must be in 1..60");
-}
-
-// --blend and --iso into the settings; auto leaps by blocks for the blends other than composite. Throws InputError
-// for an unknown blend, an iso-value without the iso blend or the reverse, and a caster the blend cannot leap with.
-void applyBlend(const Flags& f, vr::RenderSettings& s) {
-    s.blend = vr::parseBlend(f.blend);
-    if (f.iso && s.blend != vr::Blend::Iso)
-        throw vr::InputError("--iso is the iso-surface's value: it needs --blend iso (not --blend " + f.blend + ")");
-    if (s.blend == vr::Blend::Iso && !f.iso) throw vr::InputError("--blend iso needs the iso-value: --iso VALUE");
-    if (f.iso) s.isoValue = *f.iso;
-    if (s.blend != vr::Blend::Composite && f.caster == "auto") s.caster = vr::Caster::Blocks;
-    vr::checkBlend(s);
-}
-
-// Checks that need no data, so that a bad run fails before the prepared file is read. Returns whether the input is
-// a prepared file (else a volume to prepare here).
-bool checkFlags(const Flags& f, vr::ViewParams& view, vr::RenderSettings& s) {
-    if (f.input.empty()) throw vr::InputError("no volume or prepared volume given (see --help)");
-    if (f.output.empty()) throw vr::InputError("no output image given: -o IMAGE");
-    if (!fs::exists(f.input)) throw vr::fileError(f.input, "no such file");
-    const bool raw =
-        !f.volume.dims.empty() || !f.volume.type.empty() || !f.volume.spacing.empty() || f.volume.bigEndian;
-    const bool prepared = vr::isPreparedFile(f.input);
-    if (prepared) {
-        if (!f.volume.transfer.empty() || raw)
-            throw vr::fileError(f.input, "a prepared file holds its transfer function and grid: --tf, --window, "
-                                         "--level and the raw flags are for a volume to prepare");
-        if (!f.volume.labels.empty() || !f.volume.labelColours.empty())
-            throw vr::fileError(f.input, "a prepared file holds its label map, if any: --labels and --label-colors "
-                                         "are for a volume to prepare (volprep --labels puts them in the file)");
-    } else {
-        if (f.volume.transfer.empty())
-            throw vr::fileError(f.input, "not a prepared file: a volume to prepare here needs --tf PRESET or "
-                                         "--tf FILE.json, or --window and --level");
-        vr::checkThresholds(f.volume);
-    }
-    long long w = 0, h = 0;  // wider than int: 4294967304x8 must not wrap around to 8x8
-    char extra = 0;
-    if (std::sscanf(f.size.c_str(), "%lldx%lld%c", &w, &h, &extra) != 2)
-        throw vr::InputError("--size '" + f.size + "': expected WIDTHxHEIGHT, e.g. 512x512");
-    if (w < 1 || h < 1 || w > 16384 || h > 16384)
-        throw vr::InputError("--size " + f.size + ": width and height must be in 1..16384");
-    vr::checkStepAndTermination(f.step, f.ert);
-    if (f.views < 1 || f.views > 3600) throw vr::InputError("--views must be in 1..3600");
-    view = vr::viewParams(f.camera, int(w), int(h));
-    vr::checkStereoFlags(f.stereo, view.projection, f.cpu);
-    checkMovieFlags(f, view);
-    checkWritable(f.output, "the image");
-    if (!f.heatmap.empty()) checkWritable(f.heatmap, "--heatmap");
-    if (!f.stats.empty()) checkWritable(f.stats, "--stats");
-
-    if (f.caster != "auto") s.caster = vr::parseCaster(f.caster);
-    s.stepVoxels = f.step;
-    s.ert = f.ert;
-    s.shading = !f.noShading;
-    s.gradients = vr::parseGradients(f.gradients);
-    if (f.noShading && s.gradients == vr::Gradients::Stored)
-        throw vr::InputError("--gradients stored: an unshaded render (--no-shading) takes no gradients");
-    s.trilinear = !f.nearest;
-    s.jitter = f.jitter;
-    s.opaqueValues = f.volume.transfer.window.has_value();  // a grey window for MIP, MinIP and average
-    vr::applyClipFlags(f.clip, s);
-    s.background = vr::finiteVector(f.background, "--background");
-    if (!f.light.empty()) {
-        s.lightDirection = vr::finiteVector(f.light, "--light");
-        if (vr::length(*s.lightDirection) == 0) throw vr::InputError("--light: the direction must not be zero");
-    }
-    applyBlend(f, s);
-    vr::checkLabelledBlend(!f.volume.labels.empty(), s);
-    if (!prepared) vr::checkLabelFlags(f.volume);  // before the volume is read
-    return prepared;
-}
+using Flags = vr::VolrenderFlags;
 
 // Seconds per stage of a volume prepared here (empty for a prepared file).
 nlohmann::json prepareSeconds(const std::vector<vr::StageTime>& stages) {
@@ -389,8 +217,6 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     return std::move(staged).takeResult();
 }
 
-int movieFps(const Flags& f) { return f.fps.value_or(25); }
-
 // One view's images: one, or a stereo pair's left and right eye.
 struct RenderedView {
     std::vector<vr::RenderResult> results;
@@ -425,10 +251,10 @@ std::string stereoNote(const RenderedView& view) {
 // progress bar over the frames, then one line). Returns each view's statistics.
 nlohmann::json renderViews(const Flags& f, int count, int width, int height, vr::Caster caster,
                            const std::function<RenderedView(int)>& render) {
-    const vr::MovieSpec spec{width, height, f.views, movieFps(f)};
-    vr::FrameOutput images(f.output, spec, layoutOf(f));
+    const vr::MovieSpec spec{width, height, f.views, vr::movieFps(f)};
+    vr::FrameOutput images(f.output, spec, vr::layoutOf(f));
     std::optional<vr::FrameOutput> heatmaps;
-    if (!f.heatmap.empty()) heatmaps.emplace(f.heatmap, spec, layoutOf(f));
+    if (!f.heatmap.empty()) heatmaps.emplace(f.heatmap, spec, vr::layoutOf(f));
     std::optional<vr::ProgressBar> frames;
     if (images.isMovie()) frames.emplace("frames", f.views);
     nlohmann::json viewStats = nlohmann::json::array();
@@ -491,7 +317,7 @@ int run(const Flags& f) {
     }
     vr::ViewParams view;
     vr::RenderSettings settings;
-    const bool prepareHere = !checkFlags(f, view, settings);
+    const bool prepareHere = !vr::checkVolrenderFlags(f, view, settings);
     if (f.quiet) vr::ProgressBar::silenceAll();
     std::string choice;  // why --caster auto chose its caster
     const bool chooseCaster = f.caster == "auto";
@@ -593,7 +419,7 @@ int run(const Flags& f) {
             {"size", f.size}, {"step", f.step}, {"ert", f.ert}, {"shading", settings.shading},
             {"gradients", vr::gradientsName(settings.gradients)}, {"trilinear", settings.trilinear},
             {"jitter", settings.jitter}, {"light", f.light}, {"background", f.background}, {"views", f.views},
-            {"fps", movieFps(f)}, {"blend", f.blend}, {"iso", f.iso ? nlohmann::json(*f.iso) : nlohmann::json()}};
+            {"fps", vr::movieFps(f)}, {"blend", f.blend}, {"iso", f.iso ? nlohmann::json(*f.iso) : nlohmann::json()}};
         settingsStats.update(vr::cameraStatistics(f.camera));
         settingsStats.update(vr::clipStatistics(f.clip));
         settingsStats.update(vr::stereoStatistics(f.stereo, f.cpu));
@@ -615,7 +441,7 @@ int run(const Flags& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return vr::runTool<Flags>(kText, argc, argv, addFlags, [](const Flags& flags) {
+    return vr::runTool<Flags>(kText, argc, argv, vr::addVolrenderFlags, [](const Flags& flags) {
         try {
             return run(flags);
         } catch (const vk::SystemError& e) {  // e.g. no driver: say it is Vulkan's, and what still works
