@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bench/bench_checks.h"
+#include "bench/counted_render.h"
 #include "preprocess/classify/transfer_function.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "render/view_octants.h"
@@ -42,8 +43,8 @@ Orbit renderOrbit(VulkanRenderer& renderer, const GpuVolume& volume, const std::
     std::vector<double> ms;
     double iterations = 0, rays = 0;
     for (const Camera& c : cameras) {
-        RenderResult r = renderer.render(volume, c, s);
-        ms.push_back(r.deviceMilliseconds);
+        auto [r, deviceMs] = bench::timedThenCounted(renderer, volume, c, s);
+        ms.push_back(deviceMs);
         for (uint32_t n : r.iterations) iterations += n;
         rays += double(r.iterations.size());
         o.images.push_back(std::move(r.image));

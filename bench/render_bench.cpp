@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "bench/counted_render.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "support/datasets.h"
 #include "support/load_dataset.h"
@@ -90,9 +91,10 @@ int main(int argc, char** argv) {
                     const double uploadMs =
                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                     for (int v = -1; v < views; ++v) {  // v = -1: the warm-up frame
-                        const RenderResult r = renderer.render(volume, cameras[std::max(v, 0)], s);
+                        const Camera& camera = cameras[std::max(v, 0)];
+                        const auto [r, deviceMs] = bench::timedThenCounted(renderer, volume, camera, s);
                         if (v < 0) continue;
-                        ms.push_back(r.deviceMilliseconds);
+                        ms.push_back(deviceMs);
                         iterations += std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0) /
                                       double(r.iterations.size()) / views;
                         if (reference.size() < std::size_t(views)) reference.push_back(r.image);

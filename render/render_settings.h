@@ -78,6 +78,10 @@ struct RenderSettings {
     // MIP, MinIP and average show their value's TF colour opaque, not at the TF's opacity: with the grey ramp of
     // --window/--level, a grey window (docs/ALGORITHMS.md section 11).
     bool opaqueValues = false;
+    // Count each ray's iterations and samples (RenderResult::iterations, samples). Without them the Vulkan casters
+    // copy back each pixel's colour alone, half the bytes: on a discrete GPU that copy is a fixed cost of every
+    // frame. The CPU reference counts regardless.
+    bool rayCounts = true;
 
     // Whether the render reads each voxel's stored gradient: it shades, from stored gradients.
     bool readsStoredGradients() const { return shading && gradients == Gradients::Stored; }

@@ -71,7 +71,8 @@ layout(set = 0, binding = kBindingBlockExtrema, rg32f) uniform readonly image3D 
 // The transfer table: entry i classifies the scalar tableLo + i step (rgb colour, a: extinction sigma). A texel
 // buffer (volrender/vulkan/gpu_buffer.h TexelTable), as the label table.
 layout(set = 0, binding = kBindingTransferTable, rgba32f) uniform readonly imageBuffer transferTable;
-layout(set = 0, binding = kBindingOutPixels, std430) writeonly buffer OutPixels { OutPixel outPixel[]; };
+layout(set = 0, binding = kBindingOutColours, std430) writeonly buffer OutColours { uvec4 outColour[]; };
+layout(set = 0, binding = kBindingOutCounts, std430) writeonly buffer OutCounts { uvec4 outCounts[]; };
 // The label map's labels packed into words, and its table: entry l for label l (rgb colour, a: extinction sigma).
 layout(set = 0, binding = kBindingLabelWords, r32ui) uniform readonly uimage3D labelWords;
 layout(set = 0, binding = kBindingLabelTable, rgba32f) uniform readonly imageBuffer labelTable;
@@ -744,6 +745,9 @@ void main() {
         pixelColour = hit ? vec4(isoSurface(g, iv, k, toEye, toLight, tHit), 1.0) : vec4(params.background.rgb, 0.0);
         interval = vec2(tHit);
     }
-    outPixel[outIndex].colour = floatBitsToUint(pixelColour);
-    outPixel[outIndex].counts = uvec4(k, iterations | (flags & (kFailed | kCutShort)), floatBitsToUint(interval));
+    uint failure = flags & (kFailed | kCutShort);
+    uvec4 colourBits = floatBitsToUint(pixelColour);
+    if (failure != 0u) colourBits.a = failureAlphaBits(failure);
+    outColour[outIndex] = colourBits;
+    if (params.rayCounts != 0) outCounts[outIndex] = uvec4(k, iterations | failure, floatBitsToUint(interval));
 }

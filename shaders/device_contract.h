@@ -17,7 +17,7 @@ namespace vr::device {
 
 // Descriptor set 0.
 VR_CONSTANT int kBindingParams = 0;         // storage buffer: CasterParams (caster_params.glsl says why)
-VR_CONSTANT int kBindingOutPixels = 1;      // storage buffer: OutPixel per pixel of the tile
+VR_CONSTANT int kBindingOutColours = 1;     // storage buffer: OutPixel::colour per pixel of the tile
 VR_CONSTANT int kBindingRayStates = 2;      // storage buffer: RayState per pixel of the tile
 VR_CONSTANT int kBindingExtentTable = 3;    // uniform: uvec4 per entry of extentDecodeTable() (core/extent_code.h)
 VR_CONSTANT int kExtentTableEntries = 256;
@@ -43,6 +43,8 @@ VR_CONSTANT int kBindingGradients = 14;     // R32_UINT: each voxel's stored gra
 VR_CONSTANT int kBindingStereoBands = 15;   // storage buffer: a stereo left eye's segment of each band of each
                                             // pixel (uvec4), written by the bands variant (stereo_reprojection.h
                                             // bandTexel, packBandSegment)
+VR_CONSTANT int kBindingOutCounts = 16;     // storage buffer: OutPixel::counts per pixel of the tile, written
+                                            // where CasterParams::rayCounts is 1
 
 // Specialization constants: each variant compiles to a pipeline without the others' branches.
 VR_CONSTANT int kSpecIdTrilinear = 1;    // bool
@@ -84,6 +86,14 @@ VR_CONSTANT int kWorkgroupSize = 8;
 // Set in a pixel's iteration count: the ray hit the iteration cap, needed an octant that was not uploaded or was
 // in no pass over the bricks (a bug); the driver ended the shader's loops early.
 VR_CONSTANT uint kFailed = 0x80000000u, kCutShort = 0x40000000u;
+// A ray that failed (kFailed or kCutShort) says so in its colour too, where a render without ray counts looks:
+// its alpha's bits are a quiet NaN whose low bits hold those flags, shifted down by 28. A colour is never NaN
+// otherwise (the loaders refuse NaN scalars).
+VR_CONSTANT uint kFailureNaN = 0x7fc00000u;
+VR_FUNCTION uint failureAlphaBits(uint flags) { return kFailureNaN | ((flags & (kFailed | kCutShort)) >> 28); }
+VR_FUNCTION uint failureFlagsOf(uint alphaBits) {
+    return (alphaBits & ~0xcu) == kFailureNaN ? (alphaBits & 0xcu) << 28 : 0u;
+}
 // Carried in a ray's state between bricks, never output: the iso-surface's side of the last sample, and a hit.
 VR_CONSTANT uint kIsoInside = 0x20000000u, kIsoHit = 0x10000000u;
 // The trip count of the loop that detects a driver's loop limit: uploaded (CasterParams::loopProbe), so the
@@ -147,6 +157,7 @@ struct CasterParams {
     // band's near disparity and the bands' width in pixels; their number.
     vec4 stereoBands;
     int stereoBandCount;
+    int rayCounts;  // 1: write each pixel's OutPixel::counts (RenderSettings::rayCounts)
 };
 
 // One dispatch renders one brick of one tile for the rays of one pass (push constants).
@@ -184,8 +195,10 @@ struct RayState {
 };
 
 // A pixel's result (std430): the colour's four floats' bits, then the samples and the iteration count with its
-// flags. Whole vectors: llvmpipe stores a buffer lane by lane and word by word, which made three outputs of seven
-// 32-bit words a seventh of a leaping caster's time.
+// flags. The casters write the two to buffers of their own, the counts only when asked, so that a frame without them
+// copies half the bytes back (on a discrete GPU that copy is a fixed cost of every frame); a stereo left eye's
+// pixels are kept whole for the reprojection. Whole vectors: llvmpipe stores a buffer lane by lane and word by word,
+// which made three outputs of seven 32-bit words a seventh of a leaping caster's time.
 struct OutPixel {
     uvec4 colour;
     uvec4 counts;  // x: samples, y: iterations | flags, zw: the float bits of the pixel's contributing depth
@@ -221,6 +234,7 @@ static_assert(offsetof(CasterParams, frustumShift) == 432);
 static_assert(offsetof(CasterParams, gradientExponentBase) == 436);
 static_assert(offsetof(CasterParams, hierBlockShift) == 440);
 static_assert(offsetof(CasterParams, stereoBands) == 448);
+static_assert(offsetof(CasterParams, rayCounts) == 468);
 static_assert(sizeof(CasterParams) == 480);
 static_assert(offsetof(TilePush, brickLo) == 16);
 static_assert(offsetof(TilePush, firstDispatch) == 80);

@@ -85,6 +85,13 @@ TEST(VolrenderCli, OrbitWritesNumberedViews) {
     for (const char* name : {"orbit_000.png", "orbit_001.png", "orbit_002.png"})
         EXPECT_TRUE(fs::exists(dir / name)) << name;
     EXPECT_FALSE(fs::exists(dir / "orbit.png"));
+    // Each view's line gives its times; its rays are counted only where an output shows them.
+    EXPECT_NE(r.out.find("ms wall"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("iterations per ray"), std::string::npos) << r.out;
+    const test::CliOutcome counted = volrender(q(preparedHead()) + " -o " + q(dir / "orbit.png") +
+                                               " --caster pc --size 24x24 --heatmap " + q(dir / "heat.png"));
+    ASSERT_EQ(counted.status, 0) << counted.err;
+    EXPECT_NE(counted.out.find("iterations per ray"), std::string::npos) << counted.out;
 }
 
 TEST(VolrenderCli, HelpAndDeviceList) {

@@ -304,6 +304,29 @@ TEST(VulkanUploads, OutputCopiedFromDeviceMemoryEqualsOutputWrittenToTheHost) {
     expectNoValidationErrors();
 }
 
+// Without ray counts the casters' colours alone come back, in host memory and through device memory alike: the
+// same image as a counted render, no counts, and a ray that fails still fails the render (its colour says so).
+TEST(VulkanUploads, ColoursWithoutRayCountsAreTheCountedRendersAndFailuresStillReport) {
+    VulkanRenderer host(test::vulkanContext(), 20, {}, VulkanRenderer::OutputMemory::Host);
+    VulkanRenderer device(test::vulkanContext(), 20, {}, VulkanRenderer::OutputMemory::Device);
+    const PreparedVolume p = prepare(shellsPhantom({21, 18, 13}), 0.02, 10, false);
+    const Camera cam = Camera::fit(p.grid(), test::orbitView(30, 20, 16, 12));
+    for (VulkanRenderer* r : {&host, &device})
+        for (Caster c : kCasters) {
+            SCOPED_TRACE(std::string(casterName(c)) + (r == &host ? " host" : " device"));
+            RenderSettings s = renderSettings(c, true);
+            const RenderResult counted = r->render(p, cam, s);
+            s.rayCounts = false;
+            const RenderResult colours = r->render(p, cam, s);
+            EXPECT_EQ(maxAbsDifference(colours.image, counted.image), 0.0);
+            EXPECT_TRUE(colours.iterations.empty() && colours.samples.empty());
+            EXPECT_FALSE(counted.iterations.empty());
+            s.maxIterationsPerRay = 2;
+            EXPECT_THROW(r->render(p, cam, s), std::runtime_error);
+        }
+    expectNoValidationErrors();
+}
+
 // One upload for an orbit and every caster: each render reads (and reports) its own part, and renders what a
 // render that uploads for itself renders.
 TEST(VulkanUploads, OneUploadServesAnOrbitOfEveryCaster) {

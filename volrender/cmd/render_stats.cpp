@@ -19,15 +19,14 @@ nlohmann::json viewStatistics(const RenderResult& result, const std::vector<Uplo
         uploaded[u.name] = uploaded.value(u.name, std::size_t(0)) + u.bytes;
         total += u.bytes;
     }
-    return {{"deviceMs", result.deviceMilliseconds},
-            {"wallMs", result.wallMilliseconds},
-            {"iterationsPerRay",
-             {{"mean", iterations / rays},
-              {"p95", percentiles[0]},
-              {"max", percentiles[1]}}},
-            {"samplesRepresented", {{"total", samples}, {"meanPerRay", samples / rays}}},
-            {"uploadedBytes", uploaded},
-            {"uploadedBytesTotal", total}};
+    nlohmann::json stats{{"deviceMs", result.deviceMilliseconds},
+                         {"wallMs", result.wallMilliseconds},
+                         {"uploadedBytes", uploaded},
+                         {"uploadedBytesTotal", total}};
+    if (counts.empty()) return stats;  // rendered without ray counts
+    stats["iterationsPerRay"] = {{"mean", iterations / rays}, {"p95", percentiles[0]}, {"max", percentiles[1]}};
+    stats["samplesRepresented"] = {{"total", samples}, {"meanPerRay", samples / rays}};
+    return stats;
 }
 
 nlohmann::json uploadStatistics(const GpuVolume& volume, double milliseconds) {

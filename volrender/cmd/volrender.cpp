@@ -232,9 +232,18 @@ nlohmann::json frameStatistics(const RenderedView& view) {
     s["right"] = vr::viewStatistics(view.results[1], view.uploads);
     s["deviceMs"] = view.results[0].deviceMilliseconds + view.results[1].deviceMilliseconds;
     s["wallMs"] = view.results[0].wallMilliseconds + view.results[1].wallMilliseconds;
-    s["iterationsPerRay"] = {{"mean", (s["left"]["iterationsPerRay"]["mean"].get<double>() +
-                                       s["right"]["iterationsPerRay"]["mean"].get<double>()) / 2}};
+    if (s["left"].contains("iterationsPerRay"))
+        s["iterationsPerRay"] = {{"mean", (s["left"]["iterationsPerRay"]["mean"].get<double>() +
+                                           s["right"]["iterationsPerRay"]["mean"].get<double>()) / 2}};
     return s;
+}
+
+// The iterations per ray of a view's report, where its rays were counted (a negative mean: they were not).
+std::string iterationsNote(double perRay) {
+    if (perRay < 0) return "";
+    char text[64];
+    std::snprintf(text, sizeof text, ", %.1f iterations per ray", perRay);
+    return text;
 }
 
 // A pair's eyes' device times and the right eye's pixels cast again, for the report of a view.
@@ -276,23 +285,23 @@ nlohmann::json renderViews(const Flags& f, int count, int width, int height, vr:
         viewStats.push_back(s);
         deviceMs += s["deviceMs"].get<double>();
         wallMs += s["wallMs"].get<double>();
-        iterations += s["iterationsPerRay"]["mean"].get<double>();
+        const double perRay = s.contains("iterationsPerRay") ? s["iterationsPerRay"]["mean"].get<double>() : -1;
+        iterations += perRay;
         if (frames)
             frames->advance();
         else if (!f.quiet)
-            std::printf("%s: %s caster, %.2f ms device, %.2f ms wall, %.1f iterations per ray%s\n",
-                        images.name(i).c_str(), vr::casterName(caster).data(), s["deviceMs"].get<double>(),
-                        s["wallMs"].get<double>(), s["iterationsPerRay"]["mean"].get<double>(),
-                        stereoNote(view).c_str());
+            std::printf("%s: %s caster, %.2f ms device, %.2f ms wall%s%s\n", images.name(i).c_str(),
+                        vr::casterName(caster).data(), s["deviceMs"].get<double>(), s["wallMs"].get<double>(),
+                        iterationsNote(perRay).c_str(), stereoNote(view).c_str());
     }
     images.finish();
     if (heatmaps) heatmaps->finish();
     if (!frames) return viewStats;
     frames->finish();
     if (!f.quiet)
-        std::printf("%s: %d frames, %s caster, per frame %.2f ms device, %.2f ms wall, %.1f iterations per ray\n",
-                    f.output.c_str(), f.views, vr::casterName(caster).data(), deviceMs / f.views, wallMs / f.views,
-                    iterations / f.views);
+        std::printf("%s: %d frames, %s caster, per frame %.2f ms device, %.2f ms wall%s\n", f.output.c_str(),
+                    f.views, vr::casterName(caster).data(), deviceMs / f.views, wallMs / f.views,
+                    iterationsNote(iterations / f.views).c_str());
     return viewStats;
 }
 
@@ -318,6 +327,8 @@ int run(const Flags& f) {
     vr::ViewParams view;
     vr::RenderSettings settings;
     const bool prepareHere = !vr::checkVolrenderFlags(f, view, settings);
+    // Each ray's counts only where an output shows them: without, a device copies back half the bytes a view.
+    settings.rayCounts = !f.stats.empty() || !f.heatmap.empty();
     if (f.quiet) vr::ProgressBar::silenceAll();
     std::string choice;  // why --caster auto chose its caster
     const bool chooseCaster = f.caster == "auto";

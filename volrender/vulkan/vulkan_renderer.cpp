@@ -182,7 +182,8 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
     const auto compute = vk::ShaderStageFlagBits::eCompute;
     std::vector<vk::DescriptorSetLayoutBinding> bindings{
         {device::kBindingParams, T::eStorageBuffer, 1, compute},
-        {device::kBindingOutPixels, T::eStorageBuffer, 1, compute},
+        {device::kBindingOutColours, T::eStorageBuffer, 1, compute},
+        {device::kBindingOutCounts, T::eStorageBuffer, 1, compute},
         {device::kBindingRayStates, T::eStorageBuffer, 1, compute},
         {device::kBindingExtentTable, T::eUniformBuffer, 1, compute},
         {device::kBindingTransferTable, T::eStorageTexelBuffer, 1, compute},
@@ -321,19 +322,23 @@ RenderResult VulkanRenderer::render(const PreparedVolume& prepared, const Camera
     return result;
 }
 
+VulkanRenderer::PixelOutput::PixelOutput(const VulkanContext& ctx, std::size_t pixels, bool staged)
+    : host(ctx, pixels * sizeof(device::uvec4),
+           vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst) {
+    if (staged)
+        onDevice.emplace(ctx, pixels * sizeof(device::uvec4),
+                         vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc);
+}
+
 VulkanRenderer::FrameBuffers::FrameBuffers(const VulkanContext& ctx, std::size_t pixels, bool staged)
     : pixels(pixels),
       params(ctx, sizeof(device::CasterParams), vk::BufferUsageFlagBits::eStorageBuffer),
       extentTable(ctx, sizeof(ExtentTable), vk::BufferUsageFlagBits::eUniformBuffer),  // decodes coded EACD
-      out(ctx, pixels * sizeof(device::OutPixel),
-          vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst),
       // bound, never read, without a list (and as the bands without them)
       noList(ctx, 2 * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer),
-      rayState(ctx, pixels * sizeof(device::RayState), vk::BufferUsageFlagBits::eStorageBuffer) {
-    if (staged)
-        outOnDevice.emplace(ctx, pixels * sizeof(device::OutPixel),
-                            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc);
-}
+      rayState(ctx, pixels * sizeof(device::RayState), vk::BufferUsageFlagBits::eStorageBuffer),
+      colours(ctx, pixels, staged),
+      counts(ctx, pixels, staged) {}
 
 VulkanRenderer::FrameBuffers& VulkanRenderer::frameBuffers(std::size_t pixels) {
     if (!frame_ || frame_->pixels < pixels) {
@@ -358,9 +363,12 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     FrameBuffers& frame = frameBuffers(list ? tilePixels
                                             : std::size_t(std::min(tileSize_, camera.width)) *
                                                   std::size_t(std::min(tileSize_, camera.height)));
-    const HostBuffer &params = frame.params, &extentTable = frame.extentTable, &out = frame.out;
+    const HostBuffer &params = frame.params, &extentTable = frame.extentTable;
     device::CasterParams p = makeParams(volume, camera, settings);
     if (left) p.stereoBands = left->bandGeometry, p.stereoBandCount = left->bandCount;
+    // A stereo left eye's pixels carry their depth intervals in their counts.
+    const bool counts = settings.rayCounts || (left && left->pixels);
+    p.rayCounts = counts ? 1 : 0;
     std::memcpy(params.data(), &p, sizeof(p));
     std::memcpy(extentTable.data(), extentDecodeTable(extentCode).data(), sizeof(ExtentTable));
 
@@ -370,7 +378,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     std::array<vk::DescriptorPoolSize, 4> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eUniformBuffer, 1 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageImage, 11 * brickCount),
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 5 * brickCount),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 6 * brickCount),
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageTexelBuffer, 2 * brickCount)};
     vk::raii::DescriptorPool descriptorPool(
         device,
@@ -380,12 +388,13 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     auto imageInfo = [&](const VolumeImage& image) {
         return vk::DescriptorImageInfo(nullptr, *image.view(), kVolumeLayout);
     };
-    const vk::DescriptorBufferInfo buffers[5] = {
+    const vk::DescriptorBufferInfo buffers[6] = {
         {*params.buffer(), 0, VK_WHOLE_SIZE},
-        {*frame.written(), 0, VK_WHOLE_SIZE},
+        {*frame.colours.written(), 0, VK_WHOLE_SIZE},
         {*frame.rayState.buffer(), 0, VK_WHOLE_SIZE},
         {*(list ? list->buffer : frame.noList).buffer(), 0, VK_WHOLE_SIZE},
-        {left && left->bands ? *left->bands->buffer() : *frame.noList.buffer(), 0, VK_WHOLE_SIZE}};
+        {left && left->bands ? *left->bands->buffer() : *frame.noList.buffer(), 0, VK_WHOLE_SIZE},
+        {*frame.counts.written(), 0, VK_WHOLE_SIZE}};
     const vk::DescriptorBufferInfo extentEntries(*extentTable.buffer(), 0, VK_WHOLE_SIZE);
     const vk::BufferView transferEntries = *volume.table().view();
     const vk::BufferView labelEntries = *(volume.labelTable() ? volume.labelTable() : unusedLabelTable_.get())->view();
@@ -407,7 +416,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
         using T = vk::DescriptorType;
         std::vector<vk::WriteDescriptorSet> writes{
             {set, device::kBindingParams, 0, 1, T::eStorageBuffer, nullptr, &buffers[0]},
-            {set, device::kBindingOutPixels, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
+            {set, device::kBindingOutColours, 0, 1, T::eStorageBuffer, nullptr, &buffers[1]},
+            {set, device::kBindingOutCounts, 0, 1, T::eStorageBuffer, nullptr, &buffers[5]},
             {set, device::kBindingRayStates, 0, 1, T::eStorageBuffer, nullptr, &buffers[2]},
             {set, device::kBindingExtentTable, 0, 1, T::eUniformBuffer, nullptr, &extentEntries},
             {set, device::kBindingTransferTable, 0, 1, T::eStorageTexelBuffer, nullptr, nullptr, &transferEntries},
@@ -434,7 +444,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             passes.emplace_back(signs, volume.bricks().frontToBack(signs));
     }
 
-    RenderResult result = RenderResult::blank(camera.width, camera.height);
+    RenderResult result = RenderResult::blank(camera.width, camera.height, counts);
 
     // The tiles of the image, or the list's chunks of a tile's pixels each (its first entry in tileOrigin.x).
     std::vector<device::TilePush> tiles;
@@ -484,19 +494,22 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     tile.firstDispatch = 0;
                 }
             }
-            if (frame.outOnDevice) {  // the tile's pixels to host memory by the transfer engine
+            if (stagedOutput_) {  // the tile's pixels to host memory by the transfer engine
                 vk::MemoryBarrier toCopy(A::eShaderWrite, A::eTransferRead);
                 cmd.pipelineBarrier(S::eComputeShader, S::eTransfer, {}, toCopy, {}, {});
                 const vk::DeviceSize bytes =
-                    vk::DeviceSize(tile.tileSize.x) * vk::DeviceSize(tile.tileSize.y) * sizeof(device::OutPixel);
-                cmd.copyBuffer(*frame.outOnDevice->buffer(), *out.buffer(), vk::BufferCopy(0, 0, bytes));
+                    vk::DeviceSize(tile.tileSize.x) * vk::DeviceSize(tile.tileSize.y) * sizeof(device::uvec4);
+                for (const PixelOutput* o : {&frame.colours, &frame.counts})
+                    if (o == &frame.colours || counts)
+                        cmd.copyBuffer(*o->onDevice->buffer(), *o->host.buffer(), vk::BufferCopy(0, 0, bytes));
             }
             timer_->stop(cmd);
             vk::MemoryBarrier toHost(A::eShaderWrite | A::eTransferWrite, A::eHostRead);
             cmd.pipelineBarrier(S::eComputeShader | S::eTransfer, S::eHost, {}, toHost, {}, {});
         });
         result.deviceMilliseconds += timer_->milliseconds();
-        const auto* pixelsOut = static_cast<const device::OutPixel*>(out.data());
+        const auto* colours = static_cast<const device::uvec4*>(frame.colours.host.data());
+        const auto* rayCounts = static_cast<const device::uvec4*>(frame.counts.host.data());
         // Rows in parallel: a 512 x 512 frame's 8 MB took one core longer than the H100 took to render it.
         tbb::parallel_for(0, tile.tileSize.y, [&](int ly) {
             for (int lx = 0; lx < tile.tileSize.x; ++lx) {
@@ -508,25 +521,26 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     px = int(list->pixels[entry] & 0xffffu), py = int(list->pixels[entry] >> 16);
                 }
                 const std::size_t index = std::size_t(py) * camera.width + px;
-                const device::OutPixel& o = pixelsOut[local];
-                const uint32_t iterations = o.counts.y;  // with the shader's flags
-                if (iterations & device::kCutShort)
+                const device::uvec4& colour = colours[local];
+                const uint32_t failure = device::failureFlagsOf(colour.w);
+                if (failure & device::kCutShort)
                     throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) + " caster: " +
                                              ctx_.info().name + " ended the shader's loops before the ray at pixel (" +
                                              std::to_string(px) + ", " + std::to_string(py) +
                                              ") was done (llvmpipe allows 65535 loop iterations per shader "
                                              "invocation); render with the CPU reference or a hardware device");
-                if (iterations & device::kFailed)
+                if (failure & device::kFailed)
                     throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) +
                                              " caster: the ray at pixel (" + std::to_string(px) + ", " +
                                              std::to_string(py) +
                                              ") hit the iteration cap, needed an octant not uploaded or was left in "
                                              "no brick pass (a bug)");
-                std::memcpy(result.image.pixel(px, py), &o.colour, 4 * sizeof(float));
-                if (left && left->pixels)
-                    std::memcpy(static_cast<device::OutPixel*>(left->pixels) + index, &o, sizeof o);
-                result.iterations[index] = iterations;
-                result.samples[index] = o.counts.x;
+                std::memcpy(result.image.pixel(px, py), &colour, 4 * sizeof(float));
+                if (!counts) continue;
+                const device::uvec4& c = rayCounts[local];
+                if (left && left->pixels) static_cast<device::OutPixel*>(left->pixels)[index] = {colour, c};
+                result.iterations[index] = c.y;  // with the shader's flags
+                result.samples[index] = c.x;
             }
         });
     }

@@ -116,13 +116,20 @@ private:
     // What one tile's dispatches read and write beside the volume, for tiles of up to `pixels` pixels. Kept from
     // render to render, and grown when a render needs more: a GPU driver pins host memory as it is allocated, which
     // took longer than the frame on an H100. One render at a time uses them.
+    // One of the casters' per-pixel outputs (a uvec4 a pixel of the tile): host memory, or, when staged, device
+    // memory whose tile the transfer engine copies into host memory.
+    struct PixelOutput {
+        PixelOutput(const VulkanContext& ctx, std::size_t pixels, bool staged);
+        HostBuffer host;
+        std::optional<DeviceBuffer> onDevice;
+        const vk::raii::Buffer& written() const { return onDevice ? onDevice->buffer() : host.buffer(); }
+    };
     struct FrameBuffers {
         FrameBuffers(const VulkanContext& ctx, std::size_t pixels, bool staged);
         std::size_t pixels;
-        HostBuffer params, extentTable, out, noList;
+        HostBuffer params, extentTable, noList;
         DeviceBuffer rayState;
-        std::optional<DeviceBuffer> outOnDevice;  // where the shaders write, when staged; copied into `out`
-        const vk::raii::Buffer& written() const { return outOnDevice ? outOnDevice->buffer() : out.buffer(); }
+        PixelOutput colours, counts;  // OutPixel's two halves; the counts read back only when asked
     };
     FrameBuffers& frameBuffers(std::size_t pixels);
     // What a stereo pair with reuse reads and writes beside the frame's buffers: the left eye's pixels, the
