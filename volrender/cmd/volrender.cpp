@@ -21,6 +21,7 @@
 #include "io/prepared_file.h"
 #include "preprocess/cmd/volume_flags.h"
 #include "preprocess/pipeline/hier_field.h"
+#include "volrender/cmd/auto_caster.h"
 #include "volrender/cmd/calibration_in_use.h"
 #include "volrender/cmd/camera_flags.h"
 #include "volrender/cmd/clip_flags.h"
@@ -103,72 +104,6 @@ vr::PreparedVolume readPreparedFor(const Flags& f, vr::Caster caster, const vr::
     return prepared;
 }
 
-// --caster auto: the caster for the orbit's views, from the ray probe and the field sizes in the prepared file's
-// header (the chunks are read once the caster is known).
-vr::CasterChoice autoCaster(const Flags& f, const vr::PreparedHeader& header, vr::ViewParams view,
-                            const vr::RenderSettings& s, const vr::CasterCalibration& calibration) {
-    if (s.trilinear && !header.meta.segmentation.trilinear)
-        return {vr::Caster::Primitive, "the regions were made for nearest sampling only (volprep --nearest): "
-                                       "trilinear sampling cannot leap through them (render with --nearest to leap)"};
-    vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
-    for (const vr::Camera& camera : eyeCameras(f, header.grid, view)) d.addView(camera);
-    d.scalarBytes = vr::scalarBytesOnDevice(header.grid, header.scalarType);
-    return vr::chooseCaster(header.meta.rayProbe, header.fieldBytes, d, calibration);
-}
-
-// The name of the device that --caster auto chooses for, where the calibration it reads must have been measured
-// on it; else none, and no wait for the device to open: the choice's fields then build while it does.
-std::optional<std::string> deviceToCalibrate(const Flags& f, vr::OpeningDevice& device) {
-    if (!vr::calibrationReadsFile(f.calibration)) return std::nullopt;
-    return device.context().info().name;
-}
-
-// --caster auto for a volume prepared here, once it is classified and before any field over voxel regions is built:
-// the primitive caster, hier (its field built here to probe it, where it can pay) or EACD, whichever the views and
-// the builds cost least (priced with the constants of the device, on which the render will run; a build beside
-// the device's start costs only what outlasts it).
-vr::CasterChoice autoCasterBeforeFields(const Flags& f, const vr::ViewParams& view, const vr::RenderSettings& s,
-                                        vr::StagedPreparation& staged, vr::PrepareOptions options,
-                                        const std::vector<vr::Camera>& cameras, vr::OpeningDevice& device) {
-    const vr::CalibrationInUse calibration = vr::calibrationInUse(f.calibration, deviceToCalibrate(f, device));
-    vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
-    for (const vr::Camera& camera : cameras) d.addView(camera);
-    vr::RenderSettings probe = s;
-    probe.caster = vr::Caster::Primitive;
-    const vr::PreparedVolume& classified = staged.prepare(options, vr::PrepStage::Classify);
-    d.scalarBytes = vr::scalarBytesOnDevice(classified.grid(), classified.scalars.sourceType);
-    vr::ProbedIterations it{vr::probeIterations(classified, cameras, probe), {}};
-    const std::size_t voxels = classified.grid().voxels();
-    // A label map, not the scalars, would decide what a block holds: hier does not take one.
-    if (!classified.labels && vr::hierMayPay(it.primitive, d, voxels, calibration.constants)) {
-        options.fields = vr::kFieldHier;
-        probe.caster = vr::Caster::Hier;
-        it.hier = vr::probeIterations(staged.prepare(options), cameras, probe);
-    }
-    d.deviceWaitMs = device.waitMs();
-    return vr::chooseBeforeBuilding(it, d, voxels, calibration.constants);
-}
-
-// --caster auto for a blend other than composite, priced with the device's `calibration`: the primitive caster or
-// blocks (chooseBlendCaster), each probed on the classified volume over at most 4 of the views, evenly spread (the
-// blocks' probe builds their extrema once per view).
-vr::CasterChoice autoBlendCaster(const vr::PreparedVolume& classified, const vr::ViewParams& view,
-                                 const vr::RenderSettings& s, const std::vector<vr::Camera>& cameras,
-                                 const vr::CasterCalibration& calibration) {
-    vr::CasterDemand d{0, {}, (long long)view.width * view.height, s.stepVoxels};
-    for (const vr::Camera& camera : cameras) d.addView(camera);
-    d.scalarBytes = vr::scalarBytesOnDevice(classified.grid(), classified.scalars.sourceType);
-    const std::size_t probedViews = std::min<std::size_t>(cameras.size(), 4);
-    std::vector<vr::Camera> probed;
-    for (std::size_t i = 0; i < probedViews; ++i) probed.push_back(cameras[i * cameras.size() / probedViews]);
-    vr::RenderSettings probe = s;
-    probe.caster = vr::Caster::Primitive;
-    const double primitive = vr::probeIterations(classified, probed, probe);
-    probe.caster = vr::Caster::Blocks;
-    const double blocks = vr::probeIterations(classified, probed, probe);
-    return vr::chooseBlendCaster(primitive, blocks, d, classified.grid().voxels(), calibration);
-}
-
 // The one-command path: the volume loaded, classified, segmented and given the field of the caster only, in the
 // octants of the orbit's rays only (regions for the sampling and shading asked), in memory, each stage timed. The
 // `device` (none for the CPU reference) makes its pipelines meanwhile. With `chooseHere`, --caster auto picks the
@@ -196,10 +131,13 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
                                             : std::vector{s.caster},
                                  s, cameras.front().projection, staged.volume().sourceType);
     if (chooseHere) {
+        const auto blendCalibration = [&] {
+            return vr::calibrationInUse(f.calibration, vr::deviceToCalibrate(f.calibration, *device)).constants;
+        };
         const vr::CasterChoice c =
-            composite ? autoCasterBeforeFields(f, view, s, staged, options, cameras, *device)
-                      : autoBlendCaster(staged.prepare(options, vr::PrepStage::Classify), view, s, cameras,
-                                        vr::calibrationInUse(f.calibration, deviceToCalibrate(f, *device)).constants);
+            composite ? vr::autoCasterBeforeFields(f.calibration, s, staged, options, cameras, *device)
+                      : vr::autoBlendCaster(staged.prepare(options, vr::PrepStage::Classify), s, cameras,
+                                            blendCalibration());
         s.caster = c.caster;
         choice = c.reason;
         device->chose(s.caster);
@@ -356,7 +294,8 @@ int run(const Flags& f) {
         prepareHere ? std::nullopt : std::optional(vr::readPreparedHeader(f.input));
     if (chooseCaster && composite && header) {
         if (!calibration.note.empty() && !f.quiet) std::fprintf(stderr, "volrender: %s\n", calibration.note.c_str());
-        const vr::CasterChoice c = autoCaster(f, *header, view, settings, calibration.constants);
+        const vr::CasterChoice c =
+            vr::autoCasterForFile(*header, eyeCameras(f, header->grid, view), settings, calibration.constants);
         settings.caster = c.caster;
         choice = c.reason;
     }
@@ -376,7 +315,7 @@ int run(const Flags& f) {
         prepareHere ? std::move(*preparedHere) : readPreparedFor(f, settings.caster, view);
     if (chooseAfterReading) {
         const vr::CasterChoice c =
-            autoBlendCaster(prepared, view, settings, eyeCameras(f, prepared.grid(), view), calibration.constants);
+            vr::autoBlendCaster(prepared, settings, eyeCameras(f, prepared.grid(), view), calibration.constants);
         settings.caster = c.caster;
         choice = c.reason;
         if (makeAhead) makePipeline();
