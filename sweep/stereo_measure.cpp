@@ -10,8 +10,12 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
         const double focus = dot(volume.grid().centre() - camera.eye, camera.forward);
         return stereoPair(camera, volume.grid(), kSeparationPerFocus * focus, focus);
     };
-    renderer.renderStereo(volume, pairAbout(cameras.front()), settings, true);  // warm-up: pipelines compiled
-    renderer.renderStereo(volume, pairAbout(cameras.front()), settings, false);
+    // Pairs timed as users render them, without ray counts; counted again, untimed, for the re-cast work.
+    RenderSettings timed = settings, counted = settings;
+    timed.rayCounts = false;
+    counted.rayCounts = true;
+    renderer.renderStereo(volume, pairAbout(cameras.front()), timed, true);  // warm-up: pipelines compiled
+    renderer.renderStereo(volume, pairAbout(cameras.front()), timed, false);
     StereoMeasurement m;
     m.separation = pairAbout(cameras.front()).separation;
     std::vector<double> pair, oneEye, leftEye, fullPair, reproject;
@@ -19,8 +23,8 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
     double recastIterations = 0, fullIterations = 0;
     for (const Camera& camera : cameras) {
         const StereoPair eyes = pairAbout(camera);
-        const StereoRender reused = renderer.renderStereo(volume, eyes, settings, true);
-        const StereoRender full = renderer.renderStereo(volume, eyes, settings, false);
+        const StereoRender reused = renderer.renderStereo(volume, eyes, timed, true);
+        const StereoRender full = renderer.renderStereo(volume, eyes, timed, false);
         pair.push_back(reused.left.deviceMilliseconds + reused.right.deviceMilliseconds);
         oneEye.push_back(full.left.deviceMilliseconds);
         leftEye.push_back(reused.left.deviceMilliseconds);
@@ -28,9 +32,11 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
         reproject.push_back(reused.reprojectMilliseconds);
         m.recastFraction += reused.recastFraction / double(cameras.size());
         errors.push_back(imageError(full.right.image, reused.right.image));
-        for (std::size_t i = 0; i < full.right.iterations.size(); ++i) {
-            recastIterations += reused.right.iterations[i];
-            fullIterations += full.right.iterations[i];
+        const StereoRender reusedCounted = renderer.renderStereo(volume, eyes, counted, true);
+        const StereoRender fullCounted = renderer.renderStereo(volume, eyes, counted, false);
+        for (std::size_t i = 0; i < fullCounted.right.iterations.size(); ++i) {
+            recastIterations += reusedCounted.right.iterations[i];
+            fullIterations += fullCounted.right.iterations[i];
         }
         m.leftEyesEqual = m.leftEyesEqual && reused.left.image.rgba == full.left.image.rgba;
         if (m.reusedRight.empty()) {

@@ -30,7 +30,8 @@ struct StereoMeasurement {
 };
 
 // The pairs about `cameras` (perspective), each eye's separation kSeparationPerFocus of its focus distance, after
-// one warm-up pair. Throws as VulkanRenderer::renderStereo does.
+// one warm-up pair, timed without ray counts (as users render) and counted again untimed for the re-cast work.
+// Throws as VulkanRenderer::renderStereo does.
 StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volume, const std::vector<Camera>& cameras,
                                 const RenderSettings& settings);
 
