@@ -497,11 +497,10 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             if (stagedOutput_) {  // the tile's pixels to host memory by the transfer engine
                 vk::MemoryBarrier toCopy(A::eShaderWrite, A::eTransferRead);
                 cmd.pipelineBarrier(S::eComputeShader, S::eTransfer, {}, toCopy, {}, {});
-                const vk::DeviceSize bytes =
-                    vk::DeviceSize(tile.tileSize.x) * vk::DeviceSize(tile.tileSize.y) * sizeof(device::uvec4);
-                for (const PixelOutput* o : {&frame.colours, &frame.counts})
-                    if (o == &frame.colours || counts)
-                        cmd.copyBuffer(*o->onDevice->buffer(), *o->host.buffer(), vk::BufferCopy(0, 0, bytes));
+                const vk::BufferCopy tilePixels(
+                    0, 0, vk::DeviceSize(tile.tileSize.x) * vk::DeviceSize(tile.tileSize.y) * sizeof(device::uvec4));
+                cmd.copyBuffer(*frame.colours.onDevice->buffer(), *frame.colours.host.buffer(), tilePixels);
+                if (counts) cmd.copyBuffer(*frame.counts.onDevice->buffer(), *frame.counts.host.buffer(), tilePixels);
             }
             timer_->stop(cmd);
             vk::MemoryBarrier toHost(A::eShaderWrite | A::eTransferWrite, A::eHostRead);
