@@ -180,8 +180,8 @@ int main(int argc, char** argv) {
                     std::fflush(stdout);
                     ++rowsPrinted;
                 }
-                checkSetting(checks, dataset.file + " at " + std::to_string(settingTo) + ", " + std::to_string(settingTa),
-                             runs, octants, settingTo == 0 && settingTa == 0);
+                const std::string setting = std::to_string(settingTo) + ", " + std::to_string(settingTa);
+                checkSetting(checks, dataset.file + " at " + setting, runs, octants, settingTo == 0 && settingTa == 0);
             }
         }
     } catch (const std::exception& e) {
