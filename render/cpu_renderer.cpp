@@ -218,6 +218,8 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
     RenderResult result = RenderResult::blank(camera.width, camera.height);
     const RayClip clip = RayClip::of(grid, settings);
 
+    // Leaps by the casters' margin where they take it (leapsByTheMargin), so that both leap alike.
+    const bool marginLeaps = leapsByTheMargin(grid, camera, dt);
     auto trace = [&](int px, int py) {
         const Ray ray = camera.ray(px + 0.5, py + 0.5);
         const GridRay g = toGridRay(ray, grid);
@@ -225,6 +227,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                                                                     device::uint(px), device::uint(py)))
                                                : clipInterval(g, clip);
         const int64_t kCount = latticeCount(iv, dt);
+        const LeapSlack slack = marginLeaps ? leapSlack(g, iv, grid.dims) : LeapSlack{};
         const int oct = rayOctant(g);
         const Vec3d toEye = -ray.direction;
         const Vec3d toLight = light ? *light : toEye;
@@ -274,7 +277,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                         value = blocks->lo(level, v);
                     }
                 const Vec3i ext = blockExtents(v, oct, size > 0 ? size : device::kBlockSize);
-                n = leapCount(g, iv, dt, k, kCount, boxLeapSamples(boxExitT(g, v, oct, ext), t, dt),
+                n = leapCount(g, iv, dt, k, kCount, boxLeapSamples(boxExitT(g, v, oct, ext, slack), t, dt),
                               octantBox(v, oct, ext));
                 if (size > 0) {
                     sum += double(n) * value;
@@ -304,7 +307,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
             switch (settings.caster) {
                 case Caster::Primitive: break;
                 case Caster::PC:
-                    wanted = pcLeapSamples(fields.pc[i], dt, g);
+                    wanted = pcLeapSamples(fields.pc[i], dt, g, slack);
                     box = chebyshevBall(v, fields.pc[i]);
                     break;
                 case Caster::ACD: {
@@ -312,7 +315,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     // A stored 0 would be a corrupt field; 1 (this voxel) is always true.
                     const int e = std::max<int>(1, fields.acd[oct][i]);
                     box = octantBox(v, oct, {e, e, e});
-                    wanted = boxLeapSamples(boxExitT(g, v, oct, {e, e, e}), t, dt);
+                    wanted = boxLeapSamples(boxExitT(g, v, oct, {e, e, e}, slack), t, dt);
                     break;
                 }
                 case Caster::EACD: {
@@ -320,7 +323,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     const auto& x = fields.eacd[oct][i];
                     const Vec3i ext{std::max<int>(1, x[0]), std::max<int>(1, x[1]), std::max<int>(1, x[2])};
                     box = octantBox(v, oct, ext);
-                    wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t, dt);
+                    wanted = boxLeapSamples(boxExitT(g, v, oct, ext, slack), t, dt);
                     break;
                 }
                 case Caster::Hier: {
@@ -333,7 +336,7 @@ RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, con
                     for (int a = 0; a < 3; ++a)
                         ext[a] = device::blockBoxExtent(v[a], octantSign(oct, a), fields.hier.blockShift, blocks[a]);
                     box = octantBox(v, oct, ext);
-                    wanted = boxLeapSamples(boxExitT(g, v, oct, ext), t, dt);
+                    wanted = boxLeapSamples(boxExitT(g, v, oct, ext, slack), t, dt);
                     break;
                 }
                 case Caster::Blocks: break;  // one sample here (above: its leaps)

@@ -154,19 +154,51 @@ inline VoxelBox octantBox(const Vec3i& v, int oct, const Vec3i& ext) {
     return b;
 }
 
-// PC: the samples that stay in the Chebyshev ball of radius r (device::pcLeapSamples; no slack in double). Returned
-// as a double: it may exceed any integer when dt is tiny; leapCount() bounds it.
-inline double pcLeapSamples(int r, double dt, const GridRay& ray) {
-    return device::pcLeapSamples(r, maxComponent(abs(ray.d)), dt, 0);
+// Whether a frame's leaps take the samples their margin proves, unchecked (docs/ALGORITHMS.md section 8): where the
+// margin is at most 1/64 of a step for every ray (its farthest t at most the distance from the eye to the grid's
+// farthest corner), so that it costs a sample at a box's face only rarely. The casters then skip the check of the
+// last sample's position, which every leap's count waited on (10-13 % of an EACD frame on lavapipe). Tiny steps keep
+// the check: there the margin is many samples, and each box's face would be crossed one sample at a time.
+inline bool leapsByTheMargin(const GridGeometry& grid, const Camera& camera, double dt) {
+    double farthest = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3d c{corner & 1 ? 1.0 : 0.0, corner & 2 ? 1.0 : 0.0, corner & 4 ? 1.0 : 0.0};
+        farthest = std::max(farthest, length(grid.origin + c * grid.extent() - camera.eye));
+    }
+    return 64 * device::leapLatticeSlack(farthest) <= dt;
 }
 
-// ACD / EACD: the t at which the ray leaves the box through its far faces (device::boxAxisExitT per axis). An
-// axis with d_a == 0 never limits the box (+inf, never 0/0).
-inline double boxExitT(const GridRay& ray, const Vec3i& v, int oct, const Vec3i& ext) {
+// What a leap subtracts from the distance to its box's faces where the frame leaps by the margin (device::
+// leapLatticeSlack and the others, in double); none elsewhere, where the CPU reference counts exactly.
+struct LeapSlack {
+    Vec3d boxExit{0, 0, 0};  // per axis (0 on an axis the ray does not move along)
+    double ball = 0;
+};
+
+inline LeapSlack leapSlack(const GridRay& r, const RayInterval& iv, const Vec3i& dims) {
+    const Vec3d speed = abs(r.d);
+    const double lattice = device::leapLatticeSlack(iv.tExit);
+    LeapSlack s;
+    for (int a = 0; a < 3; ++a) s.boxExit[a] = device::leapAxisSlack(lattice, dims[a], speed[a]);
+    s.ball = device::leapBallSlack(lattice, maxComponent(dims), maxComponent(speed));
+    return s;
+}
+
+// PC: the samples that stay in the Chebyshev ball of radius r, less the slack (device::pcLeapSamples). Returned as a
+// double: it may exceed any integer when dt is tiny; leapCount() bounds it.
+inline double pcLeapSamples(int r, double dt, const GridRay& ray, const LeapSlack& slack = {}) {
+    return device::pcLeapSamples(r, maxComponent(abs(ray.d)), dt, slack.ball);
+}
+
+// ACD / EACD: the t at which the ray leaves the box through its far faces (device::boxAxisExitT per axis), each
+// moved closer by its slack. An axis with d_a == 0 never limits the box (+inf, never 0/0).
+inline double boxExitT(const GridRay& ray, const Vec3i& v, int oct, const Vec3i& ext,
+                       const LeapSlack& slack = {}) {
     double t = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a)
         if (ray.d[a] != 0)
-            t = std::min(t, device::boxAxisExitT(v[a], device::octantSign(oct, a), ext[a], ray.o[a], ray.d[a]));
+            t = std::min(t, device::boxAxisExitT(v[a], device::octantSign(oct, a), ext[a], ray.o[a], ray.d[a]) -
+                                slack.boxExit[a]);
     return t;
 }
 

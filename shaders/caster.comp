@@ -35,6 +35,9 @@ layout(constant_id = kSpecIdScalarType) const int SCALAR_TYPE = kScalarFloat32;
 const int BLEND = VR_BLEND;
 // Cast the pixels of a list (a stereo pair's re-casts), in chunks of a tile's invocations, instead of a tile.
 layout(constant_id = kSpecIdPixelList) const bool PIXEL_LIST = false;
+// Leaps take the samples their margin proves (docs/ALGORITHMS.md section 8), unchecked: the margin is a small part of
+// a step in this frame (render/ray_setup.h leapsByTheMargin).
+layout(constant_id = kSpecIdMarginLeaps) const bool MARGIN_LEAPS = false;
 #if VR_PLAIN
 // A plain module (composite without a label map, stored gradients or a stereo left eye's bands, as most renders
 // are): half the size of the full one, so lavapipe makes its pipeline in about half the time.
@@ -638,6 +641,7 @@ void main() {
             if (CASTER != kPrimitive) {
                 float termination = samplesToTermination(depth, sampleDepth);
                 if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
+                if (TRILINEAR) wantedWithMargin = trilinearLeapSamples(wantedWithMargin, box);
                 n = leapCount(g, iv, k, kCount, min(wanted, termination), min(wantedWithMargin, termination), box);
             }
 

@@ -57,6 +57,7 @@ VR_CONSTANT int kSpecIdLabels = 8;       // one of the label types below: which 
 VR_CONSTANT int kSpecIdPixelList = 9;    // bool: cast the pixels of the list (kBindingPixelList), not a tile's
 VR_CONSTANT int kSpecIdStoredGradients = 10;  // bool: shade by the stored gradients (kBindingGradients)
 VR_CONSTANT int kSpecIdStereoBands = 11;      // bool: composite, the left eye of a stereo pair: record the bands
+VR_CONSTANT int kSpecIdMarginLeaps = 12;      // bool: leaps take the samples their margin proves, unchecked
 // The casters and the blends below are fixed per module instead (caster.comp's VR_CASTER and VR_BLEND).
 VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4, kHier = 5;
 // The hierarchical EACD's block codes (core/distance_fields.h BlockEACD): log16 extents in blocks, this bit set where

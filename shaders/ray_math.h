@@ -58,6 +58,27 @@ VR_MATH_FUNCTION VR_INDEX latticeCount(VR_REAL tEntry, VR_REAL tExit, VR_REAL dt
     return k;
 }
 
+// What a leap subtracts from the distance to its box's faces (world units), so that the last sample it counts lies
+// inside the box as the casters' float positions round it (docs/ALGORITHMS.md section 8). With u = 2^-24 (float's
+// unit roundoff), T the ray's largest t and N_a the grid size: t_k is within 3.01 u T of tEntry + k dt, a position
+// within 4.01 u T |d_a| + 1.01 u N_a of o_a + t d_a, and a box exit and the leap's division add 5.03 u T; the slacks
+// take 16 u T and twice the N_a term. The CPU reference takes the same margin in double where the casters leap by it
+// alone (leapsByTheMargin), so that both leap alike.
+VR_FUNCTION VR_REAL leapLatticeSlack(VR_REAL tExit) {
+    VR_PRECISE VR_REAL s = VR_REAL(16) / VR_REAL(16777216) * tExit;
+    return s;
+}
+// ACD / EACD boxes, per axis (0 on an axis the ray does not move along).
+VR_FUNCTION VR_REAL leapAxisSlack(VR_REAL lattice, int n, VR_REAL speed) {
+    VR_PRECISE VR_REAL s = lattice + VR_REAL(2) / VR_REAL(16777216) * VR_REAL(n) / speed;
+    return speed == VR_REAL(0) ? VR_REAL(0) : s;
+}
+// The PC ball, whose radius every axis shares: the largest N_a and |d_a|.
+VR_FUNCTION VR_REAL leapBallSlack(VR_REAL lattice, int largestN, VR_REAL largestSpeed) {
+    VR_PRECISE VR_REAL s = lattice + VR_REAL(4) / VR_REAL(16777216) * VR_REAL(largestN) / largestSpeed;
+    return s;
+}
+
 // PC: the samples t, t + dt, ... t + (n-1) dt stay in the Chebyshev ball of radius r while (n-1) dt speed <= r,
 // speed being the ray's largest |d_a|; `slack` (world units) shortens the distance for float rounding (0: none).
 VR_MATH_FUNCTION VR_REAL pcLeapSamples(int r, VR_REAL speed, VR_REAL dt, VR_REAL slack) {

@@ -91,24 +91,20 @@ ivec3 sampleVoxel(GridRay r, RayInterval iv, uint k) {
 
 int rayOctant(GridRay r) { return octantOf(r.d.x, r.d.y, r.d.z); }
 
-// What a leap subtracts from the distance to its box's faces (world units) so that the last sample it counts lies
-// inside the box as samplePosition rounds it (docs/ALGORITHMS.md section 8). With u = 2^-24, T the ray's largest
-// t and N_a the grid size: t_k is within 3.01 u T of tEntry + k dt, a position within 4.01 u T |d_a| + 1.01 u N_a of
-// o_a + t d_a, and a box exit and the leap's division add 5.03 u T; the slacks take 16 u T and twice the N_a term.
+// What a leap subtracts from the distance to its box's faces (ray_math.h leapLatticeSlack and the others).
 struct LeapSlack {
     vec3 boxExit;  // per axis, for the ACD / EACD boxes (0 on an axis the ray does not move along)
     float ball;    // for the PC ball, whose radius every axis shares
 };
 
 LeapSlack leapSlack(GridRay r, RayInterval iv) {
-    const float u = 1.0 / 16777216.0;
-    vec3 n = vec3(params.dims.xyz), speed = abs(r.d);
-    precise float lattice = 16.0 * u * iv.tExit;
-    precise vec3 position = 2.0 * u * n / speed;
-    precise float ballPosition = 4.0 * u * max(max(n.x, n.y), n.z) / max(max(speed.x, speed.y), speed.z);
+    vec3 speed = abs(r.d);
+    float lattice = leapLatticeSlack(iv.tExit);
     LeapSlack s;
-    s.boxExit = mix(lattice + position, vec3(0.0), equal(speed, vec3(0.0)));
-    s.ball = lattice + ballPosition;
+    s.boxExit = vec3(leapAxisSlack(lattice, params.dims.x, speed.x), leapAxisSlack(lattice, params.dims.y, speed.y),
+                     leapAxisSlack(lattice, params.dims.z, speed.z));
+    s.ball = leapBallSlack(lattice, max(max(params.dims.x, params.dims.y), params.dims.z),
+                           max(max(speed.x, speed.y), speed.z));
     return s;
 }
 
@@ -152,14 +148,15 @@ float trilinearLeapSamples(float wanted, VoxelBox box) { return trilinearLeapSam
 
 bool inBox(ivec3 v, VoxelBox box) { return all(greaterThanEqual(v, box.lo)) && all(lessThanEqual(v, box.hi)); }
 
-// The leap taken from sample k of kCount, which lies in `box`: the samples wanted without a margin when the last of
-// them lies in the box as samplePosition places it (positions are monotone, so then all of them do), else the
-// samples wanted with the margin, which provably lie in it. Never past the volume exit; always >= 1.
+// The leap taken from sample k of kCount, which lies in `box`: the samples wanted with the margin, which provably lie
+// in it, where the frame leaps by the margin alone (MARGIN_LEAPS, docs/ALGORITHMS.md section 8); else the samples
+// wanted without it when the last of them lies in the box as samplePosition places it (positions are monotone, so
+// then all of them do), and those with the margin otherwise. Never past the volume exit; always >= 1.
 uint leapCount(GridRay ray, RayInterval iv, uint k, uint kCount, float wanted, float wantedWithMargin, VoxelBox box) {
+    uint margin = min(uint(clamp(wantedWithMargin, 1.0, 2147483648.0)), kCount - k);
+    if (MARGIN_LEAPS) return margin;
     uint n = min(uint(clamp(wanted, 1.0, 2147483648.0)), kCount - k);
-    if (n > 1u && !inBox(sampleVoxel(ray, iv, k + n - 1u), box))
-        n = min(uint(clamp(wantedWithMargin, 1.0, 2147483648.0)), kCount - k);
-    return n;
+    return n > 1u && !inBox(sampleVoxel(ray, iv, k + n - 1u), box) ? margin : n;
 }
 
 #endif

@@ -216,13 +216,13 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
 
 VulkanRenderer::Variant VulkanRenderer::variantOf(const RenderSettings& settings, bool perspective, ScalarType type,
                                                   int labels, bool bricked, bool pixelList, ExtentCode eacdCode,
-                                                  bool stereoBands) {
+                                                  bool marginLeaps, bool stereoBands) {
     // The hier caster's blocks are in log16, whatever code the volume's EACD has.
     if (settings.caster == Caster::Hier) eacdCode = ExtentCode::Log16;
     return {settings.caster, settings.blend, settings.trilinear,  settings.shading,
             eacdCode,        bricked,        perspective,         type,
             labels,          pixelList,      settings.gradients == Gradients::Stored,
-            stereoBands};
+            stereoBands,     marginLeaps};
 }
 
 const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
@@ -251,7 +251,7 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
                      .first;
     }
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
-    const std::array<std::pair<int, uint32_t>, 10> constants{{
+    const std::array<std::pair<int, uint32_t>, 11> constants{{
         {device::kSpecIdTrilinear, v.trilinear ? 1u : 0u},
         {device::kSpecIdShading, v.shading ? 1u : 0u},
         {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(v.eacdCode))},
@@ -261,7 +261,8 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
         {device::kSpecIdLabels, uint32_t(v.labels)},
         {device::kSpecIdPixelList, v.pixelList ? 1u : 0u},
         {device::kSpecIdStoredGradients, v.storedGradients ? 1u : 0u},
-        {device::kSpecIdStereoBands, v.stereoBands ? 1u : 0u}}};
+        {device::kSpecIdStereoBands, v.stereoBands ? 1u : 0u},
+        {device::kSpecIdMarginLeaps, v.marginLeaps ? 1u : 0u}}};
     std::array<uint32_t, constants.size()> values;
     std::array<vk::SpecializationMapEntry, constants.size()> entries;
     for (std::size_t i = 0; i < constants.size(); ++i) {
@@ -276,8 +277,9 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
 }
 
 void VulkanRenderer::preparePipeline(const RenderSettings& settings, Projection projection, ScalarType type) {
+    // Steps users render with leap by the margin (leapsByTheMargin).
     pipeline(variantOf(settings, projection == Projection::Perspective, type, device::kNoLabels, false, false,
-                       kDefaultExtentCode));
+                       kDefaultExtentCode, true));
 }
 
 GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolumeContents& contents) {
@@ -355,7 +357,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const vk::raii::Device& device = ctx_.device();
     const Variant variant =
         variantOf(settings, camera.projection == Projection::Perspective, volume.scalarType(), deviceLabels(volume),
-                  volume.bricks().bricks().size() > 1, list != nullptr, volume.eacdCode(), left && left->bands);
+                  volume.bricks().bricks().size() > 1, list != nullptr, volume.eacdCode(),
+                  leapsByTheMargin(volume.grid(), camera, settings.stepVoxels * volume.grid().smallestSpacing()),
+                  left && left->bands);
     const ExtentCode extentCode = variant.eacdCode;
     const vk::raii::Pipeline& pipe = pipeline(variant);
 

@@ -108,10 +108,12 @@ private:
         bool pixelList;
         bool storedGradients;  // read by shaded variants only: the others' hold false
         bool stereoBands;      // composite only: the others' hold false
+        bool marginLeaps;      // leapsByTheMargin (render/ray_setup.h)
         auto operator<=>(const Variant&) const = default;
     };
     static Variant variantOf(const RenderSettings& settings, bool perspective, ScalarType type, int labels,
-                             bool bricked, bool pixelList, ExtentCode eacdCode, bool stereoBands = false);
+                             bool bricked, bool pixelList, ExtentCode eacdCode, bool marginLeaps,
+                             bool stereoBands = false);
     const vk::raii::Pipeline& pipeline(Variant variant);
     // What one tile's dispatches read and write beside the volume, for tiles of up to `pixels` pixels. Kept from
     // render to render, and grown when a render needs more: a GPU driver pins host memory as it is allocated, which
