@@ -8,11 +8,6 @@
 namespace vr {
 
 nlohmann::json viewStatistics(const RenderResult& result, const std::vector<UploadedResource>& uploads) {
-    const std::vector<uint32_t>& counts = result.iterations;
-    const std::vector<uint32_t> percentiles = countPercentiles(counts, {0.95, 1.0});
-    const double rays = double(std::max<std::size_t>(1, counts.size()));
-    const double iterations = std::accumulate(counts.begin(), counts.end(), 0.0);
-    const double samples = std::accumulate(result.samples.begin(), result.samples.end(), 0.0);
     nlohmann::json uploaded = nlohmann::json::object();
     std::size_t total = 0;
     for (const auto& u : uploads) {
@@ -23,7 +18,12 @@ nlohmann::json viewStatistics(const RenderResult& result, const std::vector<Uplo
                          {"wallMs", result.wallMilliseconds},
                          {"uploadedBytes", uploaded},
                          {"uploadedBytesTotal", total}};
+    const std::vector<uint32_t>& counts = result.iterations;
     if (counts.empty()) return stats;  // rendered without ray counts
+    const std::vector<uint32_t> percentiles = countPercentiles(counts, {0.95, 1.0});
+    const double rays = double(counts.size());
+    const double iterations = std::accumulate(counts.begin(), counts.end(), 0.0);
+    const double samples = std::accumulate(result.samples.begin(), result.samples.end(), 0.0);
     stats["iterationsPerRay"] = {{"mean", iterations / rays}, {"p95", percentiles[0]}, {"max", percentiles[1]}};
     stats["samplesRepresented"] = {{"total", samples}, {"meanPerRay", samples / rays}};
     return stats;

@@ -176,11 +176,11 @@ nlohmann::json frameStatistics(const RenderedView& view) {
     return s;
 }
 
-// The iterations per ray of a view's report, where its rays were counted (a negative mean: they were not).
-std::string iterationsNote(double perRay) {
-    if (perRay < 0) return "";
+// The iterations per ray of a view's report, where its rays were counted.
+std::string iterationsNote(std::optional<double> perRay) {
+    if (!perRay) return "";
     char text[64];
-    std::snprintf(text, sizeof text, ", %.1f iterations per ray", perRay);
+    std::snprintf(text, sizeof text, ", %.1f iterations per ray", *perRay);
     return text;
 }
 
@@ -205,7 +205,8 @@ nlohmann::json renderViews(const Flags& f, int count, int width, int height, vr:
     std::optional<vr::ProgressBar> frames;
     if (images.isMovie()) frames.emplace("frames", f.views);
     nlohmann::json viewStats = nlohmann::json::array();
-    double deviceMs = 0, wallMs = 0, iterations = 0;  // summed over the views
+    double deviceMs = 0, wallMs = 0;              // summed over the views
+    std::optional<double> iterations;             // per ray, summed over the views where their rays were counted
     for (int i = 0; i < count; ++i) {
         RenderedView view = render(i);
         if (i == 0) vr::markMilestone("firstViewRendered");
@@ -223,8 +224,9 @@ nlohmann::json renderViews(const Flags& f, int count, int width, int height, vr:
         viewStats.push_back(s);
         deviceMs += s["deviceMs"].get<double>();
         wallMs += s["wallMs"].get<double>();
-        const double perRay = s.contains("iterationsPerRay") ? s["iterationsPerRay"]["mean"].get<double>() : -1;
-        iterations += perRay;
+        std::optional<double> perRay;  // where the rays were counted (--stats, --heatmap)
+        if (s.contains("iterationsPerRay")) perRay = s["iterationsPerRay"]["mean"].get<double>();
+        if (perRay) iterations = iterations.value_or(0) + *perRay;
         if (frames)
             frames->advance();
         else if (!f.quiet)
@@ -239,7 +241,7 @@ nlohmann::json renderViews(const Flags& f, int count, int width, int height, vr:
     if (!f.quiet)
         std::printf("%s: %d frames, %s caster, per frame %.2f ms device, %.2f ms wall%s\n", f.output.c_str(),
                     f.views, vr::casterName(caster).data(), deviceMs / f.views, wallMs / f.views,
-                    iterationsNote(iterations / f.views).c_str());
+                    iterationsNote(iterations ? std::optional(*iterations / f.views) : std::nullopt).c_str());
     return viewStats;
 }
 
