@@ -1,8 +1,9 @@
 // Blend benchmark (prints a Markdown table): per shared CT, the median device time over an orbit of MIP with the
 // primitive and the blocks caster (the figure to set beside VTK's MIP: `vr_peers --blend mip`, docs/BENCH.md), and
 // of the iso-surface with both casters against the composite primitive caster, with iterations per ray; and the
-// composite frame clipped to half the volume, by a crop box and by a plane, against the whole (clipping should cost
-// about its share of the frame: half or less). The blocks caster must render its primitive caster's image (checked).
+// composite frame clipped to half the volume, by a crop box and by a plane, against the whole, in time and in samples
+// taken (clipping should cost about its share of the frame: the share of the samples it keeps, half or less where
+// the kept half holds half the work; more where it opens to view what the whole frame's rays ended before). The blocks caster must render its primitive caster's image (checked).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -32,26 +33,46 @@ double isoValueOf(const PreparedVolume& p) {
 }
 
 struct Orbit {
-    double medianMs = 0, iterationsPerRay = 0;
+    std::vector<double> ms;  // per view
+    double medianMs = 0, iterationsPerRay = 0, samplesPerRay = 0;
     std::vector<Image> images;
 };
 
+// Each setting's orbit, the settings taking turns at each view, so that a machine whose speed drifts slows them
+// alike and their per-view ratios (medianRatio) hold.
+std::vector<Orbit> renderOrbits(VulkanRenderer& renderer, const GpuVolume& volume, const std::vector<Camera>& cameras,
+                                const std::vector<RenderSettings>& settings) {
+    for (const RenderSettings& s : settings) renderer.render(volume, cameras.front(), s);  // warm-up: compiled
+    std::vector<Orbit> orbits(settings.size());
+    std::vector<double> iterations(settings.size()), samples(settings.size()), rays(settings.size());
+    for (const Camera& c : cameras) {
+        for (std::size_t i = 0; i < settings.size(); ++i) {
+            auto [r, deviceMs] = bench::timedThenCounted(renderer, volume, c, settings[i]);
+            orbits[i].ms.push_back(deviceMs);
+            for (uint32_t n : r.iterations) iterations[i] += n;
+            for (uint32_t n : r.samples) samples[i] += n;
+            rays[i] += double(r.iterations.size());
+            orbits[i].images.push_back(std::move(r.image));
+        }
+    }
+    for (std::size_t i = 0; i < settings.size(); ++i) {
+        orbits[i].medianMs = median(orbits[i].ms);
+        orbits[i].iterationsPerRay = iterations[i] / rays[i];
+        orbits[i].samplesPerRay = samples[i] / rays[i];
+    }
+    return orbits;
+}
+
 Orbit renderOrbit(VulkanRenderer& renderer, const GpuVolume& volume, const std::vector<Camera>& cameras,
                   const RenderSettings& s) {
-    renderer.render(volume, cameras.front(), s);  // warm-up: the pipeline is compiled
-    Orbit o;
-    std::vector<double> ms;
-    double iterations = 0, rays = 0;
-    for (const Camera& c : cameras) {
-        auto [r, deviceMs] = bench::timedThenCounted(renderer, volume, c, s);
-        ms.push_back(deviceMs);
-        for (uint32_t n : r.iterations) iterations += n;
-        rays += double(r.iterations.size());
-        o.images.push_back(std::move(r.image));
-    }
-    o.medianMs = median(ms);
-    o.iterationsPerRay = iterations / rays;
-    return o;
+    return std::move(renderOrbits(renderer, volume, cameras, {s}).front());
+}
+
+// The median over the views of a's time over b's (rendered taking turns).
+double medianRatio(const Orbit& a, const Orbit& b) {
+    std::vector<double> r;
+    for (std::size_t i = 0; i < a.ms.size(); ++i) r.push_back(a.ms[i] / b.ms[i]);
+    return median(r);
 }
 
 double maxDifference(const Orbit& a, const Orbit& b) {
@@ -88,7 +109,8 @@ int main(int argc, char** argv) {
                     ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear");
         std::printf("| dataset | iso-value | MIP primitive ms | MIP blocks ms | MIP speed-up | MIP iterations "
                     "(prim / blocks) | composite primitive ms | iso primitive ms | iso blocks ms | composite / iso "
-                    "blocks | iso iterations (prim / blocks) | half crop / whole | half plane / whole |\n"
+                    "blocks | iso iterations (prim / blocks) | half crop / whole: time (samples) | half plane / whole: "
+                    "time (samples) |\n"
                     "|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---|---:|---:|\n");
         for (const std::string& name : datasets) {
             const test::DatasetEntry e = test::rawDataset(name);
@@ -108,15 +130,13 @@ int main(int argc, char** argv) {
             s.stepVoxels = step;
             s.trilinear = !nearest;
             s.isoValue = isoValueOf(p);
-            const Orbit composite = renderOrbit(renderer, volume, cameras, s);
             // Half the volume kept: the voxels of x below the middle, then the world half-space beyond the centre.
+            RenderSettings cropSettings = s, planeSettings = s;
             const Vec3i dims = p.grid().dims;
-            s.crop = CropBox{{0, 0, 0}, {dims.x / 2 - 1, dims.y - 1, dims.z - 1}};
-            const Orbit cropped = renderOrbit(renderer, volume, cameras, s);
-            s.crop.reset();
-            s.clipPlanes = {ClipPlane{{1, 0, 0}, p.grid().centre().x}};
-            const Orbit planeClipped = renderOrbit(renderer, volume, cameras, s);
-            s.clipPlanes.clear();
+            cropSettings.crop = CropBox{{0, 0, 0}, {dims.x / 2 - 1, dims.y - 1, dims.z - 1}};
+            planeSettings.clipPlanes = {ClipPlane{{1, 0, 0}, p.grid().centre().x}};
+            const std::vector<Orbit> clipped = renderOrbits(renderer, volume, cameras, {s, cropSettings, planeSettings});
+            const Orbit &composite = clipped[0], &cropped = clipped[1], &planeClipped = clipped[2];
             s.shading = false;
             s.blend = Blend::MIP;
             const Orbit mip = renderOrbit(renderer, volume, cameras, s);
@@ -133,13 +153,14 @@ int main(int argc, char** argv) {
                           name.c_str());
             checks.expect(mipBlocks.iterationsPerRay < mip.iterationsPerRay, "%s: MIP blocks iterates less",
                           name.c_str());
-            std::printf("| %s | %g | %.1f | %.1f | %.2fx | %.1f / %.1f | %.1f | %.1f | %.1f | %.2fx | %.1f / %.1f | "
-                        "%.2f | %.2f |\n",
+            std::printf("| %s | %g | %.3g | %.3g | %.2fx | %.1f / %.1f | %.3g | %.3g | %.3g | %.2fx | %.1f / %.1f | "
+                        "%.2f (%.2f) | %.2f (%.2f) |\n",
                         name.c_str(), s.isoValue, mip.medianMs, mipBlocks.medianMs, mip.medianMs / mipBlocks.medianMs,
                         mip.iterationsPerRay, mipBlocks.iterationsPerRay, composite.medianMs, iso.medianMs,
                         isoBlocks.medianMs, composite.medianMs / isoBlocks.medianMs, iso.iterationsPerRay,
-                        isoBlocks.iterationsPerRay, cropped.medianMs / composite.medianMs,
-                        planeClipped.medianMs / composite.medianMs);
+                        isoBlocks.iterationsPerRay, medianRatio(cropped, composite),
+                        cropped.samplesPerRay / composite.samplesPerRay, medianRatio(planeClipped, composite),
+                        planeClipped.samplesPerRay / composite.samplesPerRay);
             std::fflush(stdout);
         }
     } catch (const std::exception& e) {

@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
             checks.expect(m.recastFraction > 0 && m.recastFraction <= 1, "%s: a share of the right eye is re-cast",
                           e.file.c_str());
             checks.expect(m.pairMs > 0 && m.oneEyeMs > 0, "%s: positive device times", e.file.c_str());
-            std::printf("| %s | %.1f | %.1f | %.2fx | %.1f | %.1f | %.2f | %.1f %%, %.1f %% | %.1f (%.1f) | "
+            std::printf("| %s | %.3g | %.3g | %.2fx | %.3g | %.3g | %.3g | %.1f %%, %.1f %% | %.1f (%.1f) | "
                         "%.4f (%.4f) | %.2f %% (%.2f) | %.2f %% (%.2f) | %s | %s |\n",
                         e.file.c_str(), m.oneEyeMs, m.pairMs, ratio, m.leftEyeMs, m.fullPairMs, m.reprojectMs,
                         100 * m.recastFraction, 100 * m.recastWork, m.error.mean.psnr, m.error.worst.psnr,
