@@ -15,6 +15,7 @@
 #include "render/view_octants.h"
 #include "support/load_dataset.h"
 #include "sweep/stereo_measure.h"
+#include "volrender/vulkan/ray_pieces.h"
 
 namespace {
 using namespace vr;
@@ -28,7 +29,7 @@ bool isCt(const std::string& file) { return file.find("_ct_") != std::string::np
 int main(int argc, char** argv) {
     CLI::App app{"Stereo benchmark: the right eye reprojected from the left against both eyes cast in full"};
     std::vector<std::string> datasets;
-    int size = 512, views = 8, device = -1;
+    int size = 512, views = 8, device = -1, pieces = VulkanRenderer::kAutoPieces;
     double to = 0.02, ta = 10, step = 0.5;
     std::string caster = "eacd", images;
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv (default: every raw dataset)")
@@ -40,6 +41,11 @@ int main(int argc, char** argv) {
     app.add_option("--ta", ta, "T_a of the regions, degrees")->capture_default_str();
     app.add_option("--step", step, "step in voxels of the smallest spacing")->capture_default_str();
     app.add_option("--device", device, "Vulkan device index");
+    app.add_option("--recast-pieces", pieces,
+                   "pieces each composite re-cast ray is cast in (0: the device's choice: whole rays on a CPU "
+                   "device, up to 8 pieces on a GPU)")
+        ->check(CLI::Range(0, kMostPieces))
+        ->capture_default_str();
     app.add_option("--images", images, "folder to write view 0's right eyes into: DATASET_reused.png, "
                                         "DATASET_full.png and DATASET_error.png (|difference| x 10)");
     CLI11_PARSE(app, argc, argv);
@@ -50,13 +56,14 @@ int main(int argc, char** argv) {
             for (const test::DatasetEntry& e : test::rawManifest()) datasets.push_back(e.file);
         VulkanContext ctx(VulkanOptions{device, false});
         VulkanRenderer renderer(ctx);
+        renderer.setRecastPieces(pieces);
         std::printf("Device: %s. %dx%d, %d-pair orbit (elevation 20), perspective (fov 30), separation 1/30 of the "
                     "focus distance (the volume centre's), %s caster at T_o %g, T_a %g, step %g voxel, trilinear, "
                     "Phong headlight, ERT 0.99. Times are medians over the orbit; errors of the reused right eye "
                     "against its full render, mean over the views (worst view in brackets).\n\n",
                     ctx.info().name.c_str(), size, size, views, caster.c_str(), to, ta, step);
         std::printf("| dataset | one eye ms | pair ms (reuse) | pair / one eye | left eye ms (reuse) | "
-                    "pair ms (no reuse) | reprojection ms | right eye re-cast (pixels, work) | PSNR dB | SSIM | "
+                    "pair ms (no reuse) | reprojection ms | right eye re-cast (pixels, work, pieces) | PSNR dB | SSIM | "
                     "off > 1/255 | CIEDE2000 > 2.3 | time target | quality target |\n"
                     "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
         for (const std::string& name : datasets) {
@@ -92,10 +99,10 @@ int main(int argc, char** argv) {
             checks.expect(m.recastFraction > 0 && m.recastFraction <= 1, "%s: a share of the right eye is re-cast",
                           e.file.c_str());
             checks.expect(m.pairMs > 0 && m.oneEyeMs > 0, "%s: positive device times", e.file.c_str());
-            std::printf("| %s | %.3g | %.3g | %.2fx | %.3g | %.3g | %.3g | %.1f %%, %.1f %% | %.1f (%.1f) | "
+            std::printf("| %s | %.3g | %.3g | %.2fx | %.3g | %.3g | %.3g | %.1f %%, %.1f %%, %d | %.1f (%.1f) | "
                         "%.4f (%.4f) | %.2f %% (%.2f) | %.2f %% (%.2f) | %s | %s |\n",
                         e.file.c_str(), m.oneEyeMs, m.pairMs, ratio, m.leftEyeMs, m.fullPairMs, m.reprojectMs,
-                        100 * m.recastFraction, 100 * m.recastWork, m.error.mean.psnr, m.error.worst.psnr,
+                        100 * m.recastFraction, 100 * m.recastWork, m.recastPieces, m.error.mean.psnr, m.error.worst.psnr,
                         m.error.mean.ssim, m.error.worst.ssim, m.error.mean.percentOff8Bit,
                         m.error.worst.percentOff8Bit, m.error.mean.percentPerceptual, m.error.worst.percentPerceptual,
                         !isCt(e.file) ? "(not a CT)" : ratio <= kPairTarget ? "met" : "missed",

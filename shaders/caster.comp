@@ -35,6 +35,11 @@ layout(constant_id = kSpecIdScalarType) const int SCALAR_TYPE = kScalarFloat32;
 const int BLEND = VR_BLEND;
 // Cast the pixels of a list (a stereo pair's re-casts), in chunks of a tile's invocations, instead of a tile.
 layout(constant_id = kSpecIdPixelList) const bool PIXEL_LIST = false;
+// A list's composite rays in pieces (the list's re-casts on a GPU): each dispatch's third dimension cuts each ray into
+// that many stretches of nearly equal length, cast by separate invocations, so that no ray's whole length lies on one
+// invocation's chain of dependent loads. Each writes what its stretch gathered alone (its premultiplied colour and
+// optical depth); the renderer composites them front to back (volrender/vulkan/ray_pieces.h).
+const bool PIECES = PIXEL_LIST && BLEND == kBlendComposite;
 // Leaps take the samples their margin proves (docs/ALGORITHMS.md section 8), unchecked: the margin is a small part of
 // a step in this frame (render/ray_setup.h leapsByTheMargin).
 layout(constant_id = kSpecIdMarginLeaps) const bool MARGIN_LEAPS = false;
@@ -472,6 +477,8 @@ void main() {
     GridRay g = cameraGridRay(float(pixel.x) + 0.5, float(pixel.y) + 0.5, direction);
     RayInterval iv = jitteredInterval(intersectGrid(g), pixel);
     uint kCount = latticeCount(iv);
+    uint pieces = PIECES ? gl_NumWorkGroups.z : 1u, piece = PIECES ? gl_WorkGroupID.z : 0u;
+    uint kStart = pieceStart(kCount, piece, pieces), kEnd = pieceStart(kCount, piece + 1u, pieces);
     LeapSlack slack = leapSlack(g, iv);
     int oct = rayOctant(g);
     // Selected, not indexed: llvmpipe reads an array at a varying index lane by lane.
@@ -482,7 +489,7 @@ void main() {
 
     bool missingOctant = (CASTER == kACD || CASTER == kEACD || CASTER == kHier) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
-    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), 0u, 0u, missingOctant ? kFailed : 0u,
+    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), kStart, 0u, missingOctant ? kFailed : 0u,
                                               0.0, 0u, 0.0, vec4(0.0, 0.0, 0.0, 1.0), 0u)
                                    : loadRayState(outIndex);
     vec3 colour = state.composite.rgb;
@@ -519,7 +526,7 @@ void main() {
     }
     // This dispatch continues the ray when the ray is in this pass and its next sample lies in this brick; it
     // then runs until a sample leaves the brick (a leap may cross bricks: the next brick's pass finds it there).
-    bool mine = k < kCount && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, iv, k))));
+    bool mine = k < kEnd && (!BRICKED || (rayInPass(oct) && inBrick(sampleVoxel(g, iv, k))));
     if (!mine && !firstDispatch && !lastDispatch) return;
     // MIP and MinIP with blocks: the running value starts at the probe samples (blend.h), which a volume of one brick
     // holds (a bricked one starts without).
@@ -544,7 +551,7 @@ void main() {
     // any of them needs it, so a lookup in the sample loop cost nearly every sample, and a sample beside the lookup
     // every leap. An iteration is a leap or a sample; a sampled block's lookup and first sample are one.
     if (CASTER == kBlocks) {
-        while (mine && !failed && !hit && k < kCount && !settled(running)) {
+        while (mine && !failed && !hit && k < kEnd && !settled(running)) {
             // Leaps until a block that could change the result, which sample k (voxel v) starts.
             ivec3 v;
             vec2 finest;   // the finest block's scalar range at sample k
@@ -570,12 +577,12 @@ void main() {
                                   blockExtent(v.y, octantSign(oct, 1), edge),
                                   blockExtent(v.z, octantSign(oct, 2), edge));
                 BoxLeap b = octantBoxLeap(g, iv, k, v, oct, ext, slack);
-                n = leapCount(g, iv, k, kCount, b.wanted, b.wantedWithMargin, b.box);
+                n = leapCount(g, iv, k, kEnd, b.wanted, b.wantedWithMargin, b.box);
                 if (size == 0) break;  // the block could change the result: sampled below
                 if (BLEND == kBlendAverage) sum = addPair(sum, exactProduct(float(n), value));
                 k += n;
-            } while (k < kCount);
-            if (!entered || k >= kCount) break;
+            } while (k < kEnd);
+            if (!entered || k >= kEnd) break;
             for (uint blockEnd = k + n;;) {
                 float scalar = TRILINEAR ? footprintScalar(footprintAt(samplePosition(g, iv, k))) : loadScalar(v);
                 hit = foldSample(scalar, k, running, sum, inside);
@@ -590,7 +597,7 @@ void main() {
             }
         }
     } else do {
-        for (n = 1u; mine && !failed && !hit && k < kCount && pairLess(depth, params.ertDepth) && !settled(running);
+        for (n = 1u; mine && !failed && !hit && k < kEnd && pairLess(depth, params.ertDepth) && !settled(running);
              k += n) {
             ivec3 v;
             if (!enterSample(g, iv, k, v, iterations, failed)) break;
@@ -642,7 +649,7 @@ void main() {
                 float termination = samplesToTermination(depth, sampleDepth);
                 if (TRILINEAR) wanted = trilinearLeapSamples(wanted, box);
                 if (TRILINEAR) wantedWithMargin = trilinearLeapSamples(wantedWithMargin, box);
-                n = leapCount(g, iv, k, kCount, min(wanted, termination), min(wantedWithMargin, termination), box);
+                n = leapCount(g, iv, k, kEnd, min(wanted, termination), min(wantedWithMargin, termination), box);
             }
 
             // The span's depth n sigma dt, exact as a pair: the same sum as n single samples'.
@@ -704,7 +711,7 @@ void main() {
     } while (true);
 
     // A settled ray represents the rest of its samples, as a leap over a block that cannot change it does.
-    if (settled(running)) k = kCount;
+    if (settled(running)) k = kEnd;
 
     // Some drivers end loops on their own: llvmpipe stops every loop of an invocation once 65535 iterations have run
     // in all of them, which would silently shorten a long ray. A loop whose trip count (2) the compiler cannot
@@ -712,7 +719,7 @@ void main() {
     int probe = 0;
     for (float i = 0.0; i < params.loopProbe; i += 1.0) ++probe;
     uint flags = state.flags | (probe < kLoopProbeTrips ? kCutShort : 0u);
-    bool unfinished = k < kCount && !hit && (BLEND != kBlendComposite || pairLess(depth, params.ertDepth));
+    bool unfinished = k < kEnd && !hit && (BLEND != kBlendComposite || pairLess(depth, params.ertDepth));
     if (lastDispatch && unfinished) failed = true;  // in no pass: a bug
     if (failed) flags |= kFailed;
     flags = (flags & ~kIsoInside) | (inside ? kIsoInside : 0u) | (hit ? kIsoHit : 0u);
@@ -749,9 +756,12 @@ void main() {
         pixelColour = hit ? vec4(isoSurface(g, iv, k, toEye, toLight, tHit), 1.0) : vec4(params.background.rgb, 0.0);
         interval = vec2(tHit);
     }
+    // A piece: what its stretch gathered, and its optical depth, in the dispatch's piece-th run of outputs.
+    if (PIECES) pixelColour = vec4(colour, depth.x + depth.y);
+    uint outSlot = outIndex + piece * uint(tile.tileSize.x * tile.tileSize.y);
     uint failure = flags & (kFailed | kCutShort);
     uvec4 colourBits = floatBitsToUint(pixelColour);
     if (failure != 0u) colourBits.a = failureAlphaBits(failure);
-    outColour[outIndex] = colourBits;
-    if (params.rayCounts != 0) outCounts[outIndex] = uvec4(k, iterations | failure, floatBitsToUint(interval));
+    outColour[outSlot] = colourBits;
+    if (params.rayCounts != 0) outCounts[outSlot] = uvec4(k - kStart, iterations | failure, floatBitsToUint(interval));
 }

@@ -58,6 +58,12 @@ VR_MATH_FUNCTION VR_INDEX latticeCount(VR_REAL tEntry, VR_REAL tExit, VR_REAL dt
     return k;
 }
 
+// The first sample of piece `piece` of a ray's kCount samples cut into `pieces` of nearly equal length:
+// kCount piece / pieces rounded down, without the product (which could overflow the index).
+VR_FUNCTION VR_INDEX pieceStart(VR_INDEX kCount, VR_INDEX piece, VR_INDEX pieces) {
+    return kCount / pieces * piece + kCount % pieces * piece / pieces;
+}
+
 // What a leap subtracts from the distance to its box's faces (world units), so that the last sample it counts lies
 // inside the box as the casters' float positions round it (docs/ALGORITHMS.md section 8). With u = 2^-24 (float's
 // unit roundoff), T the ray's largest t and N_a the grid size: t_k is within 3.01 u T of tEntry + k dt, a position

@@ -23,6 +23,7 @@ struct StereoMeasurement {
     double recastFraction = 0;  // mean over the views: of the right eye's pixels
     double recastWork = 0;      // the re-cast rays' loop iterations over the full right eye's, over the views: the
                                 // share of its work the right eye still does, whatever the device's timing noise
+    int recastPieces = 1;       // the most pieces a view's re-cast rays were cast in
     double separation = 0;      // of view 0, world units
     ErrorSummary error;         // the reused right eye against its full render, over the views
     bool leftEyesEqual = true;  // the reuse's left eye is the full render's, at every view

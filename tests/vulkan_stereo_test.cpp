@@ -10,6 +10,7 @@
 #include "support/blend_cases.h"
 #include "support/views.h"
 #include "support/vulkan.h"
+#include "volrender/vulkan/ray_pieces.h"
 
 namespace vr {
 namespace {
@@ -229,6 +230,48 @@ TEST(VulkanStereo, FaintHazeIsCompositedWhereEmptyBandsAreSkipped) {
         }
         EXPECT_GT(wall, int(reused.recast.size() / 16)) << casterName(caster);
         expectPairsAgree(reused, full, 0.01, std::string(casterName(caster)));
+    }
+    test::expectNoValidationErrors();
+}
+
+// A re-cast ray cast in pieces, each a stretch of its samples gathered from a transparent start, composites to the
+// whole ray's pixel: through haze over a wall and through a translucent slab, stepped and leapt. A CPU device casts
+// whole rays unless told otherwise.
+TEST(VulkanStereo, RecastRaysInPiecesAreTheWholeRays) {
+    VulkanRenderer whole(test::vulkanContext(), 16), pieced(test::vulkanContext(), 16);
+    for (const PreparedVolume* p : {&hazeOverWall(), &twoColourSlab()}) {
+        const Camera centre = Camera::fit(p->grid(), test::orbitView(0, 0, 64, 48, Projection::Perspective));
+        const StereoPair pair = stereoPair(centre, p->grid(), kSeparation, std::nullopt);
+        const GpuVolume a = whole.upload(*p, {{Caster::Primitive, Caster::EACD}, kAllOctants});
+        const GpuVolume b = pieced.upload(*p, {{Caster::Primitive, Caster::EACD}, kAllOctants});
+        for (Caster caster : {Caster::Primitive, Caster::EACD}) {
+            const RenderSettings s = test::renderSettings(caster, false, false);
+            const StereoRender one = whole.renderStereo(a, pair, s, true);
+            EXPECT_EQ(one.recastPieces, 1);
+            for (int pieces : {2, 3, kMostPieces}) {
+                const std::string what = std::string(casterName(caster)) + ", " + std::to_string(pieces) + " pieces";
+                pieced.setRecastPieces(pieces);
+                const StereoRender split = pieced.renderStereo(b, pair, s, true);
+                EXPECT_EQ(split.recastPieces, pieces) << what;
+                ASSERT_EQ(split.recast, one.recast) << what;
+                EXPECT_LE(maxAbsDifference(split.right.image, one.right.image), 1e-5) << what;
+                // The pieces are real: each starts an iteration of its own, where a leap would have crossed it.
+                std::uint64_t wholeIterations = 0, pieceIterations = 0, recast = 0;
+                for (std::size_t i = 0; i < one.recast.size(); ++i) {
+                    if (!one.recast[i]) continue;
+                    ++recast;
+                    wholeIterations += one.right.iterations[i];
+                    pieceIterations += split.right.iterations[i];
+                    EXPECT_GE(split.right.samples[i], one.right.samples[i]) << what << ": pixel " << i;
+                }
+                ASSERT_GT(recast, 0u) << what;
+                if (caster == Caster::EACD) {
+                    EXPECT_GT(pieceIterations, wholeIterations) << what;
+                } else {
+                    EXPECT_GE(pieceIterations, wholeIterations) << what;
+                }
+            }
+        }
     }
     test::expectNoValidationErrors();
 }

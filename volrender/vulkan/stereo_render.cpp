@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/parallel_for.h>
 
+#include "volrender/vulkan/ray_pieces.h"
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -88,6 +91,13 @@ VulkanRenderer::PairBuffers& VulkanRenderer::pairBuffers(std::size_t pixels, std
     return *pair_;
 }
 
+void VulkanRenderer::setRecastPieces(int pieces) {
+    if (pieces < kAutoPieces || pieces > kMostPieces)
+        throw std::invalid_argument("re-cast pieces: " + std::to_string(pieces) + " is outside 0 (the device's " +
+                                    "choice) to " + std::to_string(kMostPieces));
+    recastPieces_ = pieces;
+}
+
 StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoPair& pair,
                                           const RenderSettings& settings, bool reuse) {
     StereoRender out;
@@ -128,7 +138,12 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         // Blocks of 8 x 8 pixels in row order, each block's pixels in row order: a workgroup's rays stay as close
         // together as a tile's (the device appended them in any order).
         std::sort(list + 1, list + 1 + list[0], [](uint32_t a, uint32_t b) { return blockOrder(a) < blockOrder(b); });
-        const PixelList recastPixels{recast, std::vector<uint32_t>(list + 1, list + 1 + list[0])};
+        PixelList recastPixels{recast, std::vector<uint32_t>(list + 1, list + 1 + list[0])};
+        if (composite && volume.bricks().bricks().size() == 1)
+            recastPixels.pieces = recastPieces_ != kAutoPieces
+                                      ? recastPieces_
+                                      : raysPieces(ctx_.info().type == "cpu", recastPixels.pixels.size(), pixels);
+        out.recastPieces = recastPixels.pieces;
         out.right = renderOnDevice(volume, pair.right, settings, &recastPixels);
         out.right.deviceMilliseconds += out.reprojectMilliseconds;
         out.recast.assign(pixels, 0);

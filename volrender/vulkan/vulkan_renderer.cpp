@@ -21,6 +21,7 @@
 #include "shaders/device_contract.h"
 #include "shaders/embedded_shaders.h"
 #include "shaders/stereo_reprojection.h"
+#include "volrender/vulkan/ray_pieces.h"
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/workgroup_rows.h"
 
@@ -364,7 +365,12 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const vk::raii::Pipeline& pipe = pipeline(variant);
 
     const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
-    FrameBuffers& frame = frameBuffers(list ? tilePixels
+    const int pieces = list ? list->pieces : 1;
+    if (pieces > 1 && (settings.blend != Blend::Composite || volume.bricks().bricks().size() > 1))
+        throw std::logic_error("rays in pieces: composite of a one-brick volume only");
+    // A list is cast in chunks of whole rows of a tile, whose pieces' outputs together fit a tile's.
+    const int chunkRows = std::max(1, tileSize_ / pieces);
+    FrameBuffers& frame = frameBuffers(list ? std::size_t(tileSize_) * std::size_t(chunkRows) * std::size_t(pieces)
                                             : std::size_t(std::min(tileSize_, camera.width)) *
                                                   std::size_t(std::min(tileSize_, camera.height)));
     const HostBuffer &params = frame.params, &extentTable = frame.extentTable;
@@ -460,8 +466,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     };
     if (list) {
         const int count = int(list->pixels.size());
-        for (int first = 0; first < count; first += int(tilePixels)) {
-            const int rows = (std::min(int(tilePixels), count - first) + tileSize_ - 1) / tileSize_;
+        const int chunk = tileSize_ * chunkRows;
+        for (int first = 0; first < count; first += chunk) {
+            const int rows = (std::min(chunk, count - first) + tileSize_ - 1) / tileSize_;
             addTile({first, 0}, {tileSize_, rows});
         }
     } else {
@@ -491,7 +498,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     cmd.pushConstants<device::TilePush>(*pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0,
                                                         tile);
                     constexpr int group = device::kWorkgroupSize;
-                    cmd.dispatch((tile.tileSize.x + group - 1) / group, (tile.tileSize.y + group - 1) / group, 1);
+                    cmd.dispatch((tile.tileSize.x + group - 1) / group, (tile.tileSize.y + group - 1) / group,
+                                 uint32_t(pieces));
                     // The next brick reads the ray states this one wrote.
                     vk::MemoryBarrier carried(A::eShaderWrite, A::eShaderRead | A::eShaderWrite);
                     cmd.pipelineBarrier(S::eComputeShader, S::eComputeShader, {}, carried, {}, {});
@@ -501,8 +509,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             if (stagedOutput_) {  // the tile's pixels to host memory by the transfer engine
                 vk::MemoryBarrier toCopy(A::eShaderWrite, A::eTransferRead);
                 cmd.pipelineBarrier(S::eComputeShader, S::eTransfer, {}, toCopy, {}, {});
-                const vk::BufferCopy tilePixels(
-                    0, 0, vk::DeviceSize(tile.tileSize.x) * vk::DeviceSize(tile.tileSize.y) * sizeof(device::uvec4));
+                const vk::BufferCopy tilePixels(0, 0,
+                                                vk::DeviceSize(tile.tileSize.x) * vk::DeviceSize(tile.tileSize.y) *
+                                                    vk::DeviceSize(pieces) * sizeof(device::uvec4));
                 cmd.copyBuffer(*frame.colours.onDevice->buffer(), *frame.colours.host.buffer(), tilePixels);
                 if (counts) cmd.copyBuffer(*frame.counts.onDevice->buffer(), *frame.counts.host.buffer(), tilePixels);
             }
@@ -524,7 +533,14 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     px = int(list->pixels[entry] & 0xffffu), py = int(list->pixels[entry] >> 16);
                 }
                 const std::size_t index = std::size_t(py) * camera.width + px;
-                const device::uvec4& colour = colours[local];
+                // A composite list's pixels are its rays' pieces composited (the shader's PIECES).
+                const RayFromPieces ray =
+                    list && settings.blend == Blend::Composite
+                        ? compositePieces(colours, counts ? rayCounts : nullptr, local,
+                                          std::size_t(tile.tileSize.x) * tile.tileSize.y, pieces, settings.background)
+                        : RayFromPieces{colours[local], counts ? rayCounts[local].x : 0,
+                                        counts ? rayCounts[local].y : 0};
+                const device::uvec4& colour = ray.colour;
                 const uint32_t failure = device::failureFlagsOf(colour.w);
                 if (failure & device::kCutShort)
                     throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) + " caster: " +
@@ -540,10 +556,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                              "no brick pass (a bug)");
                 std::memcpy(result.image.pixel(px, py), &colour, 4 * sizeof(float));
                 if (!counts) continue;
-                const device::uvec4& c = rayCounts[local];
-                if (left && left->pixels) static_cast<device::OutPixel*>(left->pixels)[index] = {colour, c};
-                result.iterations[index] = c.y;  // with the shader's flags
-                result.samples[index] = c.x;
+                if (left && left->pixels) static_cast<device::OutPixel*>(left->pixels)[index] = {colour, rayCounts[local]};
+                result.iterations[index] = ray.iterations;  // with the shader's flags
+                result.samples[index] = ray.samples;
             }
         });
     }

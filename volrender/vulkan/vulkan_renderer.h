@@ -27,6 +27,7 @@ struct StereoRender {
     std::vector<uint8_t> recast;    // per right pixel: 1 where it was ray-cast (every pixel without reuse)
     double recastFraction = 1;      // of the right eye's pixels
     double reprojectMilliseconds = 0;  // device time of the reprojection alone (part of the right eye's)
+    int recastPieces = 1;              // the pieces each re-cast ray was cast in
 };
 
 class VulkanRenderer {
@@ -63,6 +64,11 @@ public:
     // are cast in full. Throws as render() does.
     StereoRender renderStereo(const GpuVolume& volume, const StereoPair& pair, const RenderSettings& settings,
                               bool reuse);
+    // How a pair's composite re-casts of a one-brick volume are cast: kAutoPieces (ray_pieces.h raysPieces: whole
+    // rays on a CPU device, pieces on a GPU), or each ray in this many pieces, 1 to kMostPieces (else
+    // std::invalid_argument). Other re-casts cast whole rays.
+    static constexpr int kAutoPieces = 0;
+    void setRecastPieces(int pieces);
 
     // Makes, ahead of any render, the pipeline that a render of a one-brick volume of scalars of `type`, without a
     // label map, with `settings` in `projection` (and an EACD in the default code) takes: volrender makes it while the
@@ -81,9 +87,11 @@ private:
     void checkRender(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
     // What the casters cast: every pixel, tile by tile, or (list) the pixels of a list on the device, whose host copy
     // `pixels` (packed, shaders/stereo_reprojection.h) says where each result goes; the pixels not in it stay blank.
+    // A composite list's rays may be cast in pieces (ray_pieces.h); other blends' in one.
     struct PixelList {
         const HostBuffer& buffer;
         std::vector<uint32_t> pixels;
+        int pieces = 1;
     };
     // A stereo pair's left eye, for the reprojection: every pixel's OutPixel kept, row by row (a whole image of
     // them), and for composite its bands' segments (a uvec4 each, shaders/stereo_reprojection.h bandTexel).
@@ -170,6 +178,7 @@ private:
     std::unique_ptr<TexelTable> unusedLabelTable_;  // bound without a label map
     std::vector<UploadedResource> uploads_;
     std::unique_ptr<StereoReprojector> reprojector_;  // made by the first pair with reuse
+    int recastPieces_ = kAutoPieces;
 };
 
 template <typename Work>
