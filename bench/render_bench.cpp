@@ -16,6 +16,7 @@
 #include "sweep/metrics/rmse.h"
 #include "sweep/order_statistics.h"
 #include "render/view_octants.h"
+#include "volrender/vulkan/ray_pieces.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 using namespace vr;
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
     int size = 512, views = 8, device = -1;
     double to = 0.02, ta = 10, step = 0.5;
     bool nearest = false, noShading = false;
-    int tile = VulkanRenderer::kAutoTile;
+    int tile = VulkanRenderer::kAutoTile, pieces = 1;
     std::vector<std::string> gradientSources{"on-the-fly"};
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->capture_default_str();
     app.add_option("--size", size, "image width = height")->capture_default_str();
@@ -39,6 +40,11 @@ int main(int argc, char** argv) {
     app.add_option("--device", device, "Vulkan device index");
     app.add_option("--tile", tile, "pixels per side of one submit (0: the renderer's choice for the device)")
         ->capture_default_str();
+    app.add_option("--ray-pieces", pieces,
+                   "pieces each composite ray is cast in (1: whole rays, as users render; more: to measure where a "
+                   "GPU's frame waits on its longest rays)")
+        ->check(CLI::Range(1, kMostPieces))
+        ->capture_default_str();
     app.add_option("--gradients", gradientSources, "what shading takes its normals from, each in turn: on-the-fly, "
                    "stored")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
@@ -46,14 +52,15 @@ int main(int argc, char** argv) {
     try {
         VulkanContext ctx(VulkanOptions{device, false});
         VulkanRenderer renderer(ctx, tile);
+        renderer.setRayPieces(pieces);
         std::printf("Device: %s. %dx%d, %d-view orbit (elevation 20), step %g voxel, %s, %s, ERT 0.99, tiles of %d "
-                    "px.\n\n",
+                    "px, rays in %d piece(s).\n\n",
                     ctx.info().name.c_str(), size, size, views, step, nearest ? "nearest" : "trilinear",
-                    noShading ? "unshaded" : "Phong headlight", renderer.tileSize());
+                    noShading ? "unshaded" : "Phong headlight", renderer.tileSize(), pieces);
         std::printf("| dataset | T_o, T_a | caster | gradients | upload ms (MB) | median device ms | "
-                    "x primitive (time) | iterations/ray | x primitive (iterations) | "
+                    "x primitive (time) | iterations/ray | most iterations of a ray | x primitive (iterations) | "
                     "PSNR vs primitive T=0, worst view (dB) |\n");
-        std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+        std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
         for (const std::string& name : datasets) {
             const test::DatasetEntry e = test::rawDataset(name);
             PrepareOptions options;
@@ -75,6 +82,7 @@ int main(int argc, char** argv) {
                     s.gradients = parseGradients(source);
                     std::vector<double> ms, psnrs;
                     double iterations = 0;
+                    uint32_t most = 0;  // a ray's iterations, with its pieces' summed: the longest chain of whole rays
                     std::vector<Camera> cameras;
                     unsigned octants = 0;
                     for (int v = 0; v < views; ++v) {
@@ -97,16 +105,17 @@ int main(int argc, char** argv) {
                         ms.push_back(deviceMs);
                         iterations += std::accumulate(r.iterations.begin(), r.iterations.end(), 0.0) /
                                       double(r.iterations.size()) / views;
+                        most = std::max(most, *std::max_element(r.iterations.begin(), r.iterations.end()));
                         if (reference.size() < std::size_t(views)) reference.push_back(r.image);
                         psnrs.push_back(difference(reference[v], r.image).psnr());
                     }
                     const double t = median(ms);
                     if (c == Caster::Primitive && source == gradientSources.front())
                         primitiveMs = t, primitiveIterations = iterations;
-                    std::printf("| %s | %g, %g | %s | %s | %.1f (%.1f) | %.1f | %.2f | %.1f | %.2f | %.1f |\n",
+                    std::printf("| %s | %g, %g | %s | %s | %.1f (%.1f) | %.3g | %.2f | %.1f | %u | %.2f | %.1f |\n",
                                 e.file.c_str(), settingTo, settingTa, std::string(casterName(c)).c_str(),
                                 source.c_str(), uploadMs,
-                                double(volume.uploadedBytes()) / 1e6, t, primitiveMs / t, iterations,
+                                double(volume.uploadedBytes()) / 1e6, t, primitiveMs / t, iterations, most,
                                 primitiveIterations / iterations, *std::min_element(psnrs.begin(), psnrs.end()));
                     std::fflush(stdout);
                 }

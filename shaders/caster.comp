@@ -35,11 +35,6 @@ layout(constant_id = kSpecIdScalarType) const int SCALAR_TYPE = kScalarFloat32;
 const int BLEND = VR_BLEND;
 // Cast the pixels of a list (a stereo pair's re-casts), in chunks of a tile's invocations, instead of a tile.
 layout(constant_id = kSpecIdPixelList) const bool PIXEL_LIST = false;
-// A list's composite rays in pieces (the list's re-casts on a GPU): each dispatch's third dimension cuts each ray into
-// that many stretches of nearly equal length, cast by separate invocations, so that no ray's whole length lies on one
-// invocation's chain of dependent loads. Each writes what its stretch gathered alone (its premultiplied colour and
-// optical depth); the renderer composites them front to back (volrender/vulkan/ray_pieces.h).
-const bool PIECES = PIXEL_LIST && BLEND == kBlendComposite;
 // Leaps take the samples their margin proves (docs/ALGORITHMS.md section 8), unchecked: the margin is a small part of
 // a step in this frame (render/ray_setup.h leapsByTheMargin).
 layout(constant_id = kSpecIdMarginLeaps) const bool MARGIN_LEAPS = false;
@@ -57,6 +52,12 @@ layout(constant_id = kSpecIdStoredGradients) const bool STORED_GRADIENTS = false
 // The left eye of a stereo pair: record what the ray gathered at the far end of each band (stereo_reprojection.h).
 layout(constant_id = kSpecIdStereoBands) const bool STEREO_BANDS = false;
 #endif
+// Composite rays in pieces (a stereo pair's re-casts on a GPU): a dispatch's third dimension, where it has one, cuts
+// each ray into that many stretches of nearly equal length, cast by separate invocations, so that no ray's whole
+// length lies on one invocation's chain of dependent loads. Each writes what its stretch gathered alone (its
+// premultiplied colour and optical depth); the renderer composites them front to back
+// (volrender/vulkan/ray_pieces.h). A volume of bricks carries whole rays from brick to brick instead.
+const bool PIECES = BLEND == kBlendComposite && !BRICKED && !STEREO_BANDS;
 
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
@@ -757,7 +758,7 @@ void main() {
         interval = vec2(tHit);
     }
     // A piece: what its stretch gathered, and its optical depth, in the dispatch's piece-th run of outputs.
-    if (PIECES) pixelColour = vec4(colour, depth.x + depth.y);
+    if (PIECES && pieces > 1u) pixelColour = vec4(colour, depth.x + depth.y);
     uint outSlot = outIndex + piece * uint(tile.tileSize.x * tile.tileSize.y);
     uint failure = flags & (kFailed | kCutShort);
     uvec4 colourBits = floatBitsToUint(pixelColour);

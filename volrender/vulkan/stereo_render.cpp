@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <stdexcept>
-#include <string>
 
 #include <tbb/parallel_for.h>
 
@@ -89,13 +87,6 @@ VulkanRenderer::PairBuffers& VulkanRenderer::pairBuffers(std::size_t pixels, std
         pair_.emplace(ctx_, p, s, l);
     }
     return *pair_;
-}
-
-void VulkanRenderer::setRecastPieces(int pieces) {
-    if (pieces < kAutoPieces || pieces > kMostPieces)
-        throw std::invalid_argument("re-cast pieces: " + std::to_string(pieces) + " is outside 0 (the device's " +
-                                    "choice) to " + std::to_string(kMostPieces));
-    recastPieces_ = pieces;
 }
 
 StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoPair& pair,

@@ -289,6 +289,23 @@ GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolume
 
 VulkanRenderer::~VulkanRenderer() = default;
 
+namespace {
+
+int checkedPieces(int pieces, int lowest, const std::string& what) {
+    if (pieces < lowest || pieces > kMostPieces)
+        throw std::invalid_argument(what + ": " + std::to_string(pieces) + " is outside " + std::to_string(lowest) +
+                                    " to " + std::to_string(kMostPieces));
+    return pieces;
+}
+
+}  // namespace
+
+void VulkanRenderer::setRecastPieces(int pieces) {
+    recastPieces_ = checkedPieces(pieces, kAutoPieces, "re-cast pieces (0: the device's choice)");
+}
+
+void VulkanRenderer::setRayPieces(int pieces) { rayPieces_ = checkedPieces(pieces, 1, "ray pieces"); }
+
 RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings) {
     checkRender(volume, camera, settings);
     return deviceErrors([&] { return renderOnDevice(volume, camera, settings); });
@@ -364,15 +381,18 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const ExtentCode extentCode = variant.eacdCode;
     const vk::raii::Pipeline& pipe = pipeline(variant);
 
-    const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
-    const int pieces = list ? list->pieces : 1;
-    if (pieces > 1 && (settings.blend != Blend::Composite || volume.bricks().bricks().size() > 1))
-        throw std::logic_error("rays in pieces: composite of a one-brick volume only");
-    // A list is cast in chunks of whole rows of a tile, whose pieces' outputs together fit a tile's.
-    const int chunkRows = std::max(1, tileSize_ / pieces);
-    FrameBuffers& frame = frameBuffers(list ? std::size_t(tileSize_) * std::size_t(chunkRows) * std::size_t(pieces)
+    // Composite rays of a one-brick volume may be cast in pieces (ray_pieces.h): a list's as it asks, a frame's as
+    // setRayPieces asks (not a stereo left eye's, which records its bands along the whole ray).
+    const bool pieceable = settings.blend == Blend::Composite && volume.bricks().bricks().size() == 1 && !left;
+    const int pieces = list ? list->pieces : pieceable ? rayPieces_ : 1;
+    if (pieces > 1 && !pieceable) throw std::logic_error("rays in pieces: composite of a one-brick volume only");
+    // Tiles (a list's chunks) of whole rows, fewer of them where each ray has pieces: their outputs together fit a
+    // tile's.
+    const int tileRows = std::max(1, tileSize_ / pieces);
+    FrameBuffers& frame = frameBuffers(list ? std::size_t(tileSize_) * std::size_t(tileRows) * std::size_t(pieces)
                                             : std::size_t(std::min(tileSize_, camera.width)) *
-                                                  std::size_t(std::min(tileSize_, camera.height)));
+                                                  std::size_t(std::min(tileRows, camera.height)) *
+                                                  std::size_t(pieces));
     const HostBuffer &params = frame.params, &extentTable = frame.extentTable;
     device::CasterParams p = makeParams(volume, camera, settings);
     if (left) p.stereoBands = left->bandGeometry, p.stereoBandCount = left->bandCount;
@@ -466,15 +486,15 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     };
     if (list) {
         const int count = int(list->pixels.size());
-        const int chunk = tileSize_ * chunkRows;
+        const int chunk = tileSize_ * tileRows;
         for (int first = 0; first < count; first += chunk) {
             const int rows = (std::min(chunk, count - first) + tileSize_ - 1) / tileSize_;
             addTile({first, 0}, {tileSize_, rows});
         }
     } else {
-        for (int y0 = 0; y0 < camera.height; y0 += tileSize_)
+        for (int y0 = 0; y0 < camera.height; y0 += tileRows)
             for (int x0 = 0; x0 < camera.width; x0 += tileSize_)
-                addTile({x0, y0}, {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)});
+                addTile({x0, y0}, {std::min(tileSize_, camera.width - x0), std::min(tileRows, camera.height - y0)});
     }
     for (device::TilePush tile : tiles) {
         const int groupRows = (tile.tileSize.y + device::kWorkgroupSize - 1) / device::kWorkgroupSize;
@@ -533,9 +553,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     px = int(list->pixels[entry] & 0xffffu), py = int(list->pixels[entry] >> 16);
                 }
                 const std::size_t index = std::size_t(py) * camera.width + px;
-                // A composite list's pixels are its rays' pieces composited (the shader's PIECES).
+                // Rays in pieces: their pieces composited.
                 const RayFromPieces ray =
-                    list && settings.blend == Blend::Composite
+                    pieces > 1
                         ? compositePieces(colours, counts ? rayCounts : nullptr, local,
                                           std::size_t(tile.tileSize.x) * tile.tileSize.y, pieces, settings.background)
                         : RayFromPieces{colours[local], counts ? rayCounts[local].x : 0,

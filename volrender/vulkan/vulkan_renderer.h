@@ -69,6 +69,10 @@ public:
     // std::invalid_argument). Other re-casts cast whole rays.
     static constexpr int kAutoPieces = 0;
     void setRecastPieces(int pieces);
+    // Whole frames' composite rays of a one-brick volume in this many pieces each, 1 (whole rays, the default) to
+    // kMostPieces (else std::invalid_argument): for measuring where a GPU's frame waits on its longest rays
+    // (render_bench --ray-pieces). The pieces are composited on the host.
+    void setRayPieces(int pieces);
 
     // Makes, ahead of any render, the pipeline that a render of a one-brick volume of scalars of `type`, without a
     // label map, with `settings` in `projection` (and an EACD in the default code) takes: volrender makes it while the
@@ -179,6 +183,7 @@ private:
     std::vector<UploadedResource> uploads_;
     std::unique_ptr<StereoReprojector> reprojector_;  // made by the first pair with reuse
     int recastPieces_ = kAutoPieces;
+    int rayPieces_ = 1;
 };
 
 template <typename Work>
