@@ -42,8 +42,8 @@ int main(int argc, char** argv) {
     app.add_option("--step", step, "step in voxels of the smallest spacing")->capture_default_str();
     app.add_option("--device", device, "Vulkan device index");
     app.add_option("--recast-pieces", pieces,
-                   "pieces each composite re-cast ray is cast in (0: the device's choice: whole rays on a CPU "
-                   "device, up to 8 pieces on a GPU)")
+                   "pieces each composite re-cast ray is cast in (0: the device's choice: up to 8 pieces on a "
+                   "discrete GPU, whole rays elsewhere)")
         ->check(CLI::Range(0, kMostPieces))
         ->capture_default_str();
     app.add_option("--images", images, "folder to write view 0's right eyes into: DATASET_reused.png, "

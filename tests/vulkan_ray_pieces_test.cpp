@@ -62,13 +62,13 @@ TEST(VulkanRayPieces, AFailedPieceFailsTheRay) {
               device::kCutShort);
 }
 
-// A CPU device casts whole rays; a GPU about a frame's worth of invocations, at most kMostPieces a ray.
+// A discrete GPU casts about a frame's worth of invocations, at most kMostPieces a ray; other devices whole rays.
 TEST(VulkanRayPieces, PiecesFillTheDeviceAsAFrameDoes) {
-    EXPECT_EQ(raysPieces(true, 1000, 262144), 1);
-    EXPECT_EQ(raysPieces(false, 1000, 262144), kMostPieces);
-    EXPECT_EQ(raysPieces(false, 100000, 262144), 2);
-    EXPECT_EQ(raysPieces(false, 262144, 262144), 1);
-    EXPECT_EQ(raysPieces(false, 0, 262144), 1);
+    EXPECT_EQ(raysPieces(false, 1000, 262144), 1);
+    EXPECT_EQ(raysPieces(true, 1000, 262144), kMostPieces);
+    EXPECT_EQ(raysPieces(true, 100000, 262144), 2);
+    EXPECT_EQ(raysPieces(true, 262144, 262144), 1);
+    EXPECT_EQ(raysPieces(true, 0, 262144), 1);
 }
 
 // Translucent shells over an opaque core, at thresholds 0: long rays whose colour every stretch adds to.

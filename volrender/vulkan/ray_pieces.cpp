@@ -7,8 +7,8 @@
 
 namespace vr {
 
-int raysPieces(bool cpuDevice, std::size_t listPixels, std::size_t framePixels) {
-    if (cpuDevice || listPixels == 0) return 1;
+int raysPieces(bool discreteGpu, std::size_t listPixels, std::size_t framePixels) {
+    if (!discreteGpu || listPixels == 0) return 1;
     return int(std::clamp<std::size_t>(framePixels / listPixels, 1, kMostPieces));
 }
 

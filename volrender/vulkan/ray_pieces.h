@@ -12,11 +12,11 @@
 namespace vr {
 
 // How many pieces each ray of a composite list of `listPixels` takes on a device, where `framePixels` fill it as a
-// whole frame does: a CPU device keeps whole rays (its cores are busy with a frame's share of rays already, and a
-// piece behind an opaque one is work the whole ray would have ended before); a GPU gets about as many invocations
-// as a whole frame's, at most kMostPieces a ray.
+// whole frame does: a discrete GPU gets about as many invocations as a whole frame's, at most kMostPieces a ray;
+// other devices keep whole rays (a CPU device's cores, and a small GPU's, are busy with a list's rays already, and a
+// piece behind an opaque one is work the whole ray would have ended before).
 constexpr int kMostPieces = 8;
-int raysPieces(bool cpuDevice, std::size_t listPixels, std::size_t framePixels);
+int raysPieces(bool discreteGpu, std::size_t listPixels, std::size_t framePixels);
 
 // The pixel of a ray cast in `pieces` pieces: piece j's colour (premultiplied rgb, a: its optical depth) and counts
 // (samples, iterations with the failure flags) at first + j stride. The colour is the whole ray's (rgb over the

@@ -133,7 +133,7 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         if (composite && volume.bricks().bricks().size() == 1)
             recastPixels.pieces = recastPieces_ != kAutoPieces
                                       ? recastPieces_
-                                      : raysPieces(ctx_.info().type == "cpu", recastPixels.pixels.size(), pixels);
+                                      : raysPieces(ctx_.info().type == "discrete", recastPixels.pixels.size(), pixels);
         out.recastPieces = recastPixels.pieces;
         out.right = renderOnDevice(volume, pair.right, settings, &recastPixels);
         out.right.deviceMilliseconds += out.reprojectMilliseconds;

@@ -65,7 +65,7 @@ public:
     StereoRender renderStereo(const GpuVolume& volume, const StereoPair& pair, const RenderSettings& settings,
                               bool reuse);
     // How a pair's composite re-casts of a one-brick volume are cast: kAutoPieces (ray_pieces.h raysPieces: whole
-    // rays on a CPU device, pieces on a GPU), or each ray in this many pieces, 1 to kMostPieces (else
+    // rays, or pieces on a discrete GPU), or each ray in this many pieces, 1 to kMostPieces (else
     // std::invalid_argument). Other re-casts cast whole rays.
     static constexpr int kAutoPieces = 0;
     void setRecastPieces(int pieces);
