@@ -229,6 +229,8 @@ void reprojectBands() {
         // Which of the candidates are used, as bits from first: an unused one's texel is not read.
         uint used = usedFrom(last - 2, y, b, first);
         for (int base = first; base < last - 2; base += 4) used |= usedFrom(base, y, b, first);
+        // No candidate used, all in the image: the band adds nothing (stereo_reprojection.h bandUsed).
+        if (used == 0u && first >= 0 && last + 1 < width) continue;
         bool found = false, best = false, bestHidden = false, clipped = false, hidden = false;
         float bestKey = kInfinity;
         vec4 bestColour = vec4(0.0);
