@@ -235,10 +235,10 @@ TEST(VulkanStereo, FaintHazeIsCompositedWhereEmptyBandsAreSkipped) {
 }
 
 // A re-cast ray cast in pieces, each a stretch of its samples gathered from a transparent start, composites to the
-// whole ray's pixel: through haze over a wall and through a translucent slab, stepped and leapt. A CPU device casts
-// whole rays unless told otherwise.
+// whole ray's pixel: through haze over a wall and through a translucent slab, stepped and leapt.
 TEST(VulkanStereo, RecastRaysInPiecesAreTheWholeRays) {
     VulkanRenderer whole(test::vulkanContext(), 16), pieced(test::vulkanContext(), 16);
+    whole.setRecastPieces(1);
     for (const PreparedVolume* p : {&hazeOverWall(), &twoColourSlab()}) {
         const Camera centre = Camera::fit(p->grid(), test::orbitView(0, 0, 64, 48, Projection::Perspective));
         const StereoPair pair = stereoPair(centre, p->grid(), kSeparation, std::nullopt);

@@ -15,7 +15,10 @@ VulkanRenderer& vulkanRenderer(int tileSize) {
     VulkanContext& ctx = vulkanContext();  // made first, so that it outlives the renderers
     static std::map<int, std::unique_ptr<VulkanRenderer>> renderers;
     std::unique_ptr<VulkanRenderer>& r = renderers[tileSize];
-    if (!r) r = std::make_unique<VulkanRenderer>(ctx, tileSize);
+    if (!r) {
+        r = std::make_unique<VulkanRenderer>(ctx, tileSize);
+        r->setRecastPieces(1);  // whole rays on every device: re-casts equal the full render's pixels
+    }
     return *r;
 }
 

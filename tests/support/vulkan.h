@@ -15,7 +15,8 @@ namespace vr::test {
 VulkanContext& vulkanContext();
 
 // A renderer on vulkanContext() drawing tiles of tileSize x tileSize pixels (one submit each), one per tile size
-// and process: tests choose tiles smaller than their images, so that full and partial tiles both run.
+// and process: tests choose tiles smaller than their images, so that full and partial tiles both run. It re-casts
+// a stereo pair's pixels as whole rays on every device, so that they are the full render's.
 VulkanRenderer& vulkanRenderer(int tileSize);
 // vulkanRenderer(tileSize) as a RenderFn.
 RenderFn vulkanRender(int tileSize);
