@@ -52,10 +52,10 @@ layout(constant_id = kSpecIdStoredGradients) const bool STORED_GRADIENTS = false
 // The left eye of a stereo pair: record what the ray gathered at the far end of each band (stereo_reprojection.h).
 layout(constant_id = kSpecIdStereoBands) const bool STEREO_BANDS = false;
 #endif
-// Composite rays in pieces (a stereo pair's re-casts on a GPU): a dispatch's third dimension, where it has one, cuts
-// each ray into that many stretches of nearly equal length, cast by separate invocations, so that no ray's whole
-// length lies on one invocation's chain of dependent loads. Each writes what its stretch gathered alone (its
-// premultiplied colour and optical depth); the renderer composites them front to back
+// Composite rays in pieces (a stereo pair's re-casts on a discrete GPU; frames on request): a dispatch's third
+// dimension, where it has one, cuts each ray into that many stretches of nearly equal length, cast by separate
+// invocations, so that no ray's whole length lies on one invocation's chain of dependent loads. Each writes what its
+// stretch gathered alone (its premultiplied colour and optical depth); the renderer composites them front to back
 // (volrender/vulkan/ray_pieces.h). A volume of bricks carries whole rays from brick to brick instead.
 const bool PIECES = BLEND == kBlendComposite && !BRICKED && !STEREO_BANDS;
 
