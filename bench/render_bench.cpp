@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     app.add_option("--ray-pieces", pieces,
                    "pieces each composite ray is cast in (1: whole rays, as users render; more: to measure where a "
                    "GPU's frame waits on its longest rays)")
-        ->check(CLI::Range(1, kMostPieces))
+        ->check(CLI::Range(1, device::kMostPieces))
         ->capture_default_str();
     app.add_option("--gradients", gradientSources, "what shading takes its normals from, each in turn: on-the-fly, "
                    "stored")->capture_default_str();

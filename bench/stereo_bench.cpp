@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     app.add_option("--recast-pieces", pieces,
                    "pieces each composite re-cast ray is cast in (0: the device's choice: up to 8 pieces on a "
                    "discrete GPU, whole rays elsewhere)")
-        ->check(CLI::Range(0, kMostPieces))
+        ->check(CLI::Range(0, device::kMostPieces))
         ->capture_default_str();
     app.add_option("--images", images, "folder to write view 0's right eyes into: DATASET_reused.png, "
                                         "DATASET_full.png and DATASET_error.png (|difference| x 10)");

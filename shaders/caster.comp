@@ -15,7 +15,8 @@
 #include "stereo_reprojection.h"
 #include "transfer_lookup.h"
 
-layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
+// The third size: the pieces each composite ray is cast in (PIECES below), 1 for whole rays.
+layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize, local_size_z_id = kSpecIdPieces) in;
 
 // The caster and the blend are fixed per module: shaders/CMakeLists.txt builds one for each pair the renderer
 // accepts. As specialization constants they left every caster in one module (200 KB), which lavapipe translated and
@@ -52,12 +53,16 @@ layout(constant_id = kSpecIdStoredGradients) const bool STORED_GRADIENTS = false
 // The left eye of a stereo pair: record what the ray gathered at the far end of each band (stereo_reprojection.h).
 layout(constant_id = kSpecIdStereoBands) const bool STEREO_BANDS = false;
 #endif
-// Composite rays in pieces (a stereo pair's re-casts on a discrete GPU; frames on request): a dispatch's third
-// dimension, where it has one, cuts each ray into that many stretches of nearly equal length, cast by separate
-// invocations, so that no ray's whole length lies on one invocation's chain of dependent loads. Each writes what its
-// stretch gathered alone (its premultiplied colour and optical depth); the renderer composites them front to back
-// (volrender/vulkan/ray_pieces.h). A volume of bricks carries whole rays from brick to brick instead.
-const bool PIECES = BLEND == kBlendComposite && !BRICKED && !STEREO_BANDS;
+// Composite rays in pieces (a stereo pair's re-casts on a discrete GPU; frames on request): the workgroup's third
+// size cuts each of its rays into that many stretches of nearly equal length, cast by separate invocations, so that
+// no ray's whole length lies on one invocation's chain of dependent loads. Each gathers its stretch alone (its
+// premultiplied colour and optical depth), and the ray's first composites them front to back (end of main). A volume
+// of bricks carries whole rays from brick to brick instead.
+layout(constant_id = kSpecIdPiecewise) const bool PIECEWISE = false;  // the workgroup's third size is above 1
+const bool PIECES = BLEND == kBlendComposite && !BRICKED && !STEREO_BANDS && PIECEWISE;
+// Each piece's colour and optical depth, and its samples and iterations with its failures.
+shared vec4 pieceColour[kWorkgroupSize * kWorkgroupSize * kMostPieces];
+shared uvec2 pieceCounts[kWorkgroupSize * kWorkgroupSize * kMostPieces];
 
 #include "caster_params.glsl"
 #include "ray_setup.glsl"
@@ -461,24 +466,28 @@ void main() {
     // take a contiguous run of workgroups.
     uvec2 group = uvec2(gl_WorkGroupID.x, gl_WorkGroupID.y * uint(tile.groupRowStride) % gl_NumWorkGroups.y);
     ivec2 local = ivec2(group * uint(kWorkgroupSize) + inGroup);
-    if (!PIXEL_LIST && any(greaterThanEqual(local, tile.tileSize))) return;
+    // An invocation without a pixel ends here, or, where rays are cast in pieces, casts nothing and reaches the
+    // workgroup's barrier (below) with the others.
+    bool hasPixel = PIXEL_LIST || all(lessThan(local, tile.tileSize));
+    if (!PIECES && !hasPixel) return;
     ivec2 pixel = tile.tileOrigin + local;
     uint outIndex = uint(local.y * tile.tileSize.x + local.x);
     if (PIXEL_LIST) {
         // This dispatch's chunk of the list starts at entry tileOrigin.x; each workgroup takes 64 consecutive
         // entries, so that a SIMD batch takes neighbouring pixels (the list is in the order of 8 x 8 blocks).
         outIndex = (group.y * gl_NumWorkGroups.x + group.x) * uint(kWorkgroupSize * kWorkgroupSize) +
-                   gl_LocalInvocationIndex;
+                   l.y * uint(kWorkgroupSize) + l.x;
         uint entry = uint(tile.tileOrigin.x) + outIndex;
-        if (outIndex >= uint(tile.tileSize.x * tile.tileSize.y) || entry >= listCount) return;
-        pixel = unpackListPixel(listPixel[entry]);
+        hasPixel = outIndex < uint(tile.tileSize.x * tile.tileSize.y) && entry < listCount;
+        if (!PIECES && !hasPixel) return;
+        if (hasPixel) pixel = unpackListPixel(listPixel[entry]);
     }
 
     vec3 direction;
     GridRay g = cameraGridRay(float(pixel.x) + 0.5, float(pixel.y) + 0.5, direction);
     RayInterval iv = jitteredInterval(intersectGrid(g), pixel);
-    uint kCount = latticeCount(iv);
-    uint pieces = PIECES ? gl_NumWorkGroups.z : 1u, piece = PIECES ? gl_WorkGroupID.z : 0u;
+    uint kCount = hasPixel ? latticeCount(iv) : 0u;
+    uint pieces = PIECES ? gl_WorkGroupSize.z : 1u, piece = PIECES ? gl_LocalInvocationID.z : 0u;
     uint kStart = pieceStart(kCount, piece, pieces), kEnd = pieceStart(kCount, piece + 1u, pieces);
     LeapSlack slack = leapSlack(g, iv);
     int oct = rayOctant(g);
@@ -757,12 +766,33 @@ void main() {
         pixelColour = hit ? vec4(isoSurface(g, iv, k, toEye, toLight, tHit), 1.0) : vec4(params.background.rgb, 0.0);
         interval = vec2(tHit);
     }
-    // A piece: what its stretch gathered, and its optical depth, in the dispatch's piece-th run of outputs.
-    if (PIECES && pieces > 1u) pixelColour = vec4(colour, depth.x + depth.y);
-    uint outSlot = outIndex + piece * uint(tile.tileSize.x * tile.tileSize.y);
-    uint failure = flags & (kFailed | kCutShort);
+    uint failure = flags & (kFailed | kCutShort), samples = k - kStart;
+    if (PIECES) {
+        // The ray's pieces, composited front to back by its first, over the background as a whole ray's colour is
+        // (above); their counts summed, the failures of any.
+        uint first = (l.y * uint(kWorkgroupSize) + l.x) * pieces;
+        pieceColour[first + piece] = vec4(colour, depth.x + depth.y);
+        pieceCounts[first + piece] = uvec2(samples, iterations | failure);
+        barrier();
+        if (piece != 0u) return;
+        vec3 gathered = vec3(0.0);
+        float opticalDepth = 0.0;
+        samples = iterations = failure = 0u;
+        for (uint j = 0u; j < pieces; ++j) {
+            vec4 c = pieceColour[first + j];
+            uvec2 n = pieceCounts[first + j];
+            gathered += (1.0 - spanOpacity(opticalDepth)) * c.rgb;
+            opticalDepth += c.a;
+            samples += n.x;
+            iterations += n.y & ~(kFailed | kCutShort);
+            failure |= n.y & (kFailed | kCutShort);
+        }
+        float a = spanOpacity(opticalDepth);
+        pixelColour = vec4(gathered + params.background.rgb * (1.0 - a), a);
+    }
+    if (!hasPixel) return;
     uvec4 colourBits = floatBitsToUint(pixelColour);
     if (failure != 0u) colourBits.a = failureAlphaBits(failure);
-    outColour[outSlot] = colourBits;
-    if (params.rayCounts != 0) outCounts[outSlot] = uvec4(k - kStart, iterations | failure, floatBitsToUint(interval));
+    outColour[outIndex] = colourBits;
+    if (params.rayCounts != 0) outCounts[outIndex] = uvec4(samples, iterations | failure, floatBitsToUint(interval));
 }

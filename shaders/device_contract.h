@@ -58,6 +58,9 @@ VR_CONSTANT int kSpecIdPixelList = 9;    // bool: cast the pixels of the list (k
 VR_CONSTANT int kSpecIdStoredGradients = 10;  // bool: shade by the stored gradients (kBindingGradients)
 VR_CONSTANT int kSpecIdStereoBands = 11;      // bool: composite, the left eye of a stereo pair: record the bands
 VR_CONSTANT int kSpecIdMarginLeaps = 12;      // bool: leaps take the samples their margin proves, unchecked
+VR_CONSTANT int kSpecIdPieces = 13;           // the workgroup's third size: the pieces each composite ray is cast in
+VR_CONSTANT int kMostPieces = 8;              // at most (a workgroup of 8 x 8 x 8 invocations)
+VR_CONSTANT int kSpecIdPiecewise = 14;        // bool: the rays are cast in pieces (kSpecIdPieces above 1)
 // The casters and the blends below are fixed per module instead (caster.comp's VR_CASTER and VR_BLEND).
 VR_CONSTANT int kPrimitive = 0, kPC = 1, kACD = 2, kEACD = 3, kBlocks = 4, kHier = 5;
 // The hierarchical EACD's block codes (core/distance_fields.h BlockEACD): log16 extents in blocks, this bit set where

@@ -248,7 +248,7 @@ TEST(VulkanStereo, RecastRaysInPiecesAreTheWholeRays) {
             const RenderSettings s = test::renderSettings(caster, false, false);
             const StereoRender one = whole.renderStereo(a, pair, s, true);
             EXPECT_EQ(one.recastPieces, 1);
-            for (int pieces : {2, 3, kMostPieces}) {
+            for (int pieces : {2, 3, device::kMostPieces}) {
                 const std::string what = std::string(casterName(caster)) + ", " + std::to_string(pieces) + " pieces";
                 pieced.setRecastPieces(pieces);
                 const StereoRender split = pieced.renderStereo(b, pair, s, true);

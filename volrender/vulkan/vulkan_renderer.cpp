@@ -217,13 +217,13 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
 
 VulkanRenderer::Variant VulkanRenderer::variantOf(const RenderSettings& settings, bool perspective, ScalarType type,
                                                   int labels, bool bricked, bool pixelList, ExtentCode eacdCode,
-                                                  bool marginLeaps, bool stereoBands) {
+                                                  bool marginLeaps, bool stereoBands, int pieces) {
     // The hier caster's blocks are in log16, whatever code the volume's EACD has.
     if (settings.caster == Caster::Hier) eacdCode = ExtentCode::Log16;
     return {settings.caster, settings.blend, settings.trilinear,  settings.shading,
             eacdCode,        bricked,        perspective,         type,
             labels,          pixelList,      settings.gradients == Gradients::Stored,
-            stereoBands,     marginLeaps};
+            stereoBands,     marginLeaps,    pieces};
 }
 
 const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
@@ -252,7 +252,7 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
                      .first;
     }
     // (constant id, value); booleans are 32-bit VkBool32 in specialization data.
-    const std::array<std::pair<int, uint32_t>, 11> constants{{
+    const std::array<std::pair<int, uint32_t>, 13> constants{{
         {device::kSpecIdTrilinear, v.trilinear ? 1u : 0u},
         {device::kSpecIdShading, v.shading ? 1u : 0u},
         {device::kSpecIdExtentCode, uint32_t(deviceExtentCode(v.eacdCode))},
@@ -263,7 +263,9 @@ const vk::raii::Pipeline& VulkanRenderer::pipeline(Variant v) {
         {device::kSpecIdPixelList, v.pixelList ? 1u : 0u},
         {device::kSpecIdStoredGradients, v.storedGradients ? 1u : 0u},
         {device::kSpecIdStereoBands, v.stereoBands ? 1u : 0u},
-        {device::kSpecIdMarginLeaps, v.marginLeaps ? 1u : 0u}}};
+        {device::kSpecIdMarginLeaps, v.marginLeaps ? 1u : 0u},
+        {device::kSpecIdPieces, uint32_t(v.pieces)},
+        {device::kSpecIdPiecewise, v.pieces > 1 ? 1u : 0u}}};
     std::array<uint32_t, constants.size()> values;
     std::array<vk::SpecializationMapEntry, constants.size()> entries;
     for (std::size_t i = 0; i < constants.size(); ++i) {
@@ -292,9 +294,9 @@ VulkanRenderer::~VulkanRenderer() = default;
 namespace {
 
 int checkedPieces(int pieces, int lowest, const std::string& what) {
-    if (pieces < lowest || pieces > kMostPieces)
+    if (pieces < lowest || pieces > device::kMostPieces)
         throw std::invalid_argument(what + ": " + std::to_string(pieces) + " is outside " + std::to_string(lowest) +
-                                    " to " + std::to_string(kMostPieces));
+                                    " to " + std::to_string(device::kMostPieces));
     return pieces;
 }
 
@@ -305,6 +307,13 @@ void VulkanRenderer::setRecastPieces(int pieces) {
 }
 
 void VulkanRenderer::setRayPieces(int pieces) { rayPieces_ = checkedPieces(pieces, 1, "ray pieces"); }
+
+int VulkanRenderer::piecesOnDevice(int pieces) const {
+    const vk::PhysicalDeviceLimits limits = ctx_.physicalDevice().getProperties().limits;
+    const int groupPixels = device::kWorkgroupSize * device::kWorkgroupSize;
+    return std::max(1, std::min({pieces, int(limits.maxComputeWorkGroupInvocations) / groupPixels,
+                                 int(limits.maxComputeWorkGroupSize[2])}));
+}
 
 RenderResult VulkanRenderer::render(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings) {
     checkRender(volume, camera, settings);
@@ -373,26 +382,23 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                             const StereoLeft* left) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
+    // Composite rays of a one-brick volume may be cast in pieces (ray_pieces.h): a list's as it asks, a frame's as
+    // setRayPieces asks (not a stereo left eye's, which records its bands along the whole ray).
+    const bool pieceable = settings.blend == Blend::Composite && volume.bricks().bricks().size() == 1 && !left;
+    const int pieces = list ? list->pieces : pieceable ? piecesOnDevice(rayPieces_) : 1;
+    if (pieces > 1 && !pieceable) throw std::logic_error("rays in pieces: composite of a one-brick volume only");
     const Variant variant =
         variantOf(settings, camera.projection == Projection::Perspective, volume.scalarType(), deviceLabels(volume),
                   volume.bricks().bricks().size() > 1, list != nullptr, volume.eacdCode(),
                   leapsByTheMargin(volume.grid(), camera, settings.stepVoxels * volume.grid().smallestSpacing()),
-                  left && left->bands);
+                  left && left->bands, pieces);
     const ExtentCode extentCode = variant.eacdCode;
     const vk::raii::Pipeline& pipe = pipeline(variant);
 
-    // Composite rays of a one-brick volume may be cast in pieces (ray_pieces.h): a list's as it asks, a frame's as
-    // setRayPieces asks (not a stereo left eye's, which records its bands along the whole ray).
-    const bool pieceable = settings.blend == Blend::Composite && volume.bricks().bricks().size() == 1 && !left;
-    const int pieces = list ? list->pieces : pieceable ? rayPieces_ : 1;
-    if (pieces > 1 && !pieceable) throw std::logic_error("rays in pieces: composite of a one-brick volume only");
-    // Tiles (a list's chunks) of whole rows, fewer of them where each ray has pieces: their outputs together fit a
-    // tile's.
-    const int tileRows = std::max(1, tileSize_ / pieces);
-    FrameBuffers& frame = frameBuffers(list ? std::size_t(tileSize_) * std::size_t(tileRows) * std::size_t(pieces)
+    const std::size_t tilePixels = std::size_t(tileSize_) * tileSize_;
+    FrameBuffers& frame = frameBuffers(list ? tilePixels
                                             : std::size_t(std::min(tileSize_, camera.width)) *
-                                                  std::size_t(std::min(tileRows, camera.height)) *
-                                                  std::size_t(pieces));
+                                                  std::size_t(std::min(tileSize_, camera.height)));
     const HostBuffer &params = frame.params, &extentTable = frame.extentTable;
     device::CasterParams p = makeParams(volume, camera, settings);
     if (left) p.stereoBands = left->bandGeometry, p.stereoBandCount = left->bandCount;
@@ -486,15 +492,14 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     };
     if (list) {
         const int count = int(list->pixels.size());
-        const int chunk = tileSize_ * tileRows;
-        for (int first = 0; first < count; first += chunk) {
-            const int rows = (std::min(chunk, count - first) + tileSize_ - 1) / tileSize_;
+        for (int first = 0; first < count; first += int(tilePixels)) {
+            const int rows = (std::min(int(tilePixels), count - first) + tileSize_ - 1) / tileSize_;
             addTile({first, 0}, {tileSize_, rows});
         }
     } else {
-        for (int y0 = 0; y0 < camera.height; y0 += tileRows)
+        for (int y0 = 0; y0 < camera.height; y0 += tileSize_)
             for (int x0 = 0; x0 < camera.width; x0 += tileSize_)
-                addTile({x0, y0}, {std::min(tileSize_, camera.width - x0), std::min(tileRows, camera.height - y0)});
+                addTile({x0, y0}, {std::min(tileSize_, camera.width - x0), std::min(tileSize_, camera.height - y0)});
     }
     for (device::TilePush tile : tiles) {
         const int groupRows = (tile.tileSize.y + device::kWorkgroupSize - 1) / device::kWorkgroupSize;
@@ -518,8 +523,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     cmd.pushConstants<device::TilePush>(*pipelineLayout_, vk::ShaderStageFlagBits::eCompute, 0,
                                                         tile);
                     constexpr int group = device::kWorkgroupSize;
-                    cmd.dispatch((tile.tileSize.x + group - 1) / group, (tile.tileSize.y + group - 1) / group,
-                                 uint32_t(pieces));
+                    cmd.dispatch((tile.tileSize.x + group - 1) / group, (tile.tileSize.y + group - 1) / group, 1);
                     // The next brick reads the ray states this one wrote.
                     vk::MemoryBarrier carried(A::eShaderWrite, A::eShaderRead | A::eShaderWrite);
                     cmd.pipelineBarrier(S::eComputeShader, S::eComputeShader, {}, carried, {}, {});
@@ -529,9 +533,8 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
             if (stagedOutput_) {  // the tile's pixels to host memory by the transfer engine
                 vk::MemoryBarrier toCopy(A::eShaderWrite, A::eTransferRead);
                 cmd.pipelineBarrier(S::eComputeShader, S::eTransfer, {}, toCopy, {}, {});
-                const vk::BufferCopy tilePixels(0, 0,
-                                                vk::DeviceSize(tile.tileSize.x) * vk::DeviceSize(tile.tileSize.y) *
-                                                    vk::DeviceSize(pieces) * sizeof(device::uvec4));
+                const vk::BufferCopy tilePixels(
+                    0, 0, vk::DeviceSize(tile.tileSize.x) * vk::DeviceSize(tile.tileSize.y) * sizeof(device::uvec4));
                 cmd.copyBuffer(*frame.colours.onDevice->buffer(), *frame.colours.host.buffer(), tilePixels);
                 if (counts) cmd.copyBuffer(*frame.counts.onDevice->buffer(), *frame.counts.host.buffer(), tilePixels);
             }
@@ -553,14 +556,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                     px = int(list->pixels[entry] & 0xffffu), py = int(list->pixels[entry] >> 16);
                 }
                 const std::size_t index = std::size_t(py) * camera.width + px;
-                // Rays in pieces: their pieces composited.
-                const RayFromPieces ray =
-                    pieces > 1
-                        ? compositePieces(colours, counts ? rayCounts : nullptr, local,
-                                          std::size_t(tile.tileSize.x) * tile.tileSize.y, pieces, settings.background)
-                        : RayFromPieces{colours[local], counts ? rayCounts[local].x : 0,
-                                        counts ? rayCounts[local].y : 0};
-                const device::uvec4& colour = ray.colour;
+                const device::uvec4& colour = colours[local];
                 const uint32_t failure = device::failureFlagsOf(colour.w);
                 if (failure & device::kCutShort)
                     throw std::runtime_error("Vulkan " + std::string(casterName(settings.caster)) + " caster: " +
@@ -576,9 +572,10 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                              "no brick pass (a bug)");
                 std::memcpy(result.image.pixel(px, py), &colour, 4 * sizeof(float));
                 if (!counts) continue;
-                if (left && left->pixels) static_cast<device::OutPixel*>(left->pixels)[index] = {colour, rayCounts[local]};
-                result.iterations[index] = ray.iterations;  // with the shader's flags
-                result.samples[index] = ray.samples;
+                const device::uvec4& c = rayCounts[local];
+                if (left && left->pixels) static_cast<device::OutPixel*>(left->pixels)[index] = {colour, c};
+                result.iterations[index] = c.y;  // with the shader's flags
+                result.samples[index] = c.x;
             }
         });
     }

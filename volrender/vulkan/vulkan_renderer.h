@@ -65,13 +65,13 @@ public:
     StereoRender renderStereo(const GpuVolume& volume, const StereoPair& pair, const RenderSettings& settings,
                               bool reuse);
     // How a pair's composite re-casts of a one-brick volume are cast: kAutoPieces (ray_pieces.h raysPieces: whole
-    // rays, or pieces on a discrete GPU), or each ray in this many pieces, 1 to kMostPieces (else
+    // rays, or pieces on a discrete GPU), or each ray in this many pieces, 1 to device::kMostPieces (else
     // std::invalid_argument). Other re-casts cast whole rays.
     static constexpr int kAutoPieces = 0;
     void setRecastPieces(int pieces);
     // Whole frames' composite rays of a one-brick volume in this many pieces each, 1 (whole rays, the default) to
-    // kMostPieces (else std::invalid_argument): for measuring where a GPU's frame waits on its longest rays
-    // (render_bench --ray-pieces). The pieces are composited on the host.
+    // device::kMostPieces (else std::invalid_argument): for measuring where a GPU's frame waits on its longest rays
+    // (render_bench --ray-pieces).
     void setRayPieces(int pieces);
 
     // Makes, ahead of any render, the pipeline that a render of a one-brick volume of scalars of `type`, without a
@@ -121,11 +121,14 @@ private:
         bool storedGradients;  // read by shaded variants only: the others' hold false
         bool stereoBands;      // composite only: the others' hold false
         bool marginLeaps;      // leapsByTheMargin (render/ray_setup.h)
+        int pieces;            // composite of a one-brick volume only; the others' variants hold 1
         auto operator<=>(const Variant&) const = default;
     };
     static Variant variantOf(const RenderSettings& settings, bool perspective, ScalarType type, int labels,
                              bool bricked, bool pixelList, ExtentCode eacdCode, bool marginLeaps,
-                             bool stereoBands = false);
+                             bool stereoBands = false, int pieces = 1);
+    // `pieces`, or fewer where the device's workgroups cannot hold as many (a piece an invocation).
+    int piecesOnDevice(int pieces) const;
     const vk::raii::Pipeline& pipeline(Variant variant);
     // What one tile's dispatches read and write beside the volume, for tiles of up to `pixels` pixels. Kept from
     // render to render, and grown when a render needs more: a GPU driver pins host memory as it is allocated, which
