@@ -385,7 +385,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     // Composite rays of a one-brick volume may be cast in pieces (ray_pieces.h): a list's as it asks, a frame's as
     // setRayPieces asks (not a stereo left eye's, which records its bands along the whole ray).
     const bool pieceable = settings.blend == Blend::Composite && volume.bricks().bricks().size() == 1 && !left;
-    const int pieces = list ? list->pieces : pieceable ? piecesOnDevice(rayPieces_) : 1;
+    const int pieces = list ? list->pieces : pieceable && rayPieces_ > 1 ? piecesOnDevice(rayPieces_) : 1;
     if (pieces > 1 && !pieceable) throw std::logic_error("rays in pieces: composite of a one-brick volume only");
     const Variant variant =
         variantOf(settings, camera.projection == Projection::Perspective, volume.scalarType(), deviceLabels(volume),
