@@ -16,7 +16,6 @@
 #include "sweep/metrics/rmse.h"
 #include "sweep/order_statistics.h"
 #include "render/view_octants.h"
-#include "volrender/vulkan/ray_pieces.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
 using namespace vr;

@@ -752,6 +752,28 @@ void main() {
         storeBandMask(pixel, bandMask);
     }
 
+    uint failure = flags & (kFailed | kCutShort), samples = k - kStart;
+    if (PIECES) {
+        // The ray's pieces, composited front to back by its first into the whole ray's colour and optical depth;
+        // their counts summed, the failures of any.
+        uint first = (l.y * uint(kWorkgroupSize) + l.x) * pieces;
+        pieceColour[first + piece] = vec4(colour, depth.x + depth.y);
+        pieceCounts[first + piece] = uvec2(samples, iterations | failure);
+        barrier();
+        if (piece != 0u) return;
+        colour = vec3(0.0);
+        depth = vec2(0.0);
+        samples = iterations = failure = 0u;
+        for (uint j = 0u; j < pieces; ++j) {
+            vec4 c = pieceColour[first + j];
+            uvec2 n = pieceCounts[first + j];
+            colour += (1.0 - spanOpacity(depth.x)) * c.rgb;
+            depth.x += c.a;
+            samples += n.x;
+            iterations += n.y & ~(kFailed | kCutShort);
+            failure |= n.y & (kFailed | kCutShort);
+        }
+    }
     // Alpha from the optical depth: exact to float rounding where 1 - transmittance would cancel.
     float alpha = spanOpacity(depth.x + depth.y);
     vec4 pixelColour = vec4(colour + params.background.rgb * (1.0 - alpha), alpha);
@@ -765,30 +787,6 @@ void main() {
         float tHit = kInfinity;
         pixelColour = hit ? vec4(isoSurface(g, iv, k, toEye, toLight, tHit), 1.0) : vec4(params.background.rgb, 0.0);
         interval = vec2(tHit);
-    }
-    uint failure = flags & (kFailed | kCutShort), samples = k - kStart;
-    if (PIECES) {
-        // The ray's pieces, composited front to back by its first, over the background as a whole ray's colour is
-        // (above); their counts summed, the failures of any.
-        uint first = (l.y * uint(kWorkgroupSize) + l.x) * pieces;
-        pieceColour[first + piece] = vec4(colour, depth.x + depth.y);
-        pieceCounts[first + piece] = uvec2(samples, iterations | failure);
-        barrier();
-        if (piece != 0u) return;
-        vec3 gathered = vec3(0.0);
-        float opticalDepth = 0.0;
-        samples = iterations = failure = 0u;
-        for (uint j = 0u; j < pieces; ++j) {
-            vec4 c = pieceColour[first + j];
-            uvec2 n = pieceCounts[first + j];
-            gathered += (1.0 - spanOpacity(opticalDepth)) * c.rgb;
-            opticalDepth += c.a;
-            samples += n.x;
-            iterations += n.y & ~(kFailed | kCutShort);
-            failure |= n.y & (kFailed | kCutShort);
-        }
-        float a = spanOpacity(opticalDepth);
-        pixelColour = vec4(gathered + params.background.rgb * (1.0 - a), a);
     }
     if (!hasPixel) return;
     uvec4 colourBits = floatBitsToUint(pixelColour);

@@ -130,11 +130,10 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         // together as a tile's (the device appended them in any order).
         std::sort(list + 1, list + 1 + list[0], [](uint32_t a, uint32_t b) { return blockOrder(a) < blockOrder(b); });
         PixelList recastPixels{recast, std::vector<uint32_t>(list + 1, list + 1 + list[0])};
-        if (composite && volume.bricks().bricks().size() == 1)
-            recastPixels.pieces = piecesOnDevice(
-                recastPieces_ != kAutoPieces
-                    ? recastPieces_
-                    : raysPieces(ctx_.info().type == "discrete", recastPixels.pixels.size(), pixels));
+        const int asked = recastPieces_ != kAutoPieces
+                              ? recastPieces_
+                              : raysPieces(ctx_.info().type == "discrete", recastPixels.pixels.size(), pixels);
+        recastPixels.pieces = piecesFor(volume, settings, asked);
         out.recastPieces = recastPixels.pieces;
         out.right = renderOnDevice(volume, pair.right, settings, &recastPixels);
         out.right.deviceMilliseconds += out.reprojectMilliseconds;

@@ -21,7 +21,6 @@
 #include "shaders/device_contract.h"
 #include "shaders/embedded_shaders.h"
 #include "shaders/stereo_reprojection.h"
-#include "volrender/vulkan/ray_pieces.h"
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/workgroup_rows.h"
 
@@ -308,7 +307,8 @@ void VulkanRenderer::setRecastPieces(int pieces) {
 
 void VulkanRenderer::setRayPieces(int pieces) { rayPieces_ = checkedPieces(pieces, 1, "ray pieces"); }
 
-int VulkanRenderer::piecesOnDevice(int pieces) const {
+int VulkanRenderer::piecesFor(const GpuVolume& volume, const RenderSettings& settings, int pieces) const {
+    if (pieces <= 1 || settings.blend != Blend::Composite || volume.bricks().bricks().size() > 1) return 1;
     const vk::PhysicalDeviceLimits limits = ctx_.physicalDevice().getProperties().limits;
     const int groupPixels = device::kWorkgroupSize * device::kWorkgroupSize;
     return std::max(1, std::min({pieces, int(limits.maxComputeWorkGroupInvocations) / groupPixels,
@@ -382,11 +382,9 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
                                             const StereoLeft* left) {
     const auto start = std::chrono::steady_clock::now();
     const vk::raii::Device& device = ctx_.device();
-    // Composite rays of a one-brick volume may be cast in pieces (ray_pieces.h): a list's as it asks, a frame's as
-    // setRayPieces asks (not a stereo left eye's, which records its bands along the whole ray).
-    const bool pieceable = settings.blend == Blend::Composite && volume.bricks().bricks().size() == 1 && !left;
-    const int pieces = list ? list->pieces : pieceable && rayPieces_ > 1 ? piecesOnDevice(rayPieces_) : 1;
-    if (pieces > 1 && !pieceable) throw std::logic_error("rays in pieces: composite of a one-brick volume only");
+    // Rays in pieces (ray_pieces.h): a list's as it asks, a frame's as setRayPieces asks; never a stereo left eye's,
+    // which records its bands along the whole ray.
+    const int pieces = left ? 1 : piecesFor(volume, settings, list ? list->pieces : rayPieces_);
     const Variant variant =
         variantOf(settings, camera.projection == Projection::Perspective, volume.scalarType(), deviceLabels(volume),
                   volume.bricks().bricks().size() > 1, list != nullptr, volume.eacdCode(),

@@ -91,7 +91,7 @@ private:
     void checkRender(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
     // What the casters cast: every pixel, tile by tile, or (list) the pixels of a list on the device, whose host copy
     // `pixels` (packed, shaders/stereo_reprojection.h) says where each result goes; the pixels not in it stay blank.
-    // A composite list's rays may be cast in pieces (ray_pieces.h); other blends' in one.
+    // A list's rays may be cast in pieces (piecesFor).
     struct PixelList {
         const HostBuffer& buffer;
         std::vector<uint32_t> pixels;
@@ -127,8 +127,9 @@ private:
     static Variant variantOf(const RenderSettings& settings, bool perspective, ScalarType type, int labels,
                              bool bricked, bool pixelList, ExtentCode eacdCode, bool marginLeaps,
                              bool stereoBands = false, int pieces = 1);
-    // `pieces`, or fewer where the device's workgroups cannot hold as many (a piece an invocation).
-    int piecesOnDevice(int pieces) const;
+    // The pieces a render of `volume` with `settings` casts each ray in when asked for `pieces`: composite rays of a
+    // one-brick volume only (others 1), no more than the device's workgroups hold (a piece an invocation).
+    int piecesFor(const GpuVolume& volume, const RenderSettings& settings, int pieces) const;
     const vk::raii::Pipeline& pipeline(Variant variant);
     // What one tile's dispatches read and write beside the volume, for tiles of up to `pixels` pixels. Kept from
     // render to render, and grown when a render needs more: a GPU driver pins host memory as it is allocated, which
