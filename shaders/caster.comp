@@ -90,7 +90,7 @@ layout(set = 0, binding = kBindingOutCounts, std430) writeonly buffer OutCounts 
 // The label map's labels packed into words, and its table: entry l for label l (rgb colour, a: extinction sigma).
 layout(set = 0, binding = kBindingLabelWords, r32ui) uniform readonly uimage3D labelWords;
 layout(set = 0, binding = kBindingLabelTable, rgba32f) uniform readonly imageBuffer labelTable;
-layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; uint listPixel[]; };
+layout(set = 0, binding = kBindingPixelList, std430) readonly buffer PixelList { uint listCount; ListRay listRay[]; };
 layout(set = 0, binding = kBindingGradients, r32ui) uniform readonly uimage3D gradients;
 layout(set = 0, binding = kBindingStereoBands, std430) writeonly buffer StereoBands { uvec4 segments[]; };
 
@@ -472,6 +472,7 @@ void main() {
     if (!PIECES && !hasPixel) return;
     ivec2 pixel = tile.tileOrigin + local;
     uint outIndex = uint(local.y * tile.tileSize.x + local.x);
+    ListRay listed = ListRay(0u, 0.0, 0u, 0u);
     if (PIXEL_LIST) {
         // This dispatch's chunk of the list starts at entry tileOrigin.x; each workgroup takes 64 consecutive
         // entries, so that a SIMD batch takes neighbouring pixels (the list is in the order of 8 x 8 blocks).
@@ -480,15 +481,21 @@ void main() {
         uint entry = uint(tile.tileOrigin.x) + outIndex;
         hasPixel = outIndex < uint(tile.tileSize.x * tile.tileSize.y) && entry < listCount;
         if (!PIECES && !hasPixel) return;
-        if (hasPixel) pixel = unpackListPixel(listPixel[entry]);
+        if (hasPixel) listed = listRay[entry];
+        pixel = unpackListPixel(listed.pixel);
     }
 
     vec3 direction;
     GridRay g = cameraGridRay(float(pixel.x) + 0.5, float(pixel.y) + 0.5, direction);
     RayInterval iv = jitteredInterval(intersectGrid(g), pixel);
     uint kCount = hasPixel ? latticeCount(iv) : 0u;
+    float cosine = dot(direction, params.forward.xyz);  // t to depth along the view direction
+    // A listed ray cast from a depth takes its samples from the first at or beyond it, behind what lies in front.
+    uint kFirst = PIXEL_LIST && listed.startDepth > 0.0 ? firstSampleFrom(iv, listed.startDepth / cosine, kCount)
+                                                        : 0u;
     uint pieces = PIECES ? gl_WorkGroupSize.z : 1u, piece = PIECES ? gl_LocalInvocationID.z : 0u;
-    uint kStart = pieceStart(kCount, piece, pieces), kEnd = pieceStart(kCount, piece + 1u, pieces);
+    uint kStart = kFirst + pieceStart(kCount - kFirst, piece, pieces);
+    uint kEnd = kFirst + pieceStart(kCount - kFirst, piece + 1u, pieces);
     LeapSlack slack = leapSlack(g, iv);
     int oct = rayOctant(g);
     // Selected, not indexed: llvmpipe reads an array at a varying index lane by lane.
@@ -499,8 +506,13 @@ void main() {
 
     bool missingOctant = (CASTER == kACD || CASTER == kEACD || CASTER == kHier) && slot < 0 && kCount > 0u;
     bool firstDispatch = !BRICKED || tile.firstDispatch != 0, lastDispatch = !BRICKED || tile.lastDispatch != 0;
-    RayState state = firstDispatch ? RayState(initialComposite(), vec2(0.0), kStart, 0u, missingOctant ? kFailed : 0u,
-                                              0.0, 0u, 0.0, vec4(0.0, 0.0, 0.0, 1.0), 0u)
+    // The ray's first piece starts behind what lies in front of it (nothing, unless listed so).
+    vec4 start = initialComposite();
+    if (PIXEL_LIST && BLEND == kBlendComposite && piece == 0u)
+        start = vec4(unpackUnorm2x16(listed.frontRG), unpackUnorm2x16(listed.frontBT));
+    vec2 startDepth = vec2(BLEND == kBlendComposite && start.a < 1.0 ? -log(start.a) : 0.0, 0.0);
+    RayState state = firstDispatch ? RayState(start, startDepth, kStart, 0u, missingOctant ? kFailed : 0u, 0.0, 0u,
+                                              0.0, vec4(0.0, 0.0, 0.0, 1.0), 0u)
                                    : loadRayState(outIndex);
     vec3 colour = state.composite.rgb;
     // What the colour's float sum has lost so far (Kahan): the primitive caster adds one sample at a time, and
@@ -525,7 +537,7 @@ void main() {
     float bandStartMoment = state.bandStartMoment;
     uint bandMask = state.bandMask;
     int band = 0;
-    float cosine = dot(direction, params.forward.xyz), endInverse = 0.0, bandOrigin = 0.0, perBand = 0.0;
+    float endInverse = 0.0, bandOrigin = 0.0, perBand = 0.0;
     if (STEREO_BANDS) {
         float tk = latticeT(iv, k);
         vec4 b = params.stereoBands;

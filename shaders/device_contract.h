@@ -37,8 +37,8 @@ VR_CONSTANT int kBindingBlockExtrema = 10;  // storage image RG32F: each block's
 // an RGBA32F texel per label (rgb colour, a: extinction sigma; core/label_map.h).
 VR_CONSTANT int kBindingLabelWords = 11;
 VR_CONSTANT int kBindingLabelTable = 12;    // storage texel buffer, as the transfer table
-VR_CONSTANT int kBindingPixelList = 13;     // storage buffer: uint count, then the pixels to cast (x | y << 16),
-                                            // read by the list variant (stereo re-casts: stereo_reprojection.h)
+VR_CONSTANT int kBindingPixelList = 13;     // storage buffer: uint count, then the rays to cast (ListRay), read
+                                            // by the list variant (stereo re-casts: stereo_reprojection.h)
 VR_CONSTANT int kBindingGradients = 14;     // R32_UINT: each voxel's stored gradient (gradient_code.h)
 VR_CONSTANT int kBindingStereoBands = 15;   // storage buffer: a stereo left eye's segment of each band of each
                                             // pixel (uvec4), written by the bands variant (stereo_reprojection.h
@@ -210,7 +210,19 @@ struct OutPixel {
                    // composite: +inf, +inf (a stereo left eye carries its depths in its bands)
 };
 
+// A ray of a pixel list (kBindingPixelList): its pixel (x | y << 16), the depth along the view direction from which
+// it is cast (0: its whole interval; a stereo re-cast starts where the reprojection stopped vouching for it), and
+// what lies in front of that depth (premultiplied rgb colour and transmittance, 16-bit unorm each: rg, then b and
+// the transmittance), which the ray composites behind.
+struct ListRay {
+    uint pixel;
+    float startDepth;
+    uint frontRG;
+    uint frontBT;
+};
+
 #ifdef __cplusplus
+static_assert(sizeof(ListRay) == 16);
 static_assert(offsetof(CasterParams, ertDepth) == 96);
 static_assert(offsetof(CasterParams, halfHeight) == 104);
 static_assert(offsetof(CasterParams, dims) == 128);

@@ -82,6 +82,11 @@ vec3 samplePosition(GridRay r, RayInterval iv, uint k) { return rayAt(r, lattice
 
 uint latticeCount(RayInterval iv) { return latticeCount(iv.tEntry, iv.tExit, params.dt); }
 
+// The first of the ray's kCount samples at or beyond t (kCount: none; t lies beyond its exit).
+uint firstSampleFrom(RayInterval iv, float t, uint kCount) {
+    return t < iv.tExit ? min(latticeCount(iv.tEntry, t, params.dt), kCount) : kCount;
+}
+
 ivec3 floorVoxel(vec3 p) { return ivec3(floor(p)); }
 ivec3 clampVoxel(ivec3 v) { return clamp(v, ivec3(0), params.dims.xyz - 1); }
 // Clamped into the crop box (the grid without a crop), as RayClip::sampleVoxel in render/ray_setup.h.

@@ -20,7 +20,7 @@ layout(constant_id = kSpecIdBands) const bool BANDS = false;
 layout(set = 0, binding = kBindingStereoParams, std140) uniform Params { StereoParams params; };
 layout(set = 0, binding = kBindingLeftPixels, std430) readonly buffer LeftPixels { OutPixel leftPixel[]; };
 layout(set = 0, binding = kBindingRightPixels, std430) writeonly buffer RightPixels { uvec4 rightColour[]; };
-layout(set = 0, binding = kBindingRecastList, std430) buffer RecastList { uint recastCount; uint recastPixel[]; };
+layout(set = 0, binding = kBindingRecastList, std430) buffer RecastList { uint recastCount; ListRay recastRay[]; };
 layout(set = 0, binding = kBindingLeftBands, rgba32ui) uniform readonly uimageBuffer leftBands;
 
 // The cosine of the angle between the left ray of pixel centre (px, row with v) and the view direction: t to depth.
@@ -61,11 +61,14 @@ const int kSharedPixels = 512;
 shared vec4 sharedColour[kSharedPixels];
 shared vec4 sharedPlace[kSharedPixels];  // x, xNear, xFar, depth
 
-// The right pixel's reprojected colour, or its place on the re-cast list.
-void finish(int x, int y, bool reuse, vec4 colour) {
+// The right pixel's reprojected colour, or its ray on the re-cast list: cast from startDepth on (0: whole), behind
+// `front` (premultiplied rgb, transmittance), the reprojection of what lies before.
+void finish(int x, int y, bool reuse, vec4 colour, float startDepth, vec4 front) {
     uint index = uint(y * params.imageSize.x + x);
     rightColour[index] = floatBitsToUint(reuse ? colour : vec4(0.0));
-    if (!reuse) recastPixel[atomicAdd(recastCount, 1u)] = packListPixel(x, y);
+    if (!reuse)
+        recastRay[atomicAdd(recastCount, 1u)] =
+            ListRay(packListPixel(x, y), startDepth, packUnorm2x16(front.rg), packUnorm2x16(front.ba));
 }
 
 Reprojected sharedPixel(int i) {
@@ -138,7 +141,7 @@ void reprojectIntervals() {
     if (x >= width) return;
     int others = nonEmpty - (isinf(bestDepth) ? 0 : 1);
     bool reuse = found && reuseCover(bestContinuous, bestAlpha, kOpaqueAlpha, others);
-    finish(x, y, reuse, bestColour);
+    finish(x, y, reuse, bestColour, 0.0, vec4(0.0, 0.0, 0.0, 1.0));
 }
 
 // Composite: band by band. Left pixel x's segment of band b as the right eye sees it (the caster stored it: see
@@ -220,6 +223,12 @@ void reprojectBands() {
     vec3 colour = vec3(0.0);
     float transmittance = 1.0;
     bool done = x >= width, reuse = true;
+    // Where the pixel's re-cast would start, and what was composited before: the band it fails in, or the first band
+    // before that which nothing covered, or in which the left eye's view ended at some candidate. Such a band
+    // vouches for nothing behind its cover: what the left eye could not see may lie in it (an occluder's side).
+    int startBand = 0;
+    bool covered = true;  // every band so far is covered, each candidate seen through, or skipped
+    vec4 front = vec4(0.0, 0.0, 0.0, 1.0);
     uint near = done ? 0u : bandsUsedNear(x, y);
     for (int b = 0; !done; ++b) {
         b = nextBand(x, b, near);
@@ -231,6 +240,7 @@ void reprojectBands() {
         for (int base = first; base < last - 2; base += 4) used |= usedFrom(base, y, b, first);
         // No candidate used, all in the image: the band adds nothing (stereo_reprojection.h bandUsed).
         if (used == 0u && first >= 0 && last + 1 < width) continue;
+        if (covered) front = vec4(colour, transmittance), startBand = b;
         bool found = false, best = false, bestHidden = false, clipped = false, hidden = false;
         float bestKey = kInfinity;
         vec4 bestColour = vec4(0.0);
@@ -262,6 +272,7 @@ void reprojectBands() {
             }
             a = s;
         }
+        covered = covered && found && !hidden;
         if (!found) {
             reuse = !clipped && !hidden;  // nothing of this band lands here, or the left eye could not tell
         } else {
@@ -274,7 +285,10 @@ void reprojectBands() {
         done = !reuse || transmittance <= seen;
     }
     if (x >= width) return;
-    finish(x, y, reuse, vec4(colour + params.background.rgb * transmittance, 1.0 - transmittance));
+    float startDepth =
+        bandNearDepth(params.disparityScale, params.focusInverse, params.firstDisparity, params.maxSpread, startBand);
+    finish(x, y, reuse, vec4(colour + params.background.rgb * transmittance, 1.0 - transmittance), startDepth,
+           front);
 }
 
 void main() {

@@ -17,8 +17,8 @@ namespace vr::device {
 VR_CONSTANT int kBindingStereoParams = 0;  // uniform: StereoParams
 VR_CONSTANT int kBindingLeftPixels = 1;    // storage buffer: OutPixel per pixel of the left image, row by row
 VR_CONSTANT int kBindingRightPixels = 2;   // storage buffer: the right image's colours (the reprojection), float bits
-VR_CONSTANT int kBindingRecastList = 3;    // storage buffer: the count, then the right pixels to re-cast (the
-                                           // casters' kBindingPixelList)
+VR_CONSTANT int kBindingRecastList = 3;    // storage buffer: the count, then the right eye's rays to re-cast
+                                           // (ListRay each: the casters' kBindingPixelList)
 VR_CONSTANT int kBindingLeftBands = 4;     // storage texel buffer RGBA32UI: a left pixel's segment of each band
                                            // (composite; the casters' kBindingStereoBands, as texels: bandTexel)
 VR_CONSTANT int kSpecIdBands = 0;          // bool: reproject the left eye's bands (composite), not its intervals
@@ -52,6 +52,15 @@ VR_FUNCTION VR_REAL bandEndOrigin(VR_REAL scale, VR_REAL focusInverse, VR_REAL f
 }
 VR_FUNCTION VR_REAL bandEndPerBand(VR_REAL scale, VR_REAL width, VR_REAL cosine) { return cosine * width / scale; }
 VR_FUNCTION VR_REAL bandEndInverse(VR_REAL origin, VR_REAL perBand, int b) { return origin - VR_REAL(b + 1) * perBand; }
+
+// Where band b starts: the depth along the view direction of its near disparity; 0 for the first band, which also
+// holds the nearer depths, and +inf where that disparity is infinity's or beyond.
+VR_FUNCTION VR_REAL bandNearDepth(VR_REAL scale, VR_REAL focusInverse, VR_REAL first, VR_REAL width, int b) {
+    if (b == 0) return VR_REAL(0);
+    VR_REAL inverse = bandEndInverse(bandEndOrigin(scale, focusInverse, first, VR_REAL(1)),
+                                     bandEndPerBand(scale, width, VR_REAL(1)), b - 1);
+    return inverse > VR_REAL(0) ? VR_REAL(1) / inverse : kInfinity;
+}
 
 // Whether t lies beyond band b's end (its inverse end as above) among `count` bands.
 VR_FUNCTION bool bandEndBeyond(VR_REAL t, VR_REAL inverseEnd, int b, int count) {

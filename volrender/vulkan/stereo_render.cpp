@@ -72,7 +72,7 @@ VulkanRenderer::PairBuffers::PairBuffers(const VulkanContext& ctx, std::size_t p
       left(ctx, std::max<std::size_t>(leftPixels, 1) * sizeof(device::OutPixel),
            vk::BufferUsageFlagBits::eStorageBuffer),
       right(ctx, pixels * sizeof(device::uvec4), vk::BufferUsageFlagBits::eStorageBuffer),
-      recast(ctx, (pixels + 1) * sizeof(uint32_t), vk::BufferUsageFlagBits::eStorageBuffer) {
+      recast(ctx, sizeof(uint32_t) + pixels * sizeof(device::ListRay), vk::BufferUsageFlagBits::eStorageBuffer) {
     if (segments > 0) bands.emplace(ctx, segments * sizeof(device::uvec4), kBandSegmentUsage);
 }
 
@@ -107,6 +107,7 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         out.left = render(volume, pair.left, settings);
         out.right = render(volume, pair.right, settings);
         out.recast.assign(pixels, 1);
+        out.recastFrom.assign(pixels, 0.0f);
         return out;
     }
     checkRender(volume, pair.left, settings);
@@ -122,14 +123,25 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
                                  bands.count};
         out.left = renderOnDevice(volume, pair.left, settings, nullptr, &leftEye);
         if (!reprojector_) reprojector_ = std::make_unique<StereoReprojector>(ctx_);
-        auto* list = static_cast<uint32_t*>(recast.data());
-        list[0] = 0;
+        auto* count = static_cast<uint32_t*>(recast.data());
+        auto* rays = reinterpret_cast<device::ListRay*>(count + 1);
+        *count = 0;
         out.reprojectMilliseconds = reprojector_->reproject(pool_, reprojection(pair, depths, settings, bands),
                                                             buffers.left, leftBands, right, recast);
         // Blocks of 8 x 8 pixels in row order, each block's pixels in row order: a workgroup's rays stay as close
         // together as a tile's (the device appended them in any order).
-        std::sort(list + 1, list + 1 + list[0], [](uint32_t a, uint32_t b) { return blockOrder(a) < blockOrder(b); });
-        PixelList recastPixels{recast, std::vector<uint32_t>(list + 1, list + 1 + list[0])};
+        std::sort(rays, rays + *count, [](const device::ListRay& a, const device::ListRay& b) {
+            return blockOrder(a.pixel) < blockOrder(b.pixel);
+        });
+        PixelList recastPixels{recast, std::vector<uint32_t>(*count)};
+        out.recast.assign(pixels, 0);
+        out.recastFrom.assign(pixels, 0.0f);
+        for (uint32_t i = 0; i < *count; ++i) {
+            const uint32_t p = recastPixels.pixels[i] = rays[i].pixel;
+            const std::size_t index = std::size_t(p >> 16) * width + (p & 0xffffu);
+            out.recast[index] = 1;
+            out.recastFrom[index] = rays[i].startDepth;
+        }
         const int asked = recastPieces_ != kAutoPieces
                               ? recastPieces_
                               : raysPieces(ctx_.info().type == "discrete", recastPixels.pixels.size(), pixels);
@@ -137,8 +149,6 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         out.recastPieces = recastPixels.pieces;
         out.right = renderOnDevice(volume, pair.right, settings, &recastPixels);
         out.right.deviceMilliseconds += out.reprojectMilliseconds;
-        out.recast.assign(pixels, 0);
-        for (uint32_t p : recastPixels.pixels) out.recast[std::size_t(p >> 16) * width + (p & 0xffffu)] = 1;
         const auto* reprojected = static_cast<const device::uvec4*>(right.data());
         tbb::parallel_for(std::size_t(0), pixels, [&](std::size_t i) {
             if (!out.recast[i]) std::memcpy(&out.right.image.rgba[4 * i], &reprojected[i], 4 * sizeof(float));

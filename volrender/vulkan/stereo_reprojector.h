@@ -18,8 +18,9 @@ public:
 
     // Reads the left eye's pixels (device::OutPixel each, row by row) or, for composite, its bands' segments
     // (`bands`: kBandSegmentUsage), writes the reprojected right eye's colours (a uvec4 of float bits each) and
-    // appends the right pixels it cannot vouch for to `recast` (its count, then the packed pixels; the count must
-    // start at 0). Returns the device milliseconds it took (0 where the queue has no timestamps).
+    // appends the right eye's rays it cannot vouch for to `recast` (its count, then a device::ListRay each: the
+    // pixel, and where its ray starts behind what the reprojection vouches for; the count must start at 0). Returns
+    // the device milliseconds it took (0 where the queue has no timestamps).
     double reproject(const vk::raii::CommandPool& pool, const device::StereoParams& params, const HostBuffer& left,
                      const DeviceBuffer* bands, const HostBuffer& right, const HostBuffer& recast);
 

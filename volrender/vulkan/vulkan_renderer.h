@@ -25,6 +25,8 @@ class StereoReprojector;
 struct StereoRender {
     RenderResult left, right;       // each eye's deviceMilliseconds: its own (the right's: reprojection + re-casts)
     std::vector<uint8_t> recast;    // per right pixel: 1 where it was ray-cast (every pixel without reuse)
+    std::vector<float> recastFrom;  // per right pixel ray-cast with reuse: the depth along the view direction its ray
+                                    // was cast from, behind the reprojection of what lies before (0: the whole ray)
     double recastFraction = 1;      // of the right eye's pixels
     double reprojectMilliseconds = 0;  // device time of the reprojection alone (part of the right eye's)
     int recastPieces = 1;              // the pieces each re-cast ray was cast in
