@@ -33,6 +33,7 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
         fullPair.push_back(full.left.deviceMilliseconds + full.right.deviceMilliseconds);
         reproject.push_back(reused.reprojectMilliseconds);
         m.recastFraction += reused.recastFraction / double(cameras.size());
+        m.recastInPart += reused.recastInPartFraction / double(cameras.size());
         m.recastPieces = std::max(m.recastPieces, reused.recastPieces);
         errors.push_back(imageError(full.right.image, reused.right.image));
         const StereoRender reusedCounted = renderer.renderStereo(volume, eyes, counted, true);

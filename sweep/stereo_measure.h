@@ -21,6 +21,7 @@ struct StereoMeasurement {
     double fullPairMs = 0;      // median over the views: both eyes cast in full
     double reprojectMs = 0;     // median over the views: the reprojection alone
     double recastFraction = 0;  // mean over the views: of the right eye's pixels
+    double recastInPart = 0;    // mean over the views: of the right eye's pixels, those re-cast from a depth on
     double recastWork = 0;      // the re-cast rays' loop iterations over the full right eye's, over the views: the
                                 // share of its work the right eye still does, whatever the device's timing noise
     int recastPieces = 1;       // the most pieces a view's re-cast rays were cast in

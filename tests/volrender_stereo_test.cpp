@@ -95,6 +95,8 @@ TEST(VolrenderStereo, DevicePairReportsEachEye) {
         EXPECT_GE(view["right"]["deviceMs"].get<double>(), view["reprojectMs"].get<double>());
         EXPECT_GT(view["recastFraction"].get<double>(), 0);
         EXPECT_LT(view["recastFraction"].get<double>(), 1);
+        EXPECT_GE(view["recastInPartFraction"].get<double>(), 0);
+        EXPECT_LE(view["recastInPartFraction"].get<double>(), view["recastFraction"].get<double>());
         EXPECT_GE(view["recastPieces"].get<int>(), 1);  // whole rays, or pieces on a discrete GPU
         EXPECT_LE(view["recastPieces"].get<int>(), 8);
         EXPECT_NEAR(view["deviceMs"].get<double>(),

@@ -65,7 +65,7 @@ double expectPairsAgree(const StereoRender& reused, const StereoRender& full, do
     const Image& a = reused.right.image;
     const Image& b = full.right.image;
     double reusedError = 0;
-    std::size_t reusedCount = 0, recast = 0;
+    std::size_t reusedCount = 0, recast = 0, inPart = 0;
     for (std::size_t i = 0; i < reused.recast.size(); ++i) {
         double d = 0;
         for (int c = 0; c < 4; ++c) d = std::max(d, double(std::abs(a.rgba[4 * i + c] - b.rgba[4 * i + c])));
@@ -77,6 +77,7 @@ double expectPairsAgree(const StereoRender& reused, const StereoRender& full, do
                 continue;
             }
             EXPECT_LE(reused.right.samples[i], full.right.samples[i]) << what << ": pixel re-cast in part " << i;
+            ++inPart;
         } else {
             EXPECT_EQ(reused.right.iterations[i], 0u) << what;
         }
@@ -87,6 +88,7 @@ double expectPairsAgree(const StereoRender& reused, const StereoRender& full, do
         EXPECT_LE(reusedError / double(reusedCount), reusedMean) << what;
     }
     EXPECT_DOUBLE_EQ(reused.recastFraction, double(recast) / double(reused.recast.size())) << what;
+    EXPECT_DOUBLE_EQ(reused.recastInPartFraction, double(inPart) / double(reused.recast.size())) << what;
     return reused.recastFraction;
 }
 

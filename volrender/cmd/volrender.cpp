@@ -355,10 +355,16 @@ int run(const Flags& f) {
             return RenderedView{
                 {vr::renderCpu(prepared, pair.left, settings), vr::renderCpu(prepared, pair.right, settings)},
                 {},
-                {{"recastFraction", 1.0}, {"recastPieces", 1}, {"reprojectMs", 0.0}, {"focus", pair.focus}}};
+                {{"recastFraction", 1.0},
+                 {"recastInPartFraction", 0.0},
+                 {"recastPieces", 1},
+                 {"reprojectMs", 0.0},
+                 {"focus", pair.focus}}};
         vr::StereoRender stereo = renderer->renderStereo(*uploaded, pair, settings, reuse);
         return RenderedView{{std::move(stereo.left), std::move(stereo.right)}, renderer->lastUploads(),
-                            {{"recastFraction", stereo.recastFraction}, {"recastPieces", stereo.recastPieces},
+                            {{"recastFraction", stereo.recastFraction},
+                             {"recastInPartFraction", stereo.recastInPartFraction},
+                             {"recastPieces", stereo.recastPieces},
                              {"reprojectMs", stereo.reprojectMilliseconds}, {"focus", pair.focus}}};
     });
     vr::markMilestone("imagesWritten");

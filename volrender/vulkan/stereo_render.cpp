@@ -154,6 +154,9 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
             if (!out.recast[i]) std::memcpy(&out.right.image.rgba[4 * i], &reprojected[i], 4 * sizeof(float));
         });
         out.recastFraction = double(recastPixels.pixels.size()) / double(pixels);
+        out.recastInPartFraction =
+            double(std::count_if(rays, rays + *count, [](const device::ListRay& r) { return r.startDepth > 0; })) /
+            double(pixels);
         return out;
     });
 }

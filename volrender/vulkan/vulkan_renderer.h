@@ -28,6 +28,7 @@ struct StereoRender {
     std::vector<float> recastFrom;  // per right pixel ray-cast with reuse: the depth along the view direction its ray
                                     // was cast from, behind the reprojection of what lies before (0: the whole ray)
     double recastFraction = 1;      // of the right eye's pixels
+    double recastInPartFraction = 0;   // of the right eye's pixels: re-cast from a depth on (recastFrom > 0)
     double reprojectMilliseconds = 0;  // device time of the reprojection alone (part of the right eye's)
     int recastPieces = 1;              // the pieces each re-cast ray was cast in
 };
