@@ -136,11 +136,13 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         PixelList recastPixels{recast, std::vector<uint32_t>(*count)};
         out.recast.assign(pixels, 0);
         out.recastFrom.assign(pixels, 0.0f);
+        std::size_t inPart = 0;
         for (uint32_t i = 0; i < *count; ++i) {
             const uint32_t p = recastPixels.pixels[i] = rays[i].pixel;
             const std::size_t index = std::size_t(p >> 16) * width + (p & 0xffffu);
             out.recast[index] = 1;
             out.recastFrom[index] = rays[i].startDepth;
+            inPart += rays[i].startDepth > 0;
         }
         const int asked = recastPieces_ != kAutoPieces
                               ? recastPieces_
@@ -154,9 +156,7 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
             if (!out.recast[i]) std::memcpy(&out.right.image.rgba[4 * i], &reprojected[i], 4 * sizeof(float));
         });
         out.recastFraction = double(recastPixels.pixels.size()) / double(pixels);
-        out.recastInPartFraction =
-            double(std::count_if(rays, rays + *count, [](const device::ListRay& r) { return r.startDepth > 0; })) /
-            double(pixels);
+        out.recastInPartFraction = double(inPart) / double(pixels);
         return out;
     });
 }
