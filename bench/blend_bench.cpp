@@ -3,7 +3,8 @@
 // of the iso-surface with both casters against the composite primitive caster, with iterations per ray; and the
 // composite frame clipped to half the volume, by a crop box and by a plane, against the whole, in time and in samples
 // taken (clipping should cost about its share of the frame: the share of the samples it keeps, half or less where
-// the kept half holds half the work; more where it opens to view what the whole frame's rays ended before). The blocks caster must render its primitive caster's image (checked).
+// the kept half holds half the work; more where it opens to view what the whole frame's rays ended before). The
+// blocks caster must render its primitive caster's image (checked).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
@@ -135,7 +136,8 @@ int main(int argc, char** argv) {
             const Vec3i dims = p.grid().dims;
             cropSettings.crop = CropBox{{0, 0, 0}, {dims.x / 2 - 1, dims.y - 1, dims.z - 1}};
             planeSettings.clipPlanes = {ClipPlane{{1, 0, 0}, p.grid().centre().x}};
-            const std::vector<Orbit> clipped = renderOrbits(renderer, volume, cameras, {s, cropSettings, planeSettings});
+            const std::vector<Orbit> clipped =
+                renderOrbits(renderer, volume, cameras, {s, cropSettings, planeSettings});
             const Orbit &composite = clipped[0], &cropped = clipped[1], &planeClipped = clipped[2];
             s.shading = false;
             s.blend = Blend::MIP;

@@ -62,8 +62,8 @@ int main(int argc, char** argv) {
                     "against its full render, mean over the views (worst view in brackets).\n\n",
                     ctx.info().name.c_str(), size, size, views, caster.c_str(), to, ta, step);
         std::printf("| dataset | one eye ms | pair ms (reuse) | pair / one eye | left eye ms (reuse) | "
-                    "pair ms (no reuse) | reprojection ms | right eye re-cast (pixels, of them in part, work, pieces) | PSNR dB | "
-                    "SSIM | off > 1/255 | CIEDE2000 > 2.3 | time target | quality target |\n"
+                    "pair ms (no reuse) | reprojection ms | right eye re-cast (pixels, of them in part, work, "
+                    "pieces) | PSNR dB | SSIM | off > 1/255 | CIEDE2000 > 2.3 | time target | quality target |\n"
                     "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
         for (const std::string& name : datasets) {
             const test::DatasetEntry e = test::rawDataset(name);
@@ -100,12 +100,12 @@ int main(int argc, char** argv) {
             checks.expect(m.recastInPart <= m.recastFraction, "%s: the pixels re-cast in part are re-cast",
                           e.file.c_str());
             checks.expect(m.pairMs > 0 && m.oneEyeMs > 0, "%s: positive device times", e.file.c_str());
-            std::printf("| %s | %.3g | %.3g | %.2fx | %.3g | %.3g | %.3g | %.1f %%, %.1f %%, %.1f %%, %d | %.1f (%.1f) | "
-                        "%.4f (%.4f) | %.2f %% (%.2f) | %.2f %% (%.2f) | %s | %s |\n",
+            std::printf("| %s | %.3g | %.3g | %.2fx | %.3g | %.3g | %.3g | %.1f %%, %.1f %%, %.1f %%, %d | "
+                        "%.1f (%.1f) | %.4f (%.4f) | %.2f %% (%.2f) | %.2f %% (%.2f) | %s | %s |\n",
                         e.file.c_str(), m.oneEyeMs, m.pairMs, ratio, m.leftEyeMs, m.fullPairMs, m.reprojectMs,
                         100 * m.recastFraction, 100 * m.recastInPart, 100 * m.recastWork, m.recastPieces,
-                        m.error.mean.psnr,
-                        m.error.worst.psnr, m.error.mean.ssim, m.error.worst.ssim, m.error.mean.percentOff8Bit,
+                        m.error.mean.psnr, m.error.worst.psnr, m.error.mean.ssim, m.error.worst.ssim,
+                        m.error.mean.percentOff8Bit,
                         m.error.worst.percentOff8Bit, m.error.mean.percentPerceptual, m.error.worst.percentPerceptual,
                         !isCt(e.file) ? "(not a CT)" : ratio <= kPairTarget ? "met" : "missed",
                         quality ? "met" : "missed");

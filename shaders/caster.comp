@@ -510,8 +510,8 @@ void main() {
     vec4 start = initialComposite();
     if (PIXEL_LIST && BLEND == kBlendComposite && piece == 0u)
         start = vec4(unpackUnorm2x16(listed.frontRG), unpackUnorm2x16(listed.frontBT));
-    vec2 startDepth = vec2(BLEND == kBlendComposite && start.a < 1.0 ? -log(start.a) : 0.0, 0.0);
-    RayState state = firstDispatch ? RayState(start, startDepth, kStart, 0u, missingOctant ? kFailed : 0u, 0.0, 0u,
+    vec2 frontDepth = vec2(BLEND == kBlendComposite && start.a < 1.0 ? -log(start.a) : 0.0, 0.0);  // optical
+    RayState state = firstDispatch ? RayState(start, frontDepth, kStart, 0u, missingOctant ? kFailed : 0u, 0.0, 0u,
                                               0.0, vec4(0.0, 0.0, 0.0, 1.0), 0u)
                                    : loadRayState(outIndex);
     vec3 colour = state.composite.rgb;

@@ -91,12 +91,13 @@ TEST(VulkanRayPieces, AFailedPieceFailsTheRender) {
     test::expectNoValidationErrors();
 }
 
-// A renderer takes whole rays (1) or up to device::kMostPieces, for re-casts also the device's choice (0), and refuses the
-// rest.
+// A renderer takes whole rays (1) or up to device::kMostPieces, for re-casts also the device's choice (0), and
+// refuses the rest.
 TEST(VulkanRayPieces, PieceCountsOutsideTheRangeAreRefused) {
     VulkanRenderer renderer(test::vulkanContext(), 16);
     for (int pieces : {0, 1, device::kMostPieces}) EXPECT_NO_THROW(renderer.setRecastPieces(pieces)) << pieces;
-    for (int pieces : {-1, device::kMostPieces + 1}) EXPECT_THROW(renderer.setRecastPieces(pieces), std::invalid_argument);
+    for (int pieces : {-1, device::kMostPieces + 1})
+        EXPECT_THROW(renderer.setRecastPieces(pieces), std::invalid_argument) << pieces;
     for (int pieces : {1, device::kMostPieces}) EXPECT_NO_THROW(renderer.setRayPieces(pieces)) << pieces;
     for (int pieces : {0, device::kMostPieces + 1}) EXPECT_THROW(renderer.setRayPieces(pieces), std::invalid_argument);
 }

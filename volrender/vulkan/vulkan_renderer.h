@@ -92,8 +92,9 @@ public:
 private:
     // The checks of render(); notes what the render reads in lastUploads().
     void checkRender(const GpuVolume& volume, const Camera& camera, const RenderSettings& settings);
-    // What the casters cast: every pixel, tile by tile, or (list) the pixels of a list on the device, whose host copy
-    // `pixels` (packed, shaders/stereo_reprojection.h) says where each result goes; the pixels not in it stay blank.
+    // What the casters cast: every pixel, tile by tile, or (list) the rays of a list on the device (device::ListRay
+    // each), whose packed pixels copied to the host (`pixels`) say where each result goes; the pixels not in it stay
+    // blank.
     // A list's rays may be cast in pieces (piecesFor).
     struct PixelList {
         const HostBuffer& buffer;
