@@ -475,7 +475,8 @@ void main() {
     ListRay listed = ListRay(0u, 0.0, 0u, 0u);
     if (PIXEL_LIST) {
         // This dispatch's chunk of the list starts at entry tileOrigin.x; each workgroup takes 64 consecutive
-        // entries, so that a SIMD batch takes neighbouring pixels (the list is in the order of 8 x 8 blocks).
+        // entries, so that a SIMD batch takes neighbouring rays that start at the same depth (the list is sorted so:
+        // volrender/vulkan/stereo_render.cpp).
         outIndex = (group.y * gl_NumWorkGroups.x + group.x) * uint(kWorkgroupSize * kWorkgroupSize) +
                    l.y * uint(kWorkgroupSize) + l.x;
         uint entry = uint(tile.tileOrigin.x) + outIndex;

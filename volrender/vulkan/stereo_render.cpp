@@ -128,9 +128,13 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         *count = 0;
         out.reprojectMilliseconds = reprojector_->reproject(pool_, reprojection(pair, depths, settings, bands),
                                                             buffers.left, leftBands, right, recast);
-        // Blocks of 8 x 8 pixels in row order, each block's pixels in row order: a workgroup's rays stay as close
-        // together as a tile's (the device appended them in any order).
+        // By the depth each ray starts from (the bands' near depths: a few values), then in blocks of 8 x 8 pixels
+        // in row order, each block's pixels in row order: a SIMD batch's rays start together and stay close, so
+        // that they take nearly as long (the device appended them in any order). Sorted by block alone, rays cast
+        // whole and rays cast from deep bands shared batches, which waited on the whole ones: the re-casts took
+        // about twice as long on lavapipe (docs/BENCH.md, stereo pairs).
         std::sort(rays, rays + *count, [](const device::ListRay& a, const device::ListRay& b) {
+            if (a.startDepth != b.startDepth) return a.startDepth < b.startDepth;
             return blockOrder(a.pixel) < blockOrder(b.pixel);
         });
         PixelList recastPixels{recast, std::vector<uint32_t>(*count)};

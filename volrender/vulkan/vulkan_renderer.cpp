@@ -490,9 +490,12 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     };
     if (list) {
         const int count = int(list->pixels.size());
+        // One workgroup wide: each workgroup row takes a chunk, so that on llvmpipe the interleaved rows spread
+        // every thread's run of workgroups over the whole list (a sorted list puts its long rays together).
         for (int first = 0; first < count; first += int(tilePixels)) {
-            const int rows = (std::min(int(tilePixels), count - first) + tileSize_ - 1) / tileSize_;
-            addTile({first, 0}, {tileSize_, rows});
+            const int rows = (std::min(int(tilePixels), count - first) + device::kWorkgroupSize - 1) /
+                             device::kWorkgroupSize;
+            addTile({first, 0}, {device::kWorkgroupSize, rows});
         }
     } else {
         for (int y0 = 0; y0 < camera.height; y0 += tileSize_)
