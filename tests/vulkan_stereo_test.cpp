@@ -367,6 +367,33 @@ TEST(VulkanStereo, EveryBlendGivesThePairWithoutReuse) {
     test::expectNoValidationErrors();
 }
 
+// volrender makes a pair's pipelines while the volume is being prepared: the ones the pair then takes, no other.
+// (PC: the test volume's EACD is in the exact code, not the default one that volrender prepares for.)
+TEST(VulkanStereo, PreparedPipelinesAreThePairs) {
+    const StereoPair pair = occludedPair(40, 32);
+    VulkanRenderer renderer(test::vulkanContext(), 16);
+    const GpuVolume volume = renderer.upload(occludedBlock(), {{Caster::PC}, kAllOctants});
+    const RenderSettings s = test::renderSettings(Caster::PC, false, false);
+    EXPECT_EQ(renderer.pipelineCount(), 0u);
+    renderer.prepareStereoPipelines(s, volume.scalarType());
+    EXPECT_EQ(renderer.pipelineCount(), 3u);  // the left eye's, the re-casts', the reprojection's
+    const StereoRender pairRender = renderer.renderStereo(volume, pair, s, true);
+    ASSERT_GT(pairRender.recastFraction, 0);  // the re-casts' pipeline was taken
+    EXPECT_EQ(renderer.pipelineCount(), 3u);
+
+    const test::BlendVolume& v = test::blendVolumes().front();
+    const GpuVolume blocks = renderer.upload(v.prepared, {{Caster::Blocks}, kAllOctants});
+    const Camera centre = Camera::fit(v.prepared.grid(), test::orbitView(30, 20, 40, 32, Projection::Perspective));
+    const StereoPair mipPair =
+        stereoPair(centre, v.prepared.grid(), 0.05 * length(v.prepared.grid().extent()), std::nullopt);
+    const RenderSettings mip = test::blendSettings(Blend::MIP, Caster::Blocks, true, v.isoValue);
+    renderer.prepareStereoPipelines(mip, blocks.scalarType());
+    EXPECT_EQ(renderer.pipelineCount(), 6u);  // MIP's left eye is its frame's; the re-casts'; the reprojection's
+    ASSERT_GT(renderer.renderStereo(blocks, mipPair, mip, true).recastFraction, 0);
+    EXPECT_EQ(renderer.pipelineCount(), 6u);
+    test::expectNoValidationErrors();
+}
+
 // Bricks carry each ray's depth interval from dispatch to dispatch, and the re-cast list runs through every brick.
 TEST(VulkanStereo, BrickedVolumeGivesTheWholeVolumesPair) {
     VulkanRenderer bricked(test::vulkanContext(), 16, ImageLimits{.maxDimension = 24, .minBricks = {2, 2, 2}});

@@ -16,9 +16,9 @@ OpeningDevice::OpeningDevice(int deviceIndex)
       })) {}
 
 void OpeningDevice::preparePipelines(std::vector<Caster> casters, RenderSettings settings, Projection projection,
-                                     ScalarType type) {
-    preparing_ = std::async(std::launch::async, [this, opening = opening_, casters, settings, projection,
-                                                  type]() mutable {
+                                     ScalarType type, bool stereoReuse) {
+    preparing_ = std::async(std::launch::async, [this, opening = opening_, casters, settings, projection, type,
+                                                  stereoReuse]() mutable {
         try {
             // The device first: a choice made while it opens skips every other caster's pipeline.
             VulkanRenderer& renderer = *opening.get()->renderer;
@@ -26,7 +26,8 @@ void OpeningDevice::preparePipelines(std::vector<Caster> casters, RenderSettings
                 const int chosen = chosen_;
                 if (chosen >= 0 && chosen != int(caster)) continue;
                 settings.caster = caster;
-                renderer.preparePipeline(settings, projection, type);
+                if (stereoReuse) renderer.prepareStereoPipelines(settings, type);
+                else renderer.preparePipeline(settings, projection, type);
                 markMilestone("pipelineMade");
             }
         } catch (const std::exception&) {

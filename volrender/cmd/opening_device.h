@@ -24,9 +24,10 @@ public:
     // Makes the pipelines of renders with `settings` by each of `casters` in turn (VulkanRenderer::preparePipeline),
     // on a thread of their own once the device is open, while the volume is still being prepared: a CPU device
     // takes about as long to make one as to render a small CT. Once chose() names the caster, the others are
-    // skipped. A pipeline that cannot be made is left to the render, which says why.
+    // skipped. A pipeline that cannot be made is left to the render, which says why. `stereoReuse`: the renders are
+    // stereo pairs with reuse (VulkanRenderer::prepareStereoPipelines).
     void preparePipelines(std::vector<Caster> casters, RenderSettings settings, Projection projection,
-                          ScalarType type);
+                          ScalarType type, bool stereoReuse = false);
     void chose(Caster caster) { chosen_ = int(caster); }
 
     // What the first view waits for from now (deviceWaitMs): the rest of the device's start, then a pipeline.

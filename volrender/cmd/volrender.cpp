@@ -87,6 +87,9 @@ std::vector<vr::Camera> eyeCameras(const Flags& f, const vr::GridGeometry& grid,
     return eyes;
 }
 
+// Whether the views are stereo pairs whose right eyes reuse their left (their pipelines are made ahead).
+bool pairsWithReuse(const Flags& f) { return f.stereo.separation && vr::stereoReuse(f.stereo, f.cpu); }
+
 // The octants of every ray of the cameras.
 unsigned orbitOctants(const std::vector<vr::Camera>& cameras) {
     unsigned octants = 0;
@@ -129,7 +132,7 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     if (makeAhead && (composite || !chooseHere))
         device->preparePipelines(chooseHere ? std::vector{vr::Caster::Hier, vr::Caster::Primitive, vr::Caster::EACD}
                                             : std::vector{s.caster},
-                                 s, cameras.front().projection, staged.volume().sourceType);
+                                 s, cameras.front().projection, staged.volume().sourceType, pairsWithReuse(f));
     if (chooseHere) {
         const auto blendCalibration = [&] {
             return vr::calibrationInUse(f.calibration, vr::deviceToCalibrate(f.calibration, *device)).constants;
@@ -142,7 +145,8 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
         choice = c.reason;
         device->chose(s.caster);
         if (makeAhead && !composite)
-            device->preparePipelines({s.caster}, s, cameras.front().projection, staged.volume().sourceType);
+            device->preparePipelines({s.caster}, s, cameras.front().projection, staged.volume().sourceType,
+                                     pairsWithReuse(f));
         options.fields = fieldsFor(s.caster);
     }
     staged.prepare(options);
@@ -310,7 +314,8 @@ int run(const Flags& f) {
                                                             });
     auto makePipeline = [&] {
         device->preparePipelines({settings.caster}, settings,
-                                 eyeCameras(f, header->grid, view).front().projection, header->scalarType);
+                                 eyeCameras(f, header->grid, view).front().projection, header->scalarType,
+                                 pairsWithReuse(f));
     };
     if (makeAhead && !chooseAfterReading) makePipeline();
     const vr::PreparedVolume prepared =

@@ -6,7 +6,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include "volrender/vulkan/ray_pieces.h"
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/vulkan_renderer.h"
 
@@ -122,11 +121,10 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
                                   float(bands.width)},
                                  bands.count};
         out.left = renderOnDevice(volume, pair.left, settings, nullptr, &leftEye);
-        if (!reprojector_) reprojector_ = std::make_unique<StereoReprojector>(ctx_);
         auto* count = static_cast<uint32_t*>(recast.data());
         auto* rays = reinterpret_cast<device::ListRay*>(count + 1);
         *count = 0;
-        out.reprojectMilliseconds = reprojector_->reproject(pool_, reprojection(pair, depths, settings, bands),
+        out.reprojectMilliseconds = reprojector().reproject(pool_, reprojection(pair, depths, settings, bands),
                                                             buffers.left, leftBands, right, recast);
         // By the depth each ray starts from (the bands' near depths: a few values), then in blocks of 8 x 8 pixels
         // in row order, each block's pixels in row order: a SIMD batch's rays start together and stay close, so
@@ -148,10 +146,8 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
             out.recastFrom[index] = rays[i].startDepth;
             inPart += rays[i].startDepth > 0;
         }
-        const int asked = recastPieces_ != kAutoPieces
-                              ? recastPieces_
-                              : raysPieces(ctx_.info().type == "discrete", recastPixels.pixels.size(), pixels);
-        recastPixels.pieces = piecesFor(volume, settings, asked);
+        recastPixels.pieces = piecesFor(volume.bricks().bricks().size() > 1, settings,
+                                        recastPiecesAsked(recastPixels.pixels.size(), pixels));
         out.recastPieces = recastPixels.pieces;
         out.right = renderOnDevice(volume, pair.right, settings, &recastPixels);
         out.right.deviceMilliseconds += out.reprojectMilliseconds;

@@ -20,14 +20,23 @@ StereoReprojector::StereoReprojector(const VulkanContext& ctx)
     const vk::DescriptorSetLayout setLayout = *setLayout_;
     layout_ = vk::raii::PipelineLayout(ctx.device(), vk::PipelineLayoutCreateInfo({}, setLayout));
     shader_ = vk::raii::ShaderModule(ctx.device(), vk::ShaderModuleCreateInfo({}, stereo_reproject_spv));
-    for (const bool bands : {false, true}) {
-        const VkBool32 value = bands;
-        const vk::SpecializationMapEntry entry(device::kSpecIdBands, 0, sizeof value);
-        const vk::SpecializationInfo specialization(1, &entry, sizeof value, &value);
-        vk::PipelineShaderStageCreateInfo stage({}, compute, *shader_, "main", &specialization);
-        (bands ? bands_ : intervals_) =
-            vk::raii::Pipeline(ctx.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *layout_));
-    }
+}
+
+int StereoReprojector::pipelineCount() {
+    std::lock_guard lock(pipelinesMutex_);
+    return (*intervals_ ? 1 : 0) + (*bands_ ? 1 : 0);
+}
+
+const vk::raii::Pipeline& StereoReprojector::pipeline(bool bands) {
+    std::lock_guard lock(pipelinesMutex_);
+    vk::raii::Pipeline& made = bands ? bands_ : intervals_;
+    if (*made) return made;
+    const VkBool32 value = bands;
+    const vk::SpecializationMapEntry entry(device::kSpecIdBands, 0, sizeof value);
+    const vk::SpecializationInfo specialization(1, &entry, sizeof value, &value);
+    vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *shader_, "main", &specialization);
+    made = vk::raii::Pipeline(ctx_.device(), nullptr, vk::ComputePipelineCreateInfo({}, stage, *layout_));
+    return made;
 }
 
 double StereoReprojector::reproject(const vk::raii::CommandPool& pool, const device::StereoParams& params,
@@ -60,10 +69,11 @@ double StereoReprojector::reproject(const vk::raii::CommandPool& pool, const dev
         {set, device::kBindingRecastList, 0, 1, T::eStorageBuffer, nullptr, &buffers[3]},
         {set, device::kBindingLeftBands, 0, 1, T::eStorageTexelBuffer, nullptr, nullptr, &segmentView}}};
     ctx_.device().updateDescriptorSets(writes, {});
+    const vk::raii::Pipeline& pipe = pipeline(bands != nullptr);
     submitAndWait(ctx_, pool, [&](const vk::raii::CommandBuffer& cmd) {
         using S = vk::PipelineStageFlagBits;
         timer_.start(cmd);
-        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, bands ? *bands_ : *intervals_);
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipe);
         cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout_, 0, set, {});
         cmd.dispatch(uint32_t((params.imageSize.x + device::kReprojectGroup - 1) / device::kReprojectGroup),
                      uint32_t(params.imageSize.y), 1);

@@ -1,5 +1,7 @@
 // The reprojection of a stereo pair's left eye into its right eye on the device (shaders/stereo_reproject.comp).
 #pragma once
+#include <mutex>
+
 #include "shaders/stereo_reprojection.h"
 #include "volrender/vulkan/device_timer.h"
 #include "volrender/vulkan/gpu_buffer.h"
@@ -24,14 +26,24 @@ public:
     double reproject(const vk::raii::CommandPool& pool, const device::StereoParams& params, const HostBuffer& left,
                      const DeviceBuffer* bands, const HostBuffer& right, const HostBuffer& recast);
 
+    // Makes, ahead of a pair, the pipeline that reproject() takes with bands (composite) or without (the other
+    // blends). Safe beside a reprojection on another thread, which waits for a pipeline being made.
+    void preparePipeline(bool bands) { pipeline(bands); }
+    // How many of its two pipelines it has made.
+    int pipelineCount();
+
 private:
+    // The shader without or with its bands constant, made at first use: a CPU device takes tens of ms over one.
+    const vk::raii::Pipeline& pipeline(bool bands);
+
     const VulkanContext& ctx_;
     DeviceTimer timer_;
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout layout_{nullptr};
     vk::raii::ShaderModule shader_{nullptr};
-    vk::raii::Pipeline intervals_{nullptr}, bands_{nullptr};  // the shader without and with its bands constant
-    DeviceBuffer unusedBands_;                                // bound without bands
+    vk::raii::Pipeline intervals_{nullptr}, bands_{nullptr};
+    std::mutex pipelinesMutex_;  // held while a pipeline is looked up or made
+    DeviceBuffer unusedBands_;   // bound without bands
 };
 
 }  // namespace vr

@@ -21,6 +21,7 @@
 #include "shaders/device_contract.h"
 #include "shaders/embedded_shaders.h"
 #include "shaders/stereo_reprojection.h"
+#include "volrender/vulkan/ray_pieces.h"
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/workgroup_rows.h"
 
@@ -284,6 +285,25 @@ void VulkanRenderer::preparePipeline(const RenderSettings& settings, Projection 
                        kDefaultExtentCode, true));
 }
 
+void VulkanRenderer::prepareStereoPipelines(const RenderSettings& settings, ScalarType type) {
+    const bool composite = settings.blend == Blend::Composite;
+    pipeline(variantOf(settings, true, type, device::kNoLabels, false, false, kDefaultExtentCode, true, composite));
+    // The pieces of a list of a sixteenth of the frame: the CTs' pairs re-cast about 5 % of the right eye.
+    const int pieces = piecesFor(false, settings, recastPiecesAsked(1, 16));
+    pipeline(variantOf(settings, true, type, device::kNoLabels, false, true, kDefaultExtentCode, true, false, pieces));
+    reprojector().preparePipeline(composite);
+}
+
+std::size_t VulkanRenderer::pipelineCount() {
+    std::lock_guard lock(pipelinesMutex_);
+    return pipelines_.size() + std::size_t(reprojector().pipelineCount());
+}
+
+StereoReprojector& VulkanRenderer::reprojector() {
+    std::call_once(reprojectorMade_, [this] { reprojector_ = std::make_unique<StereoReprojector>(ctx_); });
+    return *reprojector_;
+}
+
 GpuVolume VulkanRenderer::upload(const PreparedVolume& prepared, const GpuVolumeContents& contents) {
     return deviceErrors([&] { return GpuVolume(ctx_, pool_, prepared, contents, limits_); });
 }
@@ -307,8 +327,13 @@ void VulkanRenderer::setRecastPieces(int pieces) {
 
 void VulkanRenderer::setRayPieces(int pieces) { rayPieces_ = checkedPieces(pieces, 1, "ray pieces"); }
 
-int VulkanRenderer::piecesFor(const GpuVolume& volume, const RenderSettings& settings, int pieces) const {
-    if (pieces <= 1 || settings.blend != Blend::Composite || volume.bricks().bricks().size() > 1) return 1;
+int VulkanRenderer::recastPiecesAsked(std::size_t listPixels, std::size_t framePixels) const {
+    return recastPieces_ != kAutoPieces ? recastPieces_
+                                        : raysPieces(ctx_.info().type == "discrete", listPixels, framePixels);
+}
+
+int VulkanRenderer::piecesFor(bool bricked, const RenderSettings& settings, int pieces) const {
+    if (pieces <= 1 || settings.blend != Blend::Composite || bricked) return 1;
     const vk::PhysicalDeviceLimits limits = ctx_.physicalDevice().getProperties().limits;
     const int groupPixels = device::kWorkgroupSize * device::kWorkgroupSize;
     return std::max(1, std::min({pieces, int(limits.maxComputeWorkGroupInvocations) / groupPixels,
@@ -384,10 +409,11 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     const vk::raii::Device& device = ctx_.device();
     // Rays in pieces (ray_pieces.h): a list's as it asks, a frame's as setRayPieces asks; never a stereo left eye's,
     // which records its bands along the whole ray.
-    const int pieces = left ? 1 : piecesFor(volume, settings, list ? list->pieces : rayPieces_);
+    const bool bricked = volume.bricks().bricks().size() > 1;
+    const int pieces = left ? 1 : piecesFor(bricked, settings, list ? list->pieces : rayPieces_);
     const Variant variant =
         variantOf(settings, camera.projection == Projection::Perspective, volume.scalarType(), deviceLabels(volume),
-                  volume.bricks().bricks().size() > 1, list != nullptr, volume.eacdCode(),
+                  bricked, list != nullptr, volume.eacdCode(),
                   leapsByTheMargin(volume.grid(), camera, settings.stepVoxels * volume.grid().smallestSpacing()),
                   left && left->bands, pieces);
     const ExtentCode extentCode = variant.eacdCode;

@@ -82,6 +82,12 @@ public:
     // volume is still being prepared (a CPU device takes longer to make a pipeline than to render a small CT). Safe
     // beside a render on another thread: a render that needs a pipeline being made waits for it.
     void preparePipeline(const RenderSettings& settings, Projection projection, ScalarType type);
+    // The same for a stereo pair with reuse (renderStereo) of such a volume: the left eye's pipeline (composite's
+    // records its bands), the re-casts' and the reprojection's. A CPU device took about 90 ms over them at the first
+    // pair, after the volume was ready.
+    void prepareStereoPipelines(const RenderSettings& settings, ScalarType type);
+    // How many pipelines it has made so far, the casters' and the reprojection's, each once.
+    std::size_t pipelineCount();
 
     ~VulkanRenderer();
 
@@ -131,9 +137,12 @@ private:
     static Variant variantOf(const RenderSettings& settings, bool perspective, ScalarType type, int labels,
                              bool bricked, bool pixelList, ExtentCode eacdCode, bool marginLeaps,
                              bool stereoBands = false, int pieces = 1);
-    // The pieces a render of `volume` with `settings` casts each ray in when asked for `pieces`: composite rays of a
-    // one-brick volume only (others 1), no more than the device's workgroups hold (a piece an invocation).
-    int piecesFor(const GpuVolume& volume, const RenderSettings& settings, int pieces) const;
+    // The pieces a render with `settings` casts each ray in when asked for `pieces`: composite rays of a one-brick
+    // volume only (others 1), no more than the device's workgroups hold (a piece an invocation).
+    int piecesFor(bool bricked, const RenderSettings& settings, int pieces) const;
+    // The pieces a pair's re-casts ask for, `listPixels` of a frame of `framePixels` (setRecastPieces).
+    int recastPiecesAsked(std::size_t listPixels, std::size_t framePixels) const;
+    StereoReprojector& reprojector();  // made once, by the first that needs it
     const vk::raii::Pipeline& pipeline(Variant variant);
     // What one tile's dispatches read and write beside the volume, for tiles of up to `pixels` pixels. Kept from
     // render to render, and grown when a render needs more: a GPU driver pins host memory as it is allocated, which
@@ -189,7 +198,8 @@ private:
     std::unique_ptr<VolumeImage> unusedWords_, unusedFloats_, unusedFields_[3], unusedBlockExtrema_;
     std::unique_ptr<TexelTable> unusedLabelTable_;  // bound without a label map
     std::vector<UploadedResource> uploads_;
-    std::unique_ptr<StereoReprojector> reprojector_;  // made by the first pair with reuse
+    std::unique_ptr<StereoReprojector> reprojector_;
+    std::once_flag reprojectorMade_;
     int recastPieces_ = kAutoPieces;
     int rayPieces_ = 1;
 };
