@@ -292,6 +292,25 @@ TEST(VulkanCasters, UploadOnlyWhatTheCasterAndViewUse) {
     expectNoValidationErrors();
 }
 
+// volrender makes the pipeline of the caster asked while the volume is being prepared (preparePipeline): the one
+// the render then takes, no other. (Not EACD: these volumes' EACD is in the exact code, not the default one that
+// volrender prepares for.)
+TEST(VulkanCasters, PreparedPipelineIsTheRendersOne) {
+    const Volume v = shellsPhantom({20, 18, 16});
+    const PreparedVolume p = prepare(v, phantomTf(), 0.02, 10);
+    VulkanRenderer fresh(test::vulkanContext(), 40);
+    std::size_t made = 0;
+    for (Projection projection : {Projection::Orthographic, Projection::Perspective})
+        for (Caster caster : {Caster::Primitive, Caster::PC, Caster::Hier}) {
+            const RenderSettings s = renderSettings(caster);
+            fresh.preparePipeline(s, projection, v.sourceType);
+            EXPECT_EQ(fresh.pipelineCount(), ++made) << casterName(caster);
+            fresh.render(p, Camera::fit(v.grid, view(30, 20, projection)), s);
+            EXPECT_EQ(fresh.pipelineCount(), made) << casterName(caster);
+        }
+    expectNoValidationErrors();
+}
+
 TEST(VulkanCasters, PerspectiveOctantsCoverEveryPixelsRay) {
     const GridGeometry grid{{30, 20, 10}, {1, 1, 2}, {0, 0, 0}};
     for (double az : {0.0, 10.0, 45.0, 90.0, 133.0})
