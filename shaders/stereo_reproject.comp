@@ -71,6 +71,10 @@ void finish(int x, int y, bool reuse, vec4 colour, float startDepth, vec4 front)
             ListRay(packListPixel(x, y), startDepth, packUnorm2x16(front.rg), packUnorm2x16(front.ba));
 }
 
+// The image row of this workgroup: rows interleaved over the image, as the casters' (llvmpipe's threads each take a
+// contiguous run of workgroups).
+int imageRow() { return int(gl_WorkGroupID.y * uint(params.rowStride) % uint(params.imageSize.y)); }
+
 Reprojected sharedPixel(int i) {
     vec4 place = sharedPlace[i];
     Reprojected r;
@@ -86,7 +90,7 @@ Reprojected sharedPixel(int i) {
 // The other blends: one interval per left pixel.
 void reprojectIntervals() {
     int width = params.imageSize.x;
-    int y = int(gl_WorkGroupID.y);
+    int y = imageRow();
     int x = int(gl_GlobalInvocationID.x);
     int groupFirst = int(gl_WorkGroupID.x) * kReprojectGroup;
     float c = float(x) + 0.5;
@@ -216,7 +220,7 @@ uint usedFrom(int x, int y, int b, int first) {
 
 void reprojectBands() {
     int width = params.imageSize.x;
-    int y = int(gl_WorkGroupID.y);
+    int y = imageRow();
     int x = int(gl_GlobalInvocationID.x);
     float c = float(x) + 0.5;
     float seen = 1.0 - kOpaqueAlpha;

@@ -117,6 +117,7 @@ struct StereoParams {
     vec4 background;       // rgb: what a composite right pixel shows through its transmittance
     float firstDisparity;  // composite: the first band's near disparity
     int bandCount;         // composite: the number of bands
+    int rowStride;         // workgroup row r takes image row (r rowStride) mod height (workgroup_rows.h)
 };
 
 // The disparity in pixels (x in the right image minus x in the left) of a point at depth z along the eyes' common

@@ -8,6 +8,7 @@
 
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/vulkan_renderer.h"
+#include "volrender/vulkan/workgroup_rows.h"
 
 namespace vr {
 namespace {
@@ -124,8 +125,9 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         auto* count = static_cast<uint32_t*>(recast.data());
         auto* rays = reinterpret_cast<device::ListRay*>(count + 1);
         *count = 0;
-        out.reprojectMilliseconds = reprojector().reproject(pool_, reprojection(pair, depths, settings, bands),
-                                                            buffers.left, leftBands, right, recast);
+        device::StereoParams params = reprojection(pair, depths, settings, bands);
+        params.rowStride = interleavedRows_ ? interleavedRowStride(height) : 1;
+        out.reprojectMilliseconds = reprojector().reproject(pool_, params, buffers.left, leftBands, right, recast);
         // By the depth each ray starts from (the bands' near depths: a few values), then in blocks of 8 x 8 pixels
         // in row order, each block's pixels in row order: a SIMD batch's rays start together and stay close, so
         // that they take nearly as long (the device appended them in any order). Sorted by block alone, rays cast
