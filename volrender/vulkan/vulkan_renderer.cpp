@@ -286,6 +286,7 @@ void VulkanRenderer::preparePipeline(const RenderSettings& settings, Projection 
 }
 
 void VulkanRenderer::prepareStereoPipelines(const RenderSettings& settings, ScalarType type) {
+    // A pair's cameras are perspective (stereoPair).
     const bool composite = settings.blend == Blend::Composite;
     pipeline(variantOf(settings, true, type, device::kNoLabels, false, false, kDefaultExtentCode, true, composite));
     // The pieces of a list of a sixteenth of the frame: the CTs' pairs re-cast about 5 % of the right eye.
