@@ -8,7 +8,6 @@
 
 #include "volrender/vulkan/stereo_reprojector.h"
 #include "volrender/vulkan/vulkan_renderer.h"
-#include "volrender/vulkan/workgroup_rows.h"
 
 namespace vr {
 namespace {
@@ -35,7 +34,7 @@ Bands bandsOf(const StereoPair& pair, const DepthRange& depths, bool composite) 
 }
 
 device::StereoParams reprojection(const StereoPair& pair, const DepthRange& depths, const RenderSettings& settings,
-                                  const Bands& bands) {
+                                  const Bands& bands, int rowStride) {
     const Camera& left = pair.left;
     device::StereoParams p{};
     p.imageSize = {left.width, left.height};
@@ -54,6 +53,7 @@ device::StereoParams reprojection(const StereoPair& pair, const DepthRange& dept
     p.background = {float(settings.background.x), float(settings.background.y), float(settings.background.z), 0};
     p.firstDisparity = float(bands.first);
     p.bandCount = bands.count;
+    p.rowStride = rowStride;
     p.faintAlpha = float(kFaintAlpha);
     return p;
 }
@@ -125,9 +125,9 @@ StereoRender VulkanRenderer::renderStereo(const GpuVolume& volume, const StereoP
         auto* count = static_cast<uint32_t*>(recast.data());
         auto* rays = reinterpret_cast<device::ListRay*>(count + 1);
         *count = 0;
-        device::StereoParams params = reprojection(pair, depths, settings, bands);
-        params.rowStride = interleavedRows_ ? interleavedRowStride(height) : 1;
-        out.reprojectMilliseconds = reprojector().reproject(pool_, params, buffers.left, leftBands, right, recast);
+        out.reprojectMilliseconds =
+            reprojector().reproject(pool_, reprojection(pair, depths, settings, bands, rowStride(height)),
+                                    buffers.left, leftBands, right, recast);
         // By the depth each ray starts from (the bands' near depths: a few values), then in blocks of 8 x 8 pixels
         // in row order, each block's pixels in row order: a SIMD batch's rays start together and stay close, so
         // that they take nearly as long (the device appended them in any order). Sorted by block alone, rays cast

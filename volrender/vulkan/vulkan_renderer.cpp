@@ -23,7 +23,6 @@
 #include "shaders/stereo_reprojection.h"
 #include "volrender/vulkan/ray_pieces.h"
 #include "volrender/vulkan/stereo_reprojector.h"
-#include "volrender/vulkan/workgroup_rows.h"
 
 namespace vr {
 namespace {
@@ -531,7 +530,7 @@ RenderResult VulkanRenderer::renderOnDevice(const GpuVolume& volume, const Camer
     }
     for (device::TilePush tile : tiles) {
         const int groupRows = (tile.tileSize.y + device::kWorkgroupSize - 1) / device::kWorkgroupSize;
-        tile.groupRowStride = interleavedRows_ ? interleavedRowStride(groupRows) : 1;
+        tile.groupRowStride = rowStride(groupRows);
         submitAndWait(ctx_, pool_, [&](const vk::raii::CommandBuffer& cmd) {
             using S = vk::PipelineStageFlagBits;
             using A = vk::AccessFlagBits;

@@ -16,6 +16,7 @@
 #include "volrender/vulkan/device_timer.h"
 #include "volrender/vulkan/gpu_volume.h"
 #include "volrender/vulkan/vulkan_context.h"
+#include "volrender/vulkan/workgroup_rows.h"
 
 namespace vr {
 
@@ -182,6 +183,8 @@ private:
     ImageLimits limits_;
     bool stagedOutput_;  // OutputMemory::Device
     bool interleavedRows_;  // a CPU device: its threads take contiguous runs of workgroups (workgroup_rows.h)
+    // The stride of a dispatch's `rows` workgroup rows over its image rows: interleaved on a CPU device, else 1.
+    int rowStride(int rows) const { return interleavedRows_ ? interleavedRowStride(rows) : 1; }
     vk::raii::CommandPool pool_{nullptr};
     vk::raii::DescriptorSetLayout setLayout_{nullptr};
     vk::raii::PipelineLayout pipelineLayout_{nullptr};
