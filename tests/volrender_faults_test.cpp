@@ -83,6 +83,11 @@ TEST(VolrenderFaults, BadCameraFlagsAreRefused) {
     for (const char* zoom : {"0", "-2", "nan", "inf", "1e-9", "1e9", "two"})
         expectRefused(in + " --zoom " + zoom, "--zoom");
     expectRefused(in + " --projection persp --fov 60 --zoom 0.3", std::vector<std::string>{"--zoom", "--fov"});
+    for (const char* fov : {"0", "180", "-5", "nan"}) expectRefused(in + " --projection persp --fov " + fov, "--fov");
+    // An orthographic camera has no field of view: --fov without --projection persp would change nothing.
+    expectRefused(in + " --fov 45", std::vector<std::string>{"--fov", "--projection persp"});
+    for (const char* background : {"1,2", "nan,0,0", "2,0,0", "0,-0.5,0", "0,0,a"})
+        expectRefused(in + " --background " + background, "--background");
     for (const char* centre : {"1,2", "x,y,z", "nan,0,0", "0,0,-inf", "1e12,0,0"})
         expectRefused(in + " --center " + centre, "--center");
     EXPECT_FALSE(fs::exists(dir / "x.png"));

@@ -9,7 +9,7 @@ namespace vr {
 
 void addCameraFlags(CLI::App& app, CameraFlags& f) {
     app.add_option("--projection", f.projection, "ortho or persp")->capture_default_str();
-    app.add_option("--fov", f.fov, "vertical field of view of persp, degrees")->capture_default_str();
+    app.add_option("--fov", f.fov, "vertical field of view of persp, degrees (default: 30)");
     app.add_option("--azimuth", f.azimuth, "camera turn about +y, degrees")->capture_default_str();
     app.add_option("--elevation", f.elevation, "camera turn about the right axis, degrees")->capture_default_str();
     app.add_option("--up", f.up, "view-up x,y,z, world (default: +y turned by --elevation); made orthogonal to the "
@@ -33,7 +33,9 @@ ViewParams viewParams(const CameraFlags& f, int width, int height) {
         throw InputError("--projection '" + f.projection + "': expected ortho or persp");
     ViewParams view;
     view.projection = f.projection == "ortho" ? Projection::Orthographic : Projection::Perspective;
-    view.fovDeg = f.fov;
+    if (f.fov && view.projection == Projection::Orthographic)
+        throw InputError("--fov is the field of view of a perspective camera: it needs --projection persp");
+    view.fovDeg = f.fov.value_or(kDefaultFov);
     view.azimuthDeg = f.azimuth;
     view.elevationDeg = f.elevation;
     view.width = width;
@@ -46,8 +48,8 @@ ViewParams viewParams(const CameraFlags& f, int width, int height) {
 }
 
 nlohmann::json cameraStatistics(const CameraFlags& f) {
-    return {{"projection", f.projection}, {"fov", f.fov}, {"azimuth", f.azimuth}, {"elevation", f.elevation},
-            {"zoom", f.zoom}, {"up", f.up}, {"center", f.center}};
+    return {{"projection", f.projection}, {"fov", f.fov.value_or(kDefaultFov)}, {"azimuth", f.azimuth},
+            {"elevation", f.elevation}, {"zoom", f.zoom}, {"up", f.up}, {"center", f.center}};
 }
 
 }  // namespace vr

@@ -2,6 +2,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,9 +12,12 @@ namespace vr {
 
 struct CameraFlags {
     std::string projection = "ortho";
-    double fov = 30, azimuth = 0, elevation = 0, zoom = 1;
+    std::optional<double> fov;  // persp's field of view in degrees: kDefaultFov when not given
+    double azimuth = 0, elevation = 0, zoom = 1;
     std::vector<double> up, center;  // empty when not given
 };
+
+constexpr double kDefaultFov = 30;
 
 void addCameraFlags(CLI::App& app, CameraFlags& f);
 
@@ -21,7 +25,8 @@ void addCameraFlags(CLI::App& app, CameraFlags& f);
 Vec3d finiteVector(const std::vector<double>& v, const char* flag);
 
 // The view of width x height pixels the flags ask for, checked as far as it can be without the volume (checkView:
-// InputError naming the flag); a focal point far off the volume is refused by Camera::fit.
+// InputError naming the flag; --fov with an orthographic projection, which has no field of view, is refused too); a
+// focal point far off the volume is refused by Camera::fit.
 ViewParams viewParams(const CameraFlags& f, int width, int height);
 
 // The flags as --stats reports them.

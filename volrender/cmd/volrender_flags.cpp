@@ -95,7 +95,9 @@ void addVolrenderFlags(CLI::App& app, VolrenderFlags& f) {
     app.add_flag("--nearest", f.nearest, "nearest-voxel sampling instead of trilinear")->excludes(trilinear);
     app.add_flag("--jitter", f.jitter, "start each ray's samples a per-pixel fraction of a step late: fine noise "
                                        "instead of the wood-grain rings of a lattice shared by every ray");
-    app.add_option("--background", f.background, "background colour r,g,b")->delimiter(',')->expected(3);
+    app.add_option("--background", f.background, "background colour r,g,b, each in [0, 1]")
+        ->delimiter(',')
+        ->expected(3);
     app.add_option("--stats", f.stats, "write timings, iterations per ray and uploaded bytes as JSON");
     app.add_option("--heatmap", f.heatmap, "write the iterations per pixel as a colour-mapped PNG (or a movie, as -o)");
     app.add_option("--views", f.views, "render an orbit of N views 360/N degrees apart about the view-up into "
@@ -163,6 +165,8 @@ bool checkVolrenderFlags(const VolrenderFlags& f, ViewParams& view, RenderSettin
     s.opaqueValues = f.volume.transfer.window.has_value();  // a grey window for MIP, MinIP and average
     applyClipFlags(f.clip, s);
     s.background = finiteVector(f.background, "--background");
+    for (double c : {s.background.x, s.background.y, s.background.z})
+        if (c < 0 || c > 1) throw InputError("--background: each component must be in [0, 1]");
     if (!f.light.empty()) {
         s.lightDirection = finiteVector(f.light, "--light");
         if (length(*s.lightDirection) == 0) throw InputError("--light: the direction must not be zero");
