@@ -62,7 +62,7 @@ std::vector<ViewParams> benchViews(int size, int count) {
         v.width = v.height = size;
         all.push_back(v);
     }
-    all.resize(std::min<std::size_t>(all.size(), std::size_t(std::max(count, 1))));
+    all.resize(std::min(all.size(), std::size_t(count)));
     return all;
 }
 
@@ -448,8 +448,12 @@ int main(int argc, char** argv) {
     app.add_option("--datasets", datasets, "dataset name prefixes (MANIFEST.tsv files, phantom_NAME); default all")
         ->delimiter(',');
     app.add_option("--size", size, "image width = height")->capture_default_str();
-    app.add_option("--views", viewCount, "views (1..4: ortho, persp, ortho, ortho)")->capture_default_str();
-    app.add_option("--repeats", repeats, "renders of every view per caster")->capture_default_str();
+    app.add_option("--views", viewCount, "views (1..4: ortho, persp, ortho, ortho)")
+        ->check(CLI::Range(1, 4))
+        ->capture_default_str();
+    app.add_option("--repeats", repeats, "renders of every view per caster")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
     app.add_option("--phantom-size", phantomSize, "edge of the phantoms")->capture_default_str();
     app.add_option("--to", to, "T_o per setting")->delimiter(',')->capture_default_str();
     app.add_option("--ta", ta, "T_a per setting (as many as --to), degrees")->delimiter(',')->capture_default_str();

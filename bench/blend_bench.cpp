@@ -95,6 +95,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--size", size, "image width = height")->capture_default_str();
     app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 0: vr_peers' views)")
+        ->check(CLI::Range(1, 3600))
         ->capture_default_str();
     app.add_option("--step", step, "step in voxels of the smallest spacing")->capture_default_str();
     app.add_flag("--nearest", nearest, "nearest sampling (default: trilinear, as users render)");

@@ -93,7 +93,9 @@ int main(int argc, char** argv) {
     double to = 0.02, ta = 10, step = 0.5;
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv")->capture_default_str();
     app.add_option("--size", size, "image width = height")->capture_default_str();
-    app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 20)")->capture_default_str();
+    app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 20)")
+        ->check(CLI::Range(1, 3600))
+        ->capture_default_str();
     app.add_option("--to", to, "T_o of the second threshold setting (the first is 0)")->capture_default_str();
     app.add_option("--ta", ta, "T_a of the second threshold setting, degrees")->capture_default_str();
     app.add_option("--step", step, "step in voxels")->capture_default_str();

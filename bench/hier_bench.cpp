@@ -76,7 +76,9 @@ int main(int argc, char** argv) {
     app.add_option("--clinical", clinical, "also a CT of XxYxZ voxels resampled from the cranium CT with noise of 20 "
                                            "(as bench/make_clinical_volume makes it), e.g. 512x512x1024");
     app.add_option("--size", size, "image width = height")->capture_default_str();
-    app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 20)")->capture_default_str();
+    app.add_option("--views", views, "views of the orbit (azimuth 360/N apart, elevation 20)")
+        ->check(CLI::Range(1, 3600))
+        ->capture_default_str();
     app.add_option("--to", to, "T_o (volrender's default)")->capture_default_str();
     app.add_option("--ta", ta, "T_a, degrees (volrender's default)")->capture_default_str();
     app.add_option("--device", device, "Vulkan device index");

@@ -34,7 +34,9 @@ int main(int argc, char** argv) {
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv (default: every raw dataset)")
         ->delimiter(',');
     app.add_option("--size", size, "image width = height")->capture_default_str();
-    app.add_option("--views", views, "pairs of the orbit (azimuth 360/N apart, elevation 20)")->capture_default_str();
+    app.add_option("--views", views, "pairs of the orbit (azimuth 360/N apart, elevation 20)")
+        ->check(CLI::Range(1, 3600))
+        ->capture_default_str();
     app.add_option("--caster", caster, "primitive, pc, acd or eacd")->capture_default_str();
     app.add_option("--to", to, "T_o of the regions")->capture_default_str();
     app.add_option("--ta", ta, "T_a of the regions, degrees")->capture_default_str();
