@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
     app.add_flag("--no-shading", noShading, "emission-absorption only, regions without normals (default: Phong)");
     app.add_option("--device", device, "Vulkan device index");
     app.add_option("--tile", tile, "pixels per side of one submit (0: the renderer's choice for the device)")
+        ->check(CLI::Range(0, 16384))
         ->capture_default_str();
     app.add_option("--ray-pieces", pieces,
                    "pieces each composite ray is cast in (1: whole rays, as users render; more: to measure where a "

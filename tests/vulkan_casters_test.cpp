@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 #include <set>
+#include <stdexcept>
 
 #include "core/errors.h"
 #include "datasets/phantoms.h"
@@ -85,6 +86,13 @@ void expectMatchesCpu(const std::string& name, const PreparedVolume& p, bool tri
             test::expectNearCpuReference(gpu, cpu);
         }
     }
+}
+
+// A tile is a positive number of pixels a side, or 0 for the device's choice; a negative one is refused.
+TEST(VulkanCasters, NegativeTileSizesAreRefused) {
+    EXPECT_THROW(VulkanRenderer(test::vulkanContext(), -5), std::invalid_argument);
+    EXPECT_EQ(VulkanRenderer(test::vulkanContext(), 16).tileSize(), 16);
+    EXPECT_GT(VulkanRenderer(test::vulkanContext(), VulkanRenderer::kAutoTile).tileSize(), 0);
 }
 
 TEST(VulkanCasters, MatchCpuReferenceOnPhantoms) {

@@ -173,6 +173,9 @@ VulkanRenderer::VulkanRenderer(const VulkanContext& ctx, int tileSize, const Ima
       limits_(limits),
       stagedOutput_(output == OutputMemory::Auto ? ctx.info().type == "discrete" : output == OutputMemory::Device),
       interleavedRows_(ctx.info().type == "cpu") {
+    if (tileSize < 0)
+        throw std::invalid_argument("tile size " + std::to_string(tileSize) + ": expected pixels > 0, or 0 for the "
+                                    "device's choice");
     const vk::raii::Device& device = ctx.device();
     requireCasterImageSupport(ctx.info().name, ctx.physicalDevice().getFeatures(),
                               [&](vk::Format f) { return ctx.physicalDevice().getFormatProperties(f); });

@@ -39,8 +39,9 @@ public:
     // Tiles of tileSize x tileSize pixels are separate submits, so no dispatch runs long enough to trip a
     // GPU watchdog; kAutoTile: 1024 on a GPU (smaller tiles leave most of a large GPU idle), or 512 on a CPU
     // device (no watchdog; each submit costs llvmpipe a thread-pool round). `limits` lowers the device's image and
-    // storage-buffer limits (tests force bricks and refusals with it). Throws std::runtime_error for a device that
-    // cannot read the casters' storage-image formats (requireCasterImageSupport).
+    // storage-buffer limits (tests force bricks and refusals with it). Throws std::invalid_argument for a negative
+    // tile size, std::runtime_error for a device that cannot read the casters' storage-image formats
+    // (requireCasterImageSupport).
     static constexpr int kAutoTile = 0;
     // Where the casters write a tile's pixels: host memory read in place, or device memory copied to it by the
     // transfer engine. Auto: device memory on a discrete GPU, whose shaders write host memory at PCIe rates
