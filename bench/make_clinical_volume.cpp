@@ -3,6 +3,7 @@
 // CT's order added (20 HU by default), written as a headerless raw file whose name carries its dims and type
 // (NAME_DxDxD_TYPE.raw, as the raw loader reads). Prints the file's path and its spacing (x,y,z) on one line.
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <vector>
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--dims", dimsText, "size of the volume written, XxYxZ")->capture_default_str();
     app.add_option("--noise", noise, "standard deviation of the Gaussian noise, in the volume's units")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
+        ->capture_default_str();
     app.add_option("--seed", seed, "seed of the noise")->capture_default_str();
     app.add_option("--name", name, "file name before _DIMS_TYPE.raw")->capture_default_str();
     app.add_option("-o,--output-dir", outDir, "folder to write into")->capture_default_str();
@@ -37,6 +38,8 @@ int main(int argc, char** argv) {
         if (std::sscanf(dimsText.c_str(), "%dx%dx%d%c", &dims.x, &dims.y, &dims.z, &tail) != 3 || dims.x < 1 ||
             dims.y < 1 || dims.z < 1 || dims.x > 4096 || dims.y > 4096 || dims.z > 4096)
             throw vr::InputError("--dims: expected XxYxZ with each edge in 1..4096, got " + dimsText);
+        if (!std::isfinite(noise) || noise < 0)
+            throw vr::InputError("--noise: the noise's standard deviation must be a finite number >= 0");
         const vr::test::DatasetEntry entry = vr::test::rawDataset(from);
         const vr::Volume v =
             vr::bench::withNoise(vr::bench::resample(vr::test::loadDataset(entry), dims), noise, seed);

@@ -254,7 +254,7 @@ int main(int argc, char** argv) {
         std::vector<DatasetResult> results;
         for (const std::string& d : datasets) results.push_back(benchDataset(d, options, runs, scratch));
         printTables(results, options, runs);
-    } catch (const vr::InputError& e) {
+    } catch (const std::exception& e) {  // bad input, or no such dataset in the manifest
         std::fprintf(stderr, "prep_bench: %s\n", e.what());
         return 1;
     }
