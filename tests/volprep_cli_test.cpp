@@ -189,6 +189,19 @@ TEST(VolprepCli, PreparesAPhantomWrittenByVolphantom) {
     EXPECT_EQ(p.regions.label[0], p.regions.label[voxelCount(p.regions.dims) - 1]);
 }
 
+// volphantom checks its dims before it allocates: dims that are not positive, or that need more memory than the
+// machine has, are refused naming --dims, and nothing is written.
+TEST(VolprepCli, VolphantomRefusesAbsurdDims) {
+    const fs::path dir = test::scratchDir("volprep_phantom_dims");
+    for (const char* dims : {"0x4x4", "4x-4x4", "100000x100000x100000"}) {
+        const test::CliOutcome r =
+            test::runCli(test::volphantomExecutable(), std::string("noise --dims ") + dims + " -o " + q(dir));
+        EXPECT_EQ(r.status, 1) << dims;
+        EXPECT_EQ(r.err.rfind("volphantom: --dims: ", 0), 0u) << r.err;
+    }
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
 // On a terminal each stage draws a progress bar; --quiet leaves the terminal to errors.
 TEST(VolprepCli, ProgressBarsOnATerminalAndNoneWithQuiet) {
     const fs::path dir = test::scratchDir("volprep_quiet");

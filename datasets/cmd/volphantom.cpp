@@ -9,8 +9,9 @@
 
 #include "io/atomic_file.h"
 #include "core/errors.h"
-#include "tools/tool_main.h"
 #include "datasets/phantoms.h"
+#include "preprocess/load/voxel_budget.h"
+#include "tools/tool_main.h"
 
 namespace {
 
@@ -62,7 +63,8 @@ int main(int argc, char** argv) {
     app.add_option("--axis", axis, "ramp axis: 0, 1 or 2")->check(CLI::Range(0, 2))->capture_default_str();
     app.add_option("--seed", seed, "noise seed")->capture_default_str();
     return vr::runTool("volphantom", app, argc, argv, [&] {
-        vr::Vec3i n(dims[0], dims[1], dims[2]);
+        // The phantom's floats and the copy written (at most 4 bytes a voxel), checked before either is allocated.
+        const vr::Vec3i n = vr::checkVoxelBudget("--dims", dims[0], dims[1], dims[2], 2 * sizeof(float));
         vr::Volume v = makePhantom(kind, n, {spacing[0], spacing[1], spacing[2]}, axis, seed);
         vr::ScalarType type = typeName.empty() ? v.sourceType : vr::parseScalarType(typeName);
         std::string name = kind + "_" + std::to_string(n.x) + "x" + std::to_string(n.y) + "x" + std::to_string(n.z) +
