@@ -163,6 +163,10 @@ const Regression kRegressions[] = {
     // A 24-byte .raw.gz whose name claims 512x512x512 uint16 (256 MiB): the loader allocated the claimed size before
     // decompressing anything (found with -malloc_limit_mb). Memory must follow the data actually there.
     {"GzipRawAllocatesOnlyWhatItDecompresses", {"raw/claims_512x512x512_uint16.raw.gz"}, kSmallInputAllocation},
+    // A plain .raw of 35 bytes whose name claims 600x600x600 uint8: the loader allocated the claimed volume's floats
+    // (864 MB) before it compared the file's size with its dims (found by fuzz_raw, with dims of gigabytes).
+    {"PlainRawAllocatesNothingBeforeItsSizeIsChecked", {"raw/claims_600x600x600_uint8.raw"}, kSmallInputAllocation,
+     "bytes of voxel data"},
     // Two active voxels 2^20 apart: densifying their bounding box needs 4 PiB, which the loader asked the allocator for
     // without a check (std::bad_alloc, or an ASan abort, instead of an InputError).
     {"VdbBoundingBoxTooLargeToDensify", {"vdb/far_apart_voxels.vdb"}},

@@ -60,14 +60,19 @@ std::string sizeMismatch(std::size_t expected, std::size_t actual, const Vec3i& 
            std::string(scalarTypeName(type)) + " need " + std::to_string(expected) + " bytes";
 }
 
-// A plain file is read in chunks, each widened into `out` as it arrives: no second copy of the volume's bytes, and
-// none of the fresh pages it would take (clearing them was a large part of loading a clinical-size CT).
-void readPlainWidened(const fs::path& path, std::size_t expected, const Vec3i& dims, ScalarType type, bool swap,
-                      float* out) {
+// A plain file's size against its dims, before anything is allocated for them: a small file must not get the
+// memory its name claims.
+void checkPlainSize(const fs::path& path, std::size_t expected, const Vec3i& dims, ScalarType type) {
     std::error_code ec;
     const std::uintmax_t actual = fs::file_size(path, ec);
     if (ec) throw fileError(path.string(), "cannot read: " + ec.message());
     if (actual != expected) throw fileError(path.string(), sizeMismatch(expected, actual, dims, type));
+}
+
+// A plain file (checkPlainSize) is read in chunks, each widened into `out` as it arrives: no second copy of the
+// volume's bytes, and none of the fresh pages it would take (clearing them was a large part of loading a
+// clinical-size CT).
+void readPlainWidened(const fs::path& path, std::size_t expected, ScalarType type, bool swap, float* out) {
     std::ifstream in(path, std::ios::binary);
     const std::size_t voxelBytes = scalarBytes(type);
     std::vector<unsigned char> chunk((std::size_t(16) << 20) / voxelBytes * voxelBytes);
@@ -154,6 +159,7 @@ Volume loadRaw(const fs::path& path, const RawOptions& flags) {
     checkVoxelBudget(path, dims.x, dims.y, dims.z, (gzip ? scalarBytes(type) : 0) + sizeof(float));
     const std::size_t expected = voxelCount(dims) * scalarBytes(type);
     const bool swap = options.bigEndian != (std::endian::native == std::endian::big);
+    if (!gzip) checkPlainSize(path, expected, dims, type);
     const std::vector<unsigned char> bytes = gzip ? readGzip(path, expected, dims, type) : std::vector<unsigned char>();
 
     Volume v;
@@ -164,7 +170,7 @@ Volume loadRaw(const fs::path& path, const RawOptions& flags) {
     if (gzip)
         widenVoxels(type, bytes.data(), v.values.size(), swap, v.values.data());
     else
-        readPlainWidened(path, expected, dims, type, swap, v.values.data());
+        readPlainWidened(path, expected, type, swap, v.values.data());
     return v;
 }
 
