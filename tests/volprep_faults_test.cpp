@@ -96,6 +96,12 @@ TEST(VolprepFaults, UnwritableOutputsAreRefused) {
     expectRefused(in + shellQuote(dir / "absent" / "x.vprep"), "does not exist");
     expectRefused(in + "/sys/volprep_faults.vprep", "volprep_faults.vprep");   // a read-only file system
     expectRefused(in + "/proc/volprep_faults.vprep", "volprep_faults.vprep");  // no regular files can be made
+    // A prepared file named as a volume (which could replace the source) or an image is refused, the input untouched.
+    const std::string source = test::slurp(smallRaw(dir));
+    for (const char* name : {"block_8x6x5_uint8.raw", "x.nii.gz", "x.NRRD", "x.png", "x.EXR", "x.mp4"})
+        expectRefused(in + shellQuote(dir / name), name);
+    EXPECT_EQ(test::slurp(dir / "block_8x6x5_uint8.raw"), source);
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
 // SIGKILL in the middle of writing a large prepared file: the previous file is intact and still reads, and what

@@ -2,12 +2,14 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "core/errors.h"
 #include "preprocess/cmd/summary.h"
 #include "preprocess/cmd/volume_flags.h"
+#include "preprocess/load/load_volume.h"
 #include "preprocess/pipeline/staged_prepare.h"
 #include "tools/progress.h"
 #include "tools/tool_main.h"
@@ -68,6 +70,17 @@ void checkBeforeRunning(const Flags& f) {
     if (::access(folder.c_str(), W_OK) != 0)
         throw vr::fileError(f.output, "cannot write: folder " + folder.string() + " is not writable");
     if (fs::is_directory(out)) throw vr::fileError(f.output, "cannot write: it is a folder");
+    // A prepared file under a volume's or an image's name would be taken for one (and could replace the source).
+    if (vr::isVolumeFileName(out))
+        throw vr::fileError(f.output, "a volume file's name: volprep writes a prepared file (e.g. NAME.vprep), "
+                                      "which only volrender reads");
+    std::string extension = out.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    for (const char* image : {".png", ".exr", ".gif", ".mp4", ".jpg", ".jpeg", ".tif", ".tiff"})
+        if (extension == image)
+            throw vr::fileError(f.output, "an image's name: volprep writes a prepared file (e.g. NAME.vprep); "
+                                          "volrender renders it to an image");
 }
 
 vr::PrepareOptions optionsFrom(const Flags& f) {

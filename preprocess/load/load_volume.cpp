@@ -46,11 +46,16 @@ std::string supportedFormats() {
     return list + "or a folder holding a DICOM series";
 }
 
-FormatLoader loaderFor(const fs::path& path) {
+const Format* formatOf(const fs::path& path) {
     std::string name = path.filename().string();
     std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     for (const Format& f : formats)
-        if (name.ends_with(f.suffix)) return f.load;
+        if (name.ends_with(f.suffix)) return &f;
+    return nullptr;
+}
+
+FormatLoader loaderFor(const fs::path& path) {
+    if (const Format* f = formatOf(path)) return f->load;
     throw fileError(path.string(), "unknown volume format; supported: " + supportedFormats());
 }
 
@@ -100,5 +105,7 @@ Volume loadVolume(const fs::path& path, const RawOptions& raw) {
     v.source = path.string();
     return v;
 }
+
+bool isVolumeFileName(const fs::path& path) { return formatOf(path) != nullptr; }
 
 }  // namespace vr

@@ -33,4 +33,7 @@ struct RawOptions {
 // Not for concurrent use from several threads (VTK's readers report through process-wide channels).
 Volume loadVolume(const std::filesystem::path& path, const RawOptions& raw = {});
 
+// Whether the file name ends as a volume file that loadVolume reads does (any case): .raw, .nii.gz, ...
+bool isVolumeFileName(const std::filesystem::path& path);
+
 }  // namespace vr
