@@ -127,6 +127,9 @@ const Regression kRegressions[] = {
     // into an endless loop (found by fuzz_nrrd): keys are matched as VTK matches them, and a header without a type is
     // refused.
     {"NrrdKeyAfterASpace", {"nrrd/type_key_after_a_space.nrrd"}},
+    // A data file field with no value: vtkNrrdReader compares the first word of it, which is not there (SEGV, found
+    // by fuzz_nrrd).
+    {"NrrdEmptyDataFileField", {"nrrd/empty_data_file_field.nrrd"}, kAnyAllocation, "names no file"},
     // A header without a blank line whose last line has no line break: vtkNrrdReader rereads that line forever
     // (std::getline keeps it once the stream has ended). Found by CI's fuzzing (timeouts).
     {"NrrdLastHeaderLineWithoutALineBreak",

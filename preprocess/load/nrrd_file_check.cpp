@@ -120,6 +120,11 @@ void checkNrrdFile(const fs::path& path) {
         checkVoxelBudget(path, std::int64_t(values), 1, 1, loading);
     }
 
+    // A data file field without a value vtkNrrdReader takes the first word of, which it does not have (SEGV in a
+    // string comparison, found by fuzz_nrrd).
+    for (const char* key : {"data file", "datafile"})
+        if (fields.contains(key) && fields[key].empty())
+            throw file.fail(std::string("the \"") + key + "\" field names no file");
     const std::string dataFile = fields.contains("data file") ? fields["data file"] : fields["datafile"];
     if (dataFile.starts_with("LIST") || dataFile.find('%') != std::string::npos) return;  // several data files
     if (dataFile.empty() && !headerEnd)
