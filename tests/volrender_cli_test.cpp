@@ -129,6 +129,7 @@ TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
     expectRejected(q(dir / "garbage.vrp") + out, "garbage.vrp");
     expectRejected(in + out + " --device 99", "device 99");
     expectRejected(in + out + " --trilinear --nearest", "--trilinear excludes --nearest");
+    expectRejected(in + out + " --cpu --device 0", "--device excludes --cpu");  // the CPU reference is no device
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 

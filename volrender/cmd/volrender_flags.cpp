@@ -105,8 +105,9 @@ void addVolrenderFlags(CLI::App& app, VolrenderFlags& f) {
         ->capture_default_str();
     app.add_option("--fps", f.fps, "frames per second of a movie, 1..60 (default 25)");
     app.add_flag("--list-devices", f.listDevices, "list the Vulkan devices and exit");
-    app.add_option("--device", f.device, "Vulkan device index (see --list-devices; default: first discrete GPU)");
-    app.add_flag("--cpu", f.cpu, "render with the CPU reference instead of Vulkan");
+    CLI::Option* device =
+        app.add_option("--device", f.device, "Vulkan device index (see --list-devices; default: first discrete GPU)");
+    app.add_flag("--cpu", f.cpu, "render with the CPU reference instead of Vulkan")->excludes(device);
     app.add_flag("-q,--quiet", f.quiet, "no progress bars and no report of the stages, the choice and the views: "
                                         "errors only");
 }
