@@ -118,6 +118,25 @@ TEST(VolrenderStereo, DevicePairReportsEachEye) {
     EXPECT_EQ(fullStats["views"][0]["recastFraction"], 1.0);
 }
 
+// Every blend pairs on the device, with its counts asked for or not (the blends but composite reproject the left
+// eye's depth intervals, for which the left eye always counts its rays).
+TEST(VolrenderStereo, EveryBlendPairsOnTheDevice) {
+    const fs::path dir = test::scratchDir("volrender_stereo_blends");
+    for (const char* blend : {"mip", "minip", "average", "iso --iso 0.5", "composite"})
+        for (const bool stats : {false, true}) {
+            const std::string name = std::string(blend).substr(0, 3) + (stats ? "_stats" : "");
+            const std::string args = shellQuote(preparedBlocks()) + " -o " + shellQuote(dir / (name + ".png")) +
+                                     " --no-shading --nearest --size 40x30 --projection persp --stereo 3 --blend " +
+                                     blend + (stats ? " --stats " + shellQuote(dir / (name + ".json")) : "");
+            const test::CliOutcome r = test::runVolrender(args);
+            ASSERT_EQ(r.status, 0) << args << "\n" << r.err;
+            EXPECT_TRUE(fs::exists(dir / (name + "_right.png"))) << args;
+            if (!stats) continue;
+            const nlohmann::json view = nlohmann::json::parse(std::ifstream(dir / (name + ".json")))["views"][0];
+            EXPECT_GT(view["iterationsPerRay"]["mean"].get<double>(), 0) << args;
+        }
+}
+
 TEST(VolrenderStereo, BadStereoFlagsAreRefused) {
     const fs::path dir = test::scratchDir("volrender_stereo_bad");
     const std::string in = shellQuote(preparedBlocks()) + " -o " + shellQuote(dir / "x.png") +

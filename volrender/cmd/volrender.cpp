@@ -174,9 +174,12 @@ nlohmann::json frameStatistics(const RenderedView& view) {
     s["right"] = vr::viewStatistics(view.results[1], view.uploads);
     s["deviceMs"] = view.results[0].deviceMilliseconds + view.results[1].deviceMilliseconds;
     s["wallMs"] = view.results[0].wallMilliseconds + view.results[1].wallMilliseconds;
-    if (s["left"].contains("iterationsPerRay"))
-        s["iterationsPerRay"] = {{"mean", (s["left"]["iterationsPerRay"]["mean"].get<double>() +
-                                           s["right"]["iterationsPerRay"]["mean"].get<double>()) / 2}};
+    // Where both eyes' rays were counted: a left eye reprojected by depth interval (the blends but composite) counts
+    // its rays for the reprojection, the right eye only when the counts were asked for.
+    const nlohmann::json &left = s.at("left"), &right = s.at("right");
+    if (left.contains("iterationsPerRay") && right.contains("iterationsPerRay"))
+        s["iterationsPerRay"] = {{"mean", (left["iterationsPerRay"]["mean"].get<double>() +
+                                           right["iterationsPerRay"]["mean"].get<double>()) / 2}};
     return s;
 }
 
