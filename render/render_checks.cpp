@@ -135,7 +135,9 @@ void checkRenderSettings(const GridGeometry& grid, const SegmentationParams& seg
     if (s.lightDirection && !(length(*s.lightDirection) > 0 && std::isfinite(length(*s.lightDirection))))
         throw InputError("--light: the light direction must be a finite non-zero vector");
     checkBlend(s);
-    if (s.trilinear && leapsThroughRegions(s.caster) && !segmentation.trilinear)
+    // The hier caster's blocks take their voxels' footprints whatever the file's regions were made for (docs/
+    // ALGORITHMS.md section 10).
+    if (s.trilinear && leapsThroughRegions(s.caster) && s.caster != Caster::Hier && !segmentation.trilinear)
         throw InputError("trilinear sampling with the " + std::string(casterName(s.caster)) +
                          " caster needs a volume segmented for trilinear sampling (volprep without --nearest; or "
                          "render with --nearest)");

@@ -133,8 +133,9 @@ TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
-// Regions made for nearest sampling only: trilinear sampling (the default) cannot leap through them. A leaping
-// caster asked for is refused with the reason; auto takes the primitive caster and says why; --nearest leaps.
+// Regions made for nearest sampling only: trilinear sampling (the default) cannot leap through them. A caster that
+// leaps through them asked for is refused with the reason (hier, which makes its own blocks, is not); auto takes the
+// primitive caster and says why; --nearest leaps.
 TEST(VolrenderCli, TrilinearByDefaultAndRegionsMadeForNearestSampling) {
     const fs::path dir = test::scratchDir("volrender_cli_nearest");
     const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
@@ -143,6 +144,10 @@ TEST(VolrenderCli, TrilinearByDefaultAndRegionsMadeForNearestSampling) {
                                                {0.02, 10, true, false}));
     const std::string run = q(nearest) + " -o " + q(dir / "x.png") + " --size 16x16 --stats " + q(dir / "s.json");
     expectRejected(run + " --caster eacd", "segmented for trilinear sampling");
+    // The hier caster builds its blocks from the scalars at load, each with its voxels' footprints: any file serves.
+    const test::CliOutcome hier = volrender(run + " --caster hier");
+    ASSERT_EQ(hier.status, 0) << hier.err;
+    EXPECT_EQ(nlohmann::json::parse(slurp(dir / "s.json"))["settings"]["caster"], "hier");
     const test::CliOutcome chosen = volrender(run);
     ASSERT_EQ(chosen.status, 0) << chosen.err;
     nlohmann::json stats = nlohmann::json::parse(slurp(dir / "s.json"));
