@@ -160,6 +160,27 @@ TEST(VolrenderCli, TrilinearByDefaultAndRegionsMadeForNearestSampling) {
     EXPECT_EQ(stats["settings"]["trilinear"], false);
 }
 
+// Regions made without normals (volprep --no-normals) cannot carry a shade: auto takes the primitive caster for a
+// shaded render and says why; an unshaded render may leap.
+TEST(VolrenderCli, AutoShadesRegionsMadeWithoutNormalsSampleBySample) {
+    const fs::path dir = test::scratchDir("volrender_cli_no_normals");
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    const fs::path file = dir / "no_normals.vrp";
+    writePrepared(file, test::prepareVolume(test::loadDataset(e), test::datasetTransferFunction(e.tf),
+                                            {0.02, 10, false, true}));
+    const std::string run = q(file) + " -o " + q(dir / "x.png") + " --size 16x16 --stats " + q(dir / "s.json");
+    const test::CliOutcome shaded = volrender(run);
+    ASSERT_EQ(shaded.status, 0) << shaded.err;
+    nlohmann::json stats = nlohmann::json::parse(slurp(dir / "s.json"));
+    EXPECT_EQ(stats["settings"]["caster"], "primitive");
+    EXPECT_NE(stats["settings"]["casterChoice"].get<std::string>().find("without normals"), std::string::npos);
+    ASSERT_EQ(volrender(run + " --no-shading").status, 0);
+    stats = nlohmann::json::parse(slurp(dir / "s.json"));
+    EXPECT_EQ(stats["settings"]["casterChoice"].get<std::string>().find("without normals"), std::string::npos);
+    const test::CliOutcome leaping = volrender(run + " --no-shading --caster eacd");
+    EXPECT_EQ(leaping.status, 0) << leaping.err;
+}
+
 // One command from a volume file to an image: prepared in memory as volprep prepares it, so the image is the one
 // rendered from volprep's file with the same caster.
 TEST(VolrenderCli, RendersAVolumeFileInOneCommand) {

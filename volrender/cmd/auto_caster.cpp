@@ -23,6 +23,9 @@ CasterChoice autoCasterForFile(const PreparedHeader& header, const std::vector<C
     if (s.trilinear && !header.meta.segmentation.trilinear)
         return {Caster::Primitive, "the regions were made for nearest sampling only (volprep --nearest): "
                                    "trilinear sampling cannot leap through them (render with --nearest to leap)"};
+    if (s.shading && s.blend == Blend::Composite && !header.meta.segmentation.useNormals)
+        return {Caster::Primitive, "the regions were made without normals (volprep --no-normals): a shaded render "
+                                   "cannot leap through them (render with --no-shading to leap)"};
     return chooseCaster(header.meta.rayProbe, header.fieldBytes,
                         demandOf(cameras, s, header.grid, header.scalarType), calibration);
 }
