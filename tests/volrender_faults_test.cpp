@@ -173,6 +173,25 @@ TEST(VolrenderFaults, UnwritableOutputsAreRefused) {
     expectRefused(in + shellQuote(dir / "y.png") + " --heatmap /sys/heat.png", "heat.png");
 }
 
+// Two outputs at one path, or an output at an input's: refused before anything is written, naming both flags; the
+// input is left as it was.
+TEST(VolrenderFaults, OutputsOverAnotherFileAreRefused) {
+    const fs::path dir = test::scratchDir("volrender_faults_same_file");
+    const fs::path input = dir / "block.vprep";
+    fs::copy_file(preparedBlock(), input);
+    const std::string source = test::slurp(input);
+    const std::string in = shellQuote(input) + " --cpu --no-shading --size 8x8";
+    const std::string x = shellQuote(dir / "x.png");
+    expectRefused(in + " -o " + x + " --heatmap " + x, std::vector<std::string>{"-o and --heatmap", "x.png"});
+    expectRefused(in + " -o " + x + " --stats " + x, std::vector<std::string>{"-o and --stats", "x.png"});
+    // The same file by another spelling of its path.
+    expectRefused(in + " -o " + x + " --stats " + shellQuote(dir / "." / "x.png"), "-o and --stats");
+    expectRefused(in + " -o " + x + " --stats " + shellQuote(input),
+                  std::vector<std::string>{"the input and --stats", "would write over the input"});
+    EXPECT_EQ(test::slurp(input), source);
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
 // The prepared file's parts, to damage one at a time (docs/PREPARED_FORMAT.md).
 struct PreparedBytes {
     std::string bytes;

@@ -28,6 +28,31 @@ void checkWritable(const std::string& path, const char* flag) {
     if (fs::is_directory(out)) throw fileError(path, std::string("cannot write ") + flag + ": it is a folder");
 }
 
+// No output at the path of another output or of an input: it would write over the other file (the source volume
+// too: --stats VOLUME replaced it), or the other file over it. Outputs of an orbit or a pair add a suffix to their
+// name, alike for -o and --heatmap, so their names are compared as given.
+void checkDistinctFiles(const VolrenderFlags& f) {
+    struct Named {
+        const char* flag;
+        const std::string& path;
+        bool output;
+    };
+    const Named files[] = {{"the input", f.input, false},          {"--labels", f.volume.labels, false},
+                           {"--label-colors", f.volume.labelColours, false}, {"--calibration", f.calibration, false},
+                           {"-o", f.output, true},                  {"--heatmap", f.heatmap, true},
+                           {"--stats", f.stats, true}};
+    for (std::size_t i = 0; i < std::size(files); ++i)
+        for (std::size_t j = i + 1; j < std::size(files); ++j) {
+            const Named &a = files[i], &b = files[j];
+            if (a.path.empty() || b.path.empty() || !(a.output || b.output)) continue;
+            std::error_code ec;
+            if (fs::weakly_canonical(a.path, ec) == fs::weakly_canonical(b.path, ec) && !ec)
+                throw InputError(std::string(a.flag) + " and " + b.flag + " name the same file, " + b.path + ": " +
+                                 (a.output ? "one would write over the other"  // inputs come first
+                                           : std::string(b.flag) + " would write over " + a.flag));
+        }
+}
+
 // The outputs' formats, and --fps only where a movie is written.
 void checkMovieFlags(const VolrenderFlags& f, const ViewParams& view) {
     const auto [width, height] = frameSize(view.width, view.height, layoutOf(f));
@@ -153,6 +178,7 @@ bool checkVolrenderFlags(const VolrenderFlags& f, ViewParams& view, RenderSettin
     checkWritable(f.output, "the image");
     if (!f.heatmap.empty()) checkWritable(f.heatmap, "--heatmap");
     if (!f.stats.empty()) checkWritable(f.stats, "--stats");
+    checkDistinctFiles(f);
 
     if (f.caster != "auto") s.caster = parseCaster(f.caster);
     s.stepVoxels = f.step;
