@@ -68,8 +68,8 @@ TEST(SweepOptions, OutOfRangeCountsAndSizesAreRefused) {
     expectRefused([](SweepOptions& o) { o.elevations.clear(); }, "--elevations");
     expectRefused([](SweepOptions& o) { o.elevations = {20, NAN}; }, "--elevations");
     // SSIM's window is 11 pixels: smaller images cannot be compared.
-    for (const auto& [w, h] : {std::pair{10, 64}, {64, 10}, {8193, 64}, {64, 8193}, {0, 0}})
-        expectRefused([&](SweepOptions& o) { o.width = w, o.height = h; }, "--size");
+    for (const std::pair<int, int>& size : {std::pair{10, 64}, {64, 10}, {8193, 64}, {64, 8193}, {0, 0}})
+        expectRefused([&](SweepOptions& o) { o.width = size.first, o.height = size.second; }, "--size");
     for (const double bad : {0.0, -0.5, double(NAN), double(INFINITY)})
         expectRefused([&](SweepOptions& o) { o.stepVoxels = bad; }, "--step");
 }
