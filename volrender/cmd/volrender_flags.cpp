@@ -37,16 +37,23 @@ void checkDistinctFiles(const VolrenderFlags& f) {
         const std::string& path;
         bool output;
     };
-    const Named files[] = {{"the input", f.input, false},          {"--labels", f.volume.labels, false},
-                           {"--label-colors", f.volume.labelColours, false}, {"--calibration", f.calibration, false},
-                           {"-o", f.output, true},                  {"--heatmap", f.heatmap, true},
+    const Named files[] = {{"the input", f.input, false},
+                           {"--labels", f.volume.labels, false},
+                           {"--label-colors", f.volume.labelColours, false},
+                           {"--calibration", f.calibration, false},
+                           {"-o", f.output, true},
+                           {"--heatmap", f.heatmap, true},
                            {"--stats", f.stats, true}};
+    const auto where = [](const std::string& path) {
+        std::error_code ec;
+        const fs::path p = fs::weakly_canonical(path, ec);
+        return ec ? fs::path(path).lexically_normal() : p;
+    };
     for (std::size_t i = 0; i < std::size(files); ++i)
         for (std::size_t j = i + 1; j < std::size(files); ++j) {
             const Named &a = files[i], &b = files[j];
             if (a.path.empty() || b.path.empty() || !(a.output || b.output)) continue;
-            std::error_code ec;
-            if (fs::weakly_canonical(a.path, ec) == fs::weakly_canonical(b.path, ec) && !ec)
+            if (where(a.path) == where(b.path))
                 throw InputError(std::string(a.flag) + " and " + b.flag + " name the same file, " + b.path + ": " +
                                  (a.output ? "one would write over the other"  // inputs come first
                                            : std::string(b.flag) + " would write over " + a.flag));
