@@ -3,13 +3,15 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "core/number_text.h"
 #include "render/camera.h"
 
 namespace vr {
 
 void addCameraFlags(CLI::App& app, CameraFlags& f) {
     app.add_option("--projection", f.projection, "ortho or persp")->capture_default_str();
-    app.add_option("--fov", f.fov, "vertical field of view of persp, degrees (default: 30)");
+    app.add_option("--fov", f.fov, "vertical field of view of persp, degrees")
+        ->default_str(numberText(ViewParams{}.fovDeg));
     app.add_option("--azimuth", f.azimuth, "camera turn about +y, degrees")->capture_default_str();
     app.add_option("--elevation", f.elevation, "camera turn about the right axis, degrees")->capture_default_str();
     app.add_option("--up", f.up, "view-up x,y,z, world (default: +y turned by --elevation); made orthogonal to the "
@@ -35,7 +37,7 @@ ViewParams viewParams(const CameraFlags& f, int width, int height) {
     view.projection = f.projection == "ortho" ? Projection::Orthographic : Projection::Perspective;
     if (f.fov && view.projection == Projection::Orthographic)
         throw InputError("--fov is the field of view of a perspective camera: it needs --projection persp");
-    view.fovDeg = f.fov.value_or(kDefaultFov);
+    if (f.fov) view.fovDeg = *f.fov;
     view.azimuthDeg = f.azimuth;
     view.elevationDeg = f.elevation;
     view.width = width;
@@ -48,7 +50,7 @@ ViewParams viewParams(const CameraFlags& f, int width, int height) {
 }
 
 nlohmann::json cameraStatistics(const CameraFlags& f) {
-    return {{"projection", f.projection}, {"fov", f.fov.value_or(kDefaultFov)}, {"azimuth", f.azimuth},
+    return {{"projection", f.projection}, {"fov", f.fov.value_or(ViewParams{}.fovDeg)}, {"azimuth", f.azimuth},
             {"elevation", f.elevation}, {"zoom", f.zoom}, {"up", f.up}, {"center", f.center}};
 }
 

@@ -12,12 +12,10 @@ namespace vr {
 
 struct CameraFlags {
     std::string projection = "ortho";
-    std::optional<double> fov;  // persp's field of view in degrees: kDefaultFov when not given
+    std::optional<double> fov;  // persp's field of view in degrees: ViewParams' when not given
     double azimuth = 0, elevation = 0, zoom = 1;
     std::vector<double> up, center;  // empty when not given
 };
-
-constexpr double kDefaultFov = 30;
 
 void addCameraFlags(CLI::App& app, CameraFlags& f);
 
