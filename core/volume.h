@@ -36,6 +36,7 @@ struct Volume {
     ScalarType sourceType = ScalarType::Float32;
     std::vector<float> values;  // x fastest, then y, then z; size == grid.voxels()
     std::string source;         // where it came from (a path), for the prepared file's metadata
+    std::vector<std::string> notes;  // what loading left out, for the tools to tell the user (a 4-D file's other volumes)
 
     float at(int x, int y, int z) const { return values[linearIndex(grid.dims, x, y, z)]; }
 };

@@ -117,6 +117,28 @@ TEST(LoadVtkFormats, NiftiRescaleSlopeIsApplied) {
     for (int i = 0; i < 60; ++i) ASSERT_EQ(v.values[std::size_t(i)], float((i * 3 - 20) * 0.5 + 100)) << i;
 }
 
+// A series of volumes along time (fMRI): the first is read, and the volume says so for the tools to tell.
+TEST(LoadVtkFormats, NiftiSeriesAlongTimeReadsItsFirstVolume) {
+    const fs::path path = test::scratchDir("load_nii_time") / "series.nii";
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(5, 4, 3);
+    image->AllocateScalars(VTK_SHORT, 3);  // three time points, written as the time dimension
+    for (vtkIdType i = 0; i < 60; ++i)
+        for (int t = 0; t < 3; ++t) image->GetPointData()->GetScalars()->SetComponent(i, t, double(i + 100 * t));
+    vtkNew<vtkNIFTIImageWriter> writer;
+    writer->SetFileName(path.c_str());
+    writer->SetInputData(image);
+    writer->SetTimeDimension(3);
+    writer->Write();
+    const Volume v = loadVolume(path);
+    ASSERT_EQ(v.grid.dims, Vec3i(5, 4, 3));
+    for (int i = 0; i < 60; ++i) ASSERT_EQ(v.values[std::size_t(i)], float(i)) << i;
+    ASSERT_EQ(v.notes.size(), 1u);
+    EXPECT_NE(v.notes[0].find("3 volumes along time"), std::string::npos) << v.notes[0];
+    // A single volume has nothing to say.
+    EXPECT_TRUE(writeAndLoad<vtkNIFTIImageWriter>(smallImage(VTK_SHORT), path).notes.empty());
+}
+
 TEST(LoadVtkFormats, XmlImageDataRoundTrips) {
     auto image = smallImage(VTK_UNSIGNED_SHORT, 777, 5);
     const Volume v = writeAndLoad<vtkXMLImageDataWriter>(image, test::scratchDir("load_vti") / "v.vti");

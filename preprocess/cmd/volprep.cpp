@@ -103,6 +103,9 @@ int main(int argc, char** argv) {
         const vr::PrepareOptions options = optionsFrom(flags);  // a bad transfer function fails before the load
         const auto labelColours = vr::checkLabelFlags(flags.volume);  // and a bad colour table
         vr::StagedPreparation staged = vr::StagedPreparation::load(flags.input, raw);
+        if (!flags.quiet)
+            for (const std::string& note : staged.volume().notes)
+                std::fprintf(stderr, "volprep: %s: %s\n", flags.input.c_str(), note.c_str());
         vr::attachLabels(flags.volume, labelColours, staged);
         staged.prepare(options);
         staged.write(flags.output);

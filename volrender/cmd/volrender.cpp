@@ -120,6 +120,9 @@ vr::PreparedVolume prepareVolume(const Flags& f, const vr::ViewParams& view, vr:
     options.keepRegions = false;  // the renderers read the field, never the labels: freed once the field has them
     const auto labelColours = vr::checkLabelFlags(f.volume);
     vr::StagedPreparation staged = vr::StagedPreparation::load(f.input, vr::rawOptionsFrom(f.volume));
+    if (!f.quiet)
+        for (const std::string& note : staged.volume().notes)
+            std::fprintf(stderr, "volrender: %s: %s\n", f.input.c_str(), note.c_str());
     vr::attachLabels(f.volume, labelColours, staged);
     const std::vector<vr::Camera> cameras = eyeCameras(f, staged.volume().grid, view);
     options.octants = orbitOctants(cameras);

@@ -20,6 +20,9 @@ Volume loadNifti(const std::filesystem::path& path) {
     Volume v = volumeFromVtkImage(errors.read(reader, path, "NIfTI"), path);
     // The reader keeps the stored values; scl_slope/scl_inter calibrate them (colin27 stores NaN: unscaled).
     applyRescale(v, reader->GetRescaleSlope(), reader->GetRescaleIntercept());
+    // A series along time (fMRI, perfusion): the reader reads its first volume, as 3D Slicer shows one at first.
+    if (const int volumes = reader->GetTimeDimension(); volumes > 1)
+        v.notes.push_back("a 4-D NIfTI of " + std::to_string(volumes) + " volumes along time: only the first is read");
     return v;
 }
 
