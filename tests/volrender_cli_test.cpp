@@ -307,6 +307,11 @@ TEST(VolrenderCli, RendersTheCraniumWithAPresetInOneCommand) {
     expectRejected(volume + q(dir / "y.png") + " --window 400", "--window requires --level");
     expectRejected(q(preparedHead()) + " --window 400 --level 40 -o " + q(dir / "y.png"),
                    "a prepared file holds its transfer function and grid: --tf, --window, --level");
+    // Nor do a prepared file's thresholds or series change: their flags are refused, not ignored.
+    for (const char* flag : {" --to 0.05", " --ta 5", " --to 0.01"})
+        expectRejected(q(preparedHead()) + flag + " -o " + q(dir / "y.png"),
+                       "--to and --ta are for a volume to prepare");
+    expectRejected(q(preparedHead()) + " --series 1.2.3 -o " + q(dir / "y.png"), "--series picks a series");
     EXPECT_FALSE(fs::exists(dir / "y.png"));
 }
 

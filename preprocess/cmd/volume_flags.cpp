@@ -37,8 +37,13 @@ CLI::Option_group* addTransferFlags(CLI::App& app, TransferChoice& choice) {
 
 CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
     CLI::Option_group* transfer = addTransferFlags(app, f.transfer);
-    app.add_option("--to", f.to, "T_o: opacity (and colour) variation allowed within a region")->capture_default_str();
-    app.add_option("--ta", f.ta, "T_a: normal angle allowed within a region, degrees")->capture_default_str();
+    const auto given = [&f](const std::string&) { f.thresholdsGiven = true; };
+    app.add_option("--to", f.to, "T_o: opacity (and colour) variation allowed within a region")
+        ->capture_default_str()
+        ->each(given);
+    app.add_option("--ta", f.ta, "T_a: normal angle allowed within a region, degrees")
+        ->capture_default_str()
+        ->each(given);
     auto* raw = app.add_option_group("raw input", "for headerless raw files whose name does not say it");
     raw->add_option("--dims", f.dims, "grid size, e.g. 256x256x128")->delimiter('x')->expected(3);
     raw->add_option("--type", f.type, "voxel type: uint8, int16, uint16 or float32");

@@ -15,6 +15,7 @@ namespace vr {
 struct VolumeFlags {
     TransferChoice transfer;
     double to = 0.01, ta = 3;
+    bool thresholdsGiven = false;  // --to or --ta on the command line
     std::vector<int> dims;
     std::string type;
     std::vector<double> spacing;

@@ -165,6 +165,11 @@ bool checkVolrenderFlags(const VolrenderFlags& f, ViewParams& view, RenderSettin
         if (!f.volume.labels.empty() || !f.volume.labelColours.empty())
             throw fileError(f.input, "a prepared file holds its label map, if any: --labels and --label-colors "
                                      "are for a volume to prepare (volprep --labels puts them in the file)");
+        if (f.volume.thresholdsGiven)
+            throw fileError(f.input, "a prepared file holds its regions, made at its thresholds: --to and --ta are "
+                                     "for a volume to prepare (volprep --to, --ta prepares it again)");
+        if (!f.volume.series.empty())
+            throw fileError(f.input, "--series picks a series of a DICOM folder; this is a prepared file");
     } else {
         if (f.volume.transfer.empty())
             throw fileError(f.input, "not a prepared file: a volume to prepare here needs --tf PRESET or "
