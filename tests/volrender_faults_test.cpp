@@ -148,6 +148,14 @@ TEST(VolrenderFaults, GradientSourcesThatDoNotFitAreRefused) {
         expectRefused(in + where + " --gradients sobel", {"--gradients", "'sobel'", "on-the-fly or stored"});
         expectRefused(in + where + " --gradients stored --no-shading",
                       std::vector<std::string>{"--gradients stored", "--no-shading"});
+        // Nor stored gradients, nor a light, where nothing is shaded.
+        for (const char* blend : {"mip", "minip", "average"}) {
+            expectRefused(in + where + " --gradients stored --blend " + blend,
+                          std::vector<std::string>{"--gradients stored", blend, "not shaded"});
+            expectRefused(in + where + " --light 1,0,0 --blend " + blend,
+                          std::vector<std::string>{"--light", blend, "not shaded"});
+        }
+        expectRefused(in + where + " --light 1,0,0 --no-shading", std::vector<std::string>{"--light", "--no-shading"});
     }
     EXPECT_FALSE(fs::exists(dir / "x.png"));
     for (const char* where : {" --cpu", ""}) {  // fitting, they render

@@ -211,6 +211,13 @@ bool checkVolrenderFlags(const VolrenderFlags& f, ViewParams& view, RenderSettin
         if (length(*s.lightDirection) == 0) throw InputError("--light: the direction must not be zero");
     }
     applyBlend(f, s);
+    // A light and stored gradients serve the shading alone: composite and iso shade, MIP, MinIP and average do not.
+    if (s.blend != Blend::Composite && s.blend != Blend::Iso) {
+        if (s.lightDirection) throw InputError("--light with --blend " + f.blend + ": that blend is not shaded");
+        if (s.gradients == Gradients::Stored)
+            throw InputError("--gradients stored with --blend " + f.blend + ": that blend is not shaded");
+    }
+    if (s.lightDirection && !s.shading) throw InputError("--light: an unshaded render (--no-shading) takes no light");
     checkLabelledBlend(!f.volume.labels.empty(), s);
     if (!prepared) checkLabelFlags(f.volume);  // before the volume is read
     return prepared;
