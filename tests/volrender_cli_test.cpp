@@ -130,6 +130,7 @@ TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
     expectRejected(in + out + " --device 99", "device 99");
     expectRejected(in + out + " --trilinear --nearest", "--trilinear excludes --nearest");
     expectRejected(in + out + " --cpu --device 0", "--device excludes --cpu");  // the CPU reference is no device
+    expectRejected(in + out + " --cpu --calibration c.json", "--calibration excludes --cpu");  // nor priced
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 

@@ -105,11 +105,11 @@ void addVolrenderFlags(CLI::App& app, VolrenderFlags& f) {
                                        "--window/--level: a grey window), or iso (the first crossing of --iso, shaded "
                                        "in its colour)")->capture_default_str();
     app.add_option("--iso", f.iso, "the iso-surface's scalar value (--blend iso)");
-    app.add_option("--calibration", f.calibration,
-                   "the auto caster's cost constants, as auto_caster_bench --write-calibration measures them on a "
-                   "device (default: $XDG_CONFIG_HOME/volrender/calibration.json, else "
-                   "~/.config/volrender/calibration.json, when measured on the device rendering; else built-in "
-                   "constants measured on lavapipe with 2 cores)");
+    CLI::Option* calibration = app.add_option(
+        "--calibration", f.calibration,
+        "the auto caster's cost constants, as auto_caster_bench --write-calibration measures them on a device "
+        "(default: $XDG_CONFIG_HOME/volrender/calibration.json, else ~/.config/volrender/calibration.json, when "
+        "measured on the device rendering; else built-in constants measured on lavapipe with 2 cores)");
     app.add_option("--size", f.size, "image size WIDTHxHEIGHT (1..16384 each)")->capture_default_str();
     addCameraFlags(app, f.camera);
     addClipFlags(app, f.clip);
@@ -139,7 +139,10 @@ void addVolrenderFlags(CLI::App& app, VolrenderFlags& f) {
     app.add_flag("--list-devices", f.listDevices, "list the Vulkan devices and exit");
     CLI::Option* device =
         app.add_option("--device", f.device, "Vulkan device index (see --list-devices; default: first discrete GPU)");
-    app.add_flag("--cpu", f.cpu, "render with the CPU reference instead of Vulkan")->excludes(device);
+    // The CPU reference is on no device, and no calibration prices it.
+    app.add_flag("--cpu", f.cpu, "render with the CPU reference instead of Vulkan")
+        ->excludes(device)
+        ->excludes(calibration);
     app.add_flag("-q,--quiet", f.quiet, "no progress bars and no report of the stages, the choice and the views: "
                                         "errors only");
 }
