@@ -124,7 +124,7 @@ TEST(VolprepCli, StoresEacdInTheCodeAsked) {
 TEST(VolprepCli, BuildsOnlyTheRequestedFieldsAndRegions) {
     fs::path dir = test::scratchDir("volprep_fields");
     fs::path out = dir / "pc.vprep";
-    Outcome r = volprep(headsqArgs(out) + " --fields pc --no-normals --to 0.05 --ta 10 --nearest");
+    Outcome r = volprep(headsqArgs(out) + " --fields pc --no-normals --to 0.05 --ta 0 --nearest");
     ASSERT_EQ(r.status, 0) << r.err;
     PreparedVolume p = readPrepared(out, kFieldPC);
     EXPECT_TRUE(p.fields.hasPC());

@@ -53,6 +53,9 @@ TEST(VolprepFaults, AbsurdSpacingThresholdsAndDimsAreRefused) {
     expectRefused(in + " --spacing 1e-320,1,1", "spacing");
     for (const char* to : {"nan", "-1", "inf", "-inf"}) expectRefused(in + " --to " + to, "--to");
     for (const char* ta : {"nan", "-0.5", "inf"}) expectRefused(in + " --ta " + ta, "--ta");
+    // Flags the preparation would not use: a normal angle for regions without normals, a code for a field not built.
+    expectRefused(in + " --no-normals --ta 5", "--ta 5");
+    expectRefused(in + " --fields pc,acd --eacd-code exact", "--eacd-code exact");
     const fs::path anonymous = dir / "anonymous.bin";
     std::ofstream(anonymous, std::ios::binary) << std::string(64, 'a');
     for (const char* dims : {"0x4x4", "4x4x-4", "100000x100000x100000", "65537x1x1"})

@@ -131,6 +131,10 @@ TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
     expectRejected(in + out + " --trilinear --nearest", "--trilinear excludes --nearest");
     expectRejected(in + out + " --cpu --device 0", "--device excludes --cpu");  // the CPU reference is no device
     expectRejected(in + out + " --cpu --calibration c.json", "--calibration excludes --cpu");  // nor priced
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    expectRejected(q(test::datasetsDir() / e.file) + " --tf " + q(test::datasetsDir() / e.tf) + out +
+                       " --no-shading --ta 5",
+                   "--ta 5: the regions are made without normals");
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 

@@ -31,6 +31,7 @@ struct Flags {
     vr::VolumeFlags volume;
     std::vector<std::string> fields{"pc", "acd", "eacd"};
     std::string eacdCode{vr::extentCodeName(vr::kDefaultExtentCode)};
+    bool eacdCodeGiven = false;
     bool trilinear = true, nearest = false, noNormals = false, quiet = false;
 };
 
@@ -49,7 +50,8 @@ void addFlags(CLI::App& app, Flags& f) {
                    "how EACD box extents are stored, rounded down: log16 (2 bytes per octant, exact to 16, cap 255), "
                    "joint8 (1 byte per octant, 6 levels per axis up to 50) or exact (3 bytes)")
         ->check(CLI::IsMember({"log16", "joint8", "exact"}))
-        ->capture_default_str();
+        ->capture_default_str()
+        ->each([&f](const std::string&) { f.eacdCodeGiven = true; });
     auto* trilinear = app.add_flag("--trilinear", f.trilinear,
                                    "regions for trilinear sampling, which volrender does by default (post-"
                                    "classification: a region's interpolated scalars all classify alike); the default");
@@ -63,7 +65,9 @@ void addFlags(CLI::App& app, Flags& f) {
 
 // Checks that need no data, so that a bad run fails at once rather than after the expensive stages.
 void checkBeforeRunning(const Flags& f) {
-    vr::checkThresholds(f.volume);
+    vr::checkThresholds(f.volume, !f.noNormals);
+    if (f.eacdCodeGiven && std::find(f.fields.begin(), f.fields.end(), "eacd") == f.fields.end())
+        throw vr::InputError("--eacd-code " + f.eacdCode + " stores the EACD field, which --fields leaves out");
     fs::path out(f.output);
     fs::path folder = out.parent_path().empty() ? fs::path(".") : out.parent_path();
     if (!fs::is_directory(folder))

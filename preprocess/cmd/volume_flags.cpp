@@ -37,13 +37,12 @@ CLI::Option_group* addTransferFlags(CLI::App& app, TransferChoice& choice) {
 
 CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
     CLI::Option_group* transfer = addTransferFlags(app, f.transfer);
-    const auto given = [&f](const std::string&) { f.thresholdsGiven = true; };
     app.add_option("--to", f.to, "T_o: opacity (and colour) variation allowed within a region")
         ->capture_default_str()
-        ->each(given);
+        ->each([&f](const std::string&) { f.toGiven = true; });
     app.add_option("--ta", f.ta, "T_a: normal angle allowed within a region, degrees")
         ->capture_default_str()
-        ->each(given);
+        ->each([&f](const std::string&) { f.taGiven = true; });
     auto* raw = app.add_option_group("raw input", "for headerless raw files whose name does not say it");
     raw->add_option("--dims", f.dims, "grid size, e.g. 256x256x128")->delimiter('x')->expected(3);
     raw->add_option("--type", f.type, "voxel type: uint8, int16, uint16 or float32");
@@ -60,11 +59,14 @@ CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& f) {
     return transfer;
 }
 
-void checkThresholds(const VolumeFlags& f) {
+void checkThresholds(const VolumeFlags& f, bool normals) {
     if (!(f.to >= 0) || !std::isfinite(f.to))
         throw InputError("--to must be a finite number >= 0, got " + numberText(f.to));
     if (!(f.ta >= 0) || !std::isfinite(f.ta))
         throw InputError("--ta must be a finite number >= 0 (degrees), got " + numberText(f.ta));
+    if (f.taGiven && f.ta > 0 && !normals)  // --ta 0 asks for nothing: thresholds 0 read as such
+        throw InputError("--ta " + numberText(f.ta) + ": the regions are made without normals (unshaded), so no "
+                         "normal angle bounds them");
 }
 
 RawOptions rawOptionsFrom(const VolumeFlags& f) {

@@ -15,7 +15,7 @@ namespace vr {
 struct VolumeFlags {
     TransferChoice transfer;
     double to = 0.01, ta = 3;
-    bool thresholdsGiven = false;  // --to or --ta on the command line
+    bool toGiven = false, taGiven = false;  // --to, --ta on the command line
     std::vector<int> dims;
     std::string type;
     std::vector<double> spacing;
@@ -32,8 +32,9 @@ CLI::Option_group* addTransferFlags(CLI::App& app, TransferChoice& choice);
 // and the label map's --labels and --label-colors; returns the transfer-function group.
 CLI::Option_group* addVolumeFlags(CLI::App& app, VolumeFlags& flags);
 
-// Throws InputError naming --to or --ta when a threshold is negative or not finite.
-void checkThresholds(const VolumeFlags& flags);
+// Throws InputError naming --to or --ta when a threshold is negative or not finite, and naming --ta when an angle
+// above 0 is given for regions made without normals (`normals` false), which it would not change.
+void checkThresholds(const VolumeFlags& flags, bool normals);
 
 RawOptions rawOptionsFrom(const VolumeFlags& flags);
 

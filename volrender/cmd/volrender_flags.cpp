@@ -168,7 +168,7 @@ bool checkVolrenderFlags(const VolrenderFlags& f, ViewParams& view, RenderSettin
         if (!f.volume.labels.empty() || !f.volume.labelColours.empty())
             throw fileError(f.input, "a prepared file holds its label map, if any: --labels and --label-colors "
                                      "are for a volume to prepare (volprep --labels puts them in the file)");
-        if (f.volume.thresholdsGiven)
+        if (f.volume.toGiven || f.volume.taGiven)
             throw fileError(f.input, "a prepared file holds its regions, made at its thresholds: --to and --ta are "
                                      "for a volume to prepare (volprep --to, --ta prepares it again)");
         if (!f.volume.series.empty())
@@ -177,7 +177,7 @@ bool checkVolrenderFlags(const VolrenderFlags& f, ViewParams& view, RenderSettin
         if (f.volume.transfer.empty())
             throw fileError(f.input, "not a prepared file: a volume to prepare here needs --tf PRESET or "
                                      "--tf FILE.json, or --window and --level");
-        checkThresholds(f.volume);
+        checkThresholds(f.volume, !f.noShading);
     }
     long long w = 0, h = 0;  // wider than int: 4294967304x8 must not wrap around to 8x8
     char extra = 0;
