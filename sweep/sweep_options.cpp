@@ -21,6 +21,9 @@ void SweepOptions::validate() const {
     };
     checkGrid(opacityThresholds, "--to");
     checkGrid(angleThresholds, "--ta");
+    if (!shading && std::any_of(angleThresholds.begin(), angleThresholds.end(), [](double t) { return t > 0; }))
+        throw InputError("--ta: an unshaded sweep (--no-shading) makes its regions without normals, which no angle "
+                         "bounds: its only T_a is 0");
     if (std::find(casters.begin(), casters.end(), Caster::Primitive) == casters.end())
         throw InputError("--casters must include primitive: the other casters' times are given relative to it");
     if (downsample < 1 || downsample > 16) throw InputError("--downsample must be in 1..16");

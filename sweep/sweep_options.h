@@ -33,7 +33,8 @@ struct SweepOptions {
     bool resume = false;                 // skip settings already in OUTDIR/sweep.csv
     std::filesystem::path peersDir;      // a folder holding peers.json (scripts/peers.sh); empty: none
 
-    // Throws InputError for an empty grid, negative or non-finite thresholds, no primitive caster, bad sizes.
+    // Throws InputError for an empty grid, negative or non-finite thresholds, an angle above 0 without shading, no
+    // primitive caster, bad sizes.
     void validate() const;
     // The dataset name used (dataset, else derived from input; "+jitter" appended with jitter).
     std::string datasetName() const;

@@ -54,6 +54,12 @@ TEST(SweepOptions, BadThresholdGridsAreRefused) {
         expectRefused([&](SweepOptions& o) { o.opacityThresholds = {0, bad}; }, "--to");
         expectRefused([&](SweepOptions& o) { o.angleThresholds = {bad}; }, "--ta");
     }
+    // Unshaded regions have no normals: an angle above 0 would repeat the same setting.
+    expectRefused([](SweepOptions& o) { o.shading = false, o.angleThresholds = {0, 3}; }, "--no-shading");
+    SweepOptions unshaded = goodOptions();
+    unshaded.shading = false;
+    unshaded.angleThresholds = {0};
+    EXPECT_NO_THROW(unshaded.validate());
     expectRefused([](SweepOptions& o) { o.opacityThresholds.clear(); }, "--to");
     expectRefused([](SweepOptions& o) { o.angleThresholds.clear(); }, "--ta");
 }

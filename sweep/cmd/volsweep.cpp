@@ -30,6 +30,7 @@ struct Flags {
     int views = 8, device = -1, downsample = 1;
     double step = 0.5;
     bool noShading = false, nearest = false, jitter = false, resume = false, reportOnly = false;
+    bool taGiven = false;  // --ta on the command line
 };
 
 void addFlags(CLI::App& app, Flags& f) {
@@ -41,7 +42,10 @@ void addFlags(CLI::App& app, Flags& f) {
     app.add_option("--type", f.type, "voxel type of raw volumes: uint8, int16, uint16, float32");
     app.add_option("--name", f.name, "dataset name in the CSV and report (default: the file name)");
     app.add_option("--to", f.to, "opacity thresholds T_o")->delimiter(',')->capture_default_str();
-    app.add_option("--ta", f.ta, "normal angle thresholds T_a, degrees")->delimiter(',')->capture_default_str();
+    app.add_option("--ta", f.ta, "normal angle thresholds T_a, degrees (--no-shading: 0 alone)")
+        ->delimiter(',')
+        ->capture_default_str()
+        ->each([&f](const std::string&) { f.taGiven = true; });
     app.add_option("--casters", f.casters, "casters (primitive is required: times are relative to it)")
         ->delimiter(',')->check(CLI::IsMember({"primitive", "pc", "acd", "eacd"}))->capture_default_str();
     app.add_option("--downsample", f.downsample, "average blocks of NxNxN voxels first (a smaller volume, faster "
@@ -51,7 +55,7 @@ void addFlags(CLI::App& app, Flags& f) {
         ->capture_default_str();
     app.add_option("--size", f.size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--step", f.step, "sampling step in voxels of the smallest spacing")->capture_default_str();
-    app.add_flag("--no-shading", f.noShading, "emission-absorption only (normals and T_a are then ignored)");
+    app.add_flag("--no-shading", f.noShading, "emission-absorption only: regions without normals, T_a 0 alone");
     app.add_flag("--nearest", f.nearest,
                  "nearest sampling, regions made for it (default: trilinear, the scalar interpolated then classified)");
     app.add_flag("--jitter", f.jitter, "jitter every caster's rays (volrender --jitter), each image's error still "
@@ -72,7 +76,8 @@ vr::SweepOptions options(const Flags& f) {
     if (!f.dims.empty()) o.raw.dims = vr::Vec3i{f.dims[0], f.dims[1], f.dims[2]};
     if (!f.type.empty()) o.raw.type = vr::parseScalarType(f.type);
     o.opacityThresholds = f.to;
-    o.angleThresholds = f.ta;
+    // Unshaded regions have no normals to bound: the default grid becomes T_a 0 alone, a given one is checked.
+    o.angleThresholds = f.noShading && !f.taGiven ? std::vector<double>{0} : f.ta;
     o.casters.clear();
     for (const std::string& c : f.casters) o.casters.push_back(vr::parseCaster(c));
     o.downsample = f.downsample;
