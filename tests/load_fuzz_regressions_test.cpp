@@ -130,6 +130,10 @@ const Regression kRegressions[] = {
     // A data file field with no value: vtkNrrdReader compares the first word of it, which is not there (SEGV, found
     // by fuzz_nrrd).
     {"NrrdEmptyDataFileField", {"nrrd/empty_data_file_field.nrrd"}, kAnyAllocation, "names no file"},
+    // sizes "10+0 3 22222220" with dimension 4: read as 10, +0, 3 and 22222220 the header check left the 0 to VTK's
+    // reader, which read 10, 3 and 22222220 and allocated 2.7 GB for an ASCII file of a few bytes (found by
+    // fuzz_nrrd). A size token is an integer and nothing else.
+    {"NrrdSizeTokenWithAPlus", {"nrrd/size_token_with_a_plus.nrrd"}, kSmallInputAllocation, "sizes"},
     // A header without a blank line whose last line has no line break: vtkNrrdReader rereads that line forever
     // (std::getline keeps it once the stream has ended). Found by CI's fuzzing (timeouts).
     {"NrrdLastHeaderLineWithoutALineBreak",

@@ -114,7 +114,9 @@ void checkNrrdFile(const fs::path& path) {
         values = std::uintmax_t(dims.x) * std::uintmax_t(dims.y) * std::uintmax_t(dims.z);
     } else {
         for (long long n : sizes) {
-            if (n < 1 || values > (std::uintmax_t(1) << 40) / std::uintmax_t(n)) return;  // left to VTK's reader
+            if (n < 1) throw file.fail("sizes \"" + it->second + "\" hold one below 1");
+            if (values > (std::uintmax_t(1) << 40) / std::uintmax_t(n))
+                throw file.fail("sizes \"" + it->second + "\" claim more than 2^40 values");
             values *= std::uintmax_t(n);
         }
         checkVoxelBudget(path, std::int64_t(values), 1, 1, loading);
