@@ -104,7 +104,13 @@ void checkNrrdFile(const fs::path& path) {
                         "\" leave VTK's reader " + std::to_string(axes) + " image axes" +
                         (componentAxis ? " (it takes the first axis for components)" : "") + "; it reads 2 or 3");
 
-    const int bytes = typeBytes(fields["type"]);
+    // vtkNrrdReader takes the type and the encoding in any case ("ascIi" read as ASCII, after it allocated what the
+    // sizes claim: found by fuzz_nrrd), so they are checked so.
+    const auto lower = [](std::string text) {
+        std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        return text;
+    };
+    const int bytes = typeBytes(lower(fields["type"]));
     if (bytes == 0) return;  // VTK's reader names the type it does not know
     // A size no machine can hold is told as such, before the data are looked at.
     const std::size_t loading = std::size_t(bytes) + sizeof(float);
@@ -133,7 +139,7 @@ void checkNrrdFile(const fs::path& path) {
         throw file.fail("the header has no blank line before the data and no data file");
     const std::uint64_t start = dataFile.empty() ? *headerEnd : 0;
 
-    const std::string encoding = fields["encoding"];
+    const std::string encoding = lower(fields["encoding"]);
     const bool raw = encoding == "raw", ascii = encoding == "ascii" || encoding == "text" || encoding == "txt",
                gzip = encoding == "gzip" || encoding == "gz";
     if (!raw && !ascii && !gzip) return;  // left to VTK's reader
