@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/lower_case.h"
 #include "render/exr_file.h"
 #include "render/png_file.h"
 
@@ -32,8 +33,7 @@ namespace {
 enum class ImageFormat { Png, Exr, Other };
 
 ImageFormat formatOf(const fs::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string ext = lowerCase(path.extension().string());
     return ext == ".png" ? ImageFormat::Png : ext == ".exr" ? ImageFormat::Exr : ImageFormat::Other;
 }
 

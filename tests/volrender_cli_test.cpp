@@ -138,16 +138,21 @@ TEST(VolrenderCli, BadInputsExitWithReadableErrors) {
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
+// The head CT prepared into dir/head.vrp with `regions`, and the arguments that render it there into x.png, 16 x 16,
+// with the stats in s.json.
+std::string headsqPreparedRun(const fs::path& dir, const SegmentationParams& regions) {
+    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
+    writePrepared(dir / "head.vrp",
+                  test::prepareVolume(test::loadDataset(e), test::datasetTransferFunction(e.tf), regions));
+    return q(dir / "head.vrp") + " -o " + q(dir / "x.png") + " --size 16x16 --stats " + q(dir / "s.json");
+}
+
 // Regions made for nearest sampling only: trilinear sampling (the default) cannot leap through them. A caster that
 // leaps through them asked for is refused with the reason (hier, which makes its own blocks, is not); auto takes the
 // primitive caster and says why; --nearest leaps.
 TEST(VolrenderCli, TrilinearByDefaultAndRegionsMadeForNearestSampling) {
     const fs::path dir = test::scratchDir("volrender_cli_nearest");
-    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
-    const fs::path nearest = dir / "nearest.vrp";
-    writePrepared(nearest, test::prepareVolume(test::loadDataset(e), test::datasetTransferFunction(e.tf),
-                                               {0.02, 10, true, false}));
-    const std::string run = q(nearest) + " -o " + q(dir / "x.png") + " --size 16x16 --stats " + q(dir / "s.json");
+    const std::string run = headsqPreparedRun(dir, {0.02, 10, true, false});
     expectRejected(run + " --caster eacd", "segmented for trilinear sampling");
     // The hier caster builds its blocks from the scalars at load, each with its voxels' footprints: any file serves.
     const test::CliOutcome hier = volrender(run + " --caster hier");
@@ -169,11 +174,7 @@ TEST(VolrenderCli, TrilinearByDefaultAndRegionsMadeForNearestSampling) {
 // shaded render and says why; an unshaded render may leap.
 TEST(VolrenderCli, AutoShadesRegionsMadeWithoutNormalsSampleBySample) {
     const fs::path dir = test::scratchDir("volrender_cli_no_normals");
-    const test::DatasetEntry e = test::rawDataset("vtk_headsq_ct_64x64x93_uint16");
-    const fs::path file = dir / "no_normals.vrp";
-    writePrepared(file, test::prepareVolume(test::loadDataset(e), test::datasetTransferFunction(e.tf),
-                                            {0.02, 10, false, true}));
-    const std::string run = q(file) + " -o " + q(dir / "x.png") + " --size 16x16 --stats " + q(dir / "s.json");
+    const std::string run = headsqPreparedRun(dir, {0.02, 10, false, true});
     const test::CliOutcome shaded = volrender(run);
     ASSERT_EQ(shaded.status, 0) << shaded.err;
     nlohmann::json stats = nlohmann::json::parse(slurp(dir / "s.json"));

@@ -3,11 +3,11 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 
 #include "core/errors.h"
+#include "core/lower_case.h"
 #include "preprocess/cmd/summary.h"
 #include "preprocess/cmd/volume_flags.h"
 #include "preprocess/load/load_volume.h"
@@ -79,9 +79,7 @@ void checkBeforeRunning(const Flags& f) {
     if (vr::isVolumeFileName(out))
         throw vr::fileError(f.output, "a volume file's name: volprep writes a prepared file (e.g. NAME.vprep), "
                                       "which only volrender reads");
-    std::string extension = out.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string extension = vr::lowerCase(out.extension().string());
     for (const char* image : {".png", ".exr", ".gif", ".mp4", ".jpg", ".jpeg", ".tif", ".tiff"})
         if (extension == image)
             throw vr::fileError(f.output, "an image's name: volprep writes a prepared file (e.g. NAME.vprep); "

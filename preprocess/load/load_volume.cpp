@@ -1,12 +1,11 @@
 // Picks the loader by file name (or folder), then applies the checks every format shares.
 #include "preprocess/load/load_volume.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <string>
 
 #include "core/errors.h"
+#include "core/lower_case.h"
 #include "preprocess/load/format_loaders.h"
 #include "preprocess/load/format_module.h"
 
@@ -47,8 +46,7 @@ std::string supportedFormats() {
 }
 
 const Format* formatOf(const fs::path& path) {
-    std::string name = path.filename().string();
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string name = lowerCase(path.filename().string());
     for (const Format& f : formats)
         if (name.ends_with(f.suffix)) return &f;
     return nullptr;

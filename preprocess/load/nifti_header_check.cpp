@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/lower_case.h"
 #include "preprocess/load/bounded_reader.h"
 #include "preprocess/load/compressed_data.h"
 #include "preprocess/load/header_checks.h"
@@ -38,8 +39,7 @@ int bitsOf(int datatype) {
 
 void checkNiftiHeader(const fs::path& path) {
     BoundedReader file(path, "invalid NIfTI header");
-    std::string name = path.filename().string();
-    for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string name = lowerCase(path.filename().string());
     const bool gzipped = name.ends_with(".gz");
     const std::string header = gzipped ? gzreadBytes(file, kNifti2Size) : file.bytesUpTo(kNifti2Size);
     if (header.size() < kNifti1Size)

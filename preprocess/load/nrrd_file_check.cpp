@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/lower_case.h"
 #include "preprocess/load/bounded_reader.h"
 #include "preprocess/load/compressed_data.h"
 #include "preprocess/load/header_checks.h"
@@ -106,11 +107,7 @@ void checkNrrdFile(const fs::path& path) {
 
     // vtkNrrdReader takes the type and the encoding in any case ("ascIi" read as ASCII, after it allocated what the
     // sizes claim: found by fuzz_nrrd), so they are checked so.
-    const auto lower = [](std::string text) {
-        std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-        return text;
-    };
-    const int bytes = typeBytes(lower(fields["type"]));
+    const int bytes = typeBytes(lowerCase(fields["type"]));
     if (bytes == 0) return;  // VTK's reader names the type it does not know
     // A size no machine can hold is told as such, before the data are looked at.
     const std::size_t loading = std::size_t(bytes) + sizeof(float);
@@ -139,7 +136,7 @@ void checkNrrdFile(const fs::path& path) {
         throw file.fail("the header has no blank line before the data and no data file");
     const std::uint64_t start = dataFile.empty() ? *headerEnd : 0;
 
-    const std::string encoding = lower(fields["encoding"]);
+    const std::string encoding = lowerCase(fields["encoding"]);
     const bool raw = encoding == "raw", ascii = encoding == "ascii" || encoding == "text" || encoding == "txt",
                gzip = encoding == "gzip" || encoding == "gz";
     if (!raw && !ascii && !gzip) return;  // left to VTK's reader

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cctype>
 #include <climits>
 #include <fstream>
 #include <regex>
@@ -11,6 +10,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/lower_case.h"
 #include "preprocess/load/format_loaders.h"
 #include "preprocess/load/voxel_budget.h"
 #include "preprocess/load/voxel_conversion.h"
@@ -19,11 +19,6 @@ namespace vr {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string lowerCase(std::string s) {
-    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
 
 std::string dimsText(const Vec3i& d) {
     return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/lower_case.h"
 #include "preprocess/load/bounded_reader.h"
 #include "preprocess/load/header_checks.h"
 #include "preprocess/load/voxel_budget.h"
@@ -94,7 +95,7 @@ void checkVtkLegacyFile(const fs::path& path) {
     const std::vector<double>& d = numbers["DIMENSIONS"];
     for (double n : d)
         if (!(n >= 1 && n <= 1e15 && n == std::floor(n))) throw file.fail("DIMENSIONS must be positive integers");
-    for (char& c : scalars[2]) c = char(std::tolower(static_cast<unsigned char>(c)));
+    scalars[2] = lowerCase(scalars[2]);
     const int bytes = typeBytes(scalars[2]);
     if (bytes == 0) throw file.fail("SCALARS type \"" + scalars[2].substr(0, 40) + "\" is not supported");
     checkVoxelBudget(path, std::int64_t(d[0]), std::int64_t(d[1]), std::int64_t(d[2]),

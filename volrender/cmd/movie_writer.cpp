@@ -1,9 +1,8 @@
 #include "volrender/cmd/movie_writer.h"
 
-#include <algorithm>
-#include <cctype>
 
 #include "core/errors.h"
+#include "core/lower_case.h"
 #include "tools/runtime_module.h"
 
 namespace vr {
@@ -20,8 +19,7 @@ decltype(vrOpenMovieEncoder)* openEncoder() {
 }  // namespace
 
 std::optional<MovieFormat> movieFormat(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string ext = lowerCase(path.extension().string());
     if (ext == ".gif") return MovieFormat::Gif;
     if (ext == ".mp4") return MovieFormat::Mp4;
     return std::nullopt;
