@@ -196,8 +196,19 @@ TEST(VolrenderFaults, OutputsOverAnotherFileAreRefused) {
     expectRefused(in + " -o " + x + " --stats " + shellQuote(dir / "." / "x.png"), "-o and --stats");
     expectRefused(in + " -o " + x + " --stats " + shellQuote(input),
                   std::vector<std::string>{"the input and --stats", "would write over the input"});
+    // The names an orbit or a pair derives from -o and --heatmap: their frames and eyes.
+    expectRefused(in + " -o " + x + " --views 2 --stats " + shellQuote(dir / "x_001.png"),
+                  std::vector<std::string>{"-o and --stats", "x_001.png", "-o " + (dir / "x.png").string()});
+    expectRefused(in + " -o " + x + " --views 3 --heatmap " + x, std::vector<std::string>{"-o and --heatmap", "x_000"});
+    const std::string pair = " --projection persp --stereo 1 -o " + x;
+    expectRefused(in + pair + " --stats " + shellQuote(dir / "x_left.png"),
+                  std::vector<std::string>{"-o and --stats", "x_left.png"});
+    expectRefused(in + pair + " --views 2 --heatmap " + shellQuote(dir / "x_right_001.png") + " --stats " +
+                      shellQuote(dir / "x_right_001_left_001.png"),
+                  std::vector<std::string>{"--heatmap and --stats", "x_right_001_left_001.png"});
     EXPECT_EQ(test::slurp(input), source);
     EXPECT_FALSE(fs::exists(dir / "x.png"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1) << "only the input is there";
 }
 
 // The prepared file's parts, to damage one at a time (docs/PREPARED_FORMAT.md).

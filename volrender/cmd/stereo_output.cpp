@@ -46,6 +46,15 @@ std::string eyePath(const std::string& path, std::string_view eye) {
     return (p.parent_path() / (p.stem().string() + "_" + std::string(eye) + p.extension().string())).string();
 }
 
+std::vector<std::string> frameFiles(const std::string& path, int views, std::optional<StereoLayout> layout) {
+    std::vector<std::string> eyes{path};
+    if (layout == StereoLayout::Separate) eyes = {eyePath(path, "left"), eyePath(path, "right")};
+    std::vector<std::string> files;
+    for (int view = 0; view < (movieFormat(path) ? 1 : views); ++view)
+        for (const std::string& eye : eyes) files.push_back(viewFileName(eye, view, views));
+    return files;
+}
+
 FrameOutput::FrameOutput(const std::string& path, const MovieSpec& movie, std::optional<StereoLayout> layout)
     : layout_(layout) {
     if (layout == StereoLayout::Separate) {

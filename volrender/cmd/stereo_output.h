@@ -20,6 +20,10 @@ Image composePair(const Image& left, const Image& right, StereoLayout layout);
 // NAME.EXT -> NAME_left.EXT.
 std::string eyePath(const std::string& path, std::string_view eye);
 
+// Every file that `views` frames written to `path` make, in the order they are written: NAME.EXT, NAME_007.EXT,
+// NAME_left_007.EXT and NAME_right_007.EXT, or one movie.
+std::vector<std::string> frameFiles(const std::string& path, int views, std::optional<StereoLayout> layout);
+
 // The width and height of a frame as written: a pair side by side is twice as wide, top and bottom twice as high.
 std::pair<int, int> frameSize(int width, int height, std::optional<StereoLayout> layout);
 

@@ -28,14 +28,15 @@ ViewOutput::ViewOutput(std::string path, const MovieSpec& movie) : path_(std::mo
     if (movieFormat(path_)) movie_ = std::make_unique<MovieWriter>(path_, movie);
 }
 
-// NAME.EXT -> NAME_007.EXT for view 7 of an orbit; unchanged for a single view or a movie.
-std::string ViewOutput::name(int view) const {
-    if (views_ == 1 || movie_) return path_;
-    const fs::path p(path_);
+std::string viewFileName(const std::string& path, int view, int views) {
+    if (views == 1 || movieFormat(path)) return path;
+    const fs::path p(path);
     char suffix[16];
     std::snprintf(suffix, sizeof suffix, "_%03d", view);
     return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
+
+std::string ViewOutput::name(int view) const { return viewFileName(path_, view, views_); }
 
 void ViewOutput::add(int view, const Image& image) {
     if (movie_)

@@ -13,6 +13,10 @@ namespace vr {
 // movie, loads the movie module (std::runtime_error naming `flag`, the path and the module's file where it cannot).
 void checkViewOutput(const std::string& path, const char* flag, int width, int height);
 
+// The file that holds view `view` of `views` written to `path`: NAME_007.EXT for view 7 of an orbit of images; the
+// path itself for a single view or a movie.
+std::string viewFileName(const std::string& path, int view, int views);
+
 class ViewOutput {
 public:
     // `movie` gives the size, the frame count (the views) and the frame rate.

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
 #include "core/errors.h"
 #include "io/prepared_file.h"
@@ -29,35 +30,43 @@ void checkWritable(const std::string& path, const char* flag) {
 }
 
 // No output at the path of another output or of an input: it would write over the other file (the source volume
-// too: --stats VOLUME replaced it), or the other file over it. Outputs of an orbit or a pair add a suffix to their
-// name, alike for -o and --heatmap, so their names are compared as given.
+// too: --stats VOLUME replaced it), or the other file over it. -o and --heatmap are compared by every file they write:
+// an orbit's numbered frames and a pair's eyes (-o x.png --views 2 --stats x_000.png wrote the JSON over a frame).
 void checkDistinctFiles(const VolrenderFlags& f) {
     struct Named {
         const char* flag;
         const std::string& path;
         bool output;
+        bool frames;  // written as an orbit's views or a pair's eyes
     };
-    const Named files[] = {{"the input", f.input, false},
-                           {"--labels", f.volume.labels, false},
-                           {"--label-colors", f.volume.labelColours, false},
-                           {"--calibration", f.calibration, false},
-                           {"-o", f.output, true},
-                           {"--heatmap", f.heatmap, true},
-                           {"--stats", f.stats, true}};
+    const Named named[] = {{"the input", f.input, false, false},
+                           {"--labels", f.volume.labels, false, false},
+                           {"--label-colors", f.volume.labelColours, false, false},
+                           {"--calibration", f.calibration, false, false},
+                           {"-o", f.output, true, true},
+                           {"--heatmap", f.heatmap, true, true},
+                           {"--stats", f.stats, true, false}};
     const auto where = [](const std::string& path) {
         std::error_code ec;
         const fs::path p = fs::weakly_canonical(path, ec);
         return ec ? fs::path(path).lexically_normal() : p;
     };
-    for (std::size_t i = 0; i < std::size(files); ++i)
-        for (std::size_t j = i + 1; j < std::size(files); ++j) {
-            const Named &a = files[i], &b = files[j];
-            if (a.path.empty() || b.path.empty() || !(a.output || b.output)) continue;
-            if (where(a.path) == where(b.path))
-                throw InputError(std::string(a.flag) + " and " + b.flag + " name the same file, " + b.path + ": " +
-                                 (a.output ? "one would write over the other"  // inputs come first
-                                           : std::string(b.flag) + " would write over " + a.flag));
+    std::map<fs::path, const Named*> seen;  // each file by where it is, with the flag that named it first
+    for (const Named& b : named) {
+        if (b.path.empty()) continue;
+        for (const std::string& file : b.frames ? frameFiles(b.path, f.views, layoutOf(f)) : std::vector{b.path}) {
+            const auto [it, fresh] = seen.emplace(where(file), &b);
+            const Named& a = *it->second;
+            if (fresh || !(a.output || b.output)) continue;
+            std::string written;  // the flag whose orbit or pair made the name, if one did
+            for (const Named* n : {&a, &b})
+                if (written.empty() && where(n->path) != it->first)
+                    written = " (" + std::string(n->flag) + " " + n->path + " writes it, a view of the orbit or an eye)";
+            throw InputError(std::string(a.flag) + " and " + b.flag + " name the same file, " + file + written +
+                             ": " + (a.output ? "one would write over the other"  // inputs come first
+                                              : std::string(b.flag) + " would write over " + a.flag));
         }
+    }
 }
 
 // The outputs' formats, and --fps only where a movie is written.
