@@ -356,7 +356,8 @@ fs::path writeReport(const fs::path& outDir) {
         const std::vector<SweepRow> rows = rowsOf(all, dataset);
         const SweepRow& first = rows.front();
         md << "## " << dataset << "\n\n"
-           << first.width << "x" << first.height << " pixels, " << first.views << " views.\n\n";
+           << first.width << "x" << first.height << " pixels, " << first.views << " views; " << first.render
+           << ".\n\n";
         settingsTable(md, rows);
         bestSettings(md, rows);
         paretoList(md, rows);

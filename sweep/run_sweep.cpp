@@ -140,11 +140,24 @@ void renderSetting(VulkanRenderer& renderer, const PreparedVolume& p, const std:
 }
 
 // The (T_o, T_a) settings to run: all, or with resume those whose rows are not all in the CSV yet. Without resume
-// a setting already there is an InputError (appending would give it twice).
+// a setting already there is an InputError (appending would give it twice); so are rows of the dataset rendered
+// otherwise (another size, orbit, transfer function, sampling, step, ...), which the report would compare as alike.
 std::vector<std::pair<double, double>> pendingSettings(const SweepOptions& o, const std::string& dataset,
                                                        const fs::path& csv) {
     std::set<std::string> done;
-    for (const SweepRow& r : readSweepCsv(csv)) done.insert(r.key());
+    const auto made = [](int width, int height, int views, const std::string& render) {
+        return std::to_string(width) + "x" + std::to_string(height) + ", " + std::to_string(views) + " views, " +
+               render;
+    };
+    const std::string here = made(o.width, o.height, int(o.views * o.elevations.size()), o.renderSettings());
+    for (const SweepRow& r : readSweepCsv(csv)) {
+        done.insert(r.key());
+        if (r.dataset != dataset) continue;
+        const std::string there = made(r.width, r.height, r.views, r.render);
+        if (there != here)
+            throw fileError(csv.string(), "holds rows of " + dataset + " rendered at " + there + "; this sweep "
+                                          "renders at " + here + ": give it another --name, or another -o");
+    }
     std::vector<std::pair<double, double>> settings;
     for (double to : o.opacityThresholds)
         for (double ta : o.angleThresholds) {
@@ -271,6 +284,7 @@ int runSweep(const SweepOptions& o) {
         row.views = int(views.size());
         row.width = o.width;
         row.height = o.height;
+        row.render = o.renderSettings();
         options.segmentation = SegmentationParams{to, ta, o.shading, o.trilinear};
         staged.prepare(options);
         recordStages(staged, p, row);

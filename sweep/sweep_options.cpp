@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/errors.h"
 #include "sweep/metrics/ssim.h"
@@ -13,6 +14,9 @@ void SweepOptions::validate() const {
     if (transfer.empty())
         throw InputError("no transfer function given: --tf PRESET or --tf FILE.json, or --window W --level L");
     if (outDir.empty()) throw InputError("no output folder given: -o OUTDIR");
+    if (std::filesystem::exists(outDir) && !std::filesystem::is_directory(outDir))
+        throw InputError("-o " + outDir.string() + ": a file, not a folder (the sweep writes sweep.csv, report.md, "
+                         "plots/, strips/ and images/ into it)");
     auto checkGrid = [](const std::vector<double>& grid, const char* flag) {
         if (grid.empty()) throw InputError(std::string(flag) + ": give at least one threshold");
         for (double t : grid)
@@ -49,6 +53,19 @@ std::string SweepOptions::datasetName() const {
             if (name.size() > ext.size() && name.ends_with(ext)) name.resize(name.size() - ext.size());
     }
     return jitter ? name + "+jitter" : name;
+}
+
+std::string SweepOptions::renderSettings() const {
+    std::ostringstream s;
+    if (!transfer.tf.empty()) s << "tf=" << std::filesystem::path(transfer.tf).filename().string() << ' ';
+    if (transfer.window) s << "window=" << *transfer.window << " level=" << *transfer.level << ' ';
+    s << (trilinear ? "trilinear" : "nearest") << ' ' << (shading ? "shaded" : "unshaded") << " step=" << stepVoxels
+      << " elevations=";
+    for (std::size_t i = 0; i < elevations.size(); ++i) s << (i ? ";" : "") << elevations[i];
+    if (downsample > 1) s << " downsample=" << downsample;
+    std::string text = s.str();
+    std::replace_if(text.begin(), text.end(), [](char c) { return c == ',' || c == '\n' || c == '\r'; }, ';');
+    return text;
 }
 
 }  // namespace vr

@@ -38,6 +38,9 @@ struct SweepOptions {
     void validate() const;
     // The dataset name used (dataset, else derived from input; "+jitter" appended with jitter).
     std::string datasetName() const;
+    // What a dataset's rows share beside their size and views, as sweep.csv's render column writes it (no commas):
+    // the transfer function, the sampling, the shading, the step, the elevations and the downsampling.
+    std::string renderSettings() const;
 };
 
 }  // namespace vr

@@ -75,7 +75,8 @@ std::string SweepRow::key() const { return rowKey(dataset, opacityThreshold, ang
 
 const std::vector<std::string>& sweepColumns() {
     static const std::vector<std::string> columns = [] {
-        std::vector<std::string> c{"dataset", "T_o", "T_a", "caster", "views", "width", "height", "segment_s",
+        std::vector<std::string> c{"dataset", "T_o", "T_a", "caster", "views", "width", "height", "render",
+                                   "segment_s",
                                    "pc_s", "acd_s", "eacd_s", "regions", "device_ms_median", "device_ms_p95",
                                    "wall_ms_median", "ratio_to_primitive", "iter_mean", "iter_p95", "iter_max",
                                    "field_bytes", "uploaded_bytes"};
@@ -94,7 +95,7 @@ std::string csvHeader() {
 std::string toCsvLine(const SweepRow& r) {
     std::vector<std::string> cells{r.dataset, thresholdText(r.opacityThreshold), thresholdText(r.angleThreshold),
                                    r.caster, std::to_string(r.views), std::to_string(r.width),
-                                   std::to_string(r.height)};
+                                   std::to_string(r.height), r.render};
     for (double v : {r.segmentSeconds, r.pcSeconds, r.acdSeconds, r.eacdSeconds}) cells.push_back(csvNumber(v));
     cells.push_back(std::to_string(r.regions));
     for (double v : {r.deviceMsMedian, r.deviceMsP95, r.wallMsMedian, r.ratioToPrimitive, r.iterationsMean,
@@ -131,6 +132,7 @@ SweepRow rowOfCells(const std::vector<std::string>& cells, const std::string& wh
     r.views = int(next());
     r.width = int(next());
     r.height = int(next());
+    r.render = cells[i++];
     r.segmentSeconds = next();
     r.pcSeconds = next();
     r.acdSeconds = next();

@@ -14,6 +14,7 @@ struct SweepRow {
     double opacityThreshold = 0, angleThreshold = 0;  // T_o, T_a
     std::string caster;
     int views = 0, width = 0, height = 0;
+    std::string render;  // the render settings the dataset's rows share (SweepOptions::renderSettings)
     // Preprocessing wall seconds at this setting (the same for every caster of the setting; 0: not built).
     double segmentSeconds = 0, pcSeconds = 0, acdSeconds = 0, eacdSeconds = 0;
     long long regions = 0;

@@ -47,6 +47,11 @@ TEST(SweepOptions, MissingInputsAreNamed) {
     expectRefused([](SweepOptions& o) { o.input.clear(); }, "no input volume");
     expectRefused([](SweepOptions& o) { o.transfer = TransferChoice{}; }, "--tf");
     expectRefused([](SweepOptions& o) { o.outDir.clear(); }, "-o OUTDIR");
+    // A file where the output folder should be (the sweep failed after loading, on "cannot create directories").
+    const fs::path file = fs::temp_directory_path() / "sweep_options_out_is_a_file";
+    std::ofstream(file) << "x";
+    expectRefused([&](SweepOptions& o) { o.outDir = file; }, "a file, not a folder");
+    fs::remove(file);
 }
 
 TEST(SweepOptions, BadThresholdGridsAreRefused) {

@@ -123,6 +123,41 @@ TEST(SweepSmoke, ResumeSkipsFinishedSettingsAndReRunsAreRefused) {
     EXPECT_EQ(readStereoCsv(out / "stereo.csv").size(), 1u);  // measured once per dataset
     o.resume = false;
     EXPECT_THROW(runSweep(o), InputError);
+    // Rows of the dataset rendered otherwise are not joined, with or without --resume: the report would compare
+    // them as alike.
+    const auto refusal = [&](SweepOptions other) {
+        try {
+            runSweep(other);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    for (bool resume : {true, false}) {
+        SweepOptions other = o;
+        other.resume = resume;
+        other.angleThresholds = {10};  // a setting not run yet
+        other.width = 32;
+        EXPECT_NE(refusal(other).find("rendered at 64x64, 1 views"), std::string::npos) << refusal(other);
+        other = o, other.resume = resume, other.angleThresholds = {10};
+        other.stepVoxels = 0.25;
+        EXPECT_NE(refusal(other).find("step=0.25"), std::string::npos) << refusal(other);
+        other.stepVoxels = o.stepVoxels, other.trilinear = true;
+        EXPECT_NE(refusal(other).find("trilinear"), std::string::npos) << refusal(other);
+        other.trilinear = false, other.elevations = {0, 30};
+        EXPECT_NE(refusal(other).find("elevations=0;30"), std::string::npos) << refusal(other);
+        other.elevations = {0}, other.transfer.window = 100, other.transfer.level = 50;
+        EXPECT_NE(refusal(other).find("window=100 level=50"), std::string::npos) << refusal(other);
+    }
+    EXPECT_EQ(readSweepCsv(out / "sweep.csv").size(), 4u);
+    // Under another name they are rows of their own.
+    o.angleThresholds = {0};
+    o.width = 32;
+    o.dataset = "headmr_small";
+    EXPECT_EQ(runSweep(o), 1);
+    const std::vector<SweepRow> rows = readSweepCsv(out / "sweep.csv");
+    ASSERT_EQ(rows.size(), 6u);
+    EXPECT_EQ(rows.back().render, "tf=mri.tf.json nearest shaded step=0.5 elevations=0");
 }
 
 TEST(SweepSmoke, BadInputNamesTheProblem) {
