@@ -130,6 +130,19 @@ const Regression kRegressions[] = {
     // A data file field with no value: vtkNrrdReader compares the first word of it, which is not there (SEGV, found
     // by fuzz_nrrd).
     {"NrrdEmptyDataFileField", {"nrrd/empty_data_file_field.nrrd"}, kAnyAllocation, "names no file"},
+    // The same before a type vtkNrrdReader does not know: its header parse reaches the data file field first (SEGV,
+    // found by fuzz_nrrd), so that field is checked whatever the type.
+    {"NrrdEmptyDataFileFieldBeforeAnUnknownType", {"nrrd/empty_data_file_field_before_an_unknown_type.nrrd"},
+     kAnyAllocation, "names no file"},
+    // A data file field of 4 words or more is a file pattern "FORMAT MIN MAX STEP" to vtkNrrdReader, which steps by
+    // atoi of the words: by 0 it inserted file names until memory ran out, 22 such inputs in 20 minutes of fuzz_nrrd
+    // (its snprintf of the format would also take any conversion). "LIST" names the files on the lines after it; two
+    // data file fields give two files. Data in several files is refused.
+    {"NrrdDataInSeveralFiles",
+     {"nrrd/data_file_pattern_stepping_by_zero.nrrd", "nrrd/data_file_pattern_with_a_format_of_garbage.nrrd",
+      "nrrd/data_files_listed.nrrd"},
+     kSmallInputAllocation, "several files"},
+    {"NrrdTwoDataFileFields", {"nrrd/two_data_file_fields.nrrd"}, kSmallInputAllocation, "both"},
     // sizes "10+0 3 22222220" with dimension 4: read as 10, +0, 3 and 22222220 the header check left the 0 to VTK's
     // reader, which read 10, 3 and 22222220 and allocated 2.7 GB for an ASCII file of a few bytes (found by
     // fuzz_nrrd). A size token is an integer and nothing else.

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,26 @@ void checkNrrdFile(const fs::path& path) {
                         "\" leave VTK's reader " + std::to_string(axes) + " image axes" +
                         (componentAxis ? " (it takes the first axis for components)" : "") + "; it reads 2 or 3");
 
+    // The data file field, as vtkNrrdReader splits it into words: one file (a name, spaces and all, unless it is of 4
+    // words or more), "LIST [SUBDIM]" with the files on the lines after it, or "FORMAT MIN MAX STEP [SUBDIM]", which
+    // it expands by snprintf(FORMAT, i) for i from MIN to MAX by STEP. It parses this field before it checks the type:
+    // without a value it takes a first word it does not have (SEGV in a string comparison); with a step of 0 from
+    // words that are not numbers it loops until memory runs out; a format of other conversions than one integer's
+    // writes where they point. All found by fuzz_nrrd. Data in several files is refused: one data file holds it all.
+    if (fields.contains("data file") && fields.contains("datafile"))
+        throw file.fail("the header has both a \"data file\" and a \"datafile\" field (VTK's reader would take two "
+                        "data files)");
+    for (const char* key : {"data file", "datafile"}) {
+        if (!fields.contains(key)) continue;
+        std::istringstream in(fields[key]);
+        std::vector<std::string> words;
+        for (std::string word; in >> word;) words.push_back(word);
+        if (words.empty()) throw file.fail(std::string("the \"") + key + "\" field names no file");
+        if (words[0] == "LIST" || words.size() >= 4)
+            throw file.fail(std::string("the \"") + key + "\" field \"" + fields[key] +
+                            "\" splits the data into several files, which are not read: write them as one data file");
+    }
+
     // vtkNrrdReader takes the type and the encoding in any case ("ascIi" read as ASCII, after it allocated what the
     // sizes claim: found by fuzz_nrrd), so they are checked so.
     const int bytes = typeBytes(lowerCase(fields["type"]));
@@ -125,13 +146,7 @@ void checkNrrdFile(const fs::path& path) {
         checkVoxelBudget(path, std::int64_t(values), 1, 1, loading);
     }
 
-    // A data file field without a value vtkNrrdReader takes the first word of, which it does not have (SEGV in a
-    // string comparison, found by fuzz_nrrd).
-    for (const char* key : {"data file", "datafile"})
-        if (fields.contains(key) && fields[key].empty())
-            throw file.fail(std::string("the \"") + key + "\" field names no file");
     const std::string dataFile = fields.contains("data file") ? fields["data file"] : fields["datafile"];
-    if (dataFile.starts_with("LIST") || dataFile.find('%') != std::string::npos) return;  // several data files
     if (dataFile.empty() && !headerEnd)
         throw file.fail("the header has no blank line before the data and no data file");
     const std::uint64_t start = dataFile.empty() ? *headerEnd : 0;
