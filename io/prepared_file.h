@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/prepared_volume.h"
+#include "core/progress.h"
 
 namespace vr {
 
@@ -27,6 +28,7 @@ constexpr std::size_t kMaxPreparedBlockBytes = std::size_t(1) << 30;
 struct PreparedWriteOptions {
     int zstdLevel = kPreparedZstdLevel;          // ZSTD_minCLevel() .. ZSTD_maxCLevel(), 0 is zstd's default (3)
     std::size_t blockBytes = kPreparedBlockBytes;  // 1 .. kMaxPreparedBlockBytes
+    Progress progress;                             // hears the share of the blocks compressed, then the write
 };
 
 // Largest transfer table the file holds (entries), a check on a damaged header before any allocation.

@@ -308,6 +308,24 @@ TEST(FieldsBuild, BuildFieldsReportsEachFieldOnceInOrder) {
     EXPECT_EQ(order(0), V());
 }
 
+// What the field builders tell a progress bar: fractions in [0, 1] that never fall, after the ACDs, PC and each
+// EACD octant, ending at 1.
+TEST(FieldsBuild, ReportsTheirProgress) {
+    std::mt19937 rng(3);
+    const Regions r = blockyRegions({40, 30, 20}, 6, 3, rng);
+    for (unsigned kinds : {unsigned(kFieldPC | kFieldEACD), unsigned(kFieldACD), unsigned(kFieldPC)}) {
+        SCOPED_TRACE(kinds);
+        std::vector<double> heard;
+        buildFields(r, kinds, ExtentCode::Log16, [](FieldKind) {}, kAllOctants,
+                    [&](double f) { heard.push_back(f); });
+        ASSERT_FALSE(heard.empty());
+        EXPECT_TRUE(std::is_sorted(heard.begin(), heard.end()));
+        EXPECT_GE(heard.front(), 0.0);
+        EXPECT_EQ(heard.back(), 1.0);
+        if (kinds & kFieldEACD) EXPECT_GE(heard.size(), 2u + kOctants);  // ACD, PC, the octants
+    }
+}
+
 TEST(FieldsBuild, CodedEACDIsTheExactOneQuantised) {
     // Large regions, so that extents reach past the codes' exact values (Log16 above 16, Joint8 above 2).
     std::mt19937 rng(17);

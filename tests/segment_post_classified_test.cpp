@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <iostream>
+#include <mutex>
 #include <random>
+#include <set>
 
 #include "core/errors.h"
 #include "datasets/phantoms.h"
@@ -220,6 +222,33 @@ TEST(SegmentPostClassified, ScalarsOfAnotherSizeAreAnInputError) {
     const std::vector<float> tooFew{10, 10};
     EXPECT_THROW(segment(v.classified, {0, 0, false, true}, ClassifiedScalars{tooFew, v.spread}), InputError);
     EXPECT_THROW(v.segment({-1, 0, false, true}), InputError);
+}
+
+// What segmentation tells a progress bar: fractions in [0, 1], from every step (the footprints, the normal classes
+// in runs of 2^20 voxels, the growth per 2^20 voxels labelled), ending at 1; both samplings.
+TEST(SegmentPostClassified, ReportsItsProgress) {
+    const Vec3i dims{160, 128, 110};  // 2.25 M voxels: more than one run of 2^20
+    std::vector<float> values(voxelCount(dims));
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> noise(0, 8);
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = float((i / 4000 % 3) * 60 + noise(rng));
+    const Prepared v = prepared(volumeOf(dims, values), spikeAt20(), true);
+    for (bool trilinear : {true, false}) {
+        SCOPED_TRACE(trilinear ? "trilinear" : "nearest");
+        std::mutex mutex;
+        std::vector<double> heard;
+        const Progress progress = [&](double f) {
+            std::lock_guard lock(mutex);
+            heard.push_back(f);
+        };
+        Regions regions;
+        segment(v.classified, SegmentationParams{0.05, 10, true, trilinear},
+                ClassifiedScalars{v.volume.values, v.spread}, regions, progress);
+        ASSERT_FALSE(heard.empty());
+        for (double f : heard) EXPECT_TRUE(f >= 0 && f <= 1) << f;
+        EXPECT_EQ(heard.back(), 1.0);
+        if (trilinear) EXPECT_GE(std::set<double>(heard.begin(), heard.end()).size(), 6u);
+    }
 }
 
 }  // namespace

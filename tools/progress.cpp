@@ -23,6 +23,8 @@ ProgressBar::~ProgressBar() { finish(); }
 
 void ProgressBar::advance(std::size_t n) { draw(done_.fetch_add(n) + n); }
 
+void ProgressBar::show(double fraction) { drawPercent(int(100.0 * (fraction > 0 ? std::min(fraction, 1.0) : 0.0))); }
+
 void ProgressBar::finish() {
     if (finished_) return;
     finished_ = true;
@@ -30,9 +32,10 @@ void ProgressBar::finish() {
     if (enabled_) std::fputc('\n', stderr);
 }
 
-void ProgressBar::draw(std::size_t done) {
+void ProgressBar::draw(std::size_t done) { drawPercent(int(100.0 * double(std::min(done, total_)) / double(total_))); }
+
+void ProgressBar::drawPercent(int percent) {
     if (!enabled_) return;
-    int percent = int(100.0 * double(std::min(done, total_)) / double(total_));
     // Redraw only when the percentage changes, and let one thread win the race to do it.
     int last = lastPercent_.load();
     if (percent <= last || !lastPercent_.compare_exchange_strong(last, percent)) return;

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <string>
 
+#include "core/progress.h"
+
 namespace vr {
 
 class ProgressBar {
@@ -12,12 +14,15 @@ public:
     ProgressBar(std::string label, std::size_t total);
     ~ProgressBar();
     void advance(std::size_t n = 1);  // thread-safe
+    void show(double fraction);       // thread-safe: the bar at that fraction of its total
+    Progress report() { return [this](double fraction) { show(fraction); }; }  // valid while the bar lives
     void finish();
     // From now on no bar of this process draws.
     static void silenceAll();
 
 private:
     void draw(std::size_t done);
+    void drawPercent(int percent);
     std::string label_;
     std::size_t total_;
     std::atomic<std::size_t> done_{0};

@@ -83,33 +83,42 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::fu
 
 namespace {
 
+// The fields' shares of their time, as a 512^3 CT took them on 2 cores: the runs with the ACDs 3.3 s, PC from them
+// 0.36 s, EACD 16.2 s (its octants alike).
+constexpr double kAcdShare = 1, kPcShare = 0.1, kEacdShare = 5;
+
 // `release` is called once every axial run the fields read is made: the labels are no longer read after it.
 DistanceFields buildFieldsReleasing(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
                                     const std::function<void(FieldKind)>& done, unsigned octants,
-                                    const std::function<void()>& release) {
+                                    const Progress& progress, const std::function<void()>& release) {
     DistanceFields f;
     f.dims = regions.dims;
-    const bool pc = kinds & kFieldPC, acd = kinds & (kFieldACD | kFieldEACD);
+    const bool pc = kinds & kFieldPC, acd = kinds & (kFieldACD | kFieldEACD), eacd = kinds & kFieldEACD;
     if (!acd) {
         if (pc) {
             f.pc = buildPC(regions);
             done(kFieldPC);
         }
         release();
+        reportProgress(progress, 1);
         return f;
     }
+    const double total = kAcdShare + (pc ? kPcShare : 0) + (eacd ? kEacdShare : 0);
     AxialRuns runs(regions);
     const unsigned acdOctants = pc ? kAllOctants : octants;
     runs.computeAll(acdOctants);  // every run the ACDs and the EACD read
     release();
     ACDFields acds = buildACDs(runs, acdOctants);
     done(kFieldACD);
+    double reached = kAcdShare / total;
+    reportProgress(progress, reached);
     if (pc) {
         f.pc = pcFromACD(acds);
         done(kFieldPC);
+        reportProgress(progress, reached += kPcShare / total);
     }
-    if (kinds & kFieldEACD) {
-        f.eacd = buildEACD(runs, acds, eacdCode, octants);
+    if (eacd) {
+        f.eacd = buildEACD(runs, acds, eacdCode, octants, progressPart(progress, reached, 1));
         done(kFieldEACD);
     }
     if (kinds & kFieldACD) {
@@ -123,14 +132,14 @@ DistanceFields buildFieldsReleasing(const Regions& regions, unsigned kinds, Exte
 }  // namespace
 
 DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
-                           const std::function<void(FieldKind)>& done, unsigned octants) {
-    return buildFieldsReleasing(regions, kinds, eacdCode, done, octants, [] {});
+                           const std::function<void(FieldKind)>& done, unsigned octants, const Progress& progress) {
+    return buildFieldsReleasing(regions, kinds, eacdCode, done, octants, progress, [] {});
 }
 
 DistanceFields buildFields(Regions&& regions, unsigned kinds, ExtentCode eacdCode,
-                           const std::function<void(FieldKind)>& done, unsigned octants) {
+                           const std::function<void(FieldKind)>& done, unsigned octants, const Progress& progress) {
     Regions consumed = std::move(regions);
-    return buildFieldsReleasing(consumed, kinds, eacdCode, done, octants,
+    return buildFieldsReleasing(consumed, kinds, eacdCode, done, octants, progress,
                                 [&] { std::vector<uint32_t>().swap(consumed.label); });
 }
 

@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "core/distance_fields.h"
+#include "core/progress.h"
 #include "core/regions.h"
 #include "preprocess/fields/axial_runs.h"
 
@@ -33,9 +34,10 @@ std::vector<uint8_t> buildACD(AxialRuns& runs, int octant);
 // The octants of the mask (bit o: octant o), in parallel; the others stay empty.
 ACDFields buildACDs(AxialRuns& runs, unsigned octants = kAllOctants);
 // code: every extent written in that code, rounded down to it (quantiseExtents; Exact leaves them as built).
-// octants: those to build (each needs its ACD); the others stay empty.
+// octants: those to build (each needs its ACD); the others stay empty. progress: the share of octants built.
 std::array<ExtentField, kOctants> buildEACD(AxialRuns& runs, const ACDFields& acd,
-                                            ExtentCode code = ExtentCode::Exact, unsigned octants = kAllOctants);
+                                            ExtentCode code = ExtentCode::Exact, unsigned octants = kAllOctants,
+                                            const Progress& progress = {});
 
 // kinds: a mask of FieldKind. EACD needs ACD internally; ACD is kept only when asked for. The fastest way to get
 // several fields: the runs, ACDs and PC are shared.
@@ -46,12 +48,14 @@ DistanceFields buildFields(const Regions& regions, unsigned kinds, const std::fu
 // The same with the EACD written in eacdCode as it is built: what quantiseEACD(buildFields(regions, kinds),
 // eacdCode) gives, without an exact copy and a second pass over the extents.
 // `octants` (a mask) limits ACD and EACD to the octants a render's views need; PC, which takes the minimum over all
-// eight, still builds every ACD it needs.
+// eight, still builds every ACD it needs. `progress` hears how far all of them have come.
 DistanceFields buildFields(const Regions& regions, unsigned kinds, ExtentCode eacdCode,
-                           const std::function<void(FieldKind)>& done, unsigned octants = kAllOctants);
+                           const std::function<void(FieldKind)>& done, unsigned octants = kAllOctants,
+                           const Progress& progress = {});
 // The same, consuming the regions: their labels are freed as soon as the axial runs are made from them, so that
 // ACD and EACD are built in 4 bytes per voxel less (a render that needs only the field).
 DistanceFields buildFields(Regions&& regions, unsigned kinds, ExtentCode eacdCode,
-                           const std::function<void(FieldKind)>& done, unsigned octants = kAllOctants);
+                           const std::function<void(FieldKind)>& done, unsigned octants = kAllOctants,
+                           const Progress& progress = {});
 
 }  // namespace vr

@@ -27,7 +27,8 @@ private:
 };
 
 // Runs `work` as the stage `name` with a progress bar (shown on a terminal only), appends its time to `times` and
-// returns what `work` returns. A stage that throws appends nothing.
+// returns what `work` returns. A stage that throws appends nothing. `work` takes no argument, or the bar's Progress
+// (core/progress.h) to report how far it has come.
 template <typename Work>
 auto runStage(const std::string& name, std::vector<StageTime>& times, Work&& work) {
     ProgressBar bar(name, 1);
@@ -36,11 +37,17 @@ auto runStage(const std::string& name, std::vector<StageTime>& times, Work&& wor
         times.push_back(clock.stop(name));
         bar.finish();
     };
-    if constexpr (std::is_void_v<std::invoke_result_t<Work>>) {
-        work();
+    auto run = [&] {
+        if constexpr (std::is_invocable_v<Work, const Progress&>)
+            return work(bar.report());
+        else
+            return work();
+    };
+    if constexpr (std::is_void_v<decltype(run())>) {
+        run();
         done();
     } else {
-        auto result = work();
+        auto result = run();
         done();
         return result;
     }

@@ -33,18 +33,16 @@ DistanceFields buildTimedFields(RegionsRef&& regions, unsigned kinds, ExtentCode
                                 std::vector<StageTime>& times) {
     // One call builds them all, sharing the axial runs and the ACDs: each field is timed from the end of the one
     // before (ACD first, then PC from the ACDs, then EACD).
-    const unsigned built = (kinds & kFieldEACD ? kinds | kFieldACD : kinds) & (kFieldPC | kFieldACD | kFieldEACD);
-    ProgressBar bar("fields", std::popcount(built));
+    ProgressBar bar("fields", 1);
     StageClock clock;
     // The EACD is written in eacdCode as it is built: memory, file and device then hold the same bytes.
     DistanceFields f = buildFields(
         std::forward<RegionsRef>(regions), kinds, eacdCode,
         [&](FieldKind kind) {
             times.push_back(clock.stop(kind == kFieldPC ? "pc" : kind == kFieldACD ? "acd" : "eacd"));
-            bar.advance();
             clock = StageClock();
         },
-        octants);
+        octants, bar.report());
     bar.finish();
     return f;
 }
@@ -123,14 +121,15 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
     const bool regionsRead = (options.fields & kRegionFields) || options.keepRegions;
     if (last >= PrepStage::Segment && regionsRead && segmentedWith_ != options.segmentation) {
         run(PrepStage::Segment, [&](std::vector<StageTime>& times) {
-            runStage("segment", times, [&] {
+            runStage("segment", times, [&](const Progress& progress) {
                 const ClassifiedVoxels voxels(prepared_.scalars, prepared_.classification, options.classify.normals,
                                               prepared_.labels ? &*prepared_.labels : nullptr);
-                if (!options.segmentation.trilinear) return segment(voxels, options.segmentation, spareRegions_);
+                if (!options.segmentation.trilinear)
+                    return segment(voxels, options.segmentation, spareRegions_, progress);
                 // Post-classification (docs/ALGORITHMS.md section 9): regions over the scalars' intervals.
                 const TfRangeTable spread(sampleForVolume(prepared_.scalars, *options.classify.transferFunction));
                 segment(voxels, options.segmentation, ClassifiedScalars{prepared_.scalars.values, spread},
-                        spareRegions_);
+                        spareRegions_, progress);
             });
             prepared_.regions = std::exchange(spareRegions_, {});
         });
@@ -171,7 +170,11 @@ const PreparedVolume& StagedPreparation::withStatistics() {
 void StagedPreparation::write(const std::filesystem::path& path) {
     const PreparedVolume& prepared = withStatistics();  // before the write's time: the file cannot hold that
     writeTimes_.clear();
-    runStage("write", writeTimes_, [&] { writePrepared(path, prepared); });
+    runStage("write", writeTimes_, [&](const Progress& progress) {
+        PreparedWriteOptions options;
+        options.progress = progress;
+        writePrepared(path, prepared, options);
+    });
 }
 
 std::vector<StageTime> StagedPreparation::stageTimes() const {

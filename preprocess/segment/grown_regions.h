@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "core/progress.h"
 #include "core/regions.h"
 #include "preprocess/segment/classified_voxels.h"
 #include "preprocess/segment/footprint_ranges.h"
@@ -18,8 +19,9 @@ constexpr uint32_t kBorderCell = kUnsetCell - 1;
 // Grows regions over a grid of `dims` cells from seeds in cell order, 6-connected, each keeping the entry range
 // spanned by its cells' `ranges` `spread`-alike within `threshold`. `label` holds kBorderCell where a cell is a region
 // of its own and kUnsetCell elsewhere; on return the labels 0..count-1 in first-cell order. Returns the count.
+// `progress` hears the share of seeds passed.
 uint32_t growRegions(const Vec3i& dims, const std::vector<EntryRange>& ranges, const ClassificationSpread& spread,
-                     double threshold, std::vector<uint32_t>& label);
+                     double threshold, std::vector<uint32_t>& label, const Progress& progress = {});
 
 // Regions grown from seeds in voxel order, 6-connected, each keeping the scalar interval [min, max] that its voxels'
 // interpolation footprints span (footprint_ranges.h) `spread`-alike within T_o, and its normals alike as the region
@@ -27,6 +29,7 @@ uint32_t growRegions(const Vec3i& dims, const std::vector<EntryRange>& ranges, c
 // alike in normals to it, is a border voxel: a region of its own. Labels 0..count-1 in first-voxel order.
 // `scalars` are the values behind `voxels`.
 void growPostClassifiedRegions(const ClassifiedVoxels& voxels, const SegmentationParams& params,
-                               const std::vector<float>& scalars, const ClassificationSpread& spread, Regions& regions);
+                               const std::vector<float>& scalars, const ClassificationSpread& spread, Regions& regions,
+                               const Progress& progress = {});
 
 }  // namespace vr

@@ -3,16 +3,21 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <atomic>
+
 namespace vr {
 
-NormalClasses::NormalClasses(const RegionKeyer& keyer, std::size_t voxels) : used_(keyer.usesNormals()) {
+NormalClasses::NormalClasses(const RegionKeyer& keyer, std::size_t voxels, const Progress& progress)
+    : used_(keyer.usesNormals()) {
     if (!used_) return;
     const bool binned = keyer.binsNormals(), narrow = binned && keyer.normalCells() < 65535;
     if (narrow) narrow_.resize(voxels);
     else if (binned) binned_.resize(voxels);
     else exact_.resize(voxels);
     constexpr uint32_t kNaN = 0x7fc00000;  // never a unit or flat normal's component
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels), [&](const tbb::blocked_range<std::size_t>& r) {
+    // In runs of 2^20 voxels, each reported as it is keyed.
+    std::atomic<std::size_t> keyed{0};
+    const auto keyRun = [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
             const RegionKey key = keyer.normalKey(i);
             const bool transparent = key.opacity == 0;
@@ -21,7 +26,9 @@ NormalClasses::NormalClasses(const RegionKeyer& keyer, std::size_t voxels) : use
             else if (binned) binned_[i] = cell;
             else exact_[i] = transparent ? std::array<uint32_t, 3>{kNaN, kNaN, kNaN} : key.normal;
         }
-    });
+        if (progress) progress(double(keyed += r.size()) / double(voxels));
+    };
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, voxels, std::size_t(1) << 20), keyRun, tbb::simple_partitioner());
 }
 
 }  // namespace vr

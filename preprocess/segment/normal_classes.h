@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/progress.h"
 #include "preprocess/segment/region_key.h"
 
 namespace vr {
@@ -11,8 +12,8 @@ namespace vr {
 class NormalClasses {
 public:
     // Each voxel's normal class, keyed once: the normals are taken from the scalars' gradient on demand, too dear
-    // to take again for every neighbour compared.
-    NormalClasses(const RegionKeyer& keyer, std::size_t voxels);
+    // to take again for every neighbour compared. `progress` hears the share of voxels keyed.
+    NormalClasses(const RegionKeyer& keyer, std::size_t voxels, const Progress& progress = {});
     // Whether normals constrain the regions: shading uses them and the volume has them.
     bool used() const { return used_; }
     // An equivalence: normals unused, or both voxels transparent, or both flat, or both in one cube-map cell

@@ -7,10 +7,13 @@
 
 namespace vr {
 
-void segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, Regions& regions) {
+void segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, Regions& regions,
+             const Progress& progress) {
     const RegionKeyer keyer(voxels, params);
     labelKeyComponents(voxels.grid().dims, keyer, regions);
+    reportProgress(progress, 0.9);
     if (params.trilinear) splitBorderVoxels(regions);
+    reportProgress(progress, 1);
 }
 
 Regions segment(const ClassifiedVoxels& voxels, const SegmentationParams& params) {
@@ -20,9 +23,9 @@ Regions segment(const ClassifiedVoxels& voxels, const SegmentationParams& params
 }
 
 void segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, const ClassifiedScalars& scalars,
-             Regions& regions) {
-    if (!params.trilinear) return segment(voxels, params, regions);
-    growPostClassifiedRegions(voxels, params, scalars.values, scalars.spread, regions);
+             Regions& regions, const Progress& progress) {
+    if (!params.trilinear) return segment(voxels, params, regions, progress);
+    growPostClassifiedRegions(voxels, params, scalars.values, scalars.spread, regions, progress);
 }
 
 Regions segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, const ClassifiedScalars& scalars) {

@@ -2,6 +2,7 @@
 #pragma once
 #include <vector>
 
+#include "core/progress.h"
 #include "core/regions.h"
 #include "preprocess/segment/classified_voxels.h"
 
@@ -16,8 +17,9 @@ namespace vr {
 // Throws InputError for negative or NaN thresholds.
 Regions segment(const ClassifiedVoxels& voxels, const SegmentationParams& params);
 // The same into `regions`, reusing the memory of its labels: a segmentation of the same size then takes no fresh
-// pages. On a throw `regions` is left in an unspecified state.
-void segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, Regions& regions);
+// pages. On a throw `regions` is left in an unspecified state. `progress` hears how far it has come.
+void segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, Regions& regions,
+             const Progress& progress = {});
 
 // The scalars that a transfer function classified, and how that function spreads over scalar intervals.
 struct ClassifiedScalars {
@@ -27,7 +29,7 @@ struct ClassifiedScalars {
 // With params.trilinear, regions for post-classification (grown_regions.h): the interval of scalars that each
 // region's interpolation footprints span classifies alike within T_o. Without it, segment() above.
 void segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, const ClassifiedScalars& scalars,
-             Regions& regions);
+             Regions& regions, const Progress& progress = {});
 Regions segment(const ClassifiedVoxels& voxels, const SegmentationParams& params, const ClassifiedScalars& scalars);
 
 }  // namespace vr
