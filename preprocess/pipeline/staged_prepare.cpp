@@ -1,7 +1,6 @@
 #include "preprocess/pipeline/staged_prepare.h"
 
 #include <algorithm>
-#include <bit>
 
 #include "io/prepared_file.h"
 #include "preprocess/fields/build_fields.h"
