@@ -258,7 +258,8 @@ TEST(PipelineStaged, AVolumeTooLargeForTheMemoryIsRefusedBeforeAnyStage) {
     EXPECT_GT(availableMemoryBytes(), 0u);
 }
 
-// volprep's stages: the write comes last, timed, after the statistics the file holds (which cannot include it).
+// volprep's stages: the ray probe, then the write last, timed, after the statistics the file holds (which hold the
+// probe's time and cannot hold the write's).
 TEST(PipelineStaged, WritesTheResultWithItsStatisticsAsTheLastStage) {
     StagedPreparation staged = stagedHead();
     const PrepareOptions o = headOptions();
@@ -266,8 +267,9 @@ TEST(PipelineStaged, WritesTheResultWithItsStatisticsAsTheLastStage) {
     const std::filesystem::path file = test::scratchDir("pipeline_staged_write") / "head.vprep";
     staged.write(file);
     EXPECT_EQ(names(staged.stageTimes()),
-              (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd", "write"}));
+              (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd", "probe", "write"}));
     const PreparedVolume& p = staged.withStatistics();
+    EXPECT_TRUE(p.meta.statistics["seconds"].contains("probe"));
     EXPECT_FALSE(p.meta.statistics["seconds"].contains("write"));
     ASSERT_TRUE(p.meta.rayProbe);
     EXPECT_EQ(p.meta.rayProbe, probeRays(p));  // the render core's probe of the result

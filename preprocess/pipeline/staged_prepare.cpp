@@ -82,6 +82,7 @@ void StagedPreparation::invalidateFrom(PrepStage stage) {
             prepared_.fields = {};
     }
     for (int s = int(stage); s < kPrepStages; ++s) times_[s].clear();
+    probeTimes_.clear();
     writeTimes_.clear();
     prepared_.meta.statistics = {};
     prepared_.meta.rayProbe.reset();
@@ -160,8 +161,10 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
 
 const PreparedVolume& StagedPreparation::withStatistics() {
     if (prepared_.meta.statistics.is_null()) {
+        // The probe first, as a stage of its own: 0.9 s of a 512^3 CT's preparation that the times left out.
+        probeTimes_.clear();
+        prepared_.meta.rayProbe = runStage("probe", probeTimes_, [&] { return probeRays(prepared_); });
         prepared_.meta.statistics = preparedStatistics(prepared_, stageTimes());
-        prepared_.meta.rayProbe = probeRays(prepared_);
     }
     return prepared_;
 }
@@ -179,6 +182,7 @@ void StagedPreparation::write(const std::filesystem::path& path) {
 std::vector<StageTime> StagedPreparation::stageTimes() const {
     std::vector<StageTime> times = loadTimes_;
     for (const auto& t : times_) times.insert(times.end(), t.begin(), t.end());
+    times.insert(times.end(), probeTimes_.begin(), probeTimes_.end());
     times.insert(times.end(), writeTimes_.begin(), writeTimes_.end());
     return times;
 }

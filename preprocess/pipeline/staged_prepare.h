@@ -55,8 +55,9 @@ public:
     // threw runs again on the next call. The reference stays valid for the lifetime of this object.
     const PreparedVolume& prepare(const PrepareOptions& options, PrepStage last = PrepStage::Fields);
 
-    // The result with meta.statistics (preparedStatistics, with stageTimes()) and meta.rayProbe (probeRays: a few
-    // hundred small CPU renders) filled in, as a prepared file holds them; until a stage runs again.
+    // The result with meta.rayProbe (probeRays: a few hundred small CPU renders, timed as the stage "probe") and
+    // meta.statistics (preparedStatistics, with stageTimes()) filled in, as a prepared file holds them; until a stage
+    // runs again.
     const PreparedVolume& withStatistics();
     // Writes withStatistics() to `path` atomically (writePrepared) as the stage "write": the last of stageTimes()
     // until a stage runs again. Throws InputError where the file cannot be written.
@@ -66,7 +67,8 @@ public:
 
     // The stages the last prepare() ran, in order (classify, segment, acd, pc, eacd); empty when nothing had changed.
     const std::vector<StageTime>& lastStages() const { return lastStages_; }
-    // The times of the stage runs behind the current result, in order: "load" first where it ran, "write" last.
+    // The times of the stage runs behind the current result, in order: "load" first where it ran, then "probe" and
+    // "write" last where they ran.
     std::vector<StageTime> stageTimes() const;
     // How many times `stage` has run since construction (a stage that threw included).
     int runs(PrepStage stage) const { return runs_[int(stage)]; }
@@ -91,6 +93,7 @@ private:
     std::optional<FieldsOptions> fieldsWith_;
     std::vector<StageTime> loadTimes_;                           // of loading the volume, where it was loaded
     std::array<std::vector<StageTime>, kPrepStages> times_;      // of the run behind each stage's result
+    std::vector<StageTime> probeTimes_;                          // of the current result's ray probe
     std::vector<StageTime> writeTimes_;                          // of writing the current result
     std::array<int, kPrepStages> runs_{};
     std::vector<StageTime> lastStages_;
