@@ -40,10 +40,18 @@ constexpr std::size_t kMaxTransferTableEntries = std::size_t(1) << 20;
 void writePrepared(const std::filesystem::path& path, const PreparedVolume& prepared,
                    const PreparedWriteOptions& options = {});
 
+// What a read may leave out: a render needs neither the regions' labels nor the ACD and EACD octants its views'
+// rays do not have (on a 512^3 CT, 512 MiB and 7 of the 8 octants for one view, each to inflate into fresh memory).
+struct PreparedReadScope {
+    unsigned octants = kAllOctants;  // the ACD and EACD octants read (bit o: octant o); the others stay empty
+    bool regions = true;             // the regions' labels; without them Regions::label stays empty (the count is read)
+};
+
 // Reads the scalars, the transfer table, the region labels, the label map where the file has one and only the
-// distance fields in `fields` (a FieldKind mask): a render loads what its caster uses. Throws InputError for a
-// foreign, truncated or inconsistent file.
-PreparedVolume readPrepared(const std::filesystem::path& path, unsigned fields = kFieldPC | kFieldACD | kFieldEACD);
+// distance fields in `fields` (a FieldKind mask), within `scope`: a render loads what its caster uses. Throws
+// InputError for a foreign, truncated or inconsistent file.
+PreparedVolume readPrepared(const std::filesystem::path& path, unsigned fields = kFieldPC | kFieldACD | kFieldEACD,
+                            const PreparedReadScope& scope = {});
 
 // One chunk as the chunk table describes it: its bytes in memory and in the file (compressed).
 struct PreparedChunkBytes {

@@ -141,7 +141,7 @@ PreparedHeader readPreparedHeader(const fs::path& path) {
     return out;
 }
 
-PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
+PreparedVolume readPrepared(const fs::path& path, unsigned fields, const PreparedReadScope& scope) {
     Reader r(path);
     Header h = readHeader(r);
     PreparedVolume& p = h.prepared;
@@ -161,6 +161,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
     };
     auto wantOctants = [&](const std::string& prefix, const char* label, auto& arrays) {
         for (int o = 0; o < kOctants; ++o) {
+            if (!(scope.octants >> o & 1u)) continue;
             std::string name = prefix + std::to_string(o);
             if (!has(name))
                 throw r.fail(std::string("has no ") + label + " distance field for octant " + std::to_string(o) +
@@ -185,7 +186,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
     }
     std::vector<float> entries;
     want("table", entries);
-    want("labels", p.regions.label);
+    if (scope.regions) want("labels", p.regions.label);
     std::vector<uint8_t> labelBytes;
     std::vector<float> labelEntries;
     if (h.labelType) {
@@ -225,6 +226,7 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields) {
 
     // The labels must name regions that exist: whatever indexes per-region data by label relies on it.
     const std::vector<uint32_t>& label = p.regions.label;
+    if (label.empty()) return std::move(p);
     uint32_t maxLabel = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, label.size()), uint32_t(0),
         [&](const tbb::blocked_range<std::size_t>& b, uint32_t m) {

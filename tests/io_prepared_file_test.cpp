@@ -544,6 +544,22 @@ TEST_F(IoPreparedFile, ReadsOnlyWhatIsAskedFor) {
     EXPECT_EQ(none.scalars.values, prepared.scalars.values);
 }
 
+// A render's read: the octants its views' rays have, and no region labels (their count stays).
+TEST_F(IoPreparedFile, ReadsTheOctantsAskedForWithoutTheRegions) {
+    const unsigned octants = 0b10010010;  // 1, 4 and 7
+    const PreparedVolume r = readPrepared(good, kFieldACD | kFieldEACD, {octants, false});
+    for (int o = 0; o < kOctants; ++o) {
+        SCOPED_TRACE(o);
+        const bool asked = octants >> o & 1u;
+        EXPECT_EQ(r.fields.acd[o], asked ? prepared.fields.acd[o] : std::vector<uint8_t>{});
+        EXPECT_EQ(r.fields.eacd[o], asked ? prepared.fields.eacd[o] : ExtentField{});
+    }
+    EXPECT_TRUE(r.regions.label.empty());
+    EXPECT_EQ(r.regions.count, prepared.regions.count);
+    EXPECT_EQ(r.scalars.values, prepared.scalars.values);
+    EXPECT_EQ(r.classification, prepared.classification);
+}
+
 TEST_F(IoPreparedFile, SkipsUnrequestedChunksEvenWhenTheyAreDamaged) {
     // Proof that a field not asked for is seeked past, not read: damage only the ACD chunks.
     std::vector<char> b = readBytes(good);

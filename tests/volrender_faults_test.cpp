@@ -275,7 +275,8 @@ TEST(VolrenderFaults, MissingAndDamagedPreparedFilesAreRefused) {
     add(good.withHeader([](nlohmann::json& j) { j["grid"]["dims"] = {100000, 10, 8}; }), "absurd grid dims");
     add(good.withHeader([](nlohmann::json& j) { j["grid"]["dims"] = {12, 10}; }), "dims");
     add(good.withHeader([](nlohmann::json& j) { j["grid"]["dims"] = {12.5, 10, 8}; }), "absurd grid dims");
-    add(good.withHeader([](nlohmann::json& j) { j["regionCount"] = 1; }), "regionCount");
+    // (A count below the labels' ids is refused where the labels are read, tests/io_prepared_file_test.cpp: a render
+    // reads no region labels.)
     add(good.withHeader([](nlohmann::json& j) { j["regionCount"] = -1; }), "regionCount");
     add(good.withHeader([](nlohmann::json& j) { j.erase("chunks"); }), "chunks");
     add(good.withHeader([](nlohmann::json& j) { j["chunks"].erase(0); }), "has no 'scalars' chunk");
@@ -292,8 +293,8 @@ TEST(VolrenderFaults, MissingAndDamagedPreparedFilesAreRefused) {
         const auto& [bytes, says] = damaged[i];
         const fs::path file = dir / ("damaged_" + std::to_string(i) + ".vprep");
         std::ofstream(file, std::ios::binary) << bytes;
-        // EACD reads every chunk. A damaged file is refused as it is read, before any render, so the CPU path stands
-        // for the Vulkan one, which is run on the first file only.
+        // EACD reads the scalars, the table and its views' octants. A damaged file is refused as it is read, before
+        // any render, so the CPU path stands for the Vulkan one, which is run on the first file only.
         const std::string args = shellQuote(file) + " -o " + shellQuote(dir / "x.png") + " --size 8x8 --no-shading";
         SCOPED_TRACE(file.filename().string() + " expecting '" + says + "'");
         expectRefused(args + " --cpu --caster eacd", {says, file.filename().string()});

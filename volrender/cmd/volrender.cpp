@@ -97,13 +97,15 @@ unsigned orbitOctants(const std::vector<vr::Camera>& cameras) {
     return octants;
 }
 
-// A prepared file with what the caster reads: its field's chunks, or for hier (which no file holds) the field
-// built from the file's scalars and classification for the orbit's octants, with the file's thresholds.
-vr::PreparedVolume readPreparedFor(const Flags& f, vr::Caster caster, const vr::ViewParams& view) {
-    vr::PreparedVolume prepared = vr::readPrepared(f.input, fieldsFor(caster));
+// A prepared file with what the caster reads: its field's chunks in the orbit's octants (no region labels), or for
+// hier (which no file holds) the field built from the file's scalars and classification for those octants, with the
+// file's thresholds.
+vr::PreparedVolume readPreparedFor(const Flags& f, vr::Caster caster, const vr::ViewParams& view,
+                                   const vr::GridGeometry& grid) {
+    const unsigned octants = orbitOctants(eyeCameras(f, grid, view));
+    vr::PreparedVolume prepared = vr::readPrepared(f.input, fieldsFor(caster), {octants, false});
     if (caster == vr::Caster::Hier)
-        prepared.fields.hier = vr::buildHierarchicalEACD(prepared, prepared.meta.segmentation,
-                                                         orbitOctants(eyeCameras(f, prepared.grid(), view)));
+        prepared.fields.hier = vr::buildHierarchicalEACD(prepared, prepared.meta.segmentation, octants);
     return prepared;
 }
 
@@ -325,7 +327,7 @@ int run(const Flags& f) {
     };
     if (makeAhead && !chooseAfterReading) makePipeline();
     const vr::PreparedVolume prepared =
-        prepareHere ? std::move(*preparedHere) : readPreparedFor(f, settings.caster, view);
+        prepareHere ? std::move(*preparedHere) : readPreparedFor(f, settings.caster, view, header->grid);
     if (chooseAfterReading) {
         const vr::CasterChoice c =
             vr::autoBlendCaster(prepared, settings, eyeCameras(f, prepared.grid(), view), calibration.constants);
