@@ -49,6 +49,26 @@ TEST(LoadBadInput, UnknownExtensionListsTheSupportedFormats) {
     expectInputError(path, {"unknown volume format", ".raw.gz", ".nii.gz", ".mhd", ".vdb", "DICOM"});
 }
 
+// The raw options describe headerless raw files; any other format's header says what they would, so giving them
+// for one is refused rather than ignored (volprep --spacing 2,2,2 on a NIfTI kept the header's 1 mm).
+TEST(LoadBadInput, RawOptionsForAnotherFormatAreRefused) {
+    const fs::path nifti = test::datasetsDir() / "colin27_t1_mri.nii.gz";
+    RawOptions spacing;
+    spacing.spacing = Vec3d{2, 2, 2};
+    expectInputError(nifti, {"--spacing", "raw files"}, spacing);
+    RawOptions several;
+    several.dims = Vec3i{4, 4, 4};
+    several.bigEndian = true;
+    expectInputError(nifti, {"--dims, --big-endian", "header"}, several);
+    const fs::path folder = test::scratchDir("bad_raw_options_folder");
+    RawOptions type;
+    type.type = ScalarType::Int16;
+    expectInputError(folder, {"--type", "DICOM series"}, type);
+    // A file of no known format is still told so.
+    writeBytes(folder / "volume.xyz", 8);
+    expectInputError(folder / "volume.xyz", {"unknown volume format"}, spacing);
+}
+
 TEST(LoadBadInput, MissingFile) {
     expectInputError(test::scratchDir("bad_missing") / "nothing_8x8x8_uint8.raw", {"no such file"});
 }

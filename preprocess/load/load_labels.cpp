@@ -37,7 +37,7 @@ LabelMap loadLabelMap(const std::filesystem::path& path, const GridGeometry& gri
     try {
         // A headerless raw map has no spacing of its own: it takes the volume's (its dims and type from its name).
         RawOptions raw;
-        raw.spacing = grid.spacing;
+        if (isRawFileName(path)) raw.spacing = grid.spacing;
         v = loadVolume(path, raw);
     } catch (const InputError& e) {
         throw InputError(std::string(flag) + ": " + e.what());

@@ -96,6 +96,19 @@ Volume loadVolume(const fs::path& path, const RawOptions& raw) {
     if (!fs::exists(status)) throw fileError(path.string(), "no such file or folder");
     if (!raw.series.empty() && !fs::is_directory(status))
         throw fileError(path.string(), "--series chooses a series of a DICOM folder; this is a file");
+    // The raw options would be ignored by every other format, whose header (or DICOM files) give what they say.
+    const bool folder = fs::is_directory(status);
+    const Format* format = folder ? nullptr : formatOf(path);
+    if (folder || (format && format->load != loadRaw)) {
+        std::string given;
+        for (const auto& [set, flag] : {std::pair{raw.dims.has_value(), "--dims"}, {raw.type.has_value(), "--type"},
+                                        {raw.spacing.has_value(), "--spacing"}, {raw.bigEndian, "--big-endian"}})
+            if (set) given += (given.empty() ? "" : ", ") + std::string(flag);
+        if (!given.empty())
+            throw fileError(path.string(), given + ": for headerless raw files (.raw, .raw.gz) only; this " +
+                                               (folder ? "DICOM series" : "file's header") +
+                                               " gives the grid, type and byte order itself");
+    }
     Volume v = fs::is_directory(status) ? loadThroughModule(ModuleFormat::DicomSeries, path, raw)
                                           : loaderFor(path)(path, raw);
     requireValidGeometry(v.grid, path);
@@ -105,5 +118,10 @@ Volume loadVolume(const fs::path& path, const RawOptions& raw) {
 }
 
 bool isVolumeFileName(const fs::path& path) { return formatOf(path) != nullptr; }
+
+bool isRawFileName(const fs::path& path) {
+    const Format* format = formatOf(path);
+    return format && format->load == loadRaw;
+}
 
 }  // namespace vr

@@ -22,7 +22,8 @@ struct RawOptions {
 // Raw (.raw, .raw.gz), NRRD (.nrrd/.nhdr), MetaImage (.mhd/.mha), NIfTI (.nii/.nii.gz), DICOM series (a folder),
 // VTK image data (.vti, legacy .vtk structured points), OpenVDB (.vdb, first float grid, densified over its
 // active bounding box), chosen by the (case-insensitive) file name. `raw`'s dims, type, spacing and byte order apply
-// to raw files only, its series to DICOM folders only (a series given for a file is an InputError).
+// to raw files only (given for another format, an InputError naming them), its series to DICOM folders only (a
+// series given for a file is an InputError).
 // Voxels are x fastest as stored (DICOM rows top first, slices by increasing position along the slice normal);
 // spacing comes from the file, and grid.origin is the corner of voxel (0,0,0), half a voxel before the first
 // sample's position in the file. Sets sourceType (Float32 for types other than the four, and for rescaled
@@ -35,5 +36,8 @@ Volume loadVolume(const std::filesystem::path& path, const RawOptions& raw = {})
 
 // Whether the file name ends as a volume file that loadVolume reads does (any case): .raw, .nii.gz, ...
 bool isVolumeFileName(const std::filesystem::path& path);
+// Whether loadVolume reads `path` as a headerless raw file (.raw, .raw.gz, in any case): the one the raw options
+// describe.
+bool isRawFileName(const std::filesystem::path& path);
 
 }  // namespace vr
