@@ -115,6 +115,9 @@ TEST_F(ClassifyLabelMaps, RefusesBadTablesAndMissingLabels) {
     EXPECT_NE(messageOf("1 a 0 0 0 10\n1 b 0 0 0 10\n").find("label 1 is given twice"), std::string::npos);
     EXPECT_NE(messageOf("70000 a 0 0 0 10\n").find("outside 0..65535"), std::string::npos);
     EXPECT_NE(messageOf("# nothing\n").find("holds no label"), std::string::npos);
+    // A binary table (MRIcron's .lut) is quoted escaped, not printed to the terminal byte for byte.
+    const std::string binary = messageOf(std::string("\xFF\xCC\x00\x1B[2J\n", 7));
+    EXPECT_NE(binary.find("got '\\xFF\\xCC\\x00\\x1B[2J'"), std::string::npos) << binary;
     const fs::path path = writeTable("0 background 0 0 0 0\n1 skin 230 180 150 60\n");
     const LabelColourTable table = readLabelColourTable(path, "--label-colors");
     const std::string missing = errorOf([&] { labelColours(labels, &table, "--label-colors"); });

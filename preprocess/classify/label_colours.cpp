@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/printable_text.h"
 #include "core/scalar_classification.h"
 
 namespace vr {
@@ -26,7 +27,7 @@ LabelColourTable readLabelColourTable(const std::filesystem::path& path, const c
         std::string name, extra;
         const std::string at = where + " line " + std::to_string(number);
         if (!(fields >> index >> name >> r >> g >> b >> a) || (fields >> extra))
-            throw InputError(at + ": expected 'index name r g b a' (3D Slicer's colour table), got '" + line + "'");
+            throw InputError(at + ": expected 'index name r g b a' (3D Slicer's colour table), got '" + printableText(line, 80) + "'");
         if (index < 0 || index > 65535)
             throw InputError(at + ": label " + std::to_string(index) + " is outside 0..65535");
         for (long long value : {r, g, b, a})

@@ -3,6 +3,8 @@
 #include <cerrno>
 #include <system_error>
 
+#include "core/printable_text.h"
+
 namespace vr {
 namespace fs = std::filesystem;
 
@@ -32,7 +34,7 @@ std::string BoundedReader::open() {
 }
 
 InputError BoundedReader::fail(const std::string& problem) const {
-    return fileError(path_.string(), subject_ + ": " + problem);
+    return fileError(path_.string(), subject_ + ": " + printableText(problem, 400));
 }
 
 void BoundedReader::seek(std::uint64_t at, const std::string& what) {
