@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "core/errors.h"
+#include "core/printable_text.h"
 #include "io/atomic_file.h"
 
 namespace vr {
@@ -93,9 +94,9 @@ CasterCalibration readCasterCalibration(const fs::path& path) {
     try {
         return calibrationFromJson(json::parse(in));
     } catch (const json::exception& e) {
-        throw fileError(path.string(), std::string("not valid JSON: ") + e.what());
+        throw fileError(path.string(), std::string("not valid JSON: ") + printableText(e.what()));
     } catch (const InputError& e) {
-        throw fileError(path.string(), e.what());
+        throw fileError(path.string(), printableText(e.what()));
     }
 }
 

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <functional>
 
+#include "core/printable_text.h"
 #include "io/crc32.h"
 #include "io/prepared_chunks.h"
 #include "io/prepared_file.h"
@@ -122,7 +123,7 @@ Header readHeader(const Reader& r) {
     try {
         header = json::parse(text);
     } catch (const json::exception& e) {
-        throw r.fail(std::string("bad header: ") + e.what());
+        throw r.fail(std::string("bad header: ") + printableText(e.what()));
     }
 
     PreparedVolume& p = h.prepared;
@@ -201,7 +202,7 @@ Header readHeader(const Reader& r) {
     try {
         eacdCode = parseExtentCode(field<std::string>(r, header, "eacdCode"), "'eacdCode'");
     } catch (const InputError& e) {
-        throw r.fail(std::string("bad header: ") + e.what());
+        throw r.fail(std::string("bad header: ") + printableText(e.what()));
     }
 
     json compression = field<json>(r, header, "compression");

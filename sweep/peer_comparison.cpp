@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "core/number_text.h"
+#include "core/printable_text.h"
 #include "sweep/metrics/image_error.h"
 
 namespace vr {
@@ -72,7 +73,7 @@ json comparePeers(const fs::path& peersDir, const std::map<double, Image>& refer
     try {
         doc = json::parse(in);
     } catch (const json::exception& e) {
-        throw fileError(file.string(), std::string("malformed JSON: ") + e.what());
+        throw fileError(file.string(), std::string("malformed JSON: ") + printableText(e.what()));
     }
     if (!doc.contains("peers") || !doc["peers"].is_array()) throw fileError(file.string(), "no \"peers\" array");
     json result = json::array();

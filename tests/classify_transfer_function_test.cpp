@@ -155,6 +155,7 @@ TEST(ClassifyTransferFunction, BadInputNamesTheFileAndTheProblem) {
     expectError(R"([{"Points": [0, 0, 0.5, 0,)", "malformed JSON");
     expectError(R"({"Points": [0, NaN, 0.5, 0]})", "malformed JSON");
     expectError(R"({"Points": [0, 1e999, 0.5, 0]})", "malformed JSON");
+    expectError("\xFF\xCC", "last read: '\\xFF'");  // a binary file's bytes quoted escaped
     expectError(R"({"RGBPoints": [0, 0, 0, 0]})", "no \"Points\"");
     expectError(R"([])", "empty");
     expectError(R"(42)", "expected a ParaView preset");

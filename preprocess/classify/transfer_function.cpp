@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/printable_text.h"
 
 namespace vr {
 namespace {
@@ -138,7 +139,7 @@ TransferFunction parseTransferFunction(const std::string& jsonText, const std::s
     try {
         doc = nlohmann::json::parse(jsonText);
     } catch (const nlohmann::json::exception& e) {
-        throw fileError(sourceName, std::string("malformed JSON: ") + e.what());
+        throw fileError(sourceName, std::string("malformed JSON: ") + printableText(e.what()));
     }
     if (doc.is_array()) {
         if (doc.empty()) throw fileError(sourceName, "the list of presets is empty");
