@@ -150,14 +150,18 @@ std::vector<std::pair<double, double>> pendingSettings(const SweepOptions& o, co
                render;
     };
     const std::string here = made(o.width, o.height, int(o.views * o.elevations.size()), o.renderSettings());
+    const auto compare = [&](const fs::path& file, const std::string& there) {
+        if (there != here)
+            throw fileError(file.string(), "holds rows of " + dataset + " rendered at " + there + "; this sweep "
+                                           "renders at " + here + ": give it another --name, or another -o");
+    };
     for (const SweepRow& r : readSweepCsv(csv)) {
         done.insert(r.key());
-        if (r.dataset != dataset) continue;
-        const std::string there = made(r.width, r.height, r.views, r.render);
-        if (there != here)
-            throw fileError(csv.string(), "holds rows of " + dataset + " rendered at " + there + "; this sweep "
-                                          "renders at " + here + ": give it another --name, or another -o");
+        if (r.dataset == dataset) compare(csv, made(r.width, r.height, r.views, r.render));
     }
+    const fs::path stereo = csv.parent_path() / "stereo.csv";  // measured once per dataset, before its settings
+    for (const StereoRow& r : readStereoCsv(stereo))
+        if (r.dataset == dataset) compare(stereo, made(r.width, r.height, r.views, r.render));
     std::vector<std::pair<double, double>> settings;
     for (double to : o.opacityThresholds)
         for (double ta : o.angleThresholds) {
@@ -211,7 +215,8 @@ void measureStereoRow(const SweepOptions& o, const std::string& dataset, VulkanR
         cameras.push_back(Camera::fit(volume.grid(), p));
     }
     const StereoMeasurement m = measureStereo(renderer, volume, cameras, settings);
-    appendStereoCsv(csv, StereoRow::of(dataset, settings.caster, o.width, o.height, int(views.size()), m));
+    appendStereoCsv(csv, StereoRow::of(dataset, settings.caster, o.width, o.height, int(views.size()),
+                                       o.renderSettings(), m));
     writeImage(images / "stereo_right.png", m.reusedRight.front());
     writeImage(images / "stereo_right_error.png", errorMap(m.fullRight.front(), m.reusedRight.front()));
 }

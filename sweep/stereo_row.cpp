@@ -7,7 +7,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string stereoHeader() {
-    std::string h = "dataset,caster,views,width,height,separation_per_focus,one_eye_ms,pair_ms,full_pair_ms,"
+    std::string h = "dataset,caster,views,width,height,render,separation_per_focus,one_eye_ms,pair_ms,full_pair_ms,"
                     "reproject_ms,recast_pct";
     for (const std::string& c : errorColumns()) h += "," + c;
     return h;
@@ -16,8 +16,8 @@ std::string stereoHeader() {
 }  // namespace
 
 StereoRow StereoRow::of(const std::string& dataset, Caster caster, int width, int height, int views,
-                        const StereoMeasurement& m) {
-    return {dataset, std::string(casterName(caster)), views, width, height, kSeparationPerFocus, m.oneEyeMs,
+                        const std::string& render, const StereoMeasurement& m) {
+    return {dataset, std::string(casterName(caster)), views, width, height, render, kSeparationPerFocus, m.oneEyeMs,
             m.pairMs, m.fullPairMs, m.reprojectMs, 100 * m.recastFraction, m.error};
 }
 
@@ -32,7 +32,7 @@ SweepRow StereoRow::plotted() const {
 
 std::vector<StereoRow> readStereoCsv(const fs::path& path) {
     std::vector<StereoRow> rows;
-    for (const CsvLine& line : readCsvLines(path, stereoHeader(), "stereo.csv", 11 + errorColumns().size())) {
+    for (const CsvLine& line : readCsvLines(path, stereoHeader(), "stereo.csv", 12 + errorColumns().size())) {
         std::size_t i = 2;
         auto next = [&] { return parseCsvNumber(line.cells[i++], line.where); };
         StereoRow r;
@@ -41,6 +41,7 @@ std::vector<StereoRow> readStereoCsv(const fs::path& path) {
         r.views = int(next());
         r.width = int(next());
         r.height = int(next());
+        r.render = line.cells[i++];
         r.separationPerFocus = next();
         r.oneEyeMs = next();
         r.pairMs = next();
@@ -55,7 +56,7 @@ std::vector<StereoRow> readStereoCsv(const fs::path& path) {
 
 void appendStereoCsv(const fs::path& path, const StereoRow& r) {
     std::string line = r.dataset + ',' + r.caster + ',' + std::to_string(r.views) + ',' + std::to_string(r.width) +
-                       ',' + std::to_string(r.height);
+                       ',' + std::to_string(r.height) + ',' + r.render;
     for (double v : {r.separationPerFocus, r.oneEyeMs, r.pairMs, r.fullPairMs, r.reprojectMs, r.recastPercent})
         line += ',' + csvNumber(v);
     for (double v : errorFigures(r.error)) line += ',' + csvNumber(v);

@@ -158,6 +158,12 @@ TEST(SweepSmoke, ResumeSkipsFinishedSettingsAndReRunsAreRefused) {
     const std::vector<SweepRow> rows = readSweepCsv(out / "sweep.csv");
     ASSERT_EQ(rows.size(), 6u);
     EXPECT_EQ(rows.back().render, "tf=mri.tf.json nearest shaded step=0.5 elevations=0");
+    // The stereo row is measured first: a sweep stopped before its settings' rows leaves it alone, and it is not
+    // joined either.
+    fs::remove(out / "sweep.csv");
+    o.width = 48;
+    EXPECT_NE(refusal(o).find("stereo.csv"), std::string::npos) << refusal(o);
+    EXPECT_EQ(readStereoCsv(out / "stereo.csv").back().render, rows.back().render);
 }
 
 TEST(SweepSmoke, BadInputNamesTheProblem) {
