@@ -20,7 +20,8 @@ namespace {
 constexpr double kFootprintsEnd = 0.19, kBordersEnd = 0.81, kNormalsShare = 0.87;
 
 // Labels kBorderCell where a voxel can join no region: its own footprint spreads beyond T_o, or normals mix around it
-// (normals in use); kUnsetCell elsewhere.
+// (normals in use); kUnsetCell elsewhere. `progress` hears the normal classes as they are keyed, then the mixed
+// neighbourhoods and the labels as half the rest each.
 void markBorderVoxels(const Vec3i& dims, const std::vector<EntryRange>& footprints,
                       const ClassificationSpread& spread, double threshold, const RegionKeyer& keyer,
                       const ClassifiedVoxels& voxels, std::vector<uint32_t>& label, const Progress& progress) {
