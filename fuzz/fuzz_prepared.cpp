@@ -82,13 +82,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size & 8) fixBlockChecksums(bytes);
     fixHeaderChecksum(bytes);
     const std::filesystem::path path = vr::fuzz::writeInput("input.vprep", bytes);
-    // The input's size picks which distance fields are read, so that they are fuzzed both read and skipped.
+    // The input's size picks which distance fields are read, and whether as a render reads them (some octants, no
+    // region labels), so that every chunk is fuzzed both read and skipped.
     const unsigned fields = unsigned(size % 8);
+    vr::PreparedReadScope scope;
+    if (size & 16) scope = {unsigned(size >> 5) & vr::kAllOctants, false};
     try {
-        const vr::PreparedVolume p = vr::readPrepared(path, fields);
+        const vr::PreparedVolume p = vr::readPrepared(path, fields, scope);
         const std::size_t voxels = p.grid().voxels();
         const vr::TransferTable& table = p.classification.table;
-        if (p.scalars.values.size() != voxels || p.regions.label.size() != voxels)
+        if (p.scalars.values.size() != voxels || p.regions.label.size() != (scope.regions ? voxels : 0))
             vr::fuzz::finding("readPrepared returned arrays that do not fit the grid");
         if (table.sigma.size() != table.colour.size() || table.size() < 1 ||
             table.size() > vr::kMaxTransferTableEntries)
