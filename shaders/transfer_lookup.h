@@ -41,14 +41,30 @@ struct TableSample {
     double sigma;
     double colour[3];
 };
+// The entries around scalar f, i and j, and the weight w of j.
+struct TableSpot {
+    std::size_t i, j;
+    double w;
+};
+template <typename Table>
+TableSpot tableSpot(const Table& table, double f) {
+    const double t = tableCoordinate(f, table.lo, 1 / table.step, double(table.size() - 1));
+    const std::size_t i = std::size_t(t);
+    return {i, i + 1 < table.size() ? i + 1 : i, t - double(i)};
+}
 template <typename Table>
 TableSample lookUpTable(const Table& table, double f) {
-    const double t = tableCoordinate(f, table.lo, 1 / table.step, double(table.size() - 1));
-    const std::size_t i = std::size_t(t), j = i + 1 < table.size() ? i + 1 : i;
-    const double w = t - double(i);
-    TableSample s{interpolate(table.sigma[i], table.sigma[j], w), {}};
-    for (int a = 0; a < 3; ++a) s.colour[a] = interpolate(table.colour[i][a], table.colour[j][a], w);
+    const TableSpot at = tableSpot(table, f);
+    TableSample s{interpolate(table.sigma[at.i], table.sigma[at.j], at.w), {}};
+    for (int a = 0; a < 3; ++a) s.colour[a] = interpolate(table.colour[at.i][a], table.colour[at.j][a], at.w);
     return s;
+}
+// The extinction alone, as lookUpTable has it: what segmentation first asks of every voxel, most of which are
+// transparent.
+template <typename Table>
+double lookUpSigma(const Table& table, double f) {
+    const TableSpot at = tableSpot(table, f);
+    return interpolate(table.sigma[at.i], table.sigma[at.j], at.w);
 }
 }  // namespace vr::device
 #endif

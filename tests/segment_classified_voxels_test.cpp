@@ -39,6 +39,7 @@ TEST(SegmentClassifiedVoxels, OnDemandEqualTheClassifiedVolume) {
         for (std::size_t i = 0; i < stored.sigma.size(); ++i) {
             const VoxelOptics o = onDemand.optics(i);
             ASSERT_EQ(o.sigma, stored.sigma[i]) << i;
+            ASSERT_EQ(onDemand.sigma(i), stored.sigma[i]) << i;  // looked up alone
             ASSERT_EQ(o.colour, stored.colour[i]) << i;
             ASSERT_EQ(onDemand.normal(i), stored.normal[i]) << i;
             ASSERT_EQ(onDemand.opacity(o.sigma), stored.opacity(i)) << i;

@@ -51,7 +51,10 @@ public:
     // The voxel's label (0 without a label map): regions never hold two.
     uint16_t label(std::size_t i) const { return labels_ ? labels_->label[i] : 0; }
     bool labelled() const { return labels_ != nullptr; }
-    float sigma(std::size_t i) const { return stored_ ? stored_->sigma[i] : optics(i).sigma; }
+    float sigma(std::size_t i) const {
+        if (stored_) return stored_->sigma[i];
+        return labels_ ? optics(i).sigma : float(device::lookUpSigma(*table_, scalars_->values[i]));
+    }
     // The unit normal, or (0,0,0) where the gradient is flat; only where hasNormals().
     std::array<float, 3> normal(std::size_t i) const;
 
