@@ -258,8 +258,8 @@ TEST(PipelineStaged, AVolumeTooLargeForTheMemoryIsRefusedBeforeAnyStage) {
     EXPECT_GT(availableMemoryBytes(), 0u);
 }
 
-// volprep's stages: the ray probe, then the write last, timed, after the statistics the file holds (which hold the
-// probe's time and cannot hold the write's).
+// volprep's stages: the ray probe, the statistics and the write last, each timed; the statistics the file holds have
+// the probe's time and cannot have their own or the write's.
 TEST(PipelineStaged, WritesTheResultWithItsStatisticsAsTheLastStage) {
     StagedPreparation staged = stagedHead();
     const PrepareOptions o = headOptions();
@@ -267,9 +267,11 @@ TEST(PipelineStaged, WritesTheResultWithItsStatisticsAsTheLastStage) {
     const std::filesystem::path file = test::scratchDir("pipeline_staged_write") / "head.vprep";
     staged.write(file);
     EXPECT_EQ(names(staged.stageTimes()),
-              (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd", "probe", "write"}));
+              (std::vector<std::string>{"load", "classify", "segment", "acd", "pc", "eacd", "probe", "statistics",
+                                        "write"}));
     const PreparedVolume& p = staged.withStatistics();
     EXPECT_TRUE(p.meta.statistics["seconds"].contains("probe"));
+    EXPECT_FALSE(p.meta.statistics["seconds"].contains("statistics"));
     EXPECT_FALSE(p.meta.statistics["seconds"].contains("write"));
     ASSERT_TRUE(p.meta.rayProbe);
     EXPECT_EQ(p.meta.rayProbe, probeRays(p));  // the render core's probe of the result

@@ -161,10 +161,12 @@ const PreparedVolume& StagedPreparation::prepare(const PrepareOptions& options, 
 
 const PreparedVolume& StagedPreparation::withStatistics() {
     if (prepared_.meta.statistics.is_null()) {
-        // The probe first, as a stage of its own: 0.9 s of a 512^3 CT's preparation that the times left out.
+        // Both timed as stages, with their bars: the statistics read every field (0.8 s of a 512^3 CT's preparation,
+        // between the fields and the write with no bar), and cannot hold their own time, as the write cannot.
         probeTimes_.clear();
         prepared_.meta.rayProbe = runStage("probe", probeTimes_, [&] { return probeRays(prepared_); });
-        prepared_.meta.statistics = preparedStatistics(prepared_, stageTimes());
+        prepared_.meta.statistics =
+            runStage("statistics", probeTimes_, [&] { return preparedStatistics(prepared_, stageTimes()); });
     }
     return prepared_;
 }

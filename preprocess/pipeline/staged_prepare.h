@@ -56,8 +56,8 @@ public:
     const PreparedVolume& prepare(const PrepareOptions& options, PrepStage last = PrepStage::Fields);
 
     // The result with meta.rayProbe (probeRays: a few hundred small CPU renders, timed as the stage "probe") and
-    // meta.statistics (preparedStatistics, with stageTimes()) filled in, as a prepared file holds them; until a stage
-    // runs again.
+    // meta.statistics (preparedStatistics, with stageTimes() up to the probe; timed as the stage "statistics") filled
+    // in, as a prepared file holds them; until a stage runs again.
     const PreparedVolume& withStatistics();
     // Writes withStatistics() to `path` atomically (writePrepared) as the stage "write": the last of stageTimes()
     // until a stage runs again. Throws InputError where the file cannot be written.
@@ -67,8 +67,8 @@ public:
 
     // The stages the last prepare() ran, in order (classify, segment, acd, pc, eacd); empty when nothing had changed.
     const std::vector<StageTime>& lastStages() const { return lastStages_; }
-    // The times of the stage runs behind the current result, in order: "load" first where it ran, then "probe" and
-    // "write" last where they ran.
+    // The times of the stage runs behind the current result, in order: "load" first where it ran, then "probe",
+    // "statistics" and "write" last where they ran.
     std::vector<StageTime> stageTimes() const;
     // How many times `stage` has run since construction (a stage that threw included).
     int runs(PrepStage stage) const { return runs_[int(stage)]; }
@@ -93,7 +93,7 @@ private:
     std::optional<FieldsOptions> fieldsWith_;
     std::vector<StageTime> loadTimes_;                           // of loading the volume, where it was loaded
     std::array<std::vector<StageTime>, kPrepStages> times_;      // of the run behind each stage's result
-    std::vector<StageTime> probeTimes_;                          // of the current result's ray probe
+    std::vector<StageTime> probeTimes_;                          // of the current result's probe and statistics
     std::vector<StageTime> writeTimes_;                          // of writing the current result
     std::array<int, kPrepStages> runs_{};
     std::vector<StageTime> lastStages_;
