@@ -2,12 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <utility>
+#include <vector>
 
 #include "core/errors.h"
 #include "preprocess/classify/classify.h"
+#include "preprocess/segment/region_key.h"
 #include "support/load_dataset.h"
 #include "support/volumes.h"
 
@@ -43,6 +46,22 @@ TEST(SegmentClassifiedVoxels, OnDemandEqualTheClassifiedVolume) {
             ASSERT_EQ(o.colour, stored.colour[i]) << i;
             ASSERT_EQ(onDemand.normal(i), stored.normal[i]) << i;
             ASSERT_EQ(onDemand.opacity(o.sigma), stored.opacity(i)) << i;
+        }
+        // A row's normals at once, as segmentation's normal classes take them: each one bit for bit.
+        const Vec3i d = volume->grid.dims;
+        std::vector<std::array<float, 3>> row(std::size_t(d.x));
+        for (std::size_t first = 0; first < stored.sigma.size(); first += row.size()) {
+            onDemand.normals(first, d.x, row.data());
+            for (std::size_t x = 0; x < row.size(); ++x) ASSERT_EQ(row[x], stored.normal[first + x]) << first + x;
+        }
+        // And the keys of any stretch of voxels, rows and all, as the voxel-by-voxel key.
+        for (const SegmentationParams p :
+             {SegmentationParams{0.02, 5, true, true}, SegmentationParams{0, 0, true, true}}) {
+            const RegionKeyer keyer(onDemand, p);
+            std::vector<RegionKey> keys(std::size_t(3 * d.x + 7));
+            keyer.normalKeys(std::size_t(d.x) - 3, keys.size(), keys.data());
+            for (std::size_t k = 0; k < keys.size(); ++k)
+                ASSERT_EQ(keys[k], keyer.normalKey(std::size_t(d.x) - 3 + k)) << k;
         }
         EXPECT_FALSE(ClassifiedVoxels(*volume, table, false).hasNormals());
     }

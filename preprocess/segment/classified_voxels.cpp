@@ -1,5 +1,7 @@
 #include "preprocess/segment/classified_voxels.h"
 
+#include <algorithm>
+
 #include "core/errors.h"
 
 namespace vr {
@@ -40,6 +42,23 @@ std::array<float, 3> ClassifiedVoxels::normal(std::size_t i) const {
     if (labels_ && device::labelShapesNormal(device::labelSigmaOf(*labels_, i)))
         return unitNormal(device::indicatorGradient(labels_->label, d, grid_->spacing, v, labels_->label[i]), 0);
     return unitNormal(centralGradient(*scalars_, v.x, v.y, v.z), flatGradient_);
+}
+
+void ClassifiedVoxels::normals(std::size_t first, int count, std::array<float, 3>* out) const {
+    if (stored_ || labels_) {  // a label's normal comes from its indicator, voxel by voxel
+        for (int i = 0; i < count; ++i) out[i] = normal(first + std::size_t(i));
+        return;
+    }
+    const Vec3i& d = grid_->dims;
+    const std::size_t nx = std::size_t(d.x), ny = std::size_t(d.y);
+    const int x0 = int(first % nx), y = int(first / nx % ny), z = int(first / (nx * ny));
+    constexpr int kRun = 256;
+    double gx[kRun], gy[kRun], gz[kRun];
+    for (int done = 0; done < count; done += kRun) {
+        const int n = std::min(kRun, count - done);
+        centralGradientRun(*scalars_, x0 + done, n, y, z, gx, gy, gz);
+        for (int i = 0; i < n; ++i) out[done + i] = unitNormal(Vec3d{gx[i], gy[i], gz[i]}, flatGradient_);
+    }
 }
 
 }  // namespace vr

@@ -57,6 +57,9 @@ public:
     }
     // The unit normal, or (0,0,0) where the gradient is flat; only where hasNormals().
     std::array<float, 3> normal(std::size_t i) const;
+    // normal() of voxels first .. first + count - 1, which lie in one row along x, into out: their gradients taken a
+    // row at a time (centralGradientRun), bit for bit as normal() takes each.
+    void normals(std::size_t first, int count, std::array<float, 3>* out) const;
 
 private:
     const GridGeometry* grid_;

@@ -85,8 +85,9 @@ void RegionKeyer::opacityAndColour(const VoxelOptics& o, RegionKey& key) const {
     for (int c = 0; c < 3; ++c) key.colour[c] = bin(o.colour[c], opacityWidth_, o.colour[c]);
 }
 
-void RegionKeyer::normal(std::size_t i, RegionKey& key) const {
-    const std::array<float, 3> n = voxels_.normal(i);
+void RegionKeyer::normal(std::size_t i, RegionKey& key) const { normal(voxels_.normal(i), key); }
+
+void RegionKeyer::normal(const std::array<float, 3>& n, RegionKey& key) const {
     if (exactNormals_) {
         key.normal = {bits(n[0]), bits(n[1]), bits(n[2])};
     } else {
@@ -111,6 +112,28 @@ RegionKey RegionKeyer::normalKey(std::size_t i) const {
     key.opacity = 1;
     if (useNormals_) normal(i, key);
     return key;
+}
+
+void RegionKeyer::normalKeys(std::size_t first, std::size_t count, RegionKey* out) const {
+    const std::size_t nx = std::size_t(voxels_.grid().dims.x);
+    constexpr std::size_t kPiece = 256;
+    std::array<std::array<float, 3>, kPiece> normals;
+    for (std::size_t at = first, end = first + count; at < end;) {
+        const std::size_t n = std::min({kPiece, end - at, nx - at % nx});  // within one row
+        RegionKey* keys = out + (at - first);
+        bool shown = false;
+        for (std::size_t i = 0; i < n; ++i) {
+            keys[i] = RegionKey{};
+            keys[i].opacity = voxels_.sigma(at + i) > 0 ? 1 : 0;
+            shown = shown || keys[i].opacity;
+        }
+        if (shown && useNormals_) {
+            voxels_.normals(at, int(n), normals.data());
+            for (std::size_t i = 0; i < n; ++i)
+                if (keys[i].opacity) normal(normals[i], keys[i]);
+        }
+        at += n;
+    }
 }
 
 PackedKey RegionKeyer::pack(const RegionKey& key) const {

@@ -53,6 +53,9 @@ public:
     // The key's normal part alone: a default key where the voxel is transparent, else opacity 1 and the normal
     // binned (or its bits) as operator() has it; default normals where normals are ignored.
     RegionKey normalKey(std::size_t voxel) const;
+    // normalKey() of voxels first .. first + count - 1 into out, their normals taken a row at a time
+    // (ClassifiedVoxels::normals) where a piece of a row holds one that is not transparent.
+    void normalKeys(std::size_t first, std::size_t count, RegionKey* out) const;
     bool usesNormals() const { return useNormals_; }
     // Whether normals are binned into cube-map cells (T_a > 0): the normal key is then normal[0] alone, below
     // normalCells().
@@ -78,6 +81,7 @@ private:
     uint32_t bin(double value, double width, float exact) const;
     void opacityAndColour(const VoxelOptics& optics, RegionKey& key) const;
     void normal(std::size_t voxel, RegionKey& key) const;
+    void normal(const std::array<float, 3>& n, RegionKey& key) const;
 
     const ClassifiedVoxels voxels_;
     double opacityWidth_ = 0;  // bin width of opacity and colour; 0 = exact
