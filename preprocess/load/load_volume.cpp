@@ -109,8 +109,7 @@ Volume loadVolume(const fs::path& path, const RawOptions& raw) {
                                                (folder ? "DICOM series" : "file's header") +
                                                " gives the grid, type and byte order itself");
     }
-    Volume v = fs::is_directory(status) ? loadThroughModule(ModuleFormat::DicomSeries, path, raw)
-                                          : loaderFor(path)(path, raw);
+    Volume v = folder ? loadThroughModule(ModuleFormat::DicomSeries, path, raw) : loaderFor(path)(path, raw);
     requireValidGeometry(v.grid, path);
     requireFinite(v, path);
     v.source = path.string();

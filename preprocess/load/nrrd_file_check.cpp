@@ -6,7 +6,6 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -117,11 +116,9 @@ void checkNrrdFile(const fs::path& path) {
                         "data files)");
     for (const char* key : {"data file", "datafile"}) {
         if (!fields.contains(key)) continue;
-        std::istringstream in(fields[key]);
-        std::vector<std::string> words;
-        for (std::string word; in >> word;) words.push_back(word);
-        if (words.empty()) throw file.fail(std::string("the \"") + key + "\" field names no file");
-        if (words[0] == "LIST" || words.size() >= 4)
+        const std::vector<std::string> named = words(fields[key]);
+        if (named.empty()) throw file.fail(std::string("the \"") + key + "\" field names no file");
+        if (named[0] == "LIST" || named.size() >= 4)
             throw file.fail(std::string("the \"") + key + "\" field \"" + fields[key] +
                             "\" splits the data into several files, which are not read: write them as one data file");
     }

@@ -82,7 +82,7 @@ void StagedPreparation::invalidateFrom(PrepStage stage) {
             prepared_.fields = {};
     }
     for (int s = int(stage); s < kPrepStages; ++s) times_[s].clear();
-    probeTimes_.clear();
+    statisticsTimes_.clear();
     writeTimes_.clear();
     prepared_.meta.statistics = {};
     prepared_.meta.rayProbe.reset();
@@ -163,10 +163,10 @@ const PreparedVolume& StagedPreparation::withStatistics() {
     if (prepared_.meta.statistics.is_null()) {
         // Both timed as stages, with their bars: the statistics read every field (0.8 s of a 512^3 CT's preparation,
         // between the fields and the write with no bar), and cannot hold their own time, as the write cannot.
-        probeTimes_.clear();
-        prepared_.meta.rayProbe = runStage("probe", probeTimes_, [&] { return probeRays(prepared_); });
+        statisticsTimes_.clear();
+        prepared_.meta.rayProbe = runStage("probe", statisticsTimes_, [&] { return probeRays(prepared_); });
         prepared_.meta.statistics =
-            runStage("statistics", probeTimes_, [&] { return preparedStatistics(prepared_, stageTimes()); });
+            runStage("statistics", statisticsTimes_, [&] { return preparedStatistics(prepared_, stageTimes()); });
     }
     return prepared_;
 }
@@ -184,7 +184,7 @@ void StagedPreparation::write(const std::filesystem::path& path) {
 std::vector<StageTime> StagedPreparation::stageTimes() const {
     std::vector<StageTime> times = loadTimes_;
     for (const auto& t : times_) times.insert(times.end(), t.begin(), t.end());
-    times.insert(times.end(), probeTimes_.begin(), probeTimes_.end());
+    times.insert(times.end(), statisticsTimes_.begin(), statisticsTimes_.end());
     times.insert(times.end(), writeTimes_.begin(), writeTimes_.end());
     return times;
 }

@@ -93,7 +93,7 @@ private:
     std::optional<FieldsOptions> fieldsWith_;
     std::vector<StageTime> loadTimes_;                           // of loading the volume, where it was loaded
     std::array<std::vector<StageTime>, kPrepStages> times_;      // of the run behind each stage's result
-    std::vector<StageTime> probeTimes_;                          // of the current result's probe and statistics
+    std::vector<StageTime> statisticsTimes_;                     // of the current result's probe and statistics
     std::vector<StageTime> writeTimes_;                          // of writing the current result
     std::array<int, kPrepStages> runs_{};
     std::vector<StageTime> lastStages_;

@@ -108,9 +108,7 @@ RegionKey RegionKeyer::operator()(std::size_t i) const {
 
 RegionKey RegionKeyer::normalKey(std::size_t i) const {
     RegionKey key;
-    if (!(voxels_.sigma(i) > 0)) return key;
-    key.opacity = 1;
-    if (useNormals_) normal(i, key);
+    normalKeys(i, 1, &key);
     return key;
 }
 

@@ -1,6 +1,5 @@
 #include "volrender/cmd/movie_writer.h"
 
-
 #include "core/errors.h"
 #include "core/lower_case.h"
 #include "tools/runtime_module.h"

@@ -46,25 +46,29 @@ std::string eyePath(const std::string& path, std::string_view eye) {
     return (p.parent_path() / (p.stem().string() + "_" + std::string(eye) + p.extension().string())).string();
 }
 
+namespace {
+
+// The outputs a frame goes to: NAME_left.EXT and NAME_right.EXT for separate eyes, else NAME.EXT.
+std::vector<std::string> outputPaths(const std::string& path, std::optional<StereoLayout> layout) {
+    if (layout == StereoLayout::Separate) return {eyePath(path, "left"), eyePath(path, "right")};
+    return {path};
+}
+
+}  // namespace
+
 std::vector<std::string> frameFiles(const std::string& path, int views, std::optional<StereoLayout> layout) {
-    std::vector<std::string> eyes{path};
-    if (layout == StereoLayout::Separate) eyes = {eyePath(path, "left"), eyePath(path, "right")};
     std::vector<std::string> files;
     for (int view = 0; view < (movieFormat(path) ? 1 : views); ++view)
-        for (const std::string& eye : eyes) files.push_back(viewFileName(eye, view, views));
+        for (const std::string& output : outputPaths(path, layout))
+            files.push_back(viewFileName(output, view, views));
     return files;
 }
 
 FrameOutput::FrameOutput(const std::string& path, const MovieSpec& movie, std::optional<StereoLayout> layout)
     : layout_(layout) {
-    if (layout == StereoLayout::Separate) {
-        outputs_.emplace_back(eyePath(path, "left"), movie);
-        outputs_.emplace_back(eyePath(path, "right"), movie);
-        return;
-    }
-    MovieSpec frame = movie;
+    MovieSpec frame = movie;  // one eye's size in each of two outputs, or the pair's frame in one
     std::tie(frame.width, frame.height) = frameSize(movie.width, movie.height, layout);
-    outputs_.emplace_back(path, frame);
+    for (const std::string& output : outputPaths(path, layout)) outputs_.emplace_back(output, frame);
 }
 
 std::string FrameOutput::name(int view) const {
