@@ -580,7 +580,8 @@ void main() {
     // any of them needs it, so a lookup in the sample loop cost nearly every sample, and a sample beside the lookup
     // every leap. An iteration is a leap or a sample; a sampled block's lookup and first sample are one.
     if (CASTER == kBlocks) {
-        while (mine && !failed && !hit && k < kEnd && !settled(running)) {
+        // Tested at the end of each trip, as the composite loop below (sampling); a ray's optical depth stays 0.
+        if (sampling(mine, failed, hit, k, kEnd, depth, running)) do {
             // Leaps until a block that could change the result, which sample k (voxel v) starts.
             ivec3 v;
             vec2 finest;   // the finest block's scalar range at sample k
@@ -624,7 +625,7 @@ void main() {
                 }
                 if (!enterSample(g, iv, k, v, iterations, failed)) break;
             }
-        }
+        } while (sampling(mine, failed, hit, k, kEnd, depth, running));
     } else do {
         // Tested at the end of each trip, not at its start: llvmpipe runs a loop's body once more after its last ray
         // in a SIMD batch has left it (the test at a trip's start leaves under a mask), which cost an EACD frame 4 %.
