@@ -721,8 +721,8 @@ void main() {
             shaded = shadedSpan(spanColour, spanAlpha, spanFootprint, spanVoxel, toEye, toLight);
         // A stereo left eye stores the segments of the bands whose far end the span reaches, from its record
         // there: what it gathered up to there, the span split where the band ends (however many samples the span
-        // leaps).
-        while (STEREO_BANDS && bandEndBeyond(t1, endInverse, band)) {
+        // leaps). `crossing` is the loop's first test (tested at the end of each trip, as the sample loop's).
+        if (crossing) do {
             float bandEnd = 1.0 / endInverse;
             precise float part = spanDepthBefore(spanDepth.x, t0, t1, bandEnd);
             float partAlpha = spanOpacity(part);
@@ -735,7 +735,7 @@ void main() {
             bandStartMoment = endMoment;
             bandGathered = false;
             endInverse = bandEndInverse(bandOrigin, perBand, ++band);
-        }
+        } while (bandEndBeyond(t1, endInverse, band));
         if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
         compositeSpan(shaded, spanAlpha, spanDepth, t0, t1, colour, colourLost, transmittance, depth, moment);
         k += n;

@@ -234,8 +234,11 @@ void reprojectBands() {
     bool covered = true;  // every band so far is covered, each candidate seen through, or skipped
     vec4 front = vec4(0.0, 0.0, 0.0, 1.0);
     uint near = done ? 0u : bandsUsedNear(x, y);
-    for (int b = 0; !done; ++b) {
-        b = nextBand(x, b, near);
+    // The loops test at the end of each trip: llvmpipe runs a loop's body once more, under an empty mask, after
+    // its last invocation in a SIMD batch has left it by a test at the start of a trip.
+    int b = -1;
+    if (!done) do {
+        b = nextBand(x, b + 1, near);
         if (b >= params.bandCount) break;
         ivec2 window = bandCandidates(x, b);
         int first = window.x, last = window.y;
@@ -250,7 +253,8 @@ void reprojectBands() {
         vec4 bestColour = vec4(0.0);
         int covers = 0;  // pieces that are not faint at both ends
         Segment a = segmentAt(first, y, b, (used & 1u) != 0u);
-        for (int i = first; i <= last; ++i) {
+        int i = first;  // first <= last (bandCandidates)
+        do {
             Segment s = segmentAt(i + 1, y, b, ((used >> (i + 1 - first)) & 1u) != 0u);
             if (a.outside || s.outside) {
                 clipped = true;
@@ -275,7 +279,7 @@ void reprojectBands() {
                 }
             }
             a = s;
-        }
+        } while (++i <= last);
         covered = covered && found && !hidden;
         if (!found) {
             reuse = !clipped && !hidden;  // nothing of this band lands here, or the left eye could not tell
@@ -287,7 +291,7 @@ void reprojectBands() {
         }
         // What lies behind a right pixel this opaque adds at most 1 - kOpaqueAlpha of its colour.
         done = !reuse || transmittance <= seen;
-    }
+    } while (!done);
     if (x >= width) return;
     float startDepth =
         bandNearDepth(params.disparityScale, params.focusInverse, params.firstDisparity, params.maxSpread, startBand);
