@@ -115,14 +115,10 @@ uint storeBandSegment(ivec2 pixel, int band, vec4 start, float startMoment, vec4
                                                  params.stereoBands.x, params.stereoBands.y));
 }
 
-// The pixel's mask of used bands, in its own word of the texels of itself and the three pixels before it in its row
-// (bandMaskTexel).
+// The pixel's mask of used bands, one word (bandMaskTexel): llvmpipe stores a buffer lane by lane and word by word.
 void storeBandMask(ivec2 pixel, uint mask) {
     uint texel = bandMaskTexel(pixel.x, pixel.y, params.imageSize.x, params.imageSize.y, params.stereoBandCount);
-    segments[texel].x = mask;
-    if (pixel.x >= 1) segments[texel - 1u].y = mask;
-    if (pixel.x >= 2) segments[texel - 2u].z = mask;
-    if (pixel.x >= 3) segments[texel - 3u].w = mask;
+    segments[texel][pixel.x & 3] = mask;
 }
 
 // Composites a span over [t0, t1) (its shaded colour, opacity and optical depth as a float pair) into the ray's

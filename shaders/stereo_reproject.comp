@@ -181,19 +181,21 @@ ivec2 bandCandidates(int x, int b) {
     return ivec2(int(floor(float(x) - 1.0 - near - params.maxSpread)) + 1, int(floor(float(x) - near)));
 }
 
-// The masks of used bands of left pixels x .. x + 3 of row y (a mask texel).
-uvec4 masksAt(int x, int y) {
-    return imageLoad(leftBands, int(bandMaskTexel(x, y, params.imageSize.x, params.imageSize.y, params.bandCount)));
+// The masks of used bands of left pixels 4 t .. 4 t + 3 of row y (a mask texel; a word past the row's end is not
+// this frame's).
+uvec4 masksAt(int t, int y) {
+    return imageLoad(leftBands, int(bandMaskTexel(4 * t, y, params.imageSize.x, params.imageSize.y, params.bandCount)));
 }
 
 // The bands that any candidate of right pixel x (of any band: the last band's first .. the first band's last + 1)
-// is used in (stereo_reprojection.h bandUsed): their masks OR'ed, a texel per four candidates.
+// is used in (stereo_reprojection.h bandUsed): their masks OR'ed with their texels' neighbours' (a superset costs
+// only a band's work: nextBand).
 uint bandsUsedNear(int x, int y) {
     int width = params.imageSize.x;
     int lo = clamp(bandCandidates(x, params.bandCount - 1).x, 0, width - 1);
     int hi = clamp(bandCandidates(x, 0).y + 1, 0, width - 1);
     uvec4 masks = uvec4(0u);
-    for (int base = lo; base <= hi; base += 4) masks |= masksAt(clamp(base, 0, max(width - 4, 0)), y);
+    for (int t = lo / 4; t <= hi / 4; ++t) masks |= masksAt(t, y);
     return masks.x | masks.y | masks.z | masks.w;
 }
 
@@ -209,13 +211,16 @@ int nextBand(int x, int b, uint near) {
     return b;
 }
 
-// Which of the four left pixels from x (moved into the row where the image's edge leaves fewer) are used in band b,
-// as bits counted from `first`.
-uint usedFrom(int x, int y, int b, int first) {
-    int base = clamp(x, 0, max(params.imageSize.x - 4, 0));
-    uvec4 bits = (masksAt(base, y) >> uint(b)) & 1u;
-    uint word = bits.x | (bits.y << 1) | (bits.z << 2) | (bits.w << 3);
-    return base >= first ? word << (base - first) : word >> (first - base);
+// Which of left pixels first .. last of row y (those in the image) are used in band b, as bits counted from first.
+uint usedIn(int first, int last, int y, int b) {
+    uint used = 0u;
+    for (int t = max(first, 0) / 4; t <= min(last, params.imageSize.x - 1) / 4; ++t) {
+        uvec4 bits = (masksAt(t, y) >> uint(b)) & 1u;
+        uint word = bits.x | (bits.y << 1) | (bits.z << 2) | (bits.w << 3);
+        int base = 4 * t;
+        used |= base >= first ? word << (base - first) : word >> (first - base);
+    }
+    return used & ((2u << uint(last - first)) - 1u);
 }
 
 void reprojectBands() {
@@ -243,8 +248,7 @@ void reprojectBands() {
         ivec2 window = bandCandidates(x, b);
         int first = window.x, last = window.y;
         // Which of the candidates are used, as bits from first: an unused one's texel is not read.
-        uint used = usedFrom(last - 2, y, b, first);
-        for (int base = first; base < last - 2; base += 4) used |= usedFrom(base, y, b, first);
+        uint used = usedIn(first, last + 1, y, b);
         // No candidate used, all in the image: the band adds nothing (stereo_reprojection.h bandUsed).
         if (used == 0u && first >= 0 && last + 1 < width) continue;
         if (covered) front = vec4(colour, transmittance), startBand = b;

@@ -90,11 +90,11 @@ VR_FUNCTION uint bandTexel(int x, int y, int b, int width, int height) {
     return (uint(b) * uint(height) + uint(y)) * uint(width) + uint(x);
 }
 
-// Where the mask of the bands pixel (x, y) was used in lies (a plane after the bands' segments): texel x's four
-// words hold the masks of pixels x .. x + 3 of its row, so that a texel holds four of a band's candidates for a right
-// pixel (two texels the five of a band 3 pixels wide: stereo_reproject.comp).
+// Where the mask of the bands pixel (x, y) was used in lies (a plane after the bands' segments): word x % 4 of texel
+// x / 4 of its row, so that the caster stores it as one word and a texel holds four neighbours' masks (a band's
+// candidates for a right pixel: stereo_reproject.comp).
 VR_FUNCTION uint bandMaskTexel(int x, int y, int width, int height, int count) {
-    return bandTexel(x, y, count, width, height);
+    return bandTexel(x / 4, y, count, width, height);
 }
 
 // A list entry: a pixel's x and y in 16 bits each (images are at most 16384 wide).
