@@ -429,8 +429,8 @@ bool foldSample(float scalar, uint k, inout float running, inout vec2 sum, inout
 // MIP and MinIP: no later sample can change what the ray shows (blend.h runningSettled).
 bool settled(float running) { return runningSettled(BLEND, running, params.flatAbove, params.flatBelow); }
 
-// Whether the composite loop takes sample k: the ray is in this dispatch, within its cap, before its end and its
-// early termination, and (the other blends) not yet hit or settled.
+// Whether a ray's loop (composite's or the blocks caster's) goes on to sample k: the ray is in this dispatch, within
+// its cap, before its end and its early termination (composite), and not yet hit or settled (the other blends).
 bool sampling(bool mine, bool failed, bool hit, uint k, uint kEnd, vec2 depth, float running) {
     return mine && !failed && !hit && k < kEnd && pairLess(depth, params.ertDepth) && !settled(running);
 }
