@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     app.add_option("--views", views, "pairs of the orbit (azimuth 360/N apart, elevation 20)")
         ->check(CLI::Range(1, 3600))
         ->capture_default_str();
-    app.add_option("--caster", caster, "primitive, pc, acd or eacd")->capture_default_str();
+    app.add_option("--caster", caster, "primitive, pc, acd, eacd or hier")->capture_default_str();
     app.add_option("--to", to, "T_o of the regions")->capture_default_str();
     app.add_option("--ta", ta, "T_a of the regions, degrees")->capture_default_str();
     app.add_option("--step", step, "step in voxels of the smallest spacing")->capture_default_str();
@@ -74,6 +74,7 @@ int main(int argc, char** argv) {
             options.segmentation = {to, ta, true, true};
             RenderSettings s;
             s.caster = parseCaster(caster);
+            if (s.caster == Caster::Hier) options.fields |= kFieldHier;  // built from the scalars, not the regions
             s.stepVoxels = step;
             s.trilinear = true;
             const PreparedVolume p = prepare(test::loadDataset(e), options);
