@@ -28,7 +28,7 @@ bool isCt(const std::string& file) { return file.find("_ct_") != std::string::np
 int main(int argc, char** argv) {
     CLI::App app{"Stereo benchmark: the right eye reprojected from the left against both eyes cast in full"};
     std::vector<std::string> datasets;
-    int size = 512, views = 8, device = -1, pieces = VulkanRenderer::kAutoPieces;
+    int size = 512, views = 8, rounds = 1, device = -1, pieces = VulkanRenderer::kAutoPieces;
     double to = 0.02, ta = 10, step = 0.5;
     std::string caster = "eacd", images;
     app.add_option("--datasets", datasets, "dataset name prefixes in MANIFEST.tsv (default: every raw dataset)")
@@ -36,6 +36,9 @@ int main(int argc, char** argv) {
     app.add_option("--size", size, "image width = height")->capture_default_str();
     app.add_option("--views", views, "pairs of the orbit (azimuth 360/N apart, elevation 20)")
         ->check(CLI::Range(1, 3600))
+        ->capture_default_str();
+    app.add_option("--rounds", rounds, "times the orbit is timed over, taking turns pair by pair (medians over all)")
+        ->check(CLI::Range(1, 100))
         ->capture_default_str();
     app.add_option("--caster", caster, "primitive, pc, acd, eacd or hier")->capture_default_str();
     app.add_option("--to", to, "T_o of the regions")->capture_default_str();
@@ -60,9 +63,9 @@ int main(int argc, char** argv) {
         renderer.setRecastPieces(pieces);
         std::printf("Device: %s. %dx%d, %d-pair orbit (elevation 20), perspective (fov 30), separation 1/30 of the "
                     "focus distance (the volume centre's), %s caster at T_o %g, T_a %g, step %g voxel, trilinear, "
-                    "Phong headlight, ERT 0.99. Times are medians over the orbit; errors of the reused right eye "
-                    "against its full render, mean over the views (worst view in brackets).\n\n",
-                    ctx.info().name.c_str(), size, size, views, caster.c_str(), to, ta, step);
+                    "Phong headlight, ERT 0.99. Times are medians over the orbit (%d round(s)); errors of the reused "
+                    "right eye against its full render, mean over the views (worst view in brackets).\n\n",
+                    ctx.info().name.c_str(), size, size, views, caster.c_str(), to, ta, step, rounds);
         std::printf("| dataset | one eye ms | pair ms (reuse) | pair / one eye | left eye ms (reuse) | "
                     "pair ms (no reuse) | reprojection ms | right eye re-cast (pixels, of them in part, work, "
                     "pieces) | PSNR dB | SSIM | off > 1/255 | CIEDE2000 > 2.3 | time target | quality target |\n"
@@ -88,7 +91,7 @@ int main(int argc, char** argv) {
                 cameras.push_back(Camera::fit(p.grid(), v));
             }
             const GpuVolume volume = renderer.upload(p, {{s.caster}, kAllOctants});
-            const StereoMeasurement m = measureStereo(renderer, volume, cameras, s);
+            const StereoMeasurement m = measureStereo(renderer, volume, cameras, s, rounds);
             if (!images.empty()) {
                 const std::string stem = images + "/" + e.file.substr(0, e.file.find('.'));
                 writeImage(stem + "_reused.png", m.reusedRight.front());

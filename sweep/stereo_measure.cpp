@@ -1,13 +1,14 @@
 #include "sweep/stereo_measure.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "sweep/order_statistics.h"
 
 namespace vr {
 
 StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volume, const std::vector<Camera>& cameras,
-                                const RenderSettings& settings) {
+                                const RenderSettings& settings, int rounds) {
     auto pairAbout = [&](const Camera& camera) {
         const double focus = dot(volume.grid().centre() - camera.eye, camera.forward);
         return stereoPair(camera, volume.grid(), kSeparationPerFocus * focus, focus);
@@ -23,8 +24,7 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
     std::vector<double> pair, oneEye, leftEye, fullPair, reproject;
     std::vector<ImageError> errors;
     double recastIterations = 0, fullIterations = 0;
-    for (const Camera& camera : cameras) {
-        const StereoPair eyes = pairAbout(camera);
+    auto timePairs = [&](const StereoPair& eyes) {
         const StereoRender reused = renderer.renderStereo(volume, eyes, timed, true);
         const StereoRender full = renderer.renderStereo(volume, eyes, timed, false);
         pair.push_back(reused.left.deviceMilliseconds + reused.right.deviceMilliseconds);
@@ -32,6 +32,11 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
         leftEye.push_back(reused.left.deviceMilliseconds);
         fullPair.push_back(full.left.deviceMilliseconds + full.right.deviceMilliseconds);
         reproject.push_back(reused.reprojectMilliseconds);
+        return std::pair{reused, full};
+    };
+    for (const Camera& camera : cameras) {
+        const StereoPair eyes = pairAbout(camera);
+        const auto [reused, full] = timePairs(eyes);
         m.recastFraction += reused.recastFraction / double(cameras.size());
         m.recastInPart += reused.recastInPartFraction / double(cameras.size());
         m.recastPieces = std::max(m.recastPieces, reused.recastPieces);
@@ -48,6 +53,8 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
             m.fullRight.push_back(full.right.image);
         }
     }
+    for (int round = 1; round < rounds; ++round)
+        for (const Camera& camera : cameras) timePairs(pairAbout(camera));
     m.pairMs = median(pair);
     m.oneEyeMs = median(oneEye);
     m.leftEyeMs = median(leftEye);

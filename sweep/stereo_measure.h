@@ -32,9 +32,10 @@ struct StereoMeasurement {
 };
 
 // The pairs about `cameras` (perspective), each eye's separation kSeparationPerFocus of its focus distance, after
-// one warm-up pair, timed without ray counts (as users render) and counted again untimed for the re-cast work.
-// Throws as VulkanRenderer::renderStereo does.
+// one warm-up pair, timed without ray counts (as users render) and counted again untimed for the re-cast work. The
+// orbit is timed `rounds` times over (the medians over every round's views: a steadier ratio on a noisy machine);
+// errors and counts come from the first. Throws as VulkanRenderer::renderStereo does.
 StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volume, const std::vector<Camera>& cameras,
-                                const RenderSettings& settings);
+                                const RenderSettings& settings, int rounds = 1);
 
 }  // namespace vr
