@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <type_traits>
 
 #include "core/enum_names.h"
@@ -53,6 +54,12 @@ std::size_t narrowScalars(const float* from, std::size_t count, ScalarType type,
         case ScalarType::Float32: return narrowAs<float>(from, count, to);
     }
     return 0;
+}
+
+const std::vector<float>& floatValues(const Volume& v) {
+    if (v.values.empty() && !v.stored.empty())
+        throw std::logic_error(v.source + ": its scalars were read in their own type, for a device upload alone");
+    return v.values;
 }
 
 }  // namespace vr

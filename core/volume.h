@@ -34,11 +34,19 @@ std::size_t narrowScalars(const float* from, std::size_t count, ScalarType type,
 struct Volume {
     GridGeometry grid;
     ScalarType sourceType = ScalarType::Float32;
-    std::vector<float> values;  // x fastest, then y, then z; size == grid.voxels()
+    std::vector<float> values;  // x fastest, then y, then z; size == grid.voxels(), or empty where `stored` holds them
+    // The scalars in sourceType's own bytes, in the same order, instead of `values`: an integer volume read from a
+    // prepared file for a device upload alone (readPrepared's PreparedReadScope::floatScalars), which copies these
+    // bytes as they are; no float copy of the volume is made. Empty otherwise.
+    std::vector<unsigned char> stored;
     std::string source;         // where it came from (a path), for the prepared file's metadata
     std::vector<std::string> notes;  // what loading left out, for the tools to tell the user (a 4-D file's other volumes)
 
     float at(int x, int y, int z) const { return values[linearIndex(grid.dims, x, y, z)]; }
 };
+
+// The values as floats, as every reader but a device upload takes them: throws std::logic_error (a bug) where the
+// volume is held in its own type alone (Volume::stored).
+const std::vector<float>& floatValues(const Volume& v);
 
 }  // namespace vr

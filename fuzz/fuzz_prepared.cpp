@@ -82,16 +82,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size & 8) fixBlockChecksums(bytes);
     fixHeaderChecksum(bytes);
     const std::filesystem::path path = vr::fuzz::writeInput("input.vprep", bytes);
-    // The input's size picks which distance fields are read, and whether as a render reads them (some octants, no
-    // region labels), so that every chunk is fuzzed both read and skipped.
+    // The input's size picks which distance fields are read, and whether as a render on the device reads them (some
+    // octants, no region labels, integer scalars in their own type), so that every chunk is fuzzed both read and
+    // skipped, the scalars both as floats and as their bytes.
     const unsigned fields = unsigned(size % 8);
     vr::PreparedReadScope scope;
-    if (size & 16) scope = {unsigned(size >> 5) & vr::kAllOctants, false};
+    if (size & 16) scope = {unsigned(size >> 5) & vr::kAllOctants, false, (size & 8192) != 0};
     try {
         const vr::PreparedVolume p = vr::readPrepared(path, fields, scope);
         const std::size_t voxels = p.grid().voxels();
         const vr::TransferTable& table = p.classification.table;
-        if (p.scalars.values.size() != voxels || p.regions.label.size() != (scope.regions ? voxels : 0))
+        const vr::Volume& s = p.scalars;
+        const std::size_t scalars =
+            s.values.empty() ? s.stored.size() / vr::scalarBytes(s.sourceType) : s.values.size();
+        if (!s.values.empty() && !s.stored.empty())
+            vr::fuzz::finding("readPrepared returned the scalars both as floats and in their own type");
+        if (scalars != voxels || p.regions.label.size() != (scope.regions ? voxels : 0))
             vr::fuzz::finding("readPrepared returned arrays that do not fit the grid");
         if (table.sigma.size() != table.colour.size() || table.size() < 1 ||
             table.size() > vr::kMaxTransferTableEntries)

@@ -45,6 +45,9 @@ void writePrepared(const std::filesystem::path& path, const PreparedVolume& prep
 struct PreparedReadScope {
     unsigned octants = kAllOctants;  // the ACD and EACD octants read (bit o: octant o); the others stay empty
     bool regions = true;             // the regions' labels; without them Regions::label stays empty (the count is read)
+    // false: integer scalars stay in their own type (Volume::stored, Volume::values empty), for a device upload that
+    // needs nothing else of them (at 512^3 int16, 512 MiB of floats not made); float32 scalars are read as floats.
+    bool floatScalars = true;
 };
 
 // Reads the scalars, the transfer table, the region labels, the label map where the file has one and only the

@@ -176,6 +176,8 @@ PreparedVolume readPrepared(const fs::path& path, unsigned fields, const Prepare
     std::vector<float>& values = p.scalars.values;
     if (scalarType == ScalarType::Float32) {
         want("scalars", values);
+    } else if (!scope.floatScalars) {
+        want("scalars", p.scalars.stored);
     } else {
         const ChunkEntry& e = table.at("scalars");
         reads.push_back({"scalars", e, [&values, &scalarBytesRead, bytes = e.bytes, voxels] {

@@ -52,6 +52,7 @@ BlockRanges blockRanges(const Volume& scalars, int blockShift) {
         return std::pair{std::max(0, b * edge - 1), std::min(voxels - 1, (b + 1) * edge)};
     };
     const bool widen = scalars.sourceType == ScalarType::Float32;
+    const std::vector<float>& values = floatValues(scalars);
     const std::size_t sliceVoxels = std::size_t(dims.x) * dims.y;
     // A slab of blocks at a time: its slices folded voxel by voxel into one (whole rows, which vectorise), that
     // slice's rows folded per row of blocks, then each block's run of the folded row.
@@ -60,11 +61,11 @@ BlockRanges blockRanges(const Volume& scalars, int blockShift) {
             rowHi(std::size_t(dims.x));
         for (int bz = slabs.begin(); bz < slabs.end(); ++bz) {
             const auto [z0, z1] = span(bz, dims.z);
-            const float* first = scalars.values.data() + std::size_t(z0) * sliceVoxels;
+            const float* first = values.data() + std::size_t(z0) * sliceVoxels;
             std::copy(first, first + sliceVoxels, sliceLo.begin());
             std::copy(first, first + sliceVoxels, sliceHi.begin());
             for (int z = z0 + 1; z <= z1; ++z) {
-                const float* slice = scalars.values.data() + std::size_t(z) * sliceVoxels;
+                const float* slice = values.data() + std::size_t(z) * sliceVoxels;
                 fold(slice, slice, sliceVoxels, sliceLo.data(), sliceHi.data());
             }
             for (int by = 0; by < r.blocks.y; ++by) {

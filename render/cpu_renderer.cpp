@@ -185,6 +185,7 @@ Vec3d isoSurface(const Sampler& sampler, const GridRay& g, const RayClip& clip, 
 
 RenderResult renderCpu(const PreparedVolume& prepared, const Camera& camera, const RenderSettings& settings) {
     checkRenderInputs(prepared, settings);
+    floatValues(prepared.scalars);  // the samplers read them
     const auto start = std::chrono::steady_clock::now();
 
     const GridGeometry& grid = prepared.grid();

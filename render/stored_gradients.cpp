@@ -18,7 +18,9 @@ int GradientPacker::baseFor(double largest) {
 
 GradientPacker::GradientPacker(const Volume& scalars, const TransferTable& table)
     : GradientPacker(baseFor(table.step * double(table.size() > 0 ? table.size() - 1 : 0) /
-                             scalars.grid.smallestSpacing())) {}
+                             scalars.grid.smallestSpacing())) {
+    floatValues(scalars);  // packRow reads them
+}
 
 GradientPacker::GradientPacker(int base) : base_(base) {
     for (int e = 0; e < kExponents; ++e) {

@@ -390,6 +390,19 @@ TEST_F(IoPreparedFile, RoundTripOfEveryScalarType) {
             }
         }
         EXPECT_EQ(chunkBytes(parts, "scalars"), own);
+        // Read for a device upload alone: integer scalars in their own type, exactly the chunk's bytes, and no
+        // floats, which a reader of floats is refused; float32 scalars as floats.
+        const PreparedVolume narrow = readPrepared(bad, kFieldPC, {kAllOctants, true, false});
+        if (type == ScalarType::Float32) {
+            EXPECT_EQ(narrow.scalars.values, v);
+            EXPECT_TRUE(narrow.scalars.stored.empty());
+        } else {
+            EXPECT_TRUE(narrow.scalars.values.empty());
+            EXPECT_EQ(narrow.scalars.stored, std::vector<unsigned char>(own.begin(), own.end()));
+            EXPECT_THROW(floatValues(narrow.scalars), std::logic_error);
+        }
+        EXPECT_EQ(narrow.scalars.sourceType, type);
+        EXPECT_EQ(narrow.fields.pc, p.fields.pc);
         uint64_t bytes = 0, stored = 0;
         for (const json& chunk : parts.header["chunks"]) {
             bytes += chunk["bytes"].get<uint64_t>();

@@ -12,6 +12,8 @@
 #include "core/errors.h"
 #include "datasets/phantoms.h"
 #include "preprocess/classify/transfer_function.h"
+#include "render/block_extrema.h"
+#include "render/cpu_renderer.h"
 #include "render/view_octants.h"
 #include "support/prepare.h"
 #include "support/vulkan.h"
@@ -249,6 +251,33 @@ TEST(VulkanUploads, ShadedLeapingOverRegionsMadeWithoutNormalsIsRefused) {
 // lavapipe's uploads write texels in place, into linear images whose rows are padded (to 64 bytes, and to 64 rows
 // a slice); a GPU's go through a staging buffer. Both give the same images and leaps, shaded and unshaded, with
 // volume sides that are no multiple of the padding.
+// A volume read for the device alone (readPrepared without float scalars) holds its integer scalars in their own
+// type: uploaded as they are, whole and in bricks, they render what their floats render.
+TEST(VulkanUploads, ScalarsInTheirOwnTypeRenderWhatTheirFloatsRender) {
+    const PreparedVolume p = prepare(shellsPhantom({21, 18, 13}), 0.02, 10, true);
+    const ScalarType type = p.scalars.sourceType;
+    ASSERT_NE(type, ScalarType::Float32);
+    PreparedVolume own = p;
+    own.scalars.stored.resize(p.grid().voxels() * scalarBytes(type));
+    ASSERT_EQ(narrowScalars(p.scalars.values.data(), p.grid().voxels(), type, own.scalars.stored.data()),
+              p.grid().voxels());
+    own.scalars.values.clear();
+    const Camera cam = Camera::fit(p.grid(), view(30, 20, Projection::Perspective));
+    for (VulkanRenderer* renderer : {&whole(), &bricked()})
+        for (Caster c : kCasters) {
+            SCOPED_TRACE(casterName(c));
+            const RenderSettings s = renderSettings(c, true);
+            const RenderResult floats = renderer->render(p, cam, s);
+            const RenderResult stored = renderer->render(own, cam, s);
+            EXPECT_EQ(maxAbsDifference(stored.image, floats.image), 0.0);
+            EXPECT_EQ(stored.iterations, floats.iterations);
+        }
+    // What reads the scalars on the host refuses a volume without their floats, rather than reading nothing.
+    EXPECT_THROW(renderCpu(own, cam, renderSettings(Caster::Primitive, true)), std::logic_error);
+    EXPECT_THROW(blockExtrema(own.scalars), std::logic_error);
+    expectNoValidationErrors();
+}
+
 TEST(VulkanUploads, StagedUploadsRenderWhatInPlaceUploadsRender) {
     static VulkanRenderer staged(test::vulkanContext(), 20, ImageLimits{0, 0, true});
     const PreparedVolume p = prepare(shellsPhantom({21, 18, 13}), 0.02, 10, false);

@@ -134,12 +134,15 @@ GpuVolume::GpuVolume(const VulkanContext& ctx, const vk::raii::CommandPool& pool
     uploads_.push_back({"table", table_->bytes(), 0});
 
     const Vec3i dims = grid_.dims;
-    const std::vector<float>& values = prepared.scalars.values;
+    const Volume& scalars = prepared.scalars;
     std::atomic<bool> scalarsFit = true;
     std::vector<WholeImage> wholes;
     const ScalarType scalarType = scalarType_;
-    const auto scalarRow = [&values, &scalarsFit, scalarType](int, std::size_t first, int count, uint8_t* to) {
-        if (narrowScalars(values.data() + first, std::size_t(count), scalarType, to) < std::size_t(count))
+    const auto scalarRow = [&scalars, &scalarsFit, scalarType](int, std::size_t first, int count, uint8_t* to) {
+        const std::size_t bytes = scalarBytes(scalarType);
+        if (scalars.values.empty())  // held in their own type: copied as they are
+            std::memcpy(to, scalars.stored.data() + first * bytes, std::size_t(count) * bytes);
+        else if (narrowScalars(scalars.values.data() + first, std::size_t(count), scalarType, to) < std::size_t(count))
             scalarsFit = false;
     };
     wholes.push_back({&scalars_, "scalars", 1, scalarFormat(scalarType_), scalarRow, scalarsPerTexel(scalarType_)});
