@@ -25,14 +25,14 @@ StereoMeasurement measureStereo(VulkanRenderer& renderer, const GpuVolume& volum
     std::vector<ImageError> errors;
     double recastIterations = 0, fullIterations = 0;
     auto timePairs = [&](const StereoPair& eyes) {
-        const StereoRender reused = renderer.renderStereo(volume, eyes, timed, true);
-        const StereoRender full = renderer.renderStereo(volume, eyes, timed, false);
+        StereoRender reused = renderer.renderStereo(volume, eyes, timed, true);
+        StereoRender full = renderer.renderStereo(volume, eyes, timed, false);
         pair.push_back(reused.left.deviceMilliseconds + reused.right.deviceMilliseconds);
         oneEye.push_back(full.left.deviceMilliseconds);
         leftEye.push_back(reused.left.deviceMilliseconds);
         fullPair.push_back(full.left.deviceMilliseconds + full.right.deviceMilliseconds);
         reproject.push_back(reused.reprojectMilliseconds);
-        return std::pair{reused, full};
+        return std::pair{std::move(reused), std::move(full)};
     };
     for (const Camera& camera : cameras) {
         const StereoPair eyes = pairAbout(camera);
