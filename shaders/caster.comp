@@ -22,6 +22,9 @@ layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize, local_size_
 // accepts. As specialization constants they left every caster in one module (200 KB), which lavapipe translated and
 // optimized whole for each pipeline: 0.1 s on one core against 0.06 s for one pair's module (0.03 s plain, below).
 const int CASTER = VR_CASTER;
+// Whether the composite sample loop tests its condition at the end of each trip (main): llvmpipe runs a loop's body
+// once more, under an empty mask, after a test at the start of a trip has let the last ray of a SIMD batch out.
+const bool TEST_AT_END = CASTER == kACD || CASTER == kEACD;
 layout(constant_id = kSpecIdTrilinear) const bool TRILINEAR = false;
 layout(constant_id = kSpecIdShading) const bool SHADING = true;
 // false: the volume is one brick, rendered in one dispatch per tile, so no ray state is carried (llvmpipe would
@@ -624,9 +627,12 @@ void main() {
             }
         } while (sampling(mine, failed, hit, k, kEnd, depth, running));
     } else do {
-        // Tested at the start of each trip: tested at the end instead (the blocks loop above), ACD and EACD frames
-        // were 5 % faster on llvmpipe but PC and hier frames 4-7 % slower.
-        for (n = 1u; sampling(mine, failed, hit, k, kEnd, depth, running); k += n) {
+        // ACD and EACD test at the end of each trip, as the blocks loop above does (5 % faster frames on llvmpipe);
+        // the others at its start (PC and hier were 4-7 % slower tested at the end). One body: with the test at the
+        // start, `do { if (!sampling) break; ... } while (true)` is a `for (; sampling; k += n)`.
+        n = 1u;
+        if (!TEST_AT_END || sampling(mine, failed, hit, k, kEnd, depth, running)) do {
+            if (!TEST_AT_END && !sampling(mine, failed, hit, k, kEnd, depth, running)) break;
             ivec3 v;
             if (!enterSample(g, iv, k, v, iterations, failed)) break;
             // The sample's scalar. Composite classifies it (docs/ALGORITHMS.md section 2) and takes its gradient only
@@ -710,7 +716,7 @@ void main() {
             if (CASTER == kPrimitive) continue;  // nothing to composite
             if (STEREO_BANDS && spanAlpha > 0.0) bandGathered = true;
             compositeSpan(shaded, spanAlpha, spanDepth, t0, t1, colour, colourLost, transmittance, depth, moment);
-        }
+        } while (TEST_AT_END ? sampling(mine, failed, hit, k += n, kEnd, depth, running) : (k += n, true));
         if (!crossing && !shown) break;
         shown = false;
         if (CASTER == kPrimitive)
