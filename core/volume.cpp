@@ -56,6 +56,10 @@ std::size_t narrowScalars(const float* from, std::size_t count, ScalarType type,
     return 0;
 }
 
+std::size_t heldVoxels(const Volume& v) {
+    return v.values.empty() ? v.stored.size() / scalarBytes(v.sourceType) : v.values.size();
+}
+
 const std::vector<float>& floatValues(const Volume& v) {
     if (v.values.empty() && !v.stored.empty())
         throw std::logic_error(v.source + ": its scalars were read in their own type, for a device upload alone");

@@ -45,6 +45,9 @@ struct Volume {
     float at(int x, int y, int z) const { return values[linearIndex(grid.dims, x, y, z)]; }
 };
 
+// How many voxels' scalars the volume holds, as floats or in its own type (Volume::stored).
+std::size_t heldVoxels(const Volume& v);
+
 // The values as floats, as every reader but a device upload takes them: throws std::logic_error (a bug) where the
 // volume is held in its own type alone (Volume::stored).
 const std::vector<float>& floatValues(const Volume& v);

@@ -93,11 +93,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const std::size_t voxels = p.grid().voxels();
         const vr::TransferTable& table = p.classification.table;
         const vr::Volume& s = p.scalars;
-        const std::size_t scalars =
-            s.values.empty() ? s.stored.size() / vr::scalarBytes(s.sourceType) : s.values.size();
         if (!s.values.empty() && !s.stored.empty())
             vr::fuzz::finding("readPrepared returned the scalars both as floats and in their own type");
-        if (scalars != voxels || p.regions.label.size() != (scope.regions ? voxels : 0))
+        if (vr::heldVoxels(s) != voxels || p.regions.label.size() != (scope.regions ? voxels : 0))
             vr::fuzz::finding("readPrepared returned arrays that do not fit the grid");
         if (table.sigma.size() != table.colour.size() || table.size() < 1 ||
             table.size() > vr::kMaxTransferTableEntries)

@@ -52,10 +52,8 @@ void checkLabelledBlend(bool labelled, const RenderSettings& s) {
 void checkRenderInputs(const PreparedVolume& prepared, const RenderSettings& s) {
     const GridGeometry& grid = prepared.grid();
     const std::size_t voxels = grid.voxels();
-    const Volume& scalars = prepared.scalars;
-    const std::size_t held =
-        scalars.values.empty() ? scalars.stored.size() / scalarBytes(scalars.sourceType) : scalars.values.size();
-    if (voxels == 0 || held != voxels) throw InputError("prepared volume: the scalars do not match its grid");
+    if (voxels == 0 || heldVoxels(prepared.scalars) != voxels)
+        throw InputError("prepared volume: the scalars do not match its grid");
     const TransferTable& table = prepared.classification.table;
     if (table.size() == 0 || table.colour.size() != table.size() || !(table.step > 0) || !std::isfinite(table.lo))
         throw InputError("prepared volume: the transfer table is empty or inconsistent");
